@@ -1,0 +1,92 @@
+/* hexlod.h: the whole C ABI between the hexlod core and its callers (JS through WebAssembly,
+ * native tests and benchmarks). Every function has the prefix hexlod_.
+ *
+ * Conventions
+ * - Units: horizontal positions and spacings in metres, x east from the first column, z south
+ *   from the first row, y up; heights in metres after the height scale and offset.
+ * - A terrain handle owns its samples and every mesh built from it. Arrays returned by the
+ *   core stay valid until the next call that rebuilds them or until the terrain is destroyed.
+ * - Functions that can fail return a negative number or NULL; hexlod_last_error() then says
+ *   what was wrong in one sentence. Misuse (a NULL handle) is reported the same way.
+ * - Under WebAssembly, pointers are byte offsets into the module's memory. Emscripten 3.1.6
+ *   hands them to JS as signed 32-bit numbers: read them as `ptr >>> 0`.
+ */
+#ifndef HEXLOD_H
+#define HEXLOD_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Bumped whenever a signature or a meaning below changes. */
+#define HEXLOD_ABI_VERSION 1
+
+/* Sample types: the native depth of the file's heights. */
+#define HEXLOD_SAMPLE_U8 1
+#define HEXLOD_SAMPLE_U16 2
+#define HEXLOD_SAMPLE_I16 3
+#define HEXLOD_SAMPLE_F32 4
+
+typedef struct hexlod_terrain hexlod_terrain;
+
+/* Returns HEXLOD_ABI_VERSION of the compiled core. */
+uint32_t hexlod_abi_version(void);
+
+/* Returns the message of the last failure in this thread (static storage, never NULL; empty
+ * when nothing failed yet). */
+const char* hexlod_last_error(void);
+
+/* Creates a terrain of width x height samples (each at least 2, at most 65536) of the given
+ * HEXLOD_SAMPLE_* type, with uninitialised samples. Returns NULL when the size or type is
+ * invalid or memory is exhausted. */
+hexlod_terrain* hexlod_terrain_create(int32_t width, int32_t height, int32_t sample_type);
+
+/* Frees the terrain and everything built from it. NULL is ignored. */
+void hexlod_terrain_destroy(hexlod_terrain* terrain);
+
+/* Returns where the caller writes the samples: width*height values of the sample type,
+ * row-major, row 0 north, native byte order. */
+void* hexlod_terrain_samples(hexlod_terrain* terrain);
+
+/* Returns the size in bytes of the sample array. */
+double hexlod_terrain_sample_bytes(const hexlod_terrain* terrain);
+
+/* Sets how samples become metres: spacing_x_m and spacing_y_m between columns and rows
+ * (metres, > 0), height_m = raw * height_scale + height_offset_m. When has_nodata is non-zero,
+ * samples equal to nodata_raw are missing (NaN and infinities always are).
+ * Returns 0, or -1 for a non-finite or non-positive spacing or a zero scale. */
+int32_t hexlod_terrain_set_scale(hexlod_terrain* terrain, double spacing_x_m, double spacing_y_m,
+                                 double height_scale, double height_offset_m, int32_t has_nodata,
+                                 double nodata_raw);
+
+/* Call once the samples are written (and after any change to them): fills missing samples
+ * with the lowest valid height and computes the height range. Returns the number of missing
+ * samples that were filled (>= 0), or -1 when every sample is missing. */
+double hexlod_terrain_prepare(hexlod_terrain* terrain);
+
+/* Lowest and highest height in metres, valid after hexlod_terrain_prepare. */
+double hexlod_terrain_min_height(const hexlod_terrain* terrain);
+double hexlod_terrain_max_height(const hexlod_terrain* terrain);
+
+/* Bilinear height in metres at (x_m, z_m), clamped to the field. */
+double hexlod_terrain_height_at(const hexlod_terrain* terrain, double x_m, double z_m);
+
+/* Interim mesh until the hexagon mesh lands: a grid through every step-th sample that covers
+ * the whole field with at most max_cells_per_side cells per side; heights times
+ * vertical_scale. Vertices are 6 floats (x, y, z in metres; unit normal), indices a
+ * counter-clockwise (seen from +y) uint32 triangle list.
+ * Returns the number of vertices, or -1 on failure. */
+int32_t hexlod_grid_mesh_build(hexlod_terrain* terrain, int32_t max_cells_per_side,
+                               float vertical_scale);
+const float* hexlod_grid_mesh_vertices(const hexlod_terrain* terrain);
+int32_t hexlod_grid_mesh_vertex_count(const hexlod_terrain* terrain);
+const uint32_t* hexlod_grid_mesh_indices(const hexlod_terrain* terrain);
+int32_t hexlod_grid_mesh_index_count(const hexlod_terrain* terrain);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HEXLOD_H */

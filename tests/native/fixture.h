@@ -1,0 +1,50 @@
+// Reads the real DEM fixtures in tests/fixtures (raw little-endian float32, row-major).
+#pragma once
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "heightfield.h"
+
+namespace hexlod::test {
+
+struct Fixture {
+    const char* name;
+    int32_t width, height;
+    float spacingX, spacingY;
+    float minHeight, maxHeight; // from the fixture's .json sidecar
+};
+
+// The fixtures' sizes and ranges, as their .json sidecars give them.
+inline const Fixture kVolcano{"volcano_maungawhau", 87, 61, 10.0f, 10.0f, 94.0f, 195.0f};
+inline const Fixture kJacksboro{"jacksboro_fault", 403, 344, 74.4f, 92.6f, 236.0f, 1076.0f};
+inline const Fixture kGrandCanyon{"grandcanyon_512", 512, 512, 61.7f, 61.7f, 479.0f, 2347.0f};
+
+inline std::vector<float> readF32(const Fixture& f) {
+    const std::string path = std::string(HEXLOD_FIXTURES) + "/" + f.name + ".f32";
+    std::vector<float> data(size_t(f.width) * size_t(f.height));
+    FILE* file = std::fopen(path.c_str(), "rb");
+    if (!file) return {};
+    const size_t got = std::fread(data.data(), sizeof(float), data.size(), file);
+    std::fclose(file);
+    if (got != data.size()) return {};
+    return data;
+}
+
+// A prepared f32 height field holding the fixture's samples (null if the file is unreadable).
+inline std::unique_ptr<Heightfield> loadFixture(const Fixture& f) {
+    const std::vector<float> data = readF32(f);
+    if (data.empty()) return nullptr;
+    auto field = Heightfield::create(f.width, f.height, SampleType::F32, nullptr);
+    std::copy(data.begin(), data.end(), static_cast<float*>(field->samples()));
+    HeightfieldScale scale;
+    scale.spacingX = f.spacingX;
+    scale.spacingY = f.spacingY;
+    field->setScale(scale);
+    field->prepare();
+    return field;
+}
+
+} // namespace hexlod::test
