@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# build.sh: the one build entry point of hexlod.
+#   ./build.sh          native core + tests + benchmark, then the WebAssembly module
+#   ./build.sh native   only the native part (CMake + Ninja, into build/native)
+#   ./build.sh wasm     only the WebAssembly module (Emscripten 3.1.6, into build/wasm)
+set -euo pipefail
+cd "$(dirname "$0")"
+target=${1:-all}
+
+core_sources=(src/heightfield.cpp src/grid_mesh.cpp src/hexlod_api.cpp)
+
+build_native() {
+  # Compiler flags of the native build live in CMakeLists.txt, each with its reason.
+  cmake -S . -B build/native -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  ninja -C build/native
+}
+
+build_wasm() {
+  mkdir -p build/wasm/include
+  # emcc must see GLM but not the rest of /usr/include (glibc headers break the wasm libc).
+  ln -sfn /usr/include/glm build/wasm/include/glm
+  # Every function of the C ABI (src/hexlod.h) is exported, plus malloc/free for JS buffers.
+  local exports
+  exports=$(grep -oE '\bhexlod_[a-z0-9_]+\(' src/hexlod.h | tr -d '(' | sort -u | sed 's/^/_/' | paste -sd, -)
+  local flags=(
+    -std=c++17                      # the core is written in C++17
+    -O3                             # the per-frame LOD update runs here: optimise for speed
+    -ffp-contract=off               # no fused multiply-add: the same split/merge decisions as native
+    -fno-exceptions                 # errors go by return value; smaller and faster code
+    -Wall -Wextra                   # the same warnings as the native build
+    -Ibuild/wasm/include            # GLM only (see the link above)
+    -sMODULARIZE -sEXPORT_ES6       # an ES module factory, imported by the page, workers and Node
+    -sEXPORT_NAME=createHexlodCore  # the factory's name
+    -sENVIRONMENT=web,worker        # with node too, 3.1.6 emits __dirname into an ES module; Node passes wasmBinary instead
+    -sALLOW_MEMORY_GROWTH=1         # fields of any size, without reserving memory up front
+    -sMAXIMUM_MEMORY=4GB            # a 16385^2 16-bit field (512 MB) plus its mesh fits in a tab
+    -sINITIAL_MEMORY=64MB           # small fields load without growing the memory at all
+    -sFILESYSTEM=0                  # files arrive as bytes from JS: no virtual file system
+    -sEXPORTED_FUNCTIONS="$exports,_malloc,_free"  # the C ABI is the whole boundary
+    -sEXPORTED_RUNTIME_METHODS=UTF8ToString        # to read hexlod_last_error() messages
+  )
+  # Debian's emscripten runs its JS optimiser with node; it needs Debian's acorn on NODE_PATH.
+  NODE_PATH=/usr/share/nodejs em++ "${flags[@]}" "${core_sources[@]}" -o build/wasm/hexlod_core.mjs
+  echo "built build/wasm/hexlod_core.mjs and hexlod_core.wasm ($(stat -c %s build/wasm/hexlod_core.wasm) bytes)"
+}
+
+case "$target" in
+  native) build_native ;;
+  wasm) build_wasm ;;
+  all) build_native; build_wasm ;;
+  *) echo "usage: ./build.sh [native|wasm|all]" >&2; exit 2 ;;
+esac
