@@ -1,0 +1,104 @@
+// The WebAssembly build of the core, driven from Node through web/core.js exactly as the page
+// drives it: real fixtures decoded straight into WASM memory, at native depth.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { createNodeCore } from '../../bin/node_core.js';
+import { loadTerrain } from '../../web/terrain_source.js';
+
+const fixtures = new URL('../fixtures/', import.meta.url);
+const read = (name) => ({ name, bytes: new Uint8Array(readFileSync(new URL(name, fixtures))) });
+const sidecar = (base) => JSON.parse(readFileSync(new URL(`${base}.json`, fixtures), 'utf8'));
+const floats = (base) => new Float32Array(readFileSync(new URL(`${base}.f32`, fixtures)).buffer.slice(0));
+
+const core = await createNodeCore();
+const BASES = ['volcano_maungawhau', 'jacksboro_fault', 'grandcanyon_512'];
+
+test('the WASM core reports the ABI version of src/hexlod.h', () => {
+  assert.equal(core.abiVersion, 1);
+});
+
+for (const base of BASES) {
+  test(`${base}.f32 loads into WASM with the sidecar's size, spacing and height range`, async () => {
+    const meta = sidecar(base);
+    const { terrain, field } = await loadTerrain(core, [read(`${base}.f32`), read(`${base}.json`)]);
+    assert.equal(terrain.width, meta.width);
+    assert.equal(terrain.height, meta.height);
+    assert.equal(field.spacingX, meta.cell_size_x_m ?? meta.cell_size_m);
+    assert.equal(field.spacingY, meta.cell_size_y_m ?? meta.cell_size_m);
+    assert.ok(Math.abs(terrain.minHeight - meta.min) < 0.5 && Math.abs(terrain.maxHeight - meta.max) < 0.5);
+    // Bilinear lookups at sample positions return the samples themselves.
+    const raw = floats(base);
+    for (const [j, i] of [[0, 0], [meta.width - 1, meta.height - 1], [7, 11], [meta.width >> 1, meta.height >> 1]]) {
+      const h = terrain.heightAt(j * field.spacingX, i * field.spacingY);
+      assert.ok(Math.abs(h - raw[i * meta.width + j]) < 1e-3, `sample (${j}, ${i})`);
+    }
+    terrain.destroy();
+  });
+
+  test(`${base}.png stays 16-bit in WASM memory and matches the f32 within half a quantum`, async () => {
+    const meta = sidecar(base);
+    const { terrain } = await loadTerrain(core, [read(`${base}.png`), read(`${base}.json`)]);
+    assert.equal(terrain.sampleType, 'u16');
+    assert.equal(terrain.sampleBytes, meta.width * meta.height * 2);
+    const raw = floats(base);
+    const halfQuantum = (meta.max - meta.min) / 65535 / 2 + 1e-3;
+    for (let k = 0; k < raw.length; k += 97) {
+      const i = Math.floor(k / meta.width), j = k % meta.width;
+      const h = terrain.heightAt(j * terrain.spacingX, i * terrain.spacingY);
+      assert.ok(Math.abs(h - raw[k]) <= halfQuantum, `sample ${k}: ${h} vs ${raw[k]}`);
+    }
+    terrain.destroy();
+  });
+}
+
+test('the grid mesh from WASM covers the field and sits on the samples', async () => {
+  const { terrain, field } = await loadTerrain(core, [read('volcano_maungawhau.f32'), read('volcano_maungawhau.json')]);
+  const mesh = terrain.buildGridMesh(1000, 1);
+  assert.equal(mesh.vertexCount, 87 * 61);
+  assert.equal(mesh.indexCount, 86 * 60 * 6);
+  const raw = floats('volcano_maungawhau');
+  for (let v = 0; v < mesh.vertexCount; v += 13) {
+    assert.equal(mesh.vertices[v * 6 + 0], (v % 87) * field.spacingX);
+    assert.equal(mesh.vertices[v * 6 + 2], Math.floor(v / 87) * field.spacingY);
+    assert.equal(mesh.vertices[v * 6 + 1], raw[v]);
+  }
+  assert.ok(mesh.indices.every((index) => index < mesh.vertexCount));
+  terrain.destroy();
+});
+
+test('views are refreshed after memory growth and pointers above 2 GB work (>>> 0)', () => {
+  // Fill WASM memory with 512 MB fields until one lies above 2 GB, as a 16k field might.
+  const small = core.createTerrain(4, 4, 'u16');
+  const before = core.buffer;
+  const big = [];
+  let high = null;
+  while (!high && big.length < 6) {
+    const t = core.createTerrain(16385, 16385, 'u16');
+    big.push(t);
+    if (core.module._hexlod_terrain_samples(t.handle) < 0) high = t;
+  }
+  assert.ok(high, 'no field was placed above 2 GB');
+  assert.notEqual(core.buffer, before, 'memory grew');
+  assert.equal(small.samples().length, 16, 'a fresh view works after growth');
+  const samples = high.samples();
+  samples.fill(1000);
+  samples[0] = 7;
+  samples[samples.length - 1] = 65535;
+  high.setScale({ spacingX: 1, spacingY: 1, heightScale: 0.5, heightOffset: 10, nodata: null });
+  high.prepare();
+  assert.equal(high.minHeight, 7 * 0.5 + 10);
+  assert.equal(high.maxHeight, 65535 * 0.5 + 10);
+  for (const t of [...big, small]) t.destroy();
+});
+
+test('core failures surface as CoreError with the core message', () => {
+  assert.throws(() => core.createTerrain(1, 5, 'u16'), /at least 2x2 samples/);
+  assert.throws(() => core.createTerrain(5, 5, 'rgb'), /unknown sample type/);
+  const t = core.createTerrain(3, 3, 'f32');
+  t.samples().fill(NaN);
+  assert.throws(() => t.prepare(), /every sample is nodata/);
+  assert.throws(() => t.setScale({ spacingX: 0, spacingY: 1, heightScale: 1, heightOffset: 0, nodata: null }), /spacing must be positive/);
+  t.destroy();
+  assert.throws(() => t.samples(), /destroyed/);
+});

@@ -1,0 +1,159 @@
+// The one JS module that owns the WebAssembly core (src/hexlod.h is the ABI it wraps).
+// It runs unchanged in the browser, in workers and in Node; only how the .wasm bytes are found
+// differs (the browser fetches them next to this module, Node passes `wasmBinary`).
+//
+// WASM memory may grow during any core call, which detaches every typed-array view on the old
+// buffer: views are therefore made on demand through `HexlodCore.view`, never cached by callers.
+import createHexlodCore from '../build/wasm/hexlod_core.mjs';
+
+/** Sample type names of the loaders mapped to HEXLOD_SAMPLE_* and typed-array constructors. */
+export const SAMPLE_TYPES = {
+  u8: { code: 1, Array: Uint8Array },
+  u16: { code: 2, Array: Uint16Array },
+  i16: { code: 3, Array: Int16Array },
+  f32: { code: 4, Array: Float32Array },
+};
+
+/** A failure reported by the core through hexlod_last_error(). */
+export class CoreError extends Error {}
+
+/**
+ * Instantiates the core.
+ * @param {{ wasmBinary?: Uint8Array, wasmUrl?: string }} [options] wasmBinary in Node; in the
+ *   browser the .wasm is fetched from wasmUrl (default: the build next to this module).
+ * @returns {Promise<HexlodCore>}
+ */
+export async function createCore(options = {}) {
+  const settings = {};
+  if (options.wasmBinary) {
+    settings.wasmBinary = options.wasmBinary;
+  } else {
+    const url = options.wasmUrl ?? new URL('../build/wasm/hexlod_core.wasm', import.meta.url).href;
+    settings.locateFile = () => url;
+  }
+  const module = await createHexlodCore(settings);
+  return new HexlodCore(module);
+}
+
+export class HexlodCore {
+  constructor(module) {
+    this.module = module;
+    this.abiVersion = module._hexlod_abi_version();
+  }
+
+  /** The current WASM memory buffer (a new object after every growth). */
+  get buffer() {
+    return this.module.HEAPU8.buffer;
+  }
+
+  /**
+   * A typed-array view on WASM memory. Pointers from Emscripten 3.1.6 are signed 32-bit
+   * numbers, so `>>> 0` recovers addresses above 2 GB.
+   */
+  view(ArrayType, pointer, length) {
+    return new ArrayType(this.buffer, pointer >>> 0, length);
+  }
+
+  /** The last error message of the core. */
+  lastError() {
+    return this.module.UTF8ToString(this.module._hexlod_last_error());
+  }
+
+  /** Throws a CoreError with the core's message when `failed` is true. */
+  check(failed, what) {
+    if (failed) throw new CoreError(`${what}: ${this.lastError()}`);
+  }
+
+  /**
+   * Creates a terrain whose samples JS writes in place (see Terrain.samples()).
+   * @param {number} width samples per row
+   * @param {number} height rows
+   * @param {'u8'|'u16'|'i16'|'f32'} sampleType native depth of the heights
+   */
+  createTerrain(width, height, sampleType) {
+    const type = SAMPLE_TYPES[sampleType];
+    if (!type) throw new CoreError(`unknown sample type '${sampleType}'`);
+    const handle = this.module._hexlod_terrain_create(width, height, type.code);
+    this.check(handle === 0, `cannot create a ${width}x${height} ${sampleType} terrain`);
+    return new Terrain(this, handle, width, height, sampleType);
+  }
+}
+
+/** One height field in the core, and the meshes built from it. */
+export class Terrain {
+  constructor(core, handle, width, height, sampleType) {
+    this.core = core;
+    this.handle = handle;
+    this.width = width;
+    this.height = height;
+    this.sampleType = sampleType;
+  }
+
+  get m() {
+    if (this.handle === 0) throw new CoreError('the terrain was destroyed');
+    return this.core.module;
+  }
+
+  /** A fresh view on the samples, to decode a file straight into WASM memory. */
+  samples() {
+    const pointer = this.m._hexlod_terrain_samples(this.handle);
+    return this.core.view(SAMPLE_TYPES[this.sampleType].Array, pointer, this.width * this.height);
+  }
+
+  /**
+   * How samples become metres.
+   * @param {{spacingX: number, spacingY: number, heightScale: number, heightOffset: number, nodata: number|null}} s
+   *   spacings in metres per sample, metres = raw * heightScale + heightOffset, nodata a raw value or null.
+   */
+  setScale({ spacingX, spacingY, heightScale, heightOffset, nodata }) {
+    const hasNodata = nodata !== null && nodata !== undefined && !Number.isNaN(nodata);
+    const result = this.m._hexlod_terrain_set_scale(this.handle, spacingX, spacingY, heightScale,
+      heightOffset, hasNodata ? 1 : 0, hasNodata ? nodata : 0);
+    this.core.check(result < 0, 'invalid height scale');
+    this.spacingX = spacingX;
+    this.spacingY = spacingY;
+  }
+
+  /** Fills missing samples and computes the height range; returns how many were missing. */
+  prepare() {
+    const missing = this.m._hexlod_terrain_prepare(this.handle);
+    this.core.check(missing < 0, 'cannot use this height field');
+    this.minHeight = this.m._hexlod_terrain_min_height(this.handle);
+    this.maxHeight = this.m._hexlod_terrain_max_height(this.handle);
+    return missing;
+  }
+
+  /** Bilinear height in metres at (x, z) metres, clamped to the field. */
+  heightAt(x, z) {
+    return this.m._hexlod_terrain_height_at(this.handle, x, z);
+  }
+
+  /** Size of the samples in bytes. */
+  get sampleBytes() {
+    return this.m._hexlod_terrain_sample_bytes(this.handle);
+  }
+
+  /**
+   * Builds the interim grid mesh; returns views valid until the next core call.
+   * @param {number} maxCellsPerSide grid resolution cap
+   * @param {number} verticalScale height exaggeration (1 = true scale)
+   * @returns {{vertices: Float32Array, indices: Uint32Array, vertexCount: number, indexCount: number}}
+   */
+  buildGridMesh(maxCellsPerSide, verticalScale = 1) {
+    const count = this.m._hexlod_grid_mesh_build(this.handle, maxCellsPerSide, verticalScale);
+    this.core.check(count < 0, 'cannot build the grid mesh');
+    const indexCount = this.m._hexlod_grid_mesh_index_count(this.handle);
+    return {
+      vertexCount: count,
+      indexCount,
+      vertices: this.core.view(Float32Array, this.m._hexlod_grid_mesh_vertices(this.handle), count * 6),
+      indices: this.core.view(Uint32Array, this.m._hexlod_grid_mesh_indices(this.handle), indexCount),
+    };
+  }
+
+  /** Frees the terrain in the core; further calls throw. */
+  destroy() {
+    if (this.handle !== 0) this.core.module._hexlod_terrain_destroy(this.handle);
+    this.handle = 0;
+  }
+}
