@@ -1,0 +1,65 @@
+// Shared set-up of the browser tests: a Vite server on a free localhost port and Debian's
+// Chromium driven by playwright-core (never a browser that a tool downloads).
+import { createServer } from 'vite';
+import { chromium } from 'playwright-core';
+import { mkdirSync } from 'node:fs';
+import { createServer as createNetServer } from 'node:net';
+import { fileURLToPath } from 'node:url';
+
+export const projectDir = fileURLToPath(new URL('../..', import.meta.url));
+export const outDir = `${projectDir}tests/out`;
+
+const CHROMIUM_FLAGS = [
+  '--no-sandbox', // CI runs as root
+  '--disable-gpu', '--enable-unsafe-swiftshader', // WebGL2 on the CPU: no GPU here
+  '--disable-quic', '--no-first-run', '--disable-background-networking',
+  '--disable-component-update', '--disable-sync', // the machine has no network but the registries
+];
+
+/** A free TCP port on localhost (Vite treats port 0 as "use the default"). */
+async function freePort() {
+  const probe = createNetServer();
+  await new Promise((resolve) => probe.listen(0, '127.0.0.1', resolve));
+  const { port } = probe.address();
+  await new Promise((resolve) => probe.close(resolve));
+  return port;
+}
+
+/** Starts the dev server and the browser; returns { url, browser, close() }. */
+export async function startViewer() {
+  const server = await createServer({
+    configFile: `${projectDir}vite.config.js`,
+    root: `${projectDir}public`,
+    server: { port: await freePort(), strictPort: true, host: '127.0.0.1' },
+    logLevel: 'error',
+  });
+  await server.listen();
+  const { port } = server.httpServer.address();
+  const browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM_PATH || '/usr/bin/chromium',
+    headless: true,
+    args: CHROMIUM_FLAGS,
+  });
+  mkdirSync(outDir, { recursive: true });
+  return {
+    url: `http://127.0.0.1:${port}/`,
+    browser,
+    async close() {
+      await browser.close();
+      await server.close();
+    },
+  };
+}
+
+/** Opens a page that records console errors, page errors and failed requests in `problems`. */
+export async function openPage(browser, url, viewport = { width: 960, height: 600 }) {
+  const page = await browser.newPage({ viewport });
+  const problems = [];
+  page.on('console', (message) => {
+    if (message.type() === 'error') problems.push(`console.error: ${message.text()}`);
+  });
+  page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
+  page.on('requestfailed', (request) => problems.push(`request failed: ${request.url()}`));
+  await page.goto(url);
+  return { page, problems };
+}

@@ -1,0 +1,44 @@
+// The page as a user opens it: the default terrain appears, drawn with WebGL2, with no errors.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { decode } from 'fast-png';
+import { startViewer, openPage, outDir } from './harness.js';
+
+let viewer;
+before(async () => { viewer = await startViewer(); });
+after(async () => { await viewer?.close(); });
+
+/** Colour statistics of a PNG screenshot: distinct quantised colours and luminance spread. */
+function pixelStats(png) {
+  const image = decode(png);
+  const { data, channels } = image;
+  const colours = new Set();
+  let sum = 0, sumSq = 0, n = 0;
+  for (let k = 0; k < data.length; k += channels * 7) {
+    const r = data[k], g = data[k + 1], b = data[k + 2];
+    colours.add(((r >> 3) << 10) | ((g >> 3) << 5) | (b >> 3));
+    const y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+    sum += y; sumSq += y * y; n += 1;
+  }
+  const mean = sum / n;
+  return { colours: colours.size, luminanceStd: Math.sqrt(sumSq / n - mean * mean) };
+}
+
+test('the default view shows a real terrain, not one flat colour, and logs no errors', async () => {
+  const { page, problems } = await openPage(viewer.browser, viewer.url);
+  await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 60000 });
+  await page.waitForFunction(() => window.hexlod.frames > 0, null, { timeout: 60000 });
+  const state = await page.evaluate(() => window.hexlod);
+  assert.equal(state.status, 'ready', `page status: ${state.error}`);
+  assert.equal(state.terrain.name, 'globe_himalaya_2048.png');
+  assert.deepEqual([state.terrain.width, state.terrain.height], [2048, 2048]);
+  assert.ok(state.terrain.maxHeight > 8000, 'Everest is in the default terrain');
+  assert.ok(state.triangles > 100000, `only ${state.triangles} triangles drawn`);
+
+  const png = await page.screenshot({ path: `${outDir}/viewer-default.png` });
+  const stats = pixelStats(png);
+  assert.ok(stats.colours > 200, `only ${stats.colours} distinct colours: the terrain is not drawn`);
+  assert.ok(stats.luminanceStd > 12, `luminance spread ${stats.luminanceStd.toFixed(1)}: a flat image`);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

@@ -1,0 +1,146 @@
+// The viewer page: loads the core and the default terrain, draws it, and lets the user drop
+// another height field. State for headless tests is published on window.hexlod.
+import { createCore } from './core.js';
+import { loadTerrain } from './terrain_source.js';
+import { TerrainRenderer } from './renderer.js';
+import { OrbitCamera, attachOrbitControls } from './camera.js';
+
+const DEFAULT_TERRAIN = [
+  new URL('../public/terrain/globe_himalaya_2048.png', import.meta.url).href,
+  new URL('../public/terrain/globe_himalaya_2048.json', import.meta.url).href,
+];
+const GRID_CELLS_PER_SIDE = 512; // interim grid resolution until the hexagon LOD mesh lands
+const VERTICAL_EXAGGERATION = 2;
+
+const canvas = document.getElementById('view');
+const hud = document.getElementById('hud');
+const statusBox = document.getElementById('status');
+
+/** What headless tests read: 'loading' | 'ready' | 'error', and figures of the current view. */
+const state = (window.hexlod = { status: 'loading', frames: 0, error: null, terrain: null, triangles: 0 });
+
+function showStatus(message, isError = false) {
+  statusBox.textContent = message;
+  statusBox.classList.toggle('error', isError);
+}
+
+/**
+ * Where the relief is: the centroid of the mesh vertices weighted by the square of their
+ * height above the lowest point, so a view opens on the mountains rather than the plain.
+ */
+function reliefCentroid(vertices, lowest) {
+  let x = 0, y = 0, z = 0, total = 0;
+  for (let k = 0; k < vertices.length; k += 6) {
+    const w = (vertices[k + 1] - lowest) ** 2;
+    x += vertices[k] * w;
+    y += vertices[k + 1] * w;
+    z += vertices[k + 2] * w;
+    total += w;
+  }
+  if (total === 0) return [vertices[0], vertices[1], vertices[2]];
+  return [x / total, y / total, z / total];
+}
+
+async function fetchFiles(urls) {
+  return Promise.all(urls.map(async (url) => {
+    const response = await fetch(url);
+    if (!response.ok) throw new Error(`cannot fetch ${url}: HTTP ${response.status}`);
+    const name = decodeURIComponent(new URL(url, location.href).pathname.split('/').pop());
+    return { name, bytes: new Uint8Array(await response.arrayBuffer()) };
+  }));
+}
+
+async function main() {
+  const gl = canvas.getContext('webgl2', { antialias: true });
+  if (!gl) throw new Error('this browser has no WebGL2');
+  const core = await createCore();
+  const renderer = new TerrainRenderer(gl);
+  const camera = new OrbitCamera();
+  let current = null; // { terrain, field, loadMs }
+  let frameRequested = false;
+
+  function render() {
+    frameRequested = false;
+    const dpr = window.devicePixelRatio || 1;
+    const width = Math.max(1, Math.round(canvas.clientWidth * dpr));
+    const height = Math.max(1, Math.round(canvas.clientHeight * dpr));
+    if (canvas.width !== width || canvas.height !== height) {
+      canvas.width = width;
+      canvas.height = height;
+    }
+    camera.update(width / height);
+    renderer.draw(camera, width, height);
+    state.frames += 1;
+  }
+
+  function requestRender() {
+    if (!frameRequested) {
+      frameRequested = true;
+      requestAnimationFrame(render);
+    }
+  }
+
+  function show(loaded) {
+    const { terrain, field } = loaded;
+    const mesh = terrain.buildGridMesh(GRID_CELLS_PER_SIDE, VERTICAL_EXAGGERATION);
+    renderer.setMesh(mesh.vertices, mesh.indices,
+      terrain.minHeight * VERTICAL_EXAGGERATION, terrain.maxHeight * VERTICAL_EXAGGERATION);
+    const extent = Math.hypot((terrain.width - 1) * field.spacingX, (terrain.height - 1) * field.spacingY);
+    const focus = reliefCentroid(mesh.vertices, terrain.minHeight * VERTICAL_EXAGGERATION);
+    camera.frame(focus[0], focus[1], focus[2], extent);
+    current?.terrain.destroy();
+    current = loaded;
+    state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
+      minHeight: terrain.minHeight, maxHeight: terrain.maxHeight };
+    state.triangles = mesh.indexCount / 3;
+    const spacing = field.spacingFromFile ? '' : ' (assumed: the file has none)';
+    hud.textContent = [
+      `${field.source}  ${terrain.width} × ${terrain.height} ${field.sampleType}`,
+      `spacing ${field.spacingX.toFixed(1)} × ${field.spacingY.toFixed(1)} m${spacing}`,
+      `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m`,
+      `${state.triangles.toLocaleString('en')} triangles, loaded in ${loaded.loadMs.toFixed(0)} ms`,
+    ].join('\n');
+    requestRender();
+  }
+
+  /** Loads files into a new terrain; on failure the current one stays and the message shows. */
+  async function open(files) {
+    showStatus(`Loading ${files.map((f) => f.name).join(' + ')}…`);
+    try {
+      show(await loadTerrain(core, files));
+      showStatus('');
+      state.error = null;
+    } catch (error) {
+      state.error = error.message;
+      showStatus(error.message, true);
+      console.warn(`hexlod: ${error.message}`);
+    }
+  }
+
+  attachOrbitControls(canvas, camera, requestRender);
+  window.addEventListener('resize', requestRender);
+  window.addEventListener('dragover', (e) => {
+    e.preventDefault();
+    document.body.classList.add('dragging');
+  });
+  window.addEventListener('dragleave', () => document.body.classList.remove('dragging'));
+  window.addEventListener('drop', async (e) => {
+    e.preventDefault();
+    document.body.classList.remove('dragging');
+    const dropped = [...(e.dataTransfer?.files ?? [])];
+    if (dropped.length === 0) return;
+    await open(await Promise.all(dropped.map(async (file) => (
+      { name: file.name, bytes: new Uint8Array(await file.arrayBuffer()) }))));
+  });
+
+  await open(await fetchFiles(DEFAULT_TERRAIN));
+  if (!current) throw new Error(`the default terrain did not load: ${state.error}`);
+  state.status = 'ready';
+}
+
+main().catch((error) => {
+  state.status = 'error';
+  state.error = error.message;
+  showStatus(error.message, true);
+  console.error(error);
+});
