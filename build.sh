@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 target=${1:-all}
 
-core_sources=(src/heightfield.cpp src/grid_mesh.cpp src/hexlod_api.cpp)
+core_sources=(src/*.cpp) # the core is every .cpp directly in src/, as in CMakeLists.txt
 
 build_native() {
   # Compiler flags of the native build live in CMakeLists.txt, each with its reason.
