@@ -47,4 +47,20 @@ inline std::unique_ptr<Heightfield> loadFixture(const Fixture& f) {
     return field;
 }
 
+// A prepared f32 field holding a crop of the fixture (null if the file is unreadable).
+inline std::unique_ptr<Heightfield> cropFixture(const Fixture& f, int32_t column, int32_t row, int32_t width, int32_t height) {
+    const std::vector<float> data = readF32(f);
+    if (data.empty()) return nullptr;
+    auto field = Heightfield::create(width, height, SampleType::F32, nullptr);
+    float* out = static_cast<float*>(field->samples());
+    for (int32_t i = 0; i < height; ++i)
+        for (int32_t j = 0; j < width; ++j) out[size_t(i) * width + j] = data[size_t(row + i) * f.width + column + j];
+    HeightfieldScale scale;
+    scale.spacingX = f.spacingX;
+    scale.spacingY = f.spacingY;
+    field->setScale(scale);
+    field->prepare();
+    return field;
+}
+
 } // namespace hexlod::test

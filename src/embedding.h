@@ -1,0 +1,28 @@
+// Where a lattice point goes in space: the lattice embedding (paper §4.7), one small,
+// swappable function.
+//
+// - Shifted (the paper's): odd rows move half a sample east, so hexagons are nearly
+//   equilateral; an odd-row vertex takes the mean of the two samples it sits between. Vertices
+//   of every level coarser than the finest lie on even rows, i.e. on real samples; at the
+//   finest level the shift smooths odd rows by |second difference|/4.
+// - Exact: the same topology, but every vertex sits on the sample it indexes (column j of an
+//   odd row at x = j). Straight left and right edges, no interpolated heights, zero error at
+//   full refinement. Its new vertices are not midpoints of their parents' edges.
+//
+// Lookups outside the field are clamped: the lattice may extend past the rectangle (§4.7 and
+// docs in hex_mesh_domain.cpp), and what lies outside is hidden when drawing.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "heightfield.h"
+#include "lattice.h"
+
+namespace hexlod {
+
+enum class Embedding : int32_t { Shifted = 0, Exact = 1 };
+
+/// Position in metres (x east, y up = height, z south) of a lattice point.
+glm::vec3 embedLatticePoint(const Heightfield& field, Embedding embedding, LatticePoint p);
+
+} // namespace hexlod
