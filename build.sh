@@ -3,6 +3,7 @@
 #   ./build.sh          native core + tests + benchmark, then the WebAssembly module
 #   ./build.sh native   only the native part (CMake + Ninja, into build/native)
 #   ./build.sh wasm     only the WebAssembly module (Emscripten 3.1.6, into build/wasm)
+#   ./build.sh wasm-tests  the GoogleTest suite built to WebAssembly, run under Node (build/wasm-tests)
 set -euo pipefail
 cd "$(dirname "$0")"
 target=${1:-all}
@@ -47,6 +48,7 @@ build_wasm() {
 case "$target" in
   native) build_native ;;
   wasm) build_wasm ;;
-  all) build_native; build_wasm ;;
-  *) echo "usage: ./build.sh [native|wasm|all]" >&2; exit 2 ;;
+  wasm-tests) scripts/build_wasm_tests.sh ;;
+  all) build_native; build_wasm; scripts/build_wasm_tests.sh ;;
+  *) echo "usage: ./build.sh [native|wasm|wasm-tests|all]" >&2; exit 2 ;;
 esac
