@@ -6,11 +6,16 @@ precision highp float;
 in vec3 vNormal;
 in float vHeight;
 in float vDistance;
+in vec2 vGround;              // x, z in metres
 
 uniform vec3 uSunDirection;   // unit vector towards the sun
 uniform vec2 uHeightRange;    // lowest and highest drawn height, metres
 uniform vec3 uSkyColor;
 uniform float uFogDistance;   // metres at which the terrain is about 63% sky
+uniform vec3 uTint;           // colour-by-level view: the level's colour
+uniform float uTintAmount;    // 0 = ground colours, 1 = level colour only
+uniform vec2 uExtent;         // the field's rectangle, metres (x, z); the mesh may reach past it
+uniform vec4 uLineColor;      // alpha > 0: draw flat lines (the hexagon outlines) in this colour
 
 out vec4 outColor;
 
@@ -25,10 +30,16 @@ vec3 groundColor(float t, float slope) {
 }
 
 void main() {
+    // The lattice extends past the field on the east, west and south: hide what lies outside.
+    if (vGround.x < 0.0 || vGround.y < 0.0 || vGround.x > uExtent.x || vGround.y > uExtent.y) discard;
+    if (uLineColor.a > 0.0) {
+        outColor = uLineColor;
+        return;
+    }
     vec3 n = normalize(vNormal);
     float t = clamp((vHeight - uHeightRange.x) / max(uHeightRange.y - uHeightRange.x, 1e-3), 0.0, 1.0);
     float slope = 1.0 - n.y;
-    vec3 albedo = groundColor(t, slope * 2.5);
+    vec3 albedo = mix(groundColor(t, slope * 2.5), uTint, uTintAmount);
     float sun = max(dot(n, uSunDirection), 0.0);
     float sky = 0.5 + 0.5 * n.y;
     vec3 lit = albedo * (vec3(1.0, 0.96, 0.88) * sun * 1.1 + uSkyColor * sky * 0.35);

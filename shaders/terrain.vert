@@ -11,10 +11,12 @@ uniform vec3 uCameraPosition;
 out vec3 vNormal;
 out float vHeight;   // metres, for the ground colour
 out float vDistance; // metres from the camera, for aerial perspective
+out vec2 vGround;    // x, z in metres, to hide what lies outside the field
 
 void main() {
     vNormal = aNormal;
     vHeight = aPosition.y;
     vDistance = length(aPosition - uCameraPosition);
+    vGround = aPosition.xz;
     gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }

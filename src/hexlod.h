@@ -85,6 +85,52 @@ int32_t hexlod_grid_mesh_vertex_count(const hexlod_terrain* terrain);
 const uint32_t* hexlod_grid_mesh_indices(const hexlod_terrain* terrain);
 int32_t hexlod_grid_mesh_index_count(const hexlod_terrain* terrain);
 
+/* --- The hexagon mesh (paper §4) ------------------------------------------------------------
+ * One hexagon mesh per terrain. Embeddings: HEXLOD_EMBEDDING_SHIFTED (the paper's: odd rows
+ * half a sample east, heights interpolated) or HEXLOD_EMBEDDING_EXACT (every vertex on its
+ * sample). */
+#define HEXLOD_EMBEDDING_SHIFTED 0
+#define HEXLOD_EMBEDDING_EXACT 1
+
+/* (Re)creates the base mesh over the whole field. Returns 0, or -1 for a bad embedding. */
+int32_t hexlod_mesh_reset(hexlod_terrain* terrain, int32_t embedding);
+
+/* Splits every whole cell of the coarsest levels, `rounds` times: the uniform split, equal to
+ * that many 1-to-4 splits of the base triangulation. Returns the number of splits, or -1. */
+int32_t hexlod_mesh_refine_uniform(hexlod_terrain* terrain, int32_t rounds);
+
+/* Splits, `rounds` times, every cell of the finest level present whose centre lies within
+ * radius_m metres (horizontally) of (x_m, z_m), and splits across the long edges of
+ * semi-hexagons there; the balance rule adds the splits it forces. A demonstration of local
+ * refinement until view-dependent refinement lands. Returns the number of splits, or -1. */
+int32_t hexlod_mesh_refine_near(hexlod_terrain* terrain, double x_m, double z_m, double radius_m,
+                                int32_t rounds);
+
+/* Finest level a cell can reach (2 * number of resolutions below the base). */
+int32_t hexlod_mesh_max_level(const hexlod_terrain* terrain);
+/* Triangles drawn, live cells, live vertices of the mesh. */
+int32_t hexlod_mesh_triangle_count(const hexlod_terrain* terrain);
+int32_t hexlod_mesh_cell_count(const hexlod_terrain* terrain);
+int32_t hexlod_mesh_vertex_count(const hexlod_terrain* terrain);
+/* Bytes held by the mesh structures (cell and vertex pools, lists) and by the fan stream. */
+double hexlod_mesh_memory_bytes(const hexlod_terrain* terrain);
+/* Checks every invariant of the mesh; returns 0, or -1 with the violation in hexlod_last_error. */
+int32_t hexlod_mesh_check(const hexlod_terrain* terrain);
+
+/* Writes the fan stream (paper §7): per vertex slot 6 floats (x, y, z in metres, y times
+ * vertical_scale; unit normal averaged from the adjacent triangles), every cell as a triangle
+ * fan closed by index 0xFFFFFFFF, grouped by level, and every cell edge once as a line pair.
+ * Returns the number of fan indices, or -1. The arrays below stay valid until the next call. */
+int32_t hexlod_stream_build(hexlod_terrain* terrain, float vertical_scale);
+const float* hexlod_stream_vertices(const hexlod_terrain* terrain);
+int32_t hexlod_stream_vertex_count(const hexlod_terrain* terrain);
+const uint32_t* hexlod_stream_indices(const hexlod_terrain* terrain);
+int32_t hexlod_stream_index_count(const hexlod_terrain* terrain);
+/* First fan index of each level 0..max_level, then the total: max_level + 2 entries. */
+const int32_t* hexlod_stream_level_offsets(const hexlod_terrain* terrain);
+const uint32_t* hexlod_stream_outline(const hexlod_terrain* terrain);
+int32_t hexlod_stream_outline_count(const hexlod_terrain* terrain);
+
 #ifdef __cplusplus
 }
 #endif

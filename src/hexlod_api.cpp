@@ -4,12 +4,18 @@
 
 #include <memory>
 
+#include "fan_stream.h"
 #include "grid_mesh.h"
 #include "heightfield.h"
+#include "hex_mesh.h"
+#include "hex_mesh_refine.h"
 
 struct hexlod_terrain {
     std::unique_ptr<hexlod::Heightfield> field;
     hexlod::GridMesh grid;
+    hexlod::HexMesh mesh;
+    bool hasMesh = false;
+    hexlod::FanStream stream;
 };
 
 namespace {
@@ -24,6 +30,7 @@ T fail(const char* message, T result) {
 }
 
 constexpr const char* kNullHandle = "the terrain handle is NULL (create it with hexlod_terrain_create)";
+constexpr const char* kNoMesh = "the terrain has no hexagon mesh yet (call hexlod_mesh_reset)";
 
 } // namespace
 
@@ -112,6 +119,99 @@ const uint32_t* hexlod_grid_mesh_indices(const hexlod_terrain* terrain) {
 
 int32_t hexlod_grid_mesh_index_count(const hexlod_terrain* terrain) {
     return terrain ? int32_t(terrain->grid.indices.size()) : fail(kNullHandle, -1);
+}
+
+int32_t hexlod_mesh_reset(hexlod_terrain* terrain, int32_t embedding) {
+    if (!terrain) return fail(kNullHandle, -1);
+    if (embedding != HEXLOD_EMBEDDING_SHIFTED && embedding != HEXLOD_EMBEDDING_EXACT)
+        return fail("unknown embedding (expected 0 = shifted, 1 = exact)", -1);
+    if (const char* error = terrain->mesh.reset(*terrain->field, hexlod::Embedding(embedding))) return fail(error, -1);
+    terrain->hasMesh = true;
+    return 0;
+}
+
+int32_t hexlod_mesh_refine_uniform(hexlod_terrain* terrain, int32_t rounds) {
+    if (!terrain) return fail(kNullHandle, -1);
+    if (!terrain->hasMesh) return fail(kNoMesh, -1);
+    return int32_t(hexlod::refineUniformly(terrain->mesh, rounds));
+}
+
+int32_t hexlod_mesh_refine_near(hexlod_terrain* terrain, double x_m, double z_m, double radius_m,
+                                int32_t rounds) {
+    if (!terrain) return fail(kNullHandle, -1);
+    if (!terrain->hasMesh) return fail(kNoMesh, -1);
+    return int32_t(hexlod::refineNear(terrain->mesh, x_m, z_m, radius_m, rounds));
+}
+
+int32_t hexlod_mesh_max_level(const hexlod_terrain* terrain) {
+    if (!terrain) return fail(kNullHandle, -1);
+    return terrain->hasMesh ? terrain->mesh.maxLevel() : fail(kNoMesh, -1);
+}
+
+int32_t hexlod_mesh_triangle_count(const hexlod_terrain* terrain) {
+    if (!terrain) return fail(kNullHandle, -1);
+    return terrain->hasMesh ? int32_t(terrain->mesh.triangleCount()) : fail(kNoMesh, -1);
+}
+
+int32_t hexlod_mesh_cell_count(const hexlod_terrain* terrain) {
+    if (!terrain) return fail(kNullHandle, -1);
+    return terrain->hasMesh ? terrain->mesh.liveCells() : fail(kNoMesh, -1);
+}
+
+int32_t hexlod_mesh_vertex_count(const hexlod_terrain* terrain) {
+    if (!terrain) return fail(kNullHandle, -1);
+    return terrain->hasMesh ? terrain->mesh.liveVertices() : fail(kNoMesh, -1);
+}
+
+double hexlod_mesh_memory_bytes(const hexlod_terrain* terrain) {
+    if (!terrain) return fail(kNullHandle, -1.0);
+    if (!terrain->hasMesh) return fail(kNoMesh, -1.0);
+    const hexlod::FanStream& s = terrain->stream;
+    return double(terrain->mesh.memoryBytes() + s.vertices.capacity() * sizeof(float) +
+                  (s.indices.capacity() + s.outline.capacity()) * sizeof(uint32_t) +
+                  s.normalSums.capacity() * sizeof(float) + s.levelOffsets.capacity() * sizeof(int32_t));
+}
+
+int32_t hexlod_mesh_check(const hexlod_terrain* terrain) {
+    if (!terrain) return fail(kNullHandle, -1);
+    if (!terrain->hasMesh) return fail(kNoMesh, -1);
+    if (const char* problem = terrain->mesh.checkInvariants()) return fail(problem, -1);
+    return 0;
+}
+
+int32_t hexlod_stream_build(hexlod_terrain* terrain, float vertical_scale) {
+    if (!terrain) return fail(kNullHandle, -1);
+    if (!terrain->hasMesh) return fail(kNoMesh, -1);
+    hexlod::buildFanStream(terrain->mesh, vertical_scale, terrain->stream);
+    return int32_t(terrain->stream.indices.size());
+}
+
+const float* hexlod_stream_vertices(const hexlod_terrain* terrain) {
+    return terrain ? terrain->stream.vertices.data() : fail(kNullHandle, static_cast<const float*>(nullptr));
+}
+
+int32_t hexlod_stream_vertex_count(const hexlod_terrain* terrain) {
+    return terrain ? terrain->stream.vertexCount : fail(kNullHandle, -1);
+}
+
+const uint32_t* hexlod_stream_indices(const hexlod_terrain* terrain) {
+    return terrain ? terrain->stream.indices.data() : fail(kNullHandle, static_cast<const uint32_t*>(nullptr));
+}
+
+int32_t hexlod_stream_index_count(const hexlod_terrain* terrain) {
+    return terrain ? int32_t(terrain->stream.indices.size()) : fail(kNullHandle, -1);
+}
+
+const int32_t* hexlod_stream_level_offsets(const hexlod_terrain* terrain) {
+    return terrain ? terrain->stream.levelOffsets.data() : fail(kNullHandle, static_cast<const int32_t*>(nullptr));
+}
+
+const uint32_t* hexlod_stream_outline(const hexlod_terrain* terrain) {
+    return terrain ? terrain->stream.outline.data() : fail(kNullHandle, static_cast<const uint32_t*>(nullptr));
+}
+
+int32_t hexlod_stream_outline_count(const hexlod_terrain* terrain) {
+    return terrain ? int32_t(terrain->stream.outline.size()) : fail(kNullHandle, -1);
 }
 
 } // extern "C"

@@ -22,7 +22,7 @@ export class OrbitCamera {
    */
   frame(focusX, focusY, focusZ, extent) {
     vec3.set(this.target, focusX, focusY, focusZ);
-    this.distance = 0.45 * extent;
+    this.distance = 0.3 * extent;
     this.yaw = -0.25;
     this.pitch = 0.38;
   }

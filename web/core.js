@@ -151,6 +151,68 @@ export class Terrain {
     };
   }
 
+  /**
+   * (Re)creates the hexagon mesh over the whole field (paper §4.7).
+   * @param {'shifted'|'exact'} embedding the paper's shifted rows, or vertices on their samples
+   */
+  resetMesh(embedding = 'exact') {
+    const code = { shifted: 0, exact: 1 }[embedding];
+    if (code === undefined) throw new CoreError(`unknown embedding '${embedding}'`);
+    this.core.check(this.m._hexlod_mesh_reset(this.handle, code) < 0, 'cannot create the hexagon mesh');
+  }
+
+  /** Uniform split, `rounds` times (each quadruples the triangles); returns the splits made. */
+  refineUniform(rounds) {
+    const splits = this.m._hexlod_mesh_refine_uniform(this.handle, rounds);
+    this.core.check(splits < 0, 'cannot refine');
+    return splits;
+  }
+
+  /** Local refinement of cells within radius metres of (x, z) metres, `rounds` times. */
+  refineNear(x, z, radius, rounds) {
+    const splits = this.m._hexlod_mesh_refine_near(this.handle, x, z, radius, rounds);
+    this.core.check(splits < 0, 'cannot refine');
+    return splits;
+  }
+
+  /** Figures of the hexagon mesh: triangles, cells, vertices, max level, bytes. */
+  meshStats() {
+    const m = this.m, h = this.handle;
+    return {
+      triangles: m._hexlod_mesh_triangle_count(h),
+      cells: m._hexlod_mesh_cell_count(h),
+      vertices: m._hexlod_mesh_vertex_count(h),
+      maxLevel: m._hexlod_mesh_max_level(h),
+      bytes: m._hexlod_mesh_memory_bytes(h),
+    };
+  }
+
+  /** Runs the core's invariant check; throws a CoreError naming the first violation. */
+  checkMesh() {
+    this.core.check(this.m._hexlod_mesh_check(this.handle) < 0, 'mesh invariant violated');
+  }
+
+  /**
+   * Writes the fan stream and returns views on it, valid until the next core call.
+   * @param {number} verticalScale height exaggeration (1 = true scale)
+   * @returns {{vertices: Float32Array, indices: Uint32Array, outline: Uint32Array,
+   *   levelOffsets: Int32Array, vertexCount: number}}
+   */
+  buildStream(verticalScale = 1) {
+    const m = this.m, h = this.handle, core = this.core;
+    const indexCount = m._hexlod_stream_build(h, verticalScale);
+    core.check(indexCount < 0, 'cannot build the fan stream');
+    const vertexCount = m._hexlod_stream_vertex_count(h);
+    const levels = m._hexlod_mesh_max_level(h) + 2;
+    return {
+      vertexCount,
+      vertices: core.view(Float32Array, m._hexlod_stream_vertices(h), vertexCount * 6),
+      indices: core.view(Uint32Array, m._hexlod_stream_indices(h), indexCount),
+      outline: core.view(Uint32Array, m._hexlod_stream_outline(h), m._hexlod_stream_outline_count(h)),
+      levelOffsets: core.view(Int32Array, m._hexlod_stream_level_offsets(h), levels),
+    };
+  }
+
   /** Frees the terrain in the core; further calls throw. */
   destroy() {
     if (this.handle !== 0) this.core.module._hexlod_terrain_destroy(this.handle);

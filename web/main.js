@@ -9,8 +9,11 @@ const DEFAULT_TERRAIN = [
   new URL('../public/terrain/globe_himalaya_2048.png', import.meta.url).href,
   new URL('../public/terrain/globe_himalaya_2048.json', import.meta.url).href,
 ];
-const GRID_CELLS_PER_SIDE = 512; // interim grid resolution until the hexagon LOD mesh lands
 const VERTICAL_EXAGGERATION = 2;
+// Until view-dependent refinement lands: uniform splits up to this many triangles, then a few
+// local rounds around the relief, so several levels show.
+const UNIFORM_TRIANGLES = 120000;
+const LOCAL_ROUNDS = 3;
 
 const canvas = document.getElementById('view');
 const hud = document.getElementById('hud');
@@ -25,12 +28,14 @@ function showStatus(message, isError = false) {
 }
 
 /**
- * Where the relief is: the centroid of the mesh vertices weighted by the square of their
+ * Where the relief is: the centroid of the drawn vertices weighted by the square of their
  * height above the lowest point, so a view opens on the mountains rather than the plain.
  */
-function reliefCentroid(vertices, lowest) {
+function reliefCentroid({ vertices, indices }, lowest) {
   let x = 0, y = 0, z = 0, total = 0;
-  for (let k = 0; k < vertices.length; k += 6) {
+  for (const v of indices) {
+    if (v === 0xffffffff) continue;
+    const k = v * 6;
     const w = (vertices[k + 1] - lowest) ** 2;
     x += vertices[k] * w;
     y += vertices[k + 1] * w;
@@ -58,6 +63,7 @@ async function main() {
   const camera = new OrbitCamera();
   let current = null; // { terrain, field, loadMs }
   let frameRequested = false;
+  const view = { colorByLevel: true, outline: true };
 
   function render() {
     frameRequested = false;
@@ -69,7 +75,7 @@ async function main() {
       canvas.height = height;
     }
     camera.update(width / height);
-    renderer.draw(camera, width, height);
+    renderer.draw(camera, width, height, view);
     state.frames += 1;
   }
 
@@ -82,23 +88,32 @@ async function main() {
 
   function show(loaded) {
     const { terrain, field } = loaded;
-    const mesh = terrain.buildGridMesh(GRID_CELLS_PER_SIDE, VERTICAL_EXAGGERATION);
-    renderer.setMesh(mesh.vertices, mesh.indices,
-      terrain.minHeight * VERTICAL_EXAGGERATION, terrain.maxHeight * VERTICAL_EXAGGERATION);
-    const extent = Math.hypot((terrain.width - 1) * field.spacingX, (terrain.height - 1) * field.spacingY);
-    const focus = reliefCentroid(mesh.vertices, terrain.minHeight * VERTICAL_EXAGGERATION);
+    const extentX = (terrain.width - 1) * field.spacingX;
+    const extentZ = (terrain.height - 1) * field.spacingY;
+    const low = terrain.minHeight * VERTICAL_EXAGGERATION, high = terrain.maxHeight * VERTICAL_EXAGGERATION;
+    terrain.resetMesh('exact');
+    while (terrain.meshStats().triangles * 4 <= UNIFORM_TRIANGLES && terrain.refineUniform(1) > 0);
+    const focus = reliefCentroid(terrain.buildStream(VERTICAL_EXAGGERATION), low);
+    const extent = Math.hypot(extentX, extentZ);
+    terrain.refineNear(focus[0], focus[2], extent / 10, LOCAL_ROUNDS);
+    const stream = terrain.buildStream(VERTICAL_EXAGGERATION);
+    renderer.setStream(stream, low, high, extentX, extentZ);
     camera.frame(focus[0], focus[1], focus[2], extent);
     current?.terrain.destroy();
     current = loaded;
+    const stats = terrain.meshStats();
     state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
       minHeight: terrain.minHeight, maxHeight: terrain.maxHeight };
-    state.triangles = mesh.indexCount / 3;
+    state.triangles = stats.triangles;
+    state.mesh = stats;
     const spacing = field.spacingFromFile ? '' : ' (assumed: the file has none)';
     hud.textContent = [
       `${field.source}  ${terrain.width} × ${terrain.height} ${field.sampleType}`,
       `spacing ${field.spacingX.toFixed(1)} × ${field.spacingY.toFixed(1)} m${spacing}`,
-      `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m`,
-      `${state.triangles.toLocaleString('en')} triangles, loaded in ${loaded.loadMs.toFixed(0)} ms`,
+      `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m, loaded in ${loaded.loadMs.toFixed(0)} ms`,
+      `hexagon mesh: ${stats.triangles.toLocaleString('en')} triangles, ${stats.cells.toLocaleString('en')} cells, ` +
+        `${(stats.bytes / stats.triangles).toFixed(1)} B/triangle`,
+      'L: colour by level   O: hexagon outlines',
     ].join('\n');
     requestRender();
   }
@@ -118,6 +133,12 @@ async function main() {
   }
 
   attachOrbitControls(canvas, camera, requestRender);
+  window.addEventListener('keydown', (e) => {
+    if (e.key === 'l' || e.key === 'L') view.colorByLevel = !view.colorByLevel;
+    else if (e.key === 'o' || e.key === 'O') view.outline = !view.outline;
+    else return;
+    requestRender();
+  });
   window.addEventListener('resize', requestRender);
   window.addEventListener('dragover', (e) => {
     e.preventDefault();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hex_mesh.h"
+#include "hex_mesh_refine.h"
 
 namespace hexlod::test {
 
@@ -51,16 +52,7 @@ inline std::vector<LatticeTriangle> oneToFour(const std::vector<LatticeTriangle>
     return out;
 }
 
-// Splits every whole cell of the coarsest remaining level, `rounds` times: a uniform split.
-inline void splitUniformly(HexMesh& mesh, int32_t rounds) {
-    for (int32_t round = 0; round < rounds; ++round) {
-        const int32_t level = 2 * round;
-        std::vector<int32_t> cells;
-        for (int32_t c = mesh.firstOfLevel(level); c != kNone; c = mesh.nextInLevel(c))
-            if (mesh.cell(c).kind != CellKind::Semi) cells.push_back(c);
-        for (int32_t c : cells) mesh.split(c);
-    }
-}
+inline void splitUniformly(HexMesh& mesh, int32_t rounds) { refineUniformly(mesh, rounds); }
 
 // Merges (and so breaks) everything back, finest level first, until nothing changes.
 inline void coarsenCompletely(HexMesh& mesh) {

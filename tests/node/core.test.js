@@ -102,3 +102,35 @@ test('core failures surface as CoreError with the core message', () => {
   t.destroy();
   assert.throws(() => t.samples(), /destroyed/);
 });
+
+test('the hexagon mesh through the ABI: uniform and local refinement, fans decode to its triangles', async () => {
+  const { terrain } = await loadTerrain(core, [read('jacksboro_fault.png'), read('jacksboro_fault.json')]);
+  assert.throws(() => terrain.refineUniform(1), /no hexagon mesh yet/);
+  assert.throws(() => terrain.resetMesh('sheared'), /unknown embedding/);
+  terrain.resetMesh('exact');
+  const base = terrain.meshStats();
+  assert.ok(base.cells > 0 && base.maxLevel >= 2);
+  assert.ok(terrain.refineUniform(2) > 0);
+  const uniform = terrain.meshStats();
+  assert.equal(uniform.triangles, base.triangles * 16, 'two uniform splits are two 1-to-4 splits');
+  assert.ok(terrain.refineNear(100 * 74.4, 100 * 92.6, 3000, 3) > 0);
+  terrain.checkMesh();
+  const stats = terrain.meshStats();
+  const stream = terrain.buildStream(1.5);
+  let triangles = 0, fanLength = 0, fans = 0;
+  for (const index of stream.indices) {
+    if (index === 0xffffffff) {
+      triangles += fanLength - 2;
+      fanLength = 0;
+      fans += 1;
+    } else {
+      assert.ok(index < stream.vertexCount);
+      fanLength += 1;
+    }
+  }
+  assert.equal(triangles, stats.triangles);
+  assert.equal(fans, stats.cells);
+  assert.equal(stream.levelOffsets.at(-1), stream.indices.length);
+  assert.ok(stats.bytes / stats.triangles < 100, `${stats.bytes / stats.triangles} bytes per triangle`);
+  terrain.destroy();
+});

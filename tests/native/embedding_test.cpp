@@ -1,0 +1,103 @@
+// The two lattice embeddings (§4.7), measured against the original samples at full
+// refinement, and the memory the mesh structures take per triangle (§8.1).
+#include "embedding.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "error_evaluator.h"
+#include "fan_stream.h"
+#include "fixture.h"
+#include "hex_mesh_refine.h"
+
+using namespace hexlod;
+
+namespace {
+
+struct Measured {
+    ErrorStats stats;
+    int64_t triangles = 0;
+    size_t meshBytes = 0;
+};
+
+Measured measureFullRefinement(const Heightfield& field, Embedding embedding) {
+    HexMesh mesh;
+    mesh.reset(field, embedding);
+    refineUniformly(mesh, mesh.maxLevel() / 2);
+    FanStream stream;
+    buildFanStream(mesh, 1.0f, stream);
+    std::vector<uint32_t> triangles;
+    mesh.appendTriangles(triangles);
+    Measured m;
+    m.stats = evaluateMeshError(field, stream.vertices.data(), size_t(stream.vertexCount), kFloatsPerVertex,
+                                triangles.data(), triangles.size());
+    m.triangles = mesh.triangleCount();
+    m.meshBytes = mesh.memoryBytes();
+    return m;
+}
+
+// The shifted embedding's error at full refinement, from the samples alone: an odd-row sample
+// lies halfway between two vertices that each average two samples, |h(j-1) - 2h(j) + h(j+1)|/4
+// (columns clamped at the edges); even rows are exact.
+double shiftedFullRefinementError(const Heightfield& field) {
+    double worst = 0.0;
+    for (int32_t i = 1; i < field.height(); i += 2)
+        for (int32_t j = 0; j < field.width(); ++j) {
+            const double d2 = double(field.heightClamped(j - 1, i)) - 2.0 * field.heightAt(j, i) + field.heightClamped(j + 1, i);
+            worst = std::max(worst, std::abs(d2) / 4.0);
+        }
+    return worst;
+}
+
+} // namespace
+
+TEST(Embedding, CoarseVerticesSitOnRealSamplesInBothEmbeddings) {
+    auto field = test::loadFixture(test::kGrandCanyon);
+    ASSERT_NE(field, nullptr);
+    for (Embedding embedding : {Embedding::Shifted, Embedding::Exact}) {
+        for (int32_t r = 0; r < 64; r += 2) {
+            for (int32_t q = -40; q < 40; q += 2) {
+                const LatticePoint p{q, r};
+                const int32_t j = sampleColumn(p);
+                if (j < 0 || j >= field->width()) continue;
+                const glm::vec3 v = embedLatticePoint(*field, embedding, p);
+                ASSERT_EQ(v.y, field->heightAt(j, r));
+                ASSERT_EQ(v.x, float(double(j) * field->scale().spacingX));
+            }
+        }
+    }
+}
+
+TEST(Embedding, ExactIsErrorFreeAtFullRefinementAndShiftedSmoothsOddRows) {
+    for (const test::Fixture* f : {&test::kVolcano, &test::kJacksboro, &test::kGrandCanyon}) {
+        auto field = test::loadFixture(*f);
+        ASSERT_NE(field, nullptr);
+        const Measured exact = measureFullRefinement(*field, Embedding::Exact);
+        const Measured shifted = measureFullRefinement(*field, Embedding::Shifted);
+        std::printf("embedding error at full refinement, %s (%dx%d): shifted max %.3f m p99 %.3f m; exact max %.3f m p99 %.3f m\n",
+                    f->name, f->width, f->height, shifted.stats.maxError, shifted.stats.p99Error,
+                    exact.stats.maxError, exact.stats.p99Error);
+        for (const Measured* m : {&exact, &shifted}) {
+            ASSERT_EQ(m->stats.error, nullptr);
+            EXPECT_EQ(m->stats.uncovered, 0) << f->name << ": the mesh must cover the whole field";
+            EXPECT_EQ(m->stats.evaluated, int64_t(f->width) * f->height);
+        }
+        EXPECT_EQ(exact.stats.maxError, 0.0) << f->name;
+        EXPECT_NEAR(shifted.stats.maxError, shiftedFullRefinementError(*field), 1e-3) << f->name;
+        EXPECT_GT(shifted.stats.maxError, 1.0) << f->name << ": real terrain has curvature";
+    }
+}
+
+TEST(Embedding, MeshStructuresTakeFewBytesPerTriangle) {
+    auto field = test::loadFixture(test::kGrandCanyon);
+    ASSERT_NE(field, nullptr);
+    const Measured m = measureFullRefinement(*field, Embedding::Exact);
+    const double perTriangle = double(m.meshBytes) / double(m.triangles);
+    std::printf("mesh structures at full refinement of grandcanyon_512: %lld triangles, %.1f bytes per triangle "
+                "(hexagon records %zu B each; paper §8.1: about 15 B per triangle for records, 64 B in all)\n",
+                (long long)m.triangles, perTriangle, sizeof(Hexagon));
+    EXPECT_GT(m.triangles, int64_t(2) * 511 * 511);
+    EXPECT_LT(perTriangle, 64.0);
+}
