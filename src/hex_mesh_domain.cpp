@@ -21,10 +21,12 @@ namespace hexlod {
 
 namespace {
 
-// Largest power of two no more than half the shorter side (at least 1): a handful of base
-// hexagons, and as many levels as the field can use.
+// Largest power of two no more than an eighth of the shorter side (at least 1). The lattice
+// reaches up to two base steps past the east and west edges, so a small step wastes little
+// (at most a quarter of the shorter side on each side, and nothing view-dependent refinement
+// looks at); a few dozen base hexagons are still only a few hundred triangles.
 int32_t chooseBaseStep(int32_t width, int32_t height) {
-    const int32_t limit = std::max(1, (std::min(width, height) - 1) / 2);
+    const int32_t limit = std::max(1, (std::min(width, height) - 1) / 8);
     int32_t step = 1;
     while (step * 2 <= limit) step *= 2;
     return step;

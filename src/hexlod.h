@@ -21,7 +21,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 1
+#define HEXLOD_ABI_VERSION 2
 
 /* Sample types: the native depth of the file's heights. */
 #define HEXLOD_SAMPLE_U8 1
@@ -72,18 +72,6 @@ double hexlod_terrain_max_height(const hexlod_terrain* terrain);
 
 /* Bilinear height in metres at (x_m, z_m), clamped to the field. */
 double hexlod_terrain_height_at(const hexlod_terrain* terrain, double x_m, double z_m);
-
-/* Interim mesh until the hexagon mesh lands: a grid through every step-th sample that covers
- * the whole field with at most max_cells_per_side cells per side; heights times
- * vertical_scale. Vertices are 6 floats (x, y, z in metres; unit normal), indices a
- * counter-clockwise (seen from +y) uint32 triangle list.
- * Returns the number of vertices, or -1 on failure. */
-int32_t hexlod_grid_mesh_build(hexlod_terrain* terrain, int32_t max_cells_per_side,
-                               float vertical_scale);
-const float* hexlod_grid_mesh_vertices(const hexlod_terrain* terrain);
-int32_t hexlod_grid_mesh_vertex_count(const hexlod_terrain* terrain);
-const uint32_t* hexlod_grid_mesh_indices(const hexlod_terrain* terrain);
-int32_t hexlod_grid_mesh_index_count(const hexlod_terrain* terrain);
 
 /* --- The hexagon mesh (paper §4) ------------------------------------------------------------
  * One hexagon mesh per terrain. Embeddings: HEXLOD_EMBEDDING_SHIFTED (the paper's: odd rows

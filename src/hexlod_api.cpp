@@ -5,14 +5,12 @@
 #include <memory>
 
 #include "fan_stream.h"
-#include "grid_mesh.h"
 #include "heightfield.h"
 #include "hex_mesh.h"
 #include "hex_mesh_refine.h"
 
 struct hexlod_terrain {
     std::unique_ptr<hexlod::Heightfield> field;
-    hexlod::GridMesh grid;
     hexlod::HexMesh mesh;
     bool hasMesh = false;
     hexlod::FanStream stream;
@@ -93,32 +91,6 @@ double hexlod_terrain_max_height(const hexlod_terrain* terrain) {
 
 double hexlod_terrain_height_at(const hexlod_terrain* terrain, double x_m, double z_m) {
     return terrain ? terrain->field->heightAtPosition(x_m, z_m) : fail(kNullHandle, 0.0);
-}
-
-int32_t hexlod_grid_mesh_build(hexlod_terrain* terrain, int32_t max_cells_per_side,
-                               float vertical_scale) {
-    if (!terrain) return fail(kNullHandle, -1);
-    if (!hexlod::buildGridMesh(*terrain->field, max_cells_per_side, vertical_scale, terrain->grid))
-        return fail("max_cells_per_side must be at least 1", -1);
-    return int32_t(terrain->grid.vertices.size());
-}
-
-const float* hexlod_grid_mesh_vertices(const hexlod_terrain* terrain) {
-    if (!terrain) return fail(kNullHandle, static_cast<const float*>(nullptr));
-    return reinterpret_cast<const float*>(terrain->grid.vertices.data());
-}
-
-int32_t hexlod_grid_mesh_vertex_count(const hexlod_terrain* terrain) {
-    return terrain ? int32_t(terrain->grid.vertices.size()) : fail(kNullHandle, -1);
-}
-
-const uint32_t* hexlod_grid_mesh_indices(const hexlod_terrain* terrain) {
-    if (!terrain) return fail(kNullHandle, static_cast<const uint32_t*>(nullptr));
-    return terrain->grid.indices.data();
-}
-
-int32_t hexlod_grid_mesh_index_count(const hexlod_terrain* terrain) {
-    return terrain ? int32_t(terrain->grid.indices.size()) : fail(kNullHandle, -1);
 }
 
 int32_t hexlod_mesh_reset(hexlod_terrain* terrain, int32_t embedding) {

@@ -134,24 +134,6 @@ export class Terrain {
   }
 
   /**
-   * Builds the interim grid mesh; returns views valid until the next core call.
-   * @param {number} maxCellsPerSide grid resolution cap
-   * @param {number} verticalScale height exaggeration (1 = true scale)
-   * @returns {{vertices: Float32Array, indices: Uint32Array, vertexCount: number, indexCount: number}}
-   */
-  buildGridMesh(maxCellsPerSide, verticalScale = 1) {
-    const count = this.m._hexlod_grid_mesh_build(this.handle, maxCellsPerSide, verticalScale);
-    this.core.check(count < 0, 'cannot build the grid mesh');
-    const indexCount = this.m._hexlod_grid_mesh_index_count(this.handle);
-    return {
-      vertexCount: count,
-      indexCount,
-      vertices: this.core.view(Float32Array, this.m._hexlod_grid_mesh_vertices(this.handle), count * 6),
-      indices: this.core.view(Uint32Array, this.m._hexlod_grid_mesh_indices(this.handle), indexCount),
-    };
-  }
-
-  /**
    * (Re)creates the hexagon mesh over the whole field (paper §4.7).
    * @param {'shifted'|'exact'} embedding the paper's shifted rows, or vertices on their samples
    */

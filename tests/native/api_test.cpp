@@ -29,11 +29,18 @@ TEST(Api, RoundTripOfARealFieldThroughTheAbi) {
     EXPECT_NEAR(hexlod_terrain_max_height(t), 1076.0, 0.5);
     EXPECT_FLOAT_EQ(float(hexlod_terrain_height_at(t, 74.0 * 3, 93.0 * 2)), data[2 * 403 + 3]);
 
-    const int32_t vertices = hexlod_grid_mesh_build(t, 50, 1.0f);
-    ASSERT_GT(vertices, 0);
-    EXPECT_EQ(vertices, hexlod_grid_mesh_vertex_count(t));
-    EXPECT_EQ(hexlod_grid_mesh_index_count(t) % 3, 0);
-    EXPECT_NE(hexlod_grid_mesh_vertices(t), nullptr);
-    EXPECT_EQ(hexlod_grid_mesh_build(t, 0, 1.0f), -1);
+    EXPECT_EQ(hexlod_mesh_refine_uniform(t, 1), -1);
+    EXPECT_NE(std::string(hexlod_last_error()).find("hexlod_mesh_reset"), std::string::npos);
+    EXPECT_EQ(hexlod_mesh_reset(t, 7), -1);
+    ASSERT_EQ(hexlod_mesh_reset(t, HEXLOD_EMBEDDING_EXACT), 0);
+    const int32_t baseTriangles = hexlod_mesh_triangle_count(t);
+    EXPECT_GT(hexlod_mesh_refine_uniform(t, 2), 0);
+    EXPECT_EQ(hexlod_mesh_triangle_count(t), 16 * baseTriangles);
+    EXPECT_EQ(hexlod_mesh_check(t), 0);
+    const int32_t indices = hexlod_stream_build(t, 1.0f);
+    ASSERT_GT(indices, 0);
+    EXPECT_EQ(hexlod_stream_index_count(t), indices);
+    EXPECT_EQ(hexlod_stream_level_offsets(t)[hexlod_mesh_max_level(t) + 1], indices);
+    EXPECT_GT(hexlod_mesh_memory_bytes(t), 0.0);
     hexlod_terrain_destroy(t);
 }
