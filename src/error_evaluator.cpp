@@ -156,9 +156,13 @@ ErrorStats evaluateMeshError(const Heightfield& field, const float* positions, s
                 else if (v.z < u.z) xLo = std::max(xLo, bound);
                 else if (across < -tolerance) xHi = -INFINITY; // the row is outside this edge
             }
-            const IndexRange colRange = indexRange(xLo, xHi, columnsPerMetre, cols);
+            const int32_t row = b * step;
+            const bool shifted = options.shiftedOddRows && (row & 1) != 0;
+            const double shift = shifted ? 0.5 * field.scale().spacingX : 0.0;
+            const IndexRange colRange = indexRange(xLo - shift, xHi - shift, columnsPerMetre, cols);
             for (int32_t a = colRange.first; a <= colRange.last; ++a) {
-                const double x = xs[size_t(a)];
+                // As the embedding stores the vertex on this sample (embedding.cpp).
+                const double x = shifted ? double(float((double(a * step) + 0.5) * field.scale().spacingX)) : xs[size_t(a)];
                 const double e0 = edgeFunction(p[1], p[2], x, z);
                 const double e1 = edgeFunction(p[2], p[0], x, z);
                 const double e2 = edgeFunction(p[0], p[1], x, z);
@@ -169,7 +173,9 @@ ErrorStats evaluateMeshError(const Heightfield& field, const float* positions, s
                 const double w1 = e1 / sum, w2 = e2 / sum;
                 const double meshY = p[0].y + w1 * (p[1].y - p[0].y) + w2 * (p[2].y - p[0].y);
                 // The sample's height as a mesh vertex on it stores it (a float product).
-                const float sampleY = field.heightAt(a * step, b * step) * verticalScale;
+                const float height = shifted ? 0.5f * (field.heightClamped(a * step, row) + field.heightClamped(a * step + 1, row))
+                                             : field.heightAt(a * step, row);
+                const float sampleY = height * verticalScale;
                 const float error = float(std::abs(meshY - double(sampleY)) * toFieldMetres);
                 float& slot = errors[size_t(b) * size_t(cols) + size_t(a)];
                 slot = std::max(slot, error); // a sample on a shared edge keeps the larger error

@@ -33,6 +33,10 @@ struct ErrorOptions {
     // the memory on huge fields: the evaluator allocates 4 bytes per sample it considers
     // (64 MB for 4096 x 4096). evaluated + uncovered then count those samples only.
     int32_t sampleStride = 1;
+    // Compare with the field as the shifted embedding stores it (paper §4.7) instead of the
+    // original samples: odd-row samples at x = (j + 0.5) * spacingX with height
+    // (h(j) + h(j+1)) / 2, the last column clamped. Even rows are unchanged.
+    bool shiftedOddRows = false;
 };
 
 /// Compares a triangle mesh with the samples of `field`.

@@ -49,6 +49,7 @@ int32_t HexMesh::allocateCell() {
     h.kind = CellKind::Full;
     h.firstVisible = 0;
     ++liveCells_;
+    if (changeLog_) changeLog_->push_back(c);
     return c;
 }
 
@@ -59,6 +60,7 @@ void HexMesh::freeCell(int32_t c) {
     h.prev = kNone;
     freeCell_ = c;
     --liveCells_;
+    if (changeLog_) changeLog_->push_back(c);
 }
 
 int32_t HexMesh::allocateVertex(LatticePoint p) {
@@ -106,6 +108,7 @@ void HexMesh::unlinkLevel(int32_t c) {
 }
 
 void HexMesh::setLevel(int32_t c, int32_t level) {
+    if (changeLog_) changeLog_->push_back(c); // every operation changes the level of what it changes
     unlinkLevel(c);
     cells_[size_t(c)].level = uint8_t(level);
     linkLevel(c);
@@ -215,31 +218,37 @@ bool HexMesh::canSplit(int32_t c) const {
 
 bool HexMesh::split(int32_t c) {
     if (!canSplit(c)) return false;
-    if (!forceBalanceAround(c)) return false;
-    splitUnchecked(c);
-    return true;
+    for (;;) {
+        const SplitStep step = firstStepToSplit(c);
+        applyStep(step);
+        if (step.kind == SplitStep::Split && step.cell == c) return true;
+    }
 }
 
 // §4.5: after splitting c, its new semi-hexagons (level l+1) border c's neighbours. A
 // neighbour semi-hexagon touching c with a short edge has level l-1: two levels apart, which
 // the balance rule forbids (Fig. 5). It is joined first: with its partner across its long
-// edge, splitting that partner when it is a whole cell (recursively balanced in turn).
-bool HexMesh::forceBalanceAround(int32_t c) {
-    for (bool changed = true; changed;) {
-        changed = false;
-        const CellSlots slots = slotsOf(cells_[size_t(c)]);
-        for (int32_t i = 0; i < slots.edgeCount && !changed; ++i) {
-            const int32_t o = cells_[size_t(c)].opposite[wrapSlot(slots.firstEdge + i) - 1];
-            if (o == kNone || cells_[size_t(hexIdx(o))].kind != CellKind::Semi || isLongEdge(o)) continue;
-            const int32_t n = hexIdx(o);
-            const int32_t across = cells_[size_t(n)].opposite[wrapSlot(cells_[size_t(n)].firstVisible + 3) - 1];
-            if (across == kNone) joinBoundary(n);
-            else if (cells_[size_t(hexIdx(across))].kind == CellKind::Semi) joinPair(n, hexIdx(across));
-            else if (!split(hexIdx(across))) return false;
-            changed = true; // c's neighbourhood changed: look again from the first edge
-        }
+// edge, or by splitting the whole cell across it, which in turn may need a step first.
+SplitStep HexMesh::firstStepToSplit(int32_t c) const {
+    const CellSlots slots = slotsOf(cells_[size_t(c)]);
+    for (int32_t i = 0; i < slots.edgeCount; ++i) {
+        const int32_t o = cells_[size_t(c)].opposite[wrapSlot(slots.firstEdge + i) - 1];
+        if (o == kNone || cells_[size_t(hexIdx(o))].kind != CellKind::Semi || isLongEdge(o)) continue;
+        const int32_t n = hexIdx(o);
+        const int32_t across = cells_[size_t(n)].opposite[wrapSlot(cells_[size_t(n)].firstVisible + 3) - 1];
+        if (across == kNone) return {SplitStep::JoinBoundary, n, kNone};
+        if (cells_[size_t(hexIdx(across))].kind == CellKind::Semi) return {SplitStep::JoinPair, n, hexIdx(across)};
+        return firstStepToSplit(hexIdx(across));
     }
-    return true;
+    return {SplitStep::Split, c, kNone};
+}
+
+void HexMesh::applyStep(const SplitStep& step) {
+    switch (step.kind) {
+        case SplitStep::Split: splitUnchecked(step.cell); break;
+        case SplitStep::JoinPair: joinPair(step.cell, step.other); break;
+        case SplitStep::JoinBoundary: joinBoundary(step.cell); break;
+    }
 }
 
 void HexMesh::splitUnchecked(int32_t c) {

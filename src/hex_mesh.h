@@ -55,6 +55,13 @@ struct Hexagon {
     uint8_t firstVisible;  // semi-hexagons: first own corner slot (1..6); 0 for full hexagons
 };
 
+/// One operation that a split needs first under the balance rule (§4.5), or the split itself.
+struct SplitStep {
+    enum Kind : uint8_t { Split, JoinPair, JoinBoundary } kind = Split;
+    int32_t cell = kNone;  // the cell to split, or the semi-hexagon to join
+    int32_t other = kNone; // JoinPair: the semi-hexagon across its long edge
+};
+
 /// Counts of the operations a call performed, for tests and the refinement loop.
 struct OperationCounts {
     int64_t splits = 0, joins = 0, merges = 0, breaks = 0;
@@ -82,6 +89,20 @@ public:
     /// break: the inverse join, allowed only where the result stays balanced.
     bool breakHexagon(int32_t cell);
 
+    /// The first operation splitting `cell` needs (§4.5): the split itself when nothing is in
+    /// the way, else a join or the split of a coarser cell that must come first. Each step
+    /// needs nothing else first, so a caller can spend an operation budget one step at a time.
+    SplitStep firstStepToSplit(int32_t cell) const;
+    /// Performs one step from firstStepToSplit.
+    void applyStep(const SplitStep& step);
+
+    /// Records every cell an operation creates, changes or frees (for caches); null: none.
+    void setChangeLog(std::vector<int32_t>* log) { changeLog_ = log; }
+
+    /// For a hexagon made by a join: the corner slot k (1..3) where the joined long edge starts;
+    /// the halves a break makes own corners k..k+3 and k+3..k+6.
+    int32_t breakDiameterSlot(int32_t cell) const;
+
     /// Whether merge(cell) / breakHexagon(cell) would succeed, without changing anything.
     bool canMerge(int32_t cell) const;
     bool canBreak(int32_t cell) const;
@@ -101,6 +122,8 @@ public:
     int32_t nextInLevel(int32_t c) const { return cells_[size_t(c)].next; }
     LatticePoint vertexLattice(int32_t v) const { return vertexLattice_[size_t(v)]; }
     const glm::vec3& vertexPosition(int32_t v) const { return vertexPosition_[size_t(v)]; }
+    /// All vertex positions, 3 floats each (free slots hold stale values), for the evaluator.
+    const float* positionData() const { return vertexPosition_.empty() ? nullptr : &vertexPosition_[0].x; }
     bool isVertexLive(int32_t v) const { return vertexLive_[size_t(v)] != 0; }
     /// Lattice step of a cell: the distance from its (possibly virtual) centre to its corners.
     int32_t cellStep(int32_t c) const;
@@ -149,13 +172,11 @@ private:
     void unlinkLevel(int32_t c);
     void setLevel(int32_t c, int32_t level);
     void connect(int32_t e, int32_t f); // makes e and f opposite (either may be kNone)
-    bool forceBalanceAround(int32_t cell);
     bool wouldStayBalancedAfterBreak(int32_t cell) const;
     void splitUnchecked(int32_t cell);
     void joinPair(int32_t keep, int32_t other);
     void joinBoundary(int32_t semi);
     void breakUnchecked(int32_t cell);
-    int32_t breakDiameterSlot(int32_t cell) const; // corner slot where the long edge starts
     int64_t cellTriangles(const Hexagon& h) const;
 
     const Heightfield* field_ = nullptr;
@@ -178,6 +199,7 @@ private:
     int64_t domainDoubleArea_ = 0;
     int64_t triangles_ = 0;
     OperationCounts counts_;
+    std::vector<int32_t>* changeLog_ = nullptr;
 };
 
 } // namespace hexlod

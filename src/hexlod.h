@@ -21,7 +21,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 2
+#define HEXLOD_ABI_VERSION 3
 
 /* Sample types: the native depth of the file's heights. */
 #define HEXLOD_SAMPLE_U8 1
@@ -118,6 +118,71 @@ int32_t hexlod_stream_index_count(const hexlod_terrain* terrain);
 const int32_t* hexlod_stream_level_offsets(const hexlod_terrain* terrain);
 const uint32_t* hexlod_stream_outline(const hexlod_terrain* terrain);
 int32_t hexlod_stream_outline_count(const hexlod_terrain* terrain);
+
+/* --- View-dependent refinement (paper §5, §6) ------------------------------------------------
+ * The refiner adapts the hexagon mesh so that, once converged, every sample inside the view
+ * frustum deviates from the drawn surface by at most tau pixels on screen (or, in max-error
+ * mode, every sample by at most max_error metres). Settings keep their values until changed. */
+
+/* The camera: eye and target in metres (world frame: x east, y up, z south; heights already
+ * times the vertical scale), an up vector, tan(vertical field of view / 2) (the caller computes
+ * the tangent, so no transcendental function enters a split decision), width / height of the
+ * viewport, its height in device pixels, and the near and far plane distances in metres.
+ * Returns 0, or -1 for a degenerate camera. */
+int32_t hexlod_lod_set_camera(hexlod_terrain* terrain, double eye_x, double eye_y, double eye_z,
+                              double target_x, double target_y, double target_z, double up_x,
+                              double up_y, double up_z, double tan_half_fov_y, double aspect,
+                              double viewport_height_px, double near_m, double far_m);
+
+/* Screen-space error tolerance tau in device pixels (> 0): switches to view-dependent mode. */
+int32_t hexlod_lod_set_tolerance(hexlod_terrain* terrain, double tau_px);
+
+/* Maximum vertical error in metres (> 0): switches to view-independent mode (every sample of
+ * the field within max_error_m of the mesh, camera ignored). */
+int32_t hexlod_lod_set_max_error(hexlod_terrain* terrain, double max_error_m);
+
+/* Heights are drawn times vertical_scale (> 0). Changing it re-evaluates every cell. */
+int32_t hexlod_lod_set_vertical_scale(hexlod_terrain* terrain, double vertical_scale);
+
+/* Per-update budget: at most budget_ms milliseconds (<= 0: no time limit) and at most
+ * max_operations splits and merges (<= 0: no limit). Every update makes at least one step of
+ * progress. Returns 0. */
+int32_t hexlod_lod_set_budget(hexlod_terrain* terrain, double budget_ms, int32_t max_operations);
+
+/* Optional cap on drawn triangles (<= 0: none): no split starts while the mesh has more. With
+ * auto_tau non-zero, tau is raised while the cap or the time budget is exceeded and lowered
+ * back towards the set tolerance when there is room (paper §6, last sentence). */
+int32_t hexlod_lod_set_limits(hexlod_terrain* terrain, int32_t max_triangles, int32_t auto_tau);
+
+/* Frustum culling of cells (on by default; off refines outside the view as inside). */
+int32_t hexlod_lod_set_culling(hexlod_terrain* terrain, int32_t enabled);
+
+/* One refinement step (§6): refine in ascending level order, then coarsen in descending level
+ * order, until converged or out of budget; resumes where the last update stopped. The mesh is
+ * consistent after every operation. Returns the number of operations done (splits, joins,
+ * merges and breaks that the refiner asked for; forced splits count too), or -1. */
+int32_t hexlod_lod_update(hexlod_terrain* terrain);
+
+/* 1 when the last update visited every cell without changing anything (converged). */
+int32_t hexlod_lod_converged(const hexlod_terrain* terrain);
+
+/* Figures of the last update: splits, merges, milliseconds spent, and the current tau (which
+ * auto tau may have raised). */
+int32_t hexlod_lod_last_splits(const hexlod_terrain* terrain);
+int32_t hexlod_lod_last_merges(const hexlod_terrain* terrain);
+double hexlod_lod_last_update_ms(const hexlod_terrain* terrain);
+double hexlod_lod_current_tau(const hexlod_terrain* terrain);
+
+/* The mesh hash (cells, levels, lattice points and positions) as two 32-bit halves. */
+uint32_t hexlod_mesh_hash_low(const hexlod_terrain* terrain);
+uint32_t hexlod_mesh_hash_high(const hexlod_terrain* terrain);
+
+/* Measures the current mesh against the samples (the error evaluator): writes max, p99 and
+ * mean error in metres and the uncovered sample count to out[0..3]. against_stored = 1
+ * compares with the field the core stores (for the shifted embedding, odd rows interpolated
+ * at their shifted positions), 0 with the original samples at their true positions.
+ * Returns 0 or -1. Costs a pass over every sample. */
+int32_t hexlod_mesh_measure_error(const hexlod_terrain* terrain, int32_t against_stored, double* out);
 
 #ifdef __cplusplus
 }

@@ -2,18 +2,23 @@
 // failures into hexlod_last_error() messages. No logic of its own lives here.
 #include "hexlod.h"
 
+#include <cmath>
 #include <memory>
+#include <vector>
 
 #include "fan_stream.h"
 #include "heightfield.h"
 #include "hex_mesh.h"
 #include "hex_mesh_refine.h"
+#include "error_evaluator.h"
+#include "refiner.h"
 
 struct hexlod_terrain {
     std::unique_ptr<hexlod::Heightfield> field;
     hexlod::HexMesh mesh;
     bool hasMesh = false;
     hexlod::FanStream stream;
+    hexlod::Refiner refiner;
 };
 
 namespace {
@@ -99,20 +104,25 @@ int32_t hexlod_mesh_reset(hexlod_terrain* terrain, int32_t embedding) {
         return fail("unknown embedding (expected 0 = shifted, 1 = exact)", -1);
     if (const char* error = terrain->mesh.reset(*terrain->field, hexlod::Embedding(embedding))) return fail(error, -1);
     terrain->hasMesh = true;
+    terrain->refiner.attach(terrain->mesh, *terrain->field);
     return 0;
 }
 
 int32_t hexlod_mesh_refine_uniform(hexlod_terrain* terrain, int32_t rounds) {
     if (!terrain) return fail(kNullHandle, -1);
     if (!terrain->hasMesh) return fail(kNoMesh, -1);
-    return int32_t(hexlod::refineUniformly(terrain->mesh, rounds));
+    const int32_t splits = int32_t(hexlod::refineUniformly(terrain->mesh, rounds));
+    terrain->refiner.restart();
+    return splits;
 }
 
 int32_t hexlod_mesh_refine_near(hexlod_terrain* terrain, double x_m, double z_m, double radius_m,
                                 int32_t rounds) {
     if (!terrain) return fail(kNullHandle, -1);
     if (!terrain->hasMesh) return fail(kNoMesh, -1);
-    return int32_t(hexlod::refineNear(terrain->mesh, x_m, z_m, radius_m, rounds));
+    const int32_t splits = int32_t(hexlod::refineNear(terrain->mesh, x_m, z_m, radius_m, rounds));
+    terrain->refiner.restart();
+    return splits;
 }
 
 int32_t hexlod_mesh_max_level(const hexlod_terrain* terrain) {
@@ -139,7 +149,7 @@ double hexlod_mesh_memory_bytes(const hexlod_terrain* terrain) {
     if (!terrain) return fail(kNullHandle, -1.0);
     if (!terrain->hasMesh) return fail(kNoMesh, -1.0);
     const hexlod::FanStream& s = terrain->stream;
-    return double(terrain->mesh.memoryBytes() + s.vertices.capacity() * sizeof(float) +
+    return double(terrain->mesh.memoryBytes() + terrain->refiner.memoryBytes() + s.vertices.capacity() * sizeof(float) +
                   (s.indices.capacity() + s.outline.capacity()) * sizeof(uint32_t) +
                   s.normalSums.capacity() * sizeof(float) + s.levelOffsets.capacity() * sizeof(int32_t));
 }
@@ -184,6 +194,134 @@ const uint32_t* hexlod_stream_outline(const hexlod_terrain* terrain) {
 
 int32_t hexlod_stream_outline_count(const hexlod_terrain* terrain) {
     return terrain ? int32_t(terrain->stream.outline.size()) : fail(kNullHandle, -1);
+}
+
+#define HEXLOD_NEED_MESH(result)                      \
+    if (!terrain) return fail(kNullHandle, result);   \
+    if (!terrain->hasMesh) return fail(kNoMesh, result)
+
+int32_t hexlod_lod_set_camera(hexlod_terrain* terrain, double eye_x, double eye_y, double eye_z,
+                              double target_x, double target_y, double target_z, double up_x,
+                              double up_y, double up_z, double tan_half_fov_y, double aspect,
+                              double viewport_height_px, double near_m, double far_m) {
+    HEXLOD_NEED_MESH(-1);
+    hexlod::View view;
+    if (!hexlod::makeView({eye_x, eye_y, eye_z}, {target_x, target_y, target_z}, {up_x, up_y, up_z}, tan_half_fov_y,
+                          aspect, viewport_height_px, near_m, far_m, view))
+        return fail("degenerate camera: eye on the target, up along the view, or a non-positive size or plane", -1);
+    terrain->refiner.setView(view);
+    terrain->refiner.markChanged();
+    return 0;
+}
+
+int32_t hexlod_lod_set_tolerance(hexlod_terrain* terrain, double tau_px) {
+    HEXLOD_NEED_MESH(-1);
+    if (!(tau_px > 0.0) || !std::isfinite(tau_px)) return fail("tau must be a positive number of pixels", -1);
+    hexlod::RefinerSettings& s = terrain->refiner.settings();
+    s.viewIndependent = false;
+    s.tau = tau_px;
+    terrain->refiner.markChanged();
+    return 0;
+}
+
+int32_t hexlod_lod_set_max_error(hexlod_terrain* terrain, double max_error_m) {
+    HEXLOD_NEED_MESH(-1);
+    if (!(max_error_m > 0.0) || !std::isfinite(max_error_m)) return fail("the maximum error must be a positive number of metres", -1);
+    hexlod::RefinerSettings& s = terrain->refiner.settings();
+    s.viewIndependent = true;
+    s.maxError = max_error_m;
+    terrain->refiner.markChanged();
+    return 0;
+}
+
+int32_t hexlod_lod_set_vertical_scale(hexlod_terrain* terrain, double vertical_scale) {
+    HEXLOD_NEED_MESH(-1);
+    if (!(vertical_scale > 0.0) || !std::isfinite(vertical_scale)) return fail("the vertical scale must be a positive number", -1);
+    terrain->refiner.settings().verticalScale = vertical_scale;
+    terrain->refiner.markChanged();
+    return 0;
+}
+
+int32_t hexlod_lod_set_budget(hexlod_terrain* terrain, double budget_ms, int32_t max_operations) {
+    HEXLOD_NEED_MESH(-1);
+    hexlod::RefinerSettings& s = terrain->refiner.settings();
+    s.budgetMs = std::isfinite(budget_ms) ? budget_ms : 0.0;
+    s.maxOperations = max_operations;
+    return 0;
+}
+
+int32_t hexlod_lod_set_limits(hexlod_terrain* terrain, int32_t max_triangles, int32_t auto_tau) {
+    HEXLOD_NEED_MESH(-1);
+    hexlod::RefinerSettings& s = terrain->refiner.settings();
+    s.maxTriangles = max_triangles;
+    s.autoTau = auto_tau != 0;
+    terrain->refiner.markChanged();
+    return 0;
+}
+
+int32_t hexlod_lod_set_culling(hexlod_terrain* terrain, int32_t enabled) {
+    HEXLOD_NEED_MESH(-1);
+    terrain->refiner.settings().culling = enabled != 0;
+    terrain->refiner.markChanged();
+    return 0;
+}
+
+int32_t hexlod_lod_update(hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1);
+    return terrain->refiner.update().operations;
+}
+
+int32_t hexlod_lod_converged(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1);
+    return terrain->refiner.lastUpdate().converged ? 1 : 0;
+}
+
+int32_t hexlod_lod_last_splits(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1);
+    return terrain->refiner.lastUpdate().splits;
+}
+
+int32_t hexlod_lod_last_merges(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1);
+    return terrain->refiner.lastUpdate().merges;
+}
+
+double hexlod_lod_last_update_ms(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1.0);
+    return terrain->refiner.lastUpdate().milliseconds;
+}
+
+double hexlod_lod_current_tau(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1.0);
+    return terrain->refiner.currentTau();
+}
+
+uint32_t hexlod_mesh_hash_low(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(0u);
+    return uint32_t(terrain->mesh.hash());
+}
+
+uint32_t hexlod_mesh_hash_high(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(0u);
+    return uint32_t(terrain->mesh.hash() >> 32);
+}
+
+int32_t hexlod_mesh_measure_error(const hexlod_terrain* terrain, int32_t against_stored, double* out) {
+    HEXLOD_NEED_MESH(-1);
+    if (!out) return fail("out must point to 4 doubles", -1);
+    std::vector<uint32_t> triangles;
+    terrain->mesh.appendTriangles(triangles);
+    hexlod::ErrorOptions options;
+    options.shiftedOddRows = against_stored != 0 && terrain->mesh.embedding() == hexlod::Embedding::Shifted;
+    const hexlod::ErrorStats stats = hexlod::evaluateMeshError(*terrain->field, terrain->mesh.positionData(),
+                                                               size_t(terrain->mesh.vertexCapacity()), 3, triangles.data(),
+                                                               triangles.size(), options);
+    if (stats.error) return fail(stats.error, -1);
+    out[0] = stats.maxError;
+    out[1] = stats.p99Error;
+    out[2] = stats.meanError;
+    out[3] = double(stats.uncovered);
+    return 0;
 }
 
 } // extern "C"

@@ -1,0 +1,138 @@
+#include "cell_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hexlod {
+
+namespace {
+
+struct Triangle {
+    glm::vec3 a, b, c;
+};
+
+// The drawn triangles of a shape, as hex_mesh.cpp's appendTriangles draws them.
+int32_t shapeTriangles(const Heightfield& field, Embedding embedding, const CellShape& shape, Triangle out[6]) {
+    auto corner = [&](int32_t slot) {
+        return embedLatticePoint(field, embedding, latticeAdd(shape.center, kDirections[wrapSlot(slot) - 1], shape.step));
+    };
+    if (shape.kind == CellKind::Full) {
+        const glm::vec3 centre = embedLatticePoint(field, embedding, shape.center);
+        for (int32_t k = 1; k <= 6; ++k) out[k - 1] = {centre, corner(k), corner(k + 1)};
+        return 6;
+    }
+    const int32_t a = shape.firstVisible;
+    if (shape.kind == CellKind::BoundarySemi) {
+        const glm::vec3 centre = embedLatticePoint(field, embedding, shape.center);
+        for (int32_t k = 0; k < 3; ++k) out[k] = {centre, corner(a + k), corner(a + k + 1)};
+        return 3;
+    }
+    out[0] = {corner(a), corner(a + 1), corner(a + 2)};
+    out[1] = {corner(a), corner(a + 2), corner(a + 3)};
+    return 2;
+}
+
+// Scans the samples inside one triangle: the largest |sample - plane| and the sample range.
+void scanTriangle(const Heightfield& field, const Triangle& t, float& error, float& low, float& high) {
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    const double ax = t.a.x, ay = t.a.y, az = t.a.z;
+    const double ux = double(t.b.x) - ax, uy = double(t.b.y) - ay, uz = double(t.b.z) - az;
+    const double vx = double(t.c.x) - ax, vy = double(t.c.y) - ay, vz = double(t.c.z) - az;
+    const double ny = uz * vx - ux * vz; // y of (u x v): twice the ground area
+    if (std::abs(ny) < 1e-12) return;
+    const double nx = uy * vz - uz * vy, nz = ux * vy - uy * vx;
+    // Samples within a hair of an edge belong to both triangles: none may fall between cells.
+    const double eps = 1e-4;
+    const double zMin = std::min({double(t.a.z), double(t.b.z), double(t.c.z)});
+    const double zMax = std::max({double(t.a.z), double(t.b.z), double(t.c.z)});
+    const int32_t i0 = std::max(0, int32_t(std::ceil(zMin / sy - eps)));
+    const int32_t i1 = std::min(field.height() - 1, int32_t(std::floor(zMax / sy + eps)));
+    const glm::vec3* p[3] = {&t.a, &t.b, &t.c};
+    for (int32_t i = i0; i <= i1; ++i) {
+        // Sample positions rounded as a vertex on the sample stores them (embedding.cpp), so
+        // a sample under a vertex has no error from position rounding.
+        const double z = float(i * sy);
+        double xl = 1e300, xr = -1e300;
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3& e0 = *p[k];
+            const glm::vec3& e1 = *p[(k + 1) % 3];
+            const double za = e0.z, zb = e1.z;
+            if (z < std::min(za, zb) - eps * sy || z > std::max(za, zb) + eps * sy) continue;
+            if (za == zb) {
+                xl = std::min({xl, double(e0.x), double(e1.x)});
+                xr = std::max({xr, double(e0.x), double(e1.x)});
+                continue;
+            }
+            const double s = std::clamp((z - za) / (zb - za), 0.0, 1.0);
+            const double x = e0.x + s * (double(e1.x) - e0.x);
+            xl = std::min(xl, x);
+            xr = std::max(xr, x);
+        }
+        if (xl > xr) continue;
+        const int32_t j0 = std::max(0, int32_t(std::ceil(xl / sx - eps)));
+        const int32_t j1 = std::min(field.width() - 1, int32_t(std::floor(xr / sx + eps)));
+        for (int32_t j = j0; j <= j1; ++j) {
+            const double x = float(j * sx);
+            const double plane = ay - (nx * (x - ax) + nz * (z - az)) / ny;
+            const float h = field.heightAt(j, i);
+            // Rounded up to the next float: the bound must not shrink in the conversion.
+            error = std::max(error, std::nextafter(float(std::abs(h - plane)), 1e30f));
+            low = std::min(low, h);
+            high = std::max(high, h);
+        }
+    }
+}
+
+} // namespace
+
+CellShape shapeOfCell(const HexMesh& mesh, int32_t cell) {
+    const Hexagon& h = mesh.cell(cell);
+    return {h.kind, h.firstVisible, mesh.cellCenter(cell), mesh.cellStep(cell)};
+}
+
+CellShape parentShapeOfCell(const HexMesh& mesh, int32_t cell) {
+    CellShape shape = shapeOfCell(mesh, cell);
+    shape.step *= 2;
+    return shape;
+}
+
+CellBounds computeCellBounds(const Heightfield& field, Embedding embedding, const MinMaxPyramid& pyramid,
+                             const CellShape& shape) {
+    Triangle triangles[6];
+    const int32_t count = shapeTriangles(field, embedding, shape, triangles);
+    CellBounds b;
+    b.x0 = b.z0 = 1e30f;
+    b.x1 = b.z1 = -1e30f;
+    float vertexLow = 1e30f, vertexHigh = -1e30f;
+    for (int32_t t = 0; t < count; ++t)
+        for (const glm::vec3& v : {triangles[t].a, triangles[t].b, triangles[t].c}) {
+            b.x0 = std::min(b.x0, v.x), b.x1 = std::max(b.x1, v.x);
+            b.z0 = std::min(b.z0, v.z), b.z1 = std::max(b.z1, v.z);
+            vertexLow = std::min(vertexLow, v.y), vertexHigh = std::max(vertexHigh, v.y);
+        }
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    const double samples = (double(b.x1 - b.x0) / sx + 1.0) * (double(b.z1 - b.z0) / sy + 1.0);
+    float low = vertexLow, high = vertexHigh, error = 0.0f;
+    const bool outside = b.x1 < 0.0f || b.z1 < 0.0f || b.x0 > float((field.width() - 1) * sx) ||
+                         b.z0 > float((field.height() - 1) * sy);
+    if (outside) {
+        // No sample lies under the cell: nothing to approximate.
+    } else if (samples <= kExactScanSamples) {
+        for (int32_t t = 0; t < count; ++t) scanTriangle(field, triangles[t], error, low, high);
+    } else {
+        // The drawn surface stays within its vertices' heights, the samples within the
+        // pyramid's range over the footprint: their distance is bounded by the larger gap.
+        float sampleLow, sampleHigh;
+        pyramid.query(int32_t(std::floor(b.x0 / sx)), int32_t(std::floor(b.z0 / sy)), int32_t(std::ceil(b.x1 / sx)),
+                      int32_t(std::ceil(b.z1 / sy)), sampleLow, sampleHigh);
+        error = std::max(sampleHigh - vertexLow, vertexHigh - sampleLow);
+        low = std::min(low, sampleLow);
+        high = std::max(high, sampleHigh);
+    }
+    b.low = low;
+    b.high = high;
+    b.error = error;
+    return b;
+}
+
+} // namespace hexlod

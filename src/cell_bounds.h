@@ -1,0 +1,42 @@
+// Refinement data of one cell (paper §5, Fig. 10), made conservative: computed from every
+// sample the cell encloses, not from its corners.
+#pragma once
+
+#include <cstdint>
+
+#include "embedding.h"
+#include "heightfield.h"
+#include "hex_mesh.h"
+#include "min_max_pyramid.h"
+
+namespace hexlod {
+
+/// What a cell's drawn triangles depend on: its kind, its own corners and its lattice centre
+/// and step. The data of a cell's parent (what a merge would make) uses the same description.
+struct CellShape {
+    CellKind kind = CellKind::Full;
+    int32_t firstVisible = 0;
+    LatticePoint center;
+    int32_t step = 1;
+};
+
+struct CellBounds {
+    float x0 = 0, x1 = 0, z0 = 0, z1 = 0; // footprint of the drawn triangles, metres
+    float low = 0, high = 0;              // metres (unscaled): lowest and highest of its samples and vertices
+    float error = 0;                      // metres (unscaled): bound on |sample - drawn surface| under the cell
+};
+
+/// Cells with at most this many samples under their footprint are scanned sample by sample;
+/// larger ones are bounded through the min/max pyramid.
+constexpr double kExactScanSamples = 4096.0;
+
+/// The shape of a live cell, and of the cell a merge of it would make.
+CellShape shapeOfCell(const HexMesh& mesh, int32_t cell);
+CellShape parentShapeOfCell(const HexMesh& mesh, int32_t cell);
+
+/// Bounds of a cell against the original samples, each at its true position (x = j * spacingX,
+/// z = i * spacingY). Samples outside the field are not considered (the lattice reaches past it).
+CellBounds computeCellBounds(const Heightfield& field, Embedding embedding, const MinMaxPyramid& pyramid,
+                             const CellShape& shape);
+
+} // namespace hexlod

@@ -1,0 +1,224 @@
+#include "refiner.h"
+
+#include <algorithm>
+
+namespace hexlod {
+
+void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
+    mesh_ = &mesh;
+    field_ = &field;
+    pyramid_.build(field);
+    mesh.setChangeLog(&changes_);
+    invalidateAll();
+    currentTau_ = settings_.tau;
+    restart();
+}
+
+void Refiner::invalidateAll() {
+    changes_.clear();
+    cache_.assign(cache_.size(), Cached{});
+}
+
+size_t Refiner::memoryBytes() const {
+    return cache_.capacity() * sizeof(Cached) + changes_.capacity() * sizeof(int32_t) + pyramid_.memoryBytes();
+}
+
+void Refiner::noteChanges() {
+    if (cache_.size() < size_t(mesh_->cellCapacity())) cache_.resize(size_t(mesh_->cellCapacity()) * 2);
+    for (int32_t c : changes_) cache_[size_t(c)].ownValid = cache_[size_t(c)].parentValid = 0;
+    changes_.clear();
+}
+
+const CellBounds& Refiner::ownBounds(int32_t c) {
+    Cached& cached = cache_[size_t(c)];
+    if (!cached.ownValid) {
+        cached.own = computeCellBounds(*field_, mesh_->embedding(), pyramid_, shapeOfCell(*mesh_, c));
+        cached.ownValid = 1;
+    }
+    return cached.own;
+}
+
+const CellBounds& Refiner::parentBounds(int32_t c) {
+    Cached& cached = cache_[size_t(c)];
+    if (!cached.parentValid) {
+        cached.parent = computeCellBounds(*field_, mesh_->embedding(), pyramid_, parentShapeOfCell(*mesh_, c));
+        cached.parentValid = 1;
+    }
+    return cached.parent;
+}
+
+bool Refiner::fails(const CellBounds& b) const {
+    if (settings_.viewIndependent) return b.error > settings_.maxError;
+    glm::dvec3 center;
+    double radius;
+    boundingSphere(b, settings_.verticalScale, center, radius);
+    if (settings_.culling && outsideFrustum(view_, center, radius)) return false;
+    const double tau = settings_.autoTau ? currentTau_ : settings_.tau;
+    return projectedErrorPixels(view_, center, radius, double(b.error) * settings_.verticalScale) > tau;
+}
+
+bool Refiner::needsRefinement(int32_t c) {
+    noteChanges();
+    return fails(ownBounds(c));
+}
+
+bool Refiner::outOfBudget() {
+    if (settings_.maxOperations > 0 && operations_ >= settings_.maxOperations) return true;
+    // Reading the clock costs more than testing a cell: look at it every 32 visits.
+    if (settings_.budgetMs > 0.0 && (++visits_ & 31) == 0) {
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+        if (ms >= settings_.budgetMs) return true;
+    }
+    return false;
+}
+
+// One operation towards refining cell c: a split of it (or of what the balance rule needs
+// first), or, for a semi-hexagon, the join that the split of the cell across it would make.
+bool Refiner::refineStep(int32_t c) {
+    const Hexagon& h = mesh_->cell(c);
+    if (settings_.maxTriangles > 0 && mesh_->triangleCount() >= settings_.maxTriangles) return false;
+    if (h.kind != CellKind::Semi) {
+        if (!mesh_->canSplit(c)) return false;
+        mesh_->applyStep(mesh_->firstStepToSplit(c));
+        return true;
+    }
+    const int32_t across = h.opposite[wrapSlot(h.firstVisible + 3) - 1];
+    if (across == kNone || mesh_->isLongEdge(across)) return mesh_->join(c);
+    const int32_t other = hexIdx(across);
+    if (!mesh_->canSplit(other)) return false;
+    mesh_->applyStep(mesh_->firstStepToSplit(other));
+    return true;
+}
+
+// A merge of c draws c's parent, and the outer halves of the joined hexagons in c's ring that
+// it breaks: all of them must pass, or the next refine pass would split c again.
+bool Refiner::mergeWanted(int32_t c) {
+    if (fails(parentBounds(c))) return false;
+    const Hexagon& h = mesh_->cell(c);
+    const int32_t first = h.kind == CellKind::Full ? 1 : h.firstVisible;
+    const int32_t edges = h.kind == CellKind::Full ? 6 : 3;
+    for (int32_t i = 0; i < edges; ++i) {
+        const int32_t o = h.opposite[wrapSlot(first + i) - 1];
+        if (o == kNone) continue;
+        const int32_t n = hexIdx(o);
+        const Hexagon& ring = mesh_->cell(n);
+        if (ring.kind != CellKind::Full || ring.splitCount != 0) continue; // a semi or a boundary cell: removed
+        const int32_t k = mesh_->breakDiameterSlot(n);
+        const int32_t facing = edgeSlot(o);
+        const bool facingInFirstHalf = wrapSlot(facing - k + 7) <= 3; // edge slots k, k+1, k+2
+        CellShape outer;
+        outer.kind = CellKind::Semi;
+        outer.firstVisible = facingInFirstHalf ? wrapSlot(k + 3) : k;
+        outer.center = mesh_->cellCenter(n);
+        outer.step = mesh_->cellStep(n);
+        if (fails(computeCellBounds(*field_, mesh_->embedding(), pyramid_, outer))) return false;
+    }
+    return true;
+}
+
+void Refiner::adaptTau() {
+    if (settings_.viewIndependent || !settings_.autoTau) {
+        currentTau_ = settings_.tau;
+        return;
+    }
+    const bool overCap = settings_.maxTriangles > 0 && mesh_->triangleCount() >= settings_.maxTriangles;
+    const bool overTime = settings_.budgetMs > 0.0 && last_.milliseconds >= settings_.budgetMs && !last_.converged;
+    if (overCap || overTime) currentTau_ = std::min(currentTau_ * 1.1, settings_.tau * 64.0);
+    else if (last_.converged) currentTau_ = std::max(currentTau_ / 1.05, settings_.tau);
+}
+
+int32_t Refiner::resumeCell() const {
+    // The cell where the last update stopped, unless an outside call changed the mesh since.
+    if (cursorCell_ != kNone && mesh_->isLive(cursorCell_) && mesh_->cell(cursorCell_).level == cursorLevel_) return cursorCell_;
+    return mesh_->firstOfLevel(cursorLevel_);
+}
+
+void Refiner::restart() {
+    phase_ = Phase::Refine;
+    cursorLevel_ = 0;
+    cursorCell_ = kNone;
+    operationsThisCycle_ = 0;
+    cycleChanged_ = false;
+    noteChanges();
+}
+
+UpdateStats Refiner::update() {
+    start_ = std::chrono::steady_clock::now();
+    operations_ = 0;
+    const OperationCounts before = mesh_->counts();
+    bool converged = false;
+    noteChanges();
+    // Consistent criteria converge in a few cycles; the cap only guarantees the update ends.
+    for (int32_t cycle = 0; cycle < kMaxCyclesPerUpdate && !converged && !(operations_ > 0 && outOfBudget()); ++cycle) {
+        if (phase_ == Phase::Refine) {
+            // §6: levels in ascending order; cells a split creates land in finer lists and are
+            // visited later in the same pass.
+            bool stopped = false;
+            for (; cursorLevel_ <= mesh_->maxLevel() && !stopped; ++cursorLevel_, cursorCell_ = kNone) {
+                int32_t c = resumeCell();
+                while (c != kNone) {
+                    if (operations_ > 0 && outOfBudget()) {
+                        cursorCell_ = c;
+                        stopped = true;
+                        break;
+                    }
+                    int32_t next = mesh_->nextInLevel(c);
+                    if (fails(ownBounds(c)) && refineStep(c)) {
+                        ++operations_;
+                        ++operationsThisCycle_;
+                        noteChanges();
+                        // An operation may have moved or freed the next cell: start the level again.
+                        if (!mesh_->isLive(next) || mesh_->cell(next).level != cursorLevel_) next = mesh_->firstOfLevel(cursorLevel_);
+                        if (mesh_->isLive(c) && mesh_->cell(c).level == cursorLevel_) next = c; // not done with c yet
+                    }
+                    c = next;
+                }
+                if (stopped) break;
+            }
+            if (stopped) break;
+            phase_ = Phase::Coarsen;
+            cursorLevel_ = mesh_->maxLevel();
+            cursorCell_ = kNone;
+        } else {
+            // §6: levels in descending order; a cell is merged when what the merge makes passes.
+            bool stopped = false;
+            for (; cursorLevel_ >= 2 && !stopped; --cursorLevel_, cursorCell_ = kNone) {
+                int32_t c = resumeCell();
+                while (c != kNone) {
+                    if (operations_ > 0 && outOfBudget()) {
+                        cursorCell_ = c;
+                        stopped = true;
+                        break;
+                    }
+                    int32_t next = mesh_->nextInLevel(c);
+                    const Hexagon& h = mesh_->cell(c);
+                    if (h.kind != CellKind::Semi && h.splitCount > 0 && mergeWanted(c) && mesh_->merge(c)) {
+                        ++operations_;
+                        ++operationsThisCycle_;
+                        noteChanges();
+                        if (!mesh_->isLive(next) || mesh_->cell(next).level != cursorLevel_) next = mesh_->firstOfLevel(cursorLevel_);
+                    }
+                    c = next;
+                }
+                if (stopped) break;
+            }
+            if (stopped) break;
+            // A whole cycle without an operation: converged.
+            converged = operationsThisCycle_ == 0 && !cycleChanged_;
+            operationsThisCycle_ = 0;
+            cycleChanged_ = false;
+            phase_ = Phase::Refine;
+            cursorLevel_ = 0;
+            cursorCell_ = kNone;
+        }
+    }
+    last_.operations = operations_;
+    last_.splits = int32_t(mesh_->counts().splits - before.splits);
+    last_.merges = int32_t(mesh_->counts().merges - before.merges);
+    last_.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    last_.converged = converged;
+    adaptTau();
+    return last_;
+}
+
+} // namespace hexlod

@@ -1,0 +1,109 @@
+// Refiner: the interruptible refinement loop of paper §6 over the hexagon mesh, driven by the
+// conservative criteria of view_criteria.h (§5) or by a view-independent maximum error.
+//
+// One update refines in ascending level order (every cell whose bound fails is split; a
+// failing semi-hexagon is joined by splitting the cell across its long edge), then coarsens
+// in descending level order (a cell is merged back when the cell the merge would make passes).
+// Each step is one mesh operation, after which the mesh is consistent; the update stops when
+// the time or operation budget is spent and the next update resumes where it stopped.
+// Refinement data is cached per cell record (§5.1) and recomputed only for cells an
+// operation changed.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include "cell_bounds.h"
+#include "hex_mesh.h"
+#include "min_max_pyramid.h"
+#include "view_criteria.h"
+
+namespace hexlod {
+
+struct RefinerSettings {
+    bool viewIndependent = false; // true: maxError metres everywhere; false: tau pixels on screen
+    double tau = 1.0;             // pixels
+    double maxError = 1.0;        // metres
+    double verticalScale = 1.0;
+    double budgetMs = 0.0;        // <= 0: no time limit
+    int32_t maxOperations = 0;    // <= 0: no limit
+    int32_t maxTriangles = 0;     // <= 0: no cap
+    bool autoTau = false;
+    bool culling = true;
+};
+
+struct UpdateStats {
+    int32_t operations = 0; // refiner steps: splits, joins and merges it performed
+    int32_t splits = 0, merges = 0; // mesh splits and merges, forced ones included
+    double milliseconds = 0.0;
+    bool converged = false;
+};
+
+class Refiner {
+public:
+    /// Attaches to a mesh over `field` (both outlive the refiner's use) and builds the
+    /// min/max pyramid (one pass over the samples).
+    void attach(HexMesh& mesh, const Heightfield& field);
+
+    RefinerSettings& settings() { return settings_; }
+    void setView(const View& view) { view_ = view; }
+    /// Forget every cached bound (after the field or its spacing changed).
+    void invalidateAll();
+    /// Start the next update with a fresh cycle (after the mesh changed outside the refiner).
+    void restart();
+    /// The camera or a setting changed: the cycle under way cannot prove convergence, but the
+    /// loop resumes where it stopped, so no region starves under a moving camera.
+    void markChanged() { cycleChanged_ = true; }
+
+    /// One update (see above). Returns its figures.
+    UpdateStats update();
+    const UpdateStats& lastUpdate() const { return last_; }
+    double currentTau() const { return currentTau_; }
+    size_t memoryBytes() const;
+
+    /// Whether the cell fails the criterion and needs refining (exposed for tests).
+    bool needsRefinement(int32_t cell);
+
+private:
+    enum class Phase { Refine, Coarsen };
+    struct Cached {
+        CellBounds own, parent;
+        uint8_t ownValid = 0, parentValid = 0;
+    };
+
+    bool fails(const CellBounds& b) const;
+    const CellBounds& ownBounds(int32_t cell);
+    const CellBounds& parentBounds(int32_t cell);
+    void noteChanges();
+    bool refineStep(int32_t cell);   // one operation towards refining the cell; false if none
+    bool mergeWanted(int32_t cell);  // the merge makes nothing that fails
+    bool outOfBudget();
+    int32_t resumeCell() const;
+    void adaptTau();
+
+    HexMesh* mesh_ = nullptr;
+    const Heightfield* field_ = nullptr;
+    MinMaxPyramid pyramid_;
+    RefinerSettings settings_;
+    View view_;
+    std::vector<Cached> cache_;
+    std::vector<int32_t> changes_;
+    double currentTau_ = 1.0;
+
+    // Where the loop stands, kept across updates.
+    Phase phase_ = Phase::Refine;
+    int32_t cursorLevel_ = 0;
+    int32_t cursorCell_ = kNone;
+    int32_t operationsThisCycle_ = 0;
+    bool cycleChanged_ = false;
+
+    // Per-update state.
+    std::chrono::steady_clock::time_point start_;
+    int32_t operations_ = 0;
+    uint32_t visits_ = 0;
+    UpdateStats last_;
+    static constexpr int32_t kMaxCyclesPerUpdate = 256;
+};
+
+} // namespace hexlod

@@ -1,0 +1,266 @@
+// View-dependent refinement (paper §5, §6): the tau bound checked by brute force over the
+// samples, the max-error bound, watertight meshes every update, coarsening, budgets and
+// determinism.
+#include "refiner.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include <glm/geometric.hpp>
+
+#include "error_evaluator.h"
+#include "fixture.h"
+
+using namespace hexlod;
+
+namespace {
+
+constexpr double kTanHalf60 = 0.57735026918962573; // tan(30 degrees), a literal: no libm in decisions
+
+struct Camera {
+    glm::dvec3 eye, target;
+    double tanHalfFovY = kTanHalf60;
+    double aspect = 16.0 / 9.0;
+    double viewportHeight = 1080.0;
+    double nearPlane = 1.0, farPlane = 1e9;
+};
+
+View viewOf(const Camera& c) {
+    View view;
+    EXPECT_TRUE(makeView(c.eye, c.target, {0, 1, 0}, c.tanHalfFovY, c.aspect, c.viewportHeight, c.nearPlane, c.farPlane, view));
+    return view;
+}
+
+// Updates without a budget until converged (bounded).
+int32_t converge(Refiner& refiner) {
+    for (int32_t n = 1; n <= 100; ++n)
+        if (refiner.update().converged) return n;
+    ADD_FAILURE() << "did not converge in 100 updates";
+    return -1;
+}
+
+// The drawn surface's height at every sample (NaN where no triangle covers it): a brute-force
+// rasterisation of the mesh's triangles, independent of the refiner's bounds.
+std::vector<double> meshHeightsAtSamples(const HexMesh& mesh, const Heightfield& field) {
+    std::vector<double> heights(field.sampleCount(), std::nan(""));
+    std::vector<uint32_t> tris;
+    mesh.appendTriangles(tris);
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    for (size_t t = 0; t < tris.size(); t += 3) {
+        const glm::dvec3 a = mesh.vertexPosition(int32_t(tris[t])), b = mesh.vertexPosition(int32_t(tris[t + 1])),
+                         c = mesh.vertexPosition(int32_t(tris[t + 2]));
+        const double area = (b.x - a.x) * (c.z - a.z) - (c.x - a.x) * (b.z - a.z);
+        if (std::abs(area) < 1e-9) continue;
+        const int32_t i0 = std::max(0, int32_t(std::floor(std::min({a.z, b.z, c.z}) / sy)));
+        const int32_t i1 = std::min(field.height() - 1, int32_t(std::ceil(std::max({a.z, b.z, c.z}) / sy)));
+        const int32_t j0 = std::max(0, int32_t(std::floor(std::min({a.x, b.x, c.x}) / sx)));
+        const int32_t j1 = std::min(field.width() - 1, int32_t(std::ceil(std::max({a.x, b.x, c.x}) / sx)));
+        for (int32_t i = i0; i <= i1; ++i)
+            for (int32_t j = j0; j <= j1; ++j) {
+                const double x = j * sx, z = i * sy;
+                const double w1 = ((x - a.x) * (c.z - a.z) - (c.x - a.x) * (z - a.z)) / area;
+                const double w2 = ((b.x - a.x) * (z - a.z) - (x - a.x) * (b.z - a.z)) / area;
+                const double w0 = 1.0 - w1 - w2;
+                if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;
+                heights[size_t(i) * field.width() + j] = w0 * a.y + w1 * b.y + w2 * c.y;
+            }
+    }
+    return heights;
+}
+
+// Pixel position of a world point, or false when it is outside the view frustum.
+bool project(const Camera& cam, const View& view, const glm::dvec3& p, double& px, double& py) {
+    const glm::dvec3 d = p - view.eye;
+    const double x = glm::dot(d, view.right), y = glm::dot(d, view.up), z = glm::dot(d, view.forward);
+    if (z < cam.nearPlane || z > cam.farPlane) return false;
+    const double tx = x / z, ty = y / z;
+    if (std::abs(tx) > view.tanHalfX || std::abs(ty) > view.tanHalfY) return false;
+    px = tx * view.pixelsPerTangent;
+    py = ty * view.pixelsPerTangent;
+    return true;
+}
+
+struct BoundCheck {
+    double worstPixels = 0.0;
+    int64_t samplesInView = 0, uncovered = 0;
+};
+
+// Every sample inside the frustum against the drawn surface, on screen.
+BoundCheck checkTauBound(const HexMesh& mesh, const Heightfield& field, const Camera& cam, double verticalScale) {
+    const View view = viewOf(cam);
+    const std::vector<double> surface = meshHeightsAtSamples(mesh, field);
+    BoundCheck check;
+    for (int32_t i = 0; i < field.height(); ++i)
+        for (int32_t j = 0; j < field.width(); ++j) {
+            const glm::dvec3 sample(j * field.scale().spacingX, field.heightAt(j, i) * verticalScale, i * field.scale().spacingY);
+            double sx, sy, mx, my;
+            if (!project(cam, view, sample, sx, sy)) continue;
+            ++check.samplesInView;
+            const double m = surface[size_t(i) * field.width() + j];
+            if (std::isnan(m)) {
+                ++check.uncovered;
+                continue;
+            }
+            // The drawn point above or below the sample (the mesh stores unscaled heights).
+            const glm::dvec3 drawn(sample.x, m * verticalScale, sample.z);
+            const glm::dvec3 d = drawn - view.eye;
+            const double z = glm::dot(d, view.forward);
+            if (z <= 0.0) continue;
+            mx = glm::dot(d, view.right) / z * view.pixelsPerTangent;
+            my = glm::dot(d, view.up) / z * view.pixelsPerTangent;
+            check.worstPixels = std::max(check.worstPixels, std::hypot(mx - sx, my - sy));
+        }
+    return check;
+}
+
+Camera lowOblique(const Heightfield& f, double heightAbove) {
+    const double w = (f.width() - 1) * f.scale().spacingX, h = (f.height() - 1) * f.scale().spacingY;
+    const glm::dvec3 eye(0.3 * w, f.heightAtPosition(0.3 * w, 0.85 * h) + heightAbove, 0.85 * h);
+    const glm::dvec3 target(0.6 * w, f.heightAtPosition(0.6 * w, 0.4 * h), 0.4 * h);
+    return {eye, target};
+}
+
+Camera highDown(const Heightfield& f) {
+    const double w = (f.width() - 1) * f.scale().spacingX, h = (f.height() - 1) * f.scale().spacingY;
+    return {{0.5 * w, f.maxHeight() + 0.6 * std::max(w, h), 0.55 * h}, {0.5 * w, f.minHeight(), 0.45 * h}};
+}
+
+Camera fromOutside(const Heightfield& f) {
+    const double w = (f.width() - 1) * f.scale().spacingX, h = (f.height() - 1) * f.scale().spacingY;
+    return {{-0.3 * w, f.maxHeight() + 0.1 * w, 1.2 * h}, {0.5 * w, f.minHeight(), 0.5 * h}};
+}
+
+} // namespace
+
+TEST(Refiner, AfterConvergenceEverySampleInTheFrustumIsWithinTauOnScreen) {
+    for (const test::Fixture* f : {&test::kVolcano, &test::kJacksboro, &test::kGrandCanyon}) {
+        auto field = test::loadFixture(*f);
+        ASSERT_NE(field, nullptr);
+        for (double tau : {1.0, 4.0}) {
+            for (const Camera& cam : {lowOblique(*field, 20.0 * field->scale().spacingX), highDown(*field), fromOutside(*field)}) {
+                HexMesh mesh;
+                mesh.reset(*field, Embedding::Exact);
+                Refiner refiner;
+                refiner.attach(mesh, *field);
+                refiner.settings().tau = tau;
+                refiner.setView(viewOf(cam));
+                converge(refiner);
+                ASSERT_EQ(mesh.checkInvariants(), nullptr);
+                const BoundCheck check = checkTauBound(mesh, *field, cam, 1.0);
+                std::printf("tau bound %s tau %.0f: %lld samples in view, worst %.3f px, %lld triangles\n", f->name, tau,
+                            (long long)check.samplesInView, check.worstPixels, (long long)mesh.triangleCount());
+                EXPECT_GT(check.samplesInView, 0);
+                EXPECT_EQ(check.uncovered, 0);
+                EXPECT_LE(check.worstPixels, tau * (1.0 + 1e-6)) << f->name;
+            }
+        }
+    }
+}
+
+TEST(Refiner, TheTauBoundHoldsWithVerticalExaggeration) {
+    auto field = test::loadFixture(test::kGrandCanyon);
+    const double scale = 3.0;
+    Camera cam = lowOblique(*field, 1500.0);
+    cam.eye.y *= scale;
+    cam.target.y *= scale;
+    HexMesh mesh;
+    mesh.reset(*field, Embedding::Exact);
+    Refiner refiner;
+    refiner.attach(mesh, *field);
+    refiner.settings().verticalScale = scale;
+    refiner.setView(viewOf(cam));
+    converge(refiner);
+    const BoundCheck check = checkTauBound(mesh, *field, cam, scale);
+    EXPECT_LE(check.worstPixels, 1.0 + 1e-6);
+}
+
+TEST(Refiner, InMaxErrorModeEverySampleIsWithinE) {
+    for (const test::Fixture* f : {&test::kVolcano, &test::kJacksboro, &test::kGrandCanyon}) {
+        auto field = test::loadFixture(*f);
+        for (double e : {0.5, 5.0, 40.0}) {
+            HexMesh mesh;
+            mesh.reset(*field, Embedding::Exact);
+            Refiner refiner;
+            refiner.attach(mesh, *field);
+            refiner.settings().viewIndependent = true;
+            refiner.settings().maxError = e;
+            converge(refiner);
+            ASSERT_EQ(mesh.checkInvariants(), nullptr);
+            std::vector<uint32_t> tris;
+            mesh.appendTriangles(tris);
+            const ErrorStats stats = evaluateMeshError(*field, mesh.positionData(), size_t(mesh.vertexCapacity()), 3, tris.data(), tris.size());
+            std::printf("max error %s E %.1f m: measured %.3f m, %lld triangles\n", f->name, e, stats.maxError, (long long)mesh.triangleCount());
+            EXPECT_EQ(stats.uncovered, 0);
+            EXPECT_LE(stats.maxError, e + 1e-9) << f->name;
+        }
+    }
+}
+
+TEST(Refiner, EveryUpdateLeavesAWatertightMeshAndMovingAwayCoarsens) {
+    auto field = test::loadFixture(test::kJacksboro);
+    HexMesh mesh;
+    mesh.reset(*field, Embedding::Exact);
+    Refiner refiner;
+    refiner.attach(mesh, *field);
+    refiner.settings().maxOperations = 200;
+    Camera cam = lowOblique(*field, 300.0);
+    const glm::dvec3 away = glm::normalize(cam.eye - cam.target);
+    int64_t nearTriangles = 0;
+    for (int32_t frame = 0; frame < 60; ++frame) {
+        if (frame >= 30) cam.eye += away * 2000.0; // fly away
+        refiner.setView(viewOf(cam));
+        refiner.markChanged();
+        const UpdateStats stats = refiner.update();
+        EXPECT_LE(stats.operations, 200);
+        const char* problem = mesh.checkInvariants();
+        ASSERT_EQ(problem, nullptr) << "frame " << frame << ": " << problem;
+        if (frame == 29) nearTriangles = mesh.triangleCount();
+    }
+    converge(refiner);
+    EXPECT_LT(mesh.triangleCount() * 2, nearTriangles) << "flying 60 km away should coarsen the mesh";
+}
+
+TEST(Refiner, AnOperationBudgetIsRespectedAndStillConverges) {
+    auto field = test::loadFixture(test::kGrandCanyon);
+    const Camera cam = lowOblique(*field, 800.0);
+    HexMesh mesh;
+    mesh.reset(*field, Embedding::Exact);
+    Refiner refiner;
+    refiner.attach(mesh, *field);
+    refiner.settings().maxOperations = 50;
+    refiner.setView(viewOf(cam));
+    int32_t updates = 0;
+    for (bool converged = false; !converged; ++updates) {
+        ASSERT_LT(updates, 10000);
+        const UpdateStats stats = refiner.update();
+        ASSERT_LE(stats.operations, 50);
+        ASSERT_GE(stats.operations + (stats.converged ? 1 : 0), 1) << "every update makes progress";
+        converged = stats.converged;
+    }
+    EXPECT_GT(updates, 3);
+    const BoundCheck check = checkTauBound(mesh, *field, cam, 1.0);
+    EXPECT_LE(check.worstPixels, 1.0 + 1e-6);
+    std::printf("agree: budget-50-grandcanyon %016llx\n", (unsigned long long)mesh.hash());
+}
+
+TEST(Refiner, ScriptedFlightWithAnOperationBudgetIsDeterministic) {
+    auto field = test::loadFixture(test::kJacksboro);
+    HexMesh mesh;
+    mesh.reset(*field, Embedding::Shifted);
+    Refiner refiner;
+    refiner.attach(mesh, *field);
+    refiner.settings().maxOperations = 120;
+    refiner.settings().tau = 2.0;
+    Camera cam = lowOblique(*field, 400.0);
+    for (int32_t frame = 0; frame < 40; ++frame) {
+        cam.eye.x += 300.0;
+        cam.target.x += 300.0;
+        refiner.setView(viewOf(cam));
+        refiner.markChanged();
+        refiner.update();
+    }
+    std::printf("agree: flight-jacksboro %016llx %lld\n", (unsigned long long)mesh.hash(), (long long)mesh.triangleCount());
+    ASSERT_EQ(mesh.checkInvariants(), nullptr);
+}
