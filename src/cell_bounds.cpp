@@ -33,7 +33,7 @@ int32_t shapeTriangles(const Heightfield& field, Embedding embedding, const Cell
 }
 
 // Scans the samples inside one triangle: the largest |sample - plane| and the sample range.
-void scanTriangle(const Heightfield& field, const Triangle& t, float& error, float& low, float& high) {
+void scanTriangle(const Heightfield& field, const Triangle& t, double& error, float& low, float& high) {
     const double sx = field.scale().spacingX, sy = field.scale().spacingY;
     const double ax = t.a.x, ay = t.a.y, az = t.a.z;
     const double ux = double(t.b.x) - ax, uy = double(t.b.y) - ay, uz = double(t.b.z) - az;
@@ -75,8 +75,7 @@ void scanTriangle(const Heightfield& field, const Triangle& t, float& error, flo
             const double x = float(j * sx);
             const double plane = ay - (nx * (x - ax) + nz * (z - az)) / ny;
             const float h = field.heightAt(j, i);
-            // Rounded up to the next float: the bound must not shrink in the conversion.
-            error = std::max(error, std::nextafter(float(std::abs(h - plane)), 1e30f));
+            error = std::max(error, std::abs(h - plane));
             low = std::min(low, h);
             high = std::max(high, h);
         }
@@ -96,43 +95,53 @@ CellShape parentShapeOfCell(const HexMesh& mesh, int32_t cell) {
     return shape;
 }
 
-CellBounds computeCellBounds(const Heightfield& field, Embedding embedding, const MinMaxPyramid& pyramid,
-                             const CellShape& shape) {
+Footprint footprintOf(const Heightfield& field, Embedding embedding, const CellShape& shape) {
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    Footprint f{1e30f, -1e30f, 1e30f, -1e30f};
+    auto add = [&](LatticePoint p) {
+        const double column = embedding == Embedding::Exact ? double(sampleColumn(p)) : p.q + 0.5 * p.r;
+        f.x0 = std::min(f.x0, float(column * sx)), f.x1 = std::max(f.x1, float(column * sx));
+        f.z0 = std::min(f.z0, float(p.r * sy)), f.z1 = std::max(f.z1, float(p.r * sy));
+    };
+    const int32_t first = shape.kind == CellKind::Full ? 1 : shape.firstVisible;
+    const int32_t corners = shape.kind == CellKind::Full ? 6 : 4;
+    for (int32_t i = 0; i < corners; ++i) add(latticeAdd(shape.center, kDirections[wrapSlot(first + i) - 1], shape.step));
+    if (shape.kind != CellKind::Semi) add(shape.center);
+    return f;
+}
+
+CellError computeCellError(const Heightfield& field, Embedding embedding, const MinMaxPyramid& pyramid,
+                           const CellShape& shape) {
     Triangle triangles[6];
     const int32_t count = shapeTriangles(field, embedding, shape, triangles);
-    CellBounds b;
-    b.x0 = b.z0 = 1e30f;
-    b.x1 = b.z1 = -1e30f;
+    const Footprint f = footprintOf(field, embedding, shape);
     float vertexLow = 1e30f, vertexHigh = -1e30f;
     for (int32_t t = 0; t < count; ++t)
-        for (const glm::vec3& v : {triangles[t].a, triangles[t].b, triangles[t].c}) {
-            b.x0 = std::min(b.x0, v.x), b.x1 = std::max(b.x1, v.x);
-            b.z0 = std::min(b.z0, v.z), b.z1 = std::max(b.z1, v.z);
+        for (const glm::vec3& v : {triangles[t].a, triangles[t].b, triangles[t].c})
             vertexLow = std::min(vertexLow, v.y), vertexHigh = std::max(vertexHigh, v.y);
-        }
     const double sx = field.scale().spacingX, sy = field.scale().spacingY;
-    const double samples = (double(b.x1 - b.x0) / sx + 1.0) * (double(b.z1 - b.z0) / sy + 1.0);
-    float low = vertexLow, high = vertexHigh, error = 0.0f;
-    const bool outside = b.x1 < 0.0f || b.z1 < 0.0f || b.x0 > float((field.width() - 1) * sx) ||
-                         b.z0 > float((field.height() - 1) * sy);
+    const double samples = (double(f.x1 - f.x0) / sx + 1.0) * (double(f.z1 - f.z0) / sy + 1.0);
+    CellError e{vertexLow, vertexHigh, 0.0f};
+    const bool outside = f.x1 < 0.0f || f.z1 < 0.0f || f.x0 > float((field.width() - 1) * sx) ||
+                         f.z0 > float((field.height() - 1) * sy);
     if (outside) {
         // No sample lies under the cell: nothing to approximate.
     } else if (samples <= kExactScanSamples) {
-        for (int32_t t = 0; t < count; ++t) scanTriangle(field, triangles[t], error, low, high);
+        double error = 0.0;
+        for (int32_t t = 0; t < count; ++t) scanTriangle(field, triangles[t], error, e.low, e.high);
+        // Rounded up to the next float: the bound must not shrink in the conversion.
+        e.error = std::nextafter(float(error), 1e30f);
     } else {
         // The drawn surface stays within its vertices' heights, the samples within the
         // pyramid's range over the footprint: their distance is bounded by the larger gap.
         float sampleLow, sampleHigh;
-        pyramid.query(int32_t(std::floor(b.x0 / sx)), int32_t(std::floor(b.z0 / sy)), int32_t(std::ceil(b.x1 / sx)),
-                      int32_t(std::ceil(b.z1 / sy)), sampleLow, sampleHigh);
-        error = std::max(sampleHigh - vertexLow, vertexHigh - sampleLow);
-        low = std::min(low, sampleLow);
-        high = std::max(high, sampleHigh);
+        pyramid.query(int32_t(std::floor(f.x0 / sx)), int32_t(std::floor(f.z0 / sy)), int32_t(std::ceil(f.x1 / sx)),
+                      int32_t(std::ceil(f.z1 / sy)), sampleLow, sampleHigh);
+        e.error = std::max(sampleHigh - vertexLow, vertexHigh - sampleLow);
+        e.low = std::min(e.low, sampleLow);
+        e.high = std::max(e.high, sampleHigh);
     }
-    b.low = low;
-    b.high = high;
-    b.error = error;
-    return b;
+    return e;
 }
 
 } // namespace hexlod

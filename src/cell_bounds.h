@@ -20,10 +20,15 @@ struct CellShape {
     int32_t step = 1;
 };
 
-struct CellBounds {
-    float x0 = 0, x1 = 0, z0 = 0, z1 = 0; // footprint of the drawn triangles, metres
-    float low = 0, high = 0;              // metres (unscaled): lowest and highest of its samples and vertices
-    float error = 0;                      // metres (unscaled): bound on |sample - drawn surface| under the cell
+/// What refinement caches per cell (§5.1): 12 bytes.
+struct CellError {
+    float low = 0, high = 0; // metres (unscaled): lowest and highest of its samples and vertices
+    float error = 0;         // metres (unscaled): bound on |sample - drawn surface| under the cell
+};
+
+/// The ground rectangle of a cell's own corners (and centre), metres. Cheap: lattice only.
+struct Footprint {
+    float x0 = 0, x1 = 0, z0 = 0, z1 = 0;
 };
 
 /// Cells with at most this many samples under their footprint are scanned sample by sample;
@@ -34,9 +39,12 @@ constexpr double kExactScanSamples = 4096.0;
 CellShape shapeOfCell(const HexMesh& mesh, int32_t cell);
 CellShape parentShapeOfCell(const HexMesh& mesh, int32_t cell);
 
-/// Bounds of a cell against the original samples, each at its true position (x = j * spacingX,
-/// z = i * spacingY). Samples outside the field are not considered (the lattice reaches past it).
-CellBounds computeCellBounds(const Heightfield& field, Embedding embedding, const MinMaxPyramid& pyramid,
-                             const CellShape& shape);
+Footprint footprintOf(const Heightfield& field, Embedding embedding, const CellShape& shape);
+
+/// Error bound of a cell against the original samples, each at its true position
+/// (x = j * spacingX, z = i * spacingY). Samples outside the field are not considered (the
+/// lattice reaches past it).
+CellError computeCellError(const Heightfield& field, Embedding embedding, const MinMaxPyramid& pyramid,
+                           const CellShape& shape);
 
 } // namespace hexlod

@@ -24,42 +24,49 @@ size_t Refiner::memoryBytes() const {
 }
 
 void Refiner::noteChanges() {
-    if (cache_.size() < size_t(mesh_->cellCapacity())) cache_.resize(size_t(mesh_->cellCapacity()) * 2);
-    for (int32_t c : changes_) cache_[size_t(c)].ownValid = cache_[size_t(c)].parentValid = 0;
+    if (cache_.size() < size_t(mesh_->cellCapacity())) cache_.resize(size_t(mesh_->cellCapacity())); // grows geometrically
+    for (int32_t c : changes_) cache_[size_t(c)].valid = 0;
     changes_.clear();
 }
 
-const CellBounds& Refiner::ownBounds(int32_t c) {
+const CellError& Refiner::cachedError(int32_t c, uint8_t bit, CellError& slot, const CellShape& shape) {
     Cached& cached = cache_[size_t(c)];
-    if (!cached.ownValid) {
-        cached.own = computeCellBounds(*field_, mesh_->embedding(), pyramid_, shapeOfCell(*mesh_, c));
-        cached.ownValid = 1;
+    if (!(cached.valid & bit)) {
+        slot = computeCellError(*field_, mesh_->embedding(), pyramid_, shape);
+        cached.valid |= bit;
     }
-    return cached.own;
+    return slot;
 }
 
-const CellBounds& Refiner::parentBounds(int32_t c) {
-    Cached& cached = cache_[size_t(c)];
-    if (!cached.parentValid) {
-        cached.parent = computeCellBounds(*field_, mesh_->embedding(), pyramid_, parentShapeOfCell(*mesh_, c));
-        cached.parentValid = 1;
-    }
-    return cached.parent;
+bool Refiner::fails(const CellShape& shape, const CellError& e) const {
+    if (settings_.viewIndependent) return e.error > settings_.maxError;
+    return fails(footprintOf(*field_, mesh_->embedding(), shape), e);
 }
 
-bool Refiner::fails(const CellBounds& b) const {
-    if (settings_.viewIndependent) return b.error > settings_.maxError;
+bool Refiner::fails(const Footprint& f, const CellError& e) const {
+    if (settings_.viewIndependent) return e.error > settings_.maxError;
     glm::dvec3 center;
     double radius;
-    boundingSphere(b, settings_.verticalScale, center, radius);
+    boundingSphere(f, e, settings_.verticalScale, center, radius);
     if (settings_.culling && outsideFrustum(view_, center, radius)) return false;
     const double tau = settings_.autoTau ? currentTau_ : settings_.tau;
-    return projectedErrorPixels(view_, center, radius, double(b.error) * settings_.verticalScale) > tau;
+    return projectedErrorPixels(view_, center, radius, double(e.error) * settings_.verticalScale) > tau;
+}
+
+bool Refiner::ownFails(int32_t c) {
+    Cached& cached = cache_[size_t(c)];
+    if (!(cached.valid & 1)) {
+        const CellShape shape = shapeOfCell(*mesh_, c);
+        cached.own = computeCellError(*field_, mesh_->embedding(), pyramid_, shape);
+        cached.ownFootprint = footprintOf(*field_, mesh_->embedding(), shape);
+        cached.valid |= 1;
+    }
+    return fails(cached.ownFootprint, cached.own);
 }
 
 bool Refiner::needsRefinement(int32_t c) {
     noteChanges();
-    return fails(ownBounds(c));
+    return ownFails(c);
 }
 
 bool Refiner::outOfBudget() {
@@ -93,7 +100,8 @@ bool Refiner::refineStep(int32_t c) {
 // A merge of c draws c's parent, and the outer halves of the joined hexagons in c's ring that
 // it breaks: all of them must pass, or the next refine pass would split c again.
 bool Refiner::mergeWanted(int32_t c) {
-    if (fails(parentBounds(c))) return false;
+    const CellShape parent = parentShapeOfCell(*mesh_, c);
+    if (fails(parent, cachedError(c, 2, cache_[size_t(c)].parent, parent))) return false;
     const Hexagon& h = mesh_->cell(c);
     const int32_t first = h.kind == CellKind::Full ? 1 : h.firstVisible;
     const int32_t edges = h.kind == CellKind::Full ? 6 : 3;
@@ -104,14 +112,14 @@ bool Refiner::mergeWanted(int32_t c) {
         const Hexagon& ring = mesh_->cell(n);
         if (ring.kind != CellKind::Full || ring.splitCount != 0) continue; // a semi or a boundary cell: removed
         const int32_t k = mesh_->breakDiameterSlot(n);
-        const int32_t facing = edgeSlot(o);
-        const bool facingInFirstHalf = wrapSlot(facing - k + 7) <= 3; // edge slots k, k+1, k+2
+        const bool facingFirstHalf = wrapSlot(edgeSlot(o) - k + 7) <= 3; // edge slots k, k+1, k+2
+        const int32_t outerHalf = facingFirstHalf ? 1 : 0;
         CellShape outer;
         outer.kind = CellKind::Semi;
-        outer.firstVisible = facingInFirstHalf ? wrapSlot(k + 3) : k;
+        outer.firstVisible = outerHalf == 0 ? k : wrapSlot(k + 3);
         outer.center = mesh_->cellCenter(n);
         outer.step = mesh_->cellStep(n);
-        if (fails(computeCellBounds(*field_, mesh_->embedding(), pyramid_, outer))) return false;
+        if (fails(outer, cachedError(n, uint8_t(4 << outerHalf), cache_[size_t(n)].half[outerHalf], outer))) return false;
     }
     return true;
 }
@@ -163,7 +171,7 @@ UpdateStats Refiner::update() {
                         break;
                     }
                     int32_t next = mesh_->nextInLevel(c);
-                    if (fails(ownBounds(c)) && refineStep(c)) {
+                    if (ownFails(c) && refineStep(c)) {
                         ++operations_;
                         ++operationsThisCycle_;
                         noteChanges();

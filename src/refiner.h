@@ -67,17 +67,22 @@ public:
 
 private:
     enum class Phase { Refine, Coarsen };
+    // §5.1: refinement data cached per cell record: its own, its parent's (what a merge
+    // makes) and, for a joined hexagon, its two halves' (what a break makes).
     struct Cached {
-        CellBounds own, parent;
-        uint8_t ownValid = 0, parentValid = 0;
+        CellError own;
+        Footprint ownFootprint; // kept with `own`: every update tests every cell against it
+        CellError parent, half[2];
+        uint8_t valid = 0; // bits: 1 own, 2 parent, 4 first half, 8 second half
     };
 
-    bool fails(const CellBounds& b) const;
-    const CellBounds& ownBounds(int32_t cell);
-    const CellBounds& parentBounds(int32_t cell);
+    bool fails(const CellShape& shape, const CellError& e) const;
+    bool fails(const Footprint& f, const CellError& e) const;
+    const CellError& cachedError(int32_t cell, uint8_t bit, CellError& slot, const CellShape& shape);
     void noteChanges();
     bool refineStep(int32_t cell);   // one operation towards refining the cell; false if none
     bool mergeWanted(int32_t cell);  // the merge makes nothing that fails
+    bool ownFails(int32_t cell);
     bool outOfBudget();
     int32_t resumeCell() const;
     void adaptTau();

@@ -31,8 +31,8 @@ bool makeView(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3&
     return true;
 }
 
-void boundingSphere(const CellBounds& b, double verticalScale, glm::dvec3& center, double& radius) {
-    const glm::dvec3 low(b.x0, double(b.low) * verticalScale, b.z0), high(b.x1, double(b.high) * verticalScale, b.z1);
+void boundingSphere(const Footprint& f, const CellError& e, double verticalScale, glm::dvec3& center, double& radius) {
+    const glm::dvec3 low(f.x0, double(e.low) * verticalScale, f.z0), high(f.x1, double(e.high) * verticalScale, f.z1);
     center = 0.5 * (low + high);
     radius = 0.5 * glm::length(high - low);
 }

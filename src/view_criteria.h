@@ -25,7 +25,7 @@ bool makeView(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3&
 
 /// The cell's bounding sphere: its footprint box, heights from `low` to `high` (times the
 /// vertical scale).
-void boundingSphere(const CellBounds& b, double verticalScale, glm::dvec3& center, double& radius);
+void boundingSphere(const Footprint& f, const CellError& e, double verticalScale, glm::dvec3& center, double& radius);
 
 /// Whether the sphere lies completely outside one plane of the view frustum (§5, first test).
 bool outsideFrustum(const View& view, const glm::dvec3& center, double radius);

@@ -2,21 +2,31 @@
 // it is not a test.
 //
 //   hexlod_bench FILE.f32 WIDTH HEIGHT [SPACING_X_M SPACING_Y_M]
+//   hexlod_bench FILE.f32 WIDTH HEIGHT SPACING_X_M SPACING_Y_M --flight CAMERAS.txt
+//                [--tau PX] [--budget-ms MS] [--budget-ops N] [--viewport WxH] [--tan-half-fov T]
 //
-// For both lattice embeddings (paper §4.7): the time to refine uniformly to the finest level,
-// the triangles and the bytes per triangle of the mesh structures, the time to write the fan
-// stream, and the error against the original samples (max and p99) at full refinement.
+// Without --flight: for both lattice embeddings (paper §4.7), the time to refine uniformly to
+// the finest level, the triangles and bytes per triangle of the mesh structures, the time to
+// write the fan stream, and the error against the original samples at full refinement.
+// With --flight: replays a camera path (one line per frame: eye x y z, target x y z, metres)
+// through the refiner (exact embedding) and the fan stream, as `hexlod bench` does in
+// WebAssembly, and prints the per-frame update figures, for the WASM/native ratio.
 #include <algorithm>
+#include <array>
+#include <string>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "error_evaluator.h"
 #include "fan_stream.h"
 #include "heightfield.h"
 #include "hex_mesh.h"
 #include "hex_mesh_refine.h"
+#include "refiner.h"
 
 namespace {
 
@@ -29,9 +39,96 @@ int fail(const char* what, const char* detail) {
     return 1;
 }
 
+double percentile(std::vector<double> values, double p) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    return values[std::min(values.size() - 1, size_t(p * double(values.size() - 1) + 0.5))];
+}
+
+// Replays a camera path; prints p50 / p95 of update and stream times and the mesh figures.
+int flight(const hexlod::Heightfield& field, int argc, char** argv) {
+    const char* path = nullptr;
+    double tau = 1.0, budgetMs = 0.0, tanHalfFov = 0.57735026918962573, width = 1920, height = 1080;
+    int32_t budgetOps = 0;
+    for (int k = 6; k < argc; ++k) {
+        const std::string flag = argv[k];
+        const char* value = k + 1 < argc ? argv[k + 1] : nullptr;
+        if (!value) return fail("missing value after ", argv[k]);
+        ++k;
+        if (flag == "--flight") path = value;
+        else if (flag == "--tau") tau = std::atof(value);
+        else if (flag == "--budget-ms") budgetMs = std::atof(value);
+        else if (flag == "--budget-ops") budgetOps = std::atoi(value);
+        else if (flag == "--tan-half-fov") tanHalfFov = std::atof(value);
+        else if (flag == "--viewport") {
+            if (std::sscanf(value, "%lfx%lf", &width, &height) != 2) return fail("bad --viewport ", value);
+        } else return fail("unknown option ", argv[k - 1]);
+    }
+    if (!path) return fail("--flight needs a camera file", nullptr);
+    FILE* file = std::fopen(path, "r");
+    if (!file) return fail("cannot open ", path);
+    std::vector<std::array<double, 6>> cameras;
+    std::array<double, 6> c;
+    while (std::fscanf(file, "%lf %lf %lf %lf %lf %lf", &c[0], &c[1], &c[2], &c[3], &c[4], &c[5]) == 6) cameras.push_back(c);
+    std::fclose(file);
+    if (cameras.empty()) return fail("no cameras in ", path);
+
+    hexlod::HexMesh mesh;
+    mesh.reset(field, hexlod::Embedding::Exact);
+    hexlod::Refiner refiner;
+    refiner.attach(mesh, field);
+    refiner.settings().tau = tau;
+    refiner.settings().budgetMs = budgetMs;
+    refiner.settings().maxOperations = budgetOps;
+    hexlod::FanStream stream;
+    std::vector<double> updateMs, streamMs, triangles, splits, merges;
+    for (const auto& cam : cameras) {
+        hexlod::View view;
+        const glm::dvec3 eye(cam[0], cam[1], cam[2]), target(cam[3], cam[4], cam[5]);
+        const double distance = glm::length(target - eye);
+        if (!hexlod::makeView(eye, target, {0, 1, 0}, tanHalfFov, width / height, height, std::max(0.5, distance * 1e-4), distance * 1e3, view))
+            return fail("degenerate camera in ", path);
+        refiner.setView(view);
+        refiner.markChanged();
+        const hexlod::UpdateStats stats = refiner.update();
+        const auto start = std::chrono::steady_clock::now();
+        hexlod::buildFanStream(mesh, 1.0f, stream);
+        streamMs.push_back(msSince(start));
+        updateMs.push_back(stats.milliseconds);
+        triangles.push_back(double(mesh.triangleCount()));
+        splits.push_back(stats.splits);
+        merges.push_back(stats.merges);
+    }
+    const double p95 = percentile(updateMs, 0.95), tri50 = percentile(triangles, 0.5);
+    std::printf("native flight: %zu frames, tau %.2f px, budget %.1f ms / %d ops\n", cameras.size(), tau, budgetMs, budgetOps);
+    std::printf("  update ms p50 %.3f p95 %.3f; stream ms p50 %.3f p95 %.3f\n", percentile(updateMs, 0.5), p95,
+                percentile(streamMs, 0.5), percentile(streamMs, 0.95));
+    std::printf("  triangles min %.0f p50 %.0f max %.0f; splits p50 %.0f max %.0f; merges p50 %.0f max %.0f\n",
+                percentile(triangles, 0.0), tri50, percentile(triangles, 1.0), percentile(splits, 0.5), percentile(splits, 1.0),
+                percentile(merges, 0.5), percentile(merges, 1.0));
+    std::printf("  p95 update per million triangles: %.3f ms; mesh + refiner %.1f B/triangle\n", p95 / (tri50 / 1e6),
+                double(mesh.memoryBytes() + refiner.memoryBytes()) / double(mesh.triangleCount()));
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
+    if (argc > 6 && std::string(argv[6]) == "--flight") {
+        hexlod::HeightfieldScale scale;
+        scale.spacingX = std::atof(argv[4]);
+        scale.spacingY = std::atof(argv[5]);
+        const char* error = nullptr;
+        auto field = hexlod::Heightfield::create(std::atoi(argv[2]), std::atoi(argv[3]), hexlod::SampleType::F32, &error);
+        if (!field) return fail(error, nullptr);
+        FILE* file = std::fopen(argv[1], "rb");
+        if (!file) return fail("cannot open ", argv[1]);
+        const size_t got = std::fread(field->samples(), 4, field->sampleCount(), file);
+        std::fclose(file);
+        if (got != field->sampleCount()) return fail("too few samples in ", argv[1]);
+        if ((error = field->setScale(scale)) || (error = field->prepare())) return fail(error, nullptr);
+        return flight(*field, argc, argv);
+    }
     if (argc != 4 && argc != 6) {
         std::fprintf(stderr, "usage: hexlod_bench FILE.f32 WIDTH HEIGHT [SPACING_X_M SPACING_Y_M]\n");
         return 2;
