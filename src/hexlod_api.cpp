@@ -209,8 +209,7 @@ int32_t hexlod_lod_set_camera(hexlod_terrain* terrain, double eye_x, double eye_
     if (!hexlod::makeView({eye_x, eye_y, eye_z}, {target_x, target_y, target_z}, {up_x, up_y, up_z}, tan_half_fov_y,
                           aspect, viewport_height_px, near_m, far_m, view))
         return fail("degenerate camera: eye on the target, up along the view, or a non-positive size or plane", -1);
-    terrain->refiner.setView(view);
-    terrain->refiner.markChanged();
+    terrain->refiner.setView(view); // marks the cycle changed only when the camera moved
     return 0;
 }
 

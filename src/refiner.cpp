@@ -14,6 +14,15 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     restart();
 }
 
+void Refiner::setView(const View& view) {
+    const bool same = view.eye == view_.eye && view.forward == view_.forward && view.up == view_.up &&
+                      view.tanHalfX == view_.tanHalfX && view.tanHalfY == view_.tanHalfY &&
+                      view.pixelsPerTangent == view_.pixelsPerTangent && view.nearPlane == view_.nearPlane &&
+                      view.farPlane == view_.farPlane;
+    view_ = view;
+    if (!same) markChanged();
+}
+
 void Refiner::invalidateAll() {
     changes_.clear();
     cache_.assign(cache_.size(), Cached{});
@@ -72,7 +81,7 @@ bool Refiner::needsRefinement(int32_t c) {
 bool Refiner::outOfBudget() {
     if (settings_.maxOperations > 0 && operations_ >= settings_.maxOperations) return true;
     // Reading the clock costs more than testing a cell: look at it every 32 visits.
-    if (settings_.budgetMs > 0.0 && (++visits_ & 31) == 0) {
+    if (settings_.budgetMs > 0.0 && (visits_ & 31) == 0) {
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
         if (ms >= settings_.budgetMs) return true;
     }
@@ -135,6 +144,10 @@ void Refiner::adaptTau() {
     else if (last_.converged) currentTau_ = std::max(currentTau_ / 1.05, settings_.tau);
 }
 
+// Every update makes progress before a budget may stop it: an operation, or a few hundred
+// cells tested (enough to get through a coarse mesh; the next update resumes after them).
+bool Refiner::progressed() const { return operations_ > 0 || visits_ - visitsAtStart_ >= kMinVisits; }
+
 int32_t Refiner::resumeCell() const {
     // The cell where the last update stopped, unless an outside call changed the mesh since.
     if (cursorCell_ != kNone && mesh_->isLive(cursorCell_) && mesh_->cell(cursorCell_).level == cursorLevel_) return cursorCell_;
@@ -153,11 +166,12 @@ void Refiner::restart() {
 UpdateStats Refiner::update() {
     start_ = std::chrono::steady_clock::now();
     operations_ = 0;
+    visitsAtStart_ = visits_;
     const OperationCounts before = mesh_->counts();
     bool converged = false;
     noteChanges();
     // Consistent criteria converge in a few cycles; the cap only guarantees the update ends.
-    for (int32_t cycle = 0; cycle < kMaxCyclesPerUpdate && !converged && !(operations_ > 0 && outOfBudget()); ++cycle) {
+    for (int32_t cycle = 0; cycle < kMaxCyclesPerUpdate && !converged && !(progressed() && outOfBudget()); ++cycle) {
         if (phase_ == Phase::Refine) {
             // §6: levels in ascending order; cells a split creates land in finer lists and are
             // visited later in the same pass.
@@ -165,7 +179,8 @@ UpdateStats Refiner::update() {
             for (; cursorLevel_ <= mesh_->maxLevel() && !stopped; ++cursorLevel_, cursorCell_ = kNone) {
                 int32_t c = resumeCell();
                 while (c != kNone) {
-                    if (operations_ > 0 && outOfBudget()) {
+                    ++visits_;
+                    if (progressed() && outOfBudget()) {
                         cursorCell_ = c;
                         stopped = true;
                         break;
@@ -193,7 +208,8 @@ UpdateStats Refiner::update() {
             for (; cursorLevel_ >= 2 && !stopped; --cursorLevel_, cursorCell_ = kNone) {
                 int32_t c = resumeCell();
                 while (c != kNone) {
-                    if (operations_ > 0 && outOfBudget()) {
+                    ++visits_;
+                    if (progressed() && outOfBudget()) {
                         cursorCell_ = c;
                         stopped = true;
                         break;

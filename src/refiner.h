@@ -47,7 +47,8 @@ public:
     void attach(HexMesh& mesh, const Heightfield& field);
 
     RefinerSettings& settings() { return settings_; }
-    void setView(const View& view) { view_ = view; }
+    /// Sets the camera; a different one marks the cycle under way as changed (see markChanged).
+    void setView(const View& view);
     /// Forget every cached bound (after the field or its spacing changed).
     void invalidateAll();
     /// Start the next update with a fresh cycle (after the mesh changed outside the refiner).
@@ -84,6 +85,7 @@ private:
     bool mergeWanted(int32_t cell);  // the merge makes nothing that fails
     bool ownFails(int32_t cell);
     bool outOfBudget();
+    bool progressed() const;
     int32_t resumeCell() const;
     void adaptTau();
 
@@ -106,7 +108,8 @@ private:
     // Per-update state.
     std::chrono::steady_clock::time_point start_;
     int32_t operations_ = 0;
-    uint32_t visits_ = 0;
+    uint32_t visits_ = 0, visitsAtStart_ = 0;
+    static constexpr uint32_t kMinVisits = 256;
     UpdateStats last_;
     static constexpr int32_t kMaxCyclesPerUpdate = 256;
 };
