@@ -27,13 +27,19 @@ int32_t shapeTriangles(const Heightfield& field, Embedding embedding, const Cell
         for (int32_t k = 0; k < 3; ++k) out[k] = {centre, corner(a + k), corner(a + k + 1)};
         return 3;
     }
-    out[0] = {corner(a), corner(a + 1), corner(a + 2)};
-    out[1] = {corner(a), corner(a + 2), corner(a + 3)};
+    auto lattice = [&](int32_t slot) { return latticeAdd(shape.center, kDirections[wrapSlot(slot) - 1], shape.step); };
+    const int32_t start = semiFanFromSecondCorner(embedding, lattice(a), lattice(a + 1), lattice(a + 2), lattice(a + 3)) ? 1 : 0;
+    auto fan = [&](int32_t i) { return corner(a + (start + i) % 4); }; // as HexMesh::semiFanSlots
+    out[0] = {fan(0), fan(1), fan(2)};
+    out[1] = {fan(0), fan(2), fan(3)};
     return 2;
 }
 
 // Scans the samples inside one triangle: the largest |sample - plane| and the sample range.
-void scanTriangle(const Heightfield& field, const Triangle& t, double& error, float& low, float& high) {
+// The exact embedding is measured against the original samples; the shifted one against the
+// field it stores (§4.7: odd rows half a sample east, heights interpolated), which is what
+// its vertices sample and what its full refinement reproduces.
+void scanTriangle(const Heightfield& field, Embedding embedding, const Triangle& t, double& error, float& low, float& high) {
     const double sx = field.scale().spacingX, sy = field.scale().spacingY;
     const double ax = t.a.x, ay = t.a.y, az = t.a.z;
     const double ux = double(t.b.x) - ax, uy = double(t.b.y) - ay, uz = double(t.b.z) - az;
@@ -69,12 +75,14 @@ void scanTriangle(const Heightfield& field, const Triangle& t, double& error, fl
             xr = std::max(xr, x);
         }
         if (xl > xr) continue;
-        const int32_t j0 = std::max(0, int32_t(std::ceil(xl / sx - eps)));
-        const int32_t j1 = std::min(field.width() - 1, int32_t(std::floor(xr / sx + eps)));
+        const bool shifted = embedding == Embedding::Shifted && (i & 1) != 0;
+        const double shift = shifted ? 0.5 : 0.0;
+        const int32_t j0 = std::max(0, int32_t(std::ceil(xl / sx - shift - eps)));
+        const int32_t j1 = std::min(field.width() - 1, int32_t(std::floor(xr / sx - shift + eps)));
         for (int32_t j = j0; j <= j1; ++j) {
-            const double x = float(j * sx);
+            const double x = float((j + shift) * sx);
             const double plane = ay - (nx * (x - ax) + nz * (z - az)) / ny;
-            const float h = field.heightAt(j, i);
+            const float h = shifted ? 0.5f * (field.heightClamped(j, i) + field.heightClamped(j + 1, i)) : field.heightAt(j, i);
             error = std::max(error, std::abs(h - plane));
             low = std::min(low, h);
             high = std::max(high, h);
@@ -128,7 +136,7 @@ CellError computeCellError(const Heightfield& field, Embedding embedding, const 
         // No sample lies under the cell: nothing to approximate.
     } else if (samples <= kExactScanSamples) {
         double error = 0.0;
-        for (int32_t t = 0; t < count; ++t) scanTriangle(field, triangles[t], error, e.low, e.high);
+        for (int32_t t = 0; t < count; ++t) scanTriangle(field, embedding, triangles[t], error, e.low, e.high);
         // Rounded up to the next float: the bound must not shrink in the conversion.
         e.error = std::nextafter(float(error), 1e30f);
     } else {

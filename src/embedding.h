@@ -25,4 +25,11 @@ enum class Embedding : int32_t { Shifted = 0, Exact = 1 };
 /// Position in metres (x east, y up = height, z south) of a lattice point.
 glm::vec3 embedLatticePoint(const Heightfield& field, Embedding embedding, LatticePoint p);
 
+/// The fixed rule for an interior semi-hexagon's two-triangle fan (§7 says "an arbitrary
+/// corner", which changes the surface): corners a, b, c, d counter-clockwise, fanned from a
+/// unless fanning from b gives a larger smallest triangle in the embedding's ground plane.
+/// In the shifted embedding the trapezoid is symmetric and a is kept; in the exact one a
+/// sheared trapezoid may have three corners in one column, and b avoids the flat triangle.
+bool semiFanFromSecondCorner(Embedding embedding, LatticePoint a, LatticePoint b, LatticePoint c, LatticePoint d);
+
 } // namespace hexlod

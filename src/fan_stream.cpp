@@ -9,13 +9,17 @@ namespace hexlod {
 namespace {
 
 // Appends the fan of one cell (see fan_stream.h), closed by the restart index.
-void appendFan(const Hexagon& h, std::vector<uint32_t>& out) {
+void appendFan(const HexMesh& mesh, const Hexagon& h, std::vector<uint32_t>& out) {
     const int32_t* v = h.vertex;
     if (h.kind == CellKind::Full) {
         for (int32_t slot = 0; slot <= 7; ++slot) out.push_back(uint32_t(v[slot]));
-    } else {
-        if (h.kind == CellKind::BoundarySemi) out.push_back(uint32_t(v[0]));
+    } else if (h.kind == CellKind::BoundarySemi) {
+        out.push_back(uint32_t(v[0]));
         for (int32_t i = 0; i < 4; ++i) out.push_back(uint32_t(v[wrapSlot(h.firstVisible + i)]));
+    } else {
+        int32_t slots[4];
+        mesh.semiFanSlots(h, slots); // the fixed rule for §7's "arbitrary corner"
+        for (int32_t slot : slots) out.push_back(uint32_t(v[slot]));
     }
     out.push_back(kRestartIndex);
 }
@@ -30,7 +34,7 @@ void buildFanStream(const HexMesh& mesh, float verticalScale, FanStream& stream)
         stream.levelOffsets.push_back(int32_t(stream.indices.size()));
         for (int32_t c = mesh.firstOfLevel(level); c != kNone; c = mesh.nextInLevel(c)) {
             const Hexagon& h = mesh.cell(c);
-            appendFan(h, stream.indices);
+            appendFan(mesh, h, stream.indices);
             // Outline: each cell edge once, from the cell with the lower index (or alone).
             for (int32_t slot = 1; slot <= 6; ++slot) {
                 if (h.vertex[slot] == kNone) continue;

@@ -145,6 +145,13 @@ int32_t HexMesh::edgeEnd(int32_t e) const {
     return h.vertex[wrapSlot(slot + 1)];
 }
 
+void HexMesh::semiFanSlots(const Hexagon& h, int32_t slots[4]) const {
+    const int32_t a = h.firstVisible;
+    auto at = [&](int32_t slot) { return vertexLattice_[size_t(h.vertex[wrapSlot(slot)])]; };
+    const int32_t start = semiFanFromSecondCorner(embedding_, at(a), at(a + 1), at(a + 2), at(a + 3)) ? 1 : 0;
+    for (int32_t i = 0; i < 4; ++i) slots[i] = wrapSlot(a + (start + i) % 4);
+}
+
 int64_t HexMesh::cellTriangles(const Hexagon& h) const {
     switch (h.kind) {
         case CellKind::Full: return 6;
@@ -176,22 +183,27 @@ void HexMesh::appendTriangles(std::vector<uint32_t>& out) const {
                 out.insert(out.end(), {uint32_t(v[0]), uint32_t(v[a]), uint32_t(v[b]),
                                        uint32_t(v[0]), uint32_t(v[b]), uint32_t(v[c2]),
                                        uint32_t(v[0]), uint32_t(v[c2]), uint32_t(v[d])});
-            } else { // §7: two-triangle fan; fixed rule: around the first own corner
-                out.insert(out.end(), {uint32_t(v[a]), uint32_t(v[b]), uint32_t(v[c2]),
-                                       uint32_t(v[a]), uint32_t(v[c2]), uint32_t(v[d])});
+            } else { // §7: two-triangle fan around the corner the fixed rule picks
+                int32_t q[4];
+                semiFanSlots(h, q);
+                out.insert(out.end(), {uint32_t(v[q[0]]), uint32_t(v[q[1]]), uint32_t(v[q[2]]),
+                                       uint32_t(v[q[0]]), uint32_t(v[q[2]]), uint32_t(v[q[3]])});
             }
         }
     }
 }
 
 uint64_t HexMesh::hash() const {
-    uint64_t h = 1469598103934665603ull; // FNV-1a
-    auto mix = [&](uint64_t value) {
-        for (int byte = 0; byte < 8; ++byte, value >>= 8) h = (h ^ (value & 0xFF)) * 1099511628211ull;
-    };
+    // Cells are combined by addition, so the hash depends on the mesh, not on the order of the
+    // level lists (which depends on the history of operations).
+    uint64_t sum = 0;
     for (int32_t level = 0; level <= maxLevel_; ++level) {
         for (int32_t c = levelHead_[size_t(level)]; c != kNone; c = cells_[size_t(c)].next) {
             const Hexagon& cell = cells_[size_t(c)];
+            uint64_t h = 1469598103934665603ull; // FNV-1a over the cell
+            auto mix = [&](uint64_t value) {
+                for (int byte = 0; byte < 8; ++byte, value >>= 8) h = (h ^ (value & 0xFF)) * 1099511628211ull;
+            };
             mix(uint64_t(cell.level) | uint64_t(cell.kind) << 8 | uint64_t(cell.splitCount) << 16 | uint64_t(cell.firstVisible) << 24);
             for (int32_t slot = 0; slot <= 6; ++slot) {
                 const int32_t v = cell.vertex[slot];
@@ -203,9 +215,10 @@ uint64_t HexMesh::hash() const {
                 mix(uint64_t(bits[0]) << 32 | bits[1]);
                 mix(bits[2]);
             }
+            sum += h * 0x9E3779B97F4A7C15ull + (h >> 29);
         }
     }
-    return h;
+    return sum;
 }
 
 // --- split (§4.1) and the balance rule (§4.5) ---------------------------------------------

@@ -145,6 +145,11 @@ public:
     /// semi-hexagons as the two-triangle fan from their first own corner (a fixed rule).
     void appendTriangles(std::vector<uint32_t>& indices) const;
 
+    /// A semi-hexagon's two-triangle fan as its four own corner slots in fan order: a, a+1,
+    /// a+2, a+3, or a+1, a+2, a+3, a when the fixed rule fans from the second corner
+    /// (see semiFanFromSecondCorner).
+    void semiFanSlots(const Hexagon& h, int32_t slots[4]) const;
+
     /// Start and end vertex of a directed edge (a semi's long edge ends at its first corner).
     int32_t edgeStart(int32_t e) const { return cells_[size_t(hexIdx(e))].vertex[edgeSlot(e)]; }
     int32_t edgeEnd(int32_t e) const;

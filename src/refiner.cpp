@@ -11,6 +11,7 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     mesh.setChangeLog(&changes_);
     invalidateAll();
     currentTau_ = settings_.tau;
+    last_ = {};
     restart();
 }
 

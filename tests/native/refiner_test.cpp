@@ -194,6 +194,13 @@ TEST(Refiner, InMaxErrorModeEverySampleIsWithinE) {
             std::printf("max error %s E %.1f m: measured %.3f m, %lld triangles\n", f->name, e, stats.maxError, (long long)mesh.triangleCount());
             EXPECT_EQ(stats.uncovered, 0);
             EXPECT_LE(stats.maxError, e + 1e-9) << f->name;
+            // No flat triangle: the exact embedding's sheared semi-hexagons fan from the corner
+            // that keeps both triangles' ground area positive.
+            for (size_t t = 0; t < tris.size(); t += 3) {
+                const glm::vec3 a = mesh.vertexPosition(int32_t(tris[t])), b = mesh.vertexPosition(int32_t(tris[t + 1])),
+                                c = mesh.vertexPosition(int32_t(tris[t + 2]));
+                ASSERT_GT((c.x - a.x) * (b.z - a.z) - (b.x - a.x) * (c.z - a.z), 0.0f) << f->name << " triangle " << t / 3;
+            }
         }
     }
 }
