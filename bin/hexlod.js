@@ -1,28 +1,25 @@
 #!/usr/bin/env node
 // hexlod command line: the page's loaders and WASM core, in Node.
 //   hexlod info <file> [--json]   size, spacing, height range and load time of a height field
-import { readFileSync, existsSync, statSync } from 'node:fs';
-import { basename, extname, join, dirname } from 'node:path';
+//   hexlod mesh <file> ...        refine (max error or camera), write OBJ and JSON (mesh_command.js)
+//   hexlod bench <file> ...       a scripted flight, and @mapbox/martini on the same data (bench_flight.js)
 import { parseArgs } from 'node:util';
 import { createNodeCore } from './node_core.js';
 import { loadTerrain } from '../web/terrain_source.js';
+import { UsageError, readInputs } from './cli_common.js';
+import { mesh, MESH_USAGE } from './mesh_command.js';
+import { bench, BENCH_USAGE } from './bench_flight.js';
 
-const USAGE = `usage: hexlod info <heightfield> [--json]
+const INFO_USAGE = `usage: hexlod info <heightfield> [--json]
   A .png or .f32 file; a .json sidecar with the same name beside it is read too.`;
-
-class UsageError extends Error {}
-
-/** The file and, when one sits beside it, its .json sidecar, as loader inputs. */
-function readInputs(path) {
-  if (!existsSync(path)) throw new Error(`${path}: no such file`);
-  if (!statSync(path).isFile()) throw new Error(`${path}: not a file`);
-  const files = [{ name: basename(path), bytes: new Uint8Array(readFileSync(path)) }];
-  const sidecar = join(dirname(path), basename(path, extname(path)) + '.json');
-  if (extname(path).toLowerCase() !== '.json' && existsSync(sidecar)) {
-    files.push({ name: basename(sidecar), bytes: new Uint8Array(readFileSync(sidecar)) });
-  }
-  return files;
-}
+const USAGE = [INFO_USAGE, MESH_USAGE, BENCH_USAGE].join('\n\n');
+// The one line a usage mistake ends with, per command.
+const SHORT_USAGE = {
+  info: 'usage: hexlod info <heightfield> [--json]',
+  mesh: 'see hexlod mesh --help',
+  bench: 'see hexlod bench --help',
+  '': 'usage: hexlod info|mesh|bench <heightfield> [options]; see hexlod --help',
+};
 
 async function info(args) {
   const { values, positionals } = parseArgs({ args, options: { json: { type: 'boolean' } }, allowPositionals: true });
@@ -58,7 +55,8 @@ async function info(args) {
   ].join('\n'));
 }
 
-const commands = { info };
+const commands = { info, mesh, bench };
+let current = '';
 
 async function main(argv) {
   const [command, ...rest] = argv;
@@ -66,18 +64,27 @@ async function main(argv) {
     console.log(USAGE);
     return 0;
   }
-  if (!commands[command]) throw new UsageError(`unknown command '${command}'`);
+  if (!Object.hasOwn(commands, command)) throw new UsageError(`unknown command '${command}'`);
+  current = command;
   await commands[command](rest);
   return 0;
 }
 
+// A reader that stops early (hexlod bench --verbose | head) is not an error.
+process.stdout.on('error', (error) => {
+  if (error.code === 'EPIPE') process.exit(process.exitCode ?? 0);
+  throw error;
+});
+
 main(process.argv.slice(2)).then((code) => { process.exitCode = code; }, (error) => {
-  // One clear line on stderr; usage mistakes also get the usage text.
-  console.error(`hexlod: ${error.message}`);
-  if (error instanceof UsageError || error.code?.startsWith?.('ERR_PARSE_ARGS')) {
-    console.error(USAGE);
+  // One clear line on stderr, never a stack trace: usage mistakes (exit 2) end with the
+  // command's usage, bad files and core failures (exit 1) name what was wrong.
+  const message = String(error?.message ?? error).replace(/\s*\n\s*/g, ' ');
+  if (error instanceof UsageError || error?.code?.startsWith?.('ERR_PARSE_ARGS')) {
+    console.error(`hexlod: ${message}; ${SHORT_USAGE[current]}`);
     process.exitCode = 2;
   } else {
+    console.error(`hexlod: ${message}`);
     process.exitCode = 1;
   }
 });

@@ -201,3 +201,114 @@ export class Terrain {
     this.handle = 0;
   }
 }
+
+// --- View-dependent refinement (src/hexlod.h, "View-dependent refinement", paper §5, §6) -------
+// Methods added to Terrain: each wraps one hexlod_lod_* function (or the mesh hash and error
+// measure) and throws a CoreError with the core's message when it fails.
+
+/** The per-update figures of the refiner (hexlod_lod_last_* and hexlod_lod_converged). */
+function lodFigures(m, h) {
+  return {
+    converged: m._hexlod_lod_converged(h) === 1,
+    splits: m._hexlod_lod_last_splits(h),
+    merges: m._hexlod_lod_last_merges(h),
+    updateMs: m._hexlod_lod_last_update_ms(h),
+    tau: m._hexlod_lod_current_tau(h),
+  };
+}
+
+Object.assign(Terrain.prototype, {
+  /**
+   * Sets the camera of view-dependent refinement (hexlod_lod_set_camera).
+   * @param {{eye: number[], target: number[], up?: number[], fovY?: number, tanHalfFovY?: number,
+   *   aspect: number, viewportHeight: number, near: number, far: number}} camera
+   *   eye and target in metres (x east, y up times the vertical scale, z south); up defaults
+   *   to +y; fovY is the vertical field of view in radians, or give tanHalfFovY directly;
+   *   aspect = viewport width / height; viewportHeight in device pixels; near, far in metres.
+   */
+  setLodCamera({ eye, target, up = [0, 1, 0], fovY, tanHalfFovY, aspect, viewportHeight, near, far }) {
+    const tangent = tanHalfFovY ?? Math.tan(fovY / 2);
+    const result = this.m._hexlod_lod_set_camera(this.handle, eye[0], eye[1], eye[2], target[0], target[1],
+      target[2], up[0], up[1], up[2], tangent, aspect, viewportHeight, near, far);
+    this.core.check(result < 0, 'invalid camera');
+  },
+
+  /** Screen-space tolerance tau in device pixels (> 0); switches to view-dependent mode. */
+  setLodTolerance(tauPx) {
+    this.core.check(this.m._hexlod_lod_set_tolerance(this.handle, tauPx) < 0, 'invalid tolerance');
+  },
+
+  /** Maximum vertical error in metres (> 0); switches to view-independent mode. */
+  setLodMaxError(maxErrorM) {
+    this.core.check(this.m._hexlod_lod_set_max_error(this.handle, maxErrorM) < 0, 'invalid maximum error');
+  },
+
+  /** Heights are drawn times verticalScale (> 0); every cell is re-evaluated. */
+  setLodVerticalScale(verticalScale) {
+    this.core.check(this.m._hexlod_lod_set_vertical_scale(this.handle, verticalScale) < 0,
+      'invalid vertical scale');
+  },
+
+  /**
+   * Per-update budget: at most budgetMs milliseconds (<= 0: no limit) and at most maxOperations
+   * splits and merges (<= 0: no limit).
+   */
+  setLodBudget(budgetMs = 0, maxOperations = 0) {
+    this.core.check(this.m._hexlod_lod_set_budget(this.handle, budgetMs, maxOperations) < 0, 'invalid budget');
+  },
+
+  /** Cap on drawn triangles (<= 0: none), and whether tau may rise and fall to respect it. */
+  setLodLimits(maxTriangles = 0, autoTau = false) {
+    this.core.check(this.m._hexlod_lod_set_limits(this.handle, maxTriangles, autoTau ? 1 : 0) < 0,
+      'invalid limits');
+  },
+
+  /** Frustum culling of cells (on by default). */
+  setLodCulling(enabled) {
+    this.core.check(this.m._hexlod_lod_set_culling(this.handle, enabled ? 1 : 0) < 0, 'cannot set culling');
+  },
+
+  /** One refinement step within the budget; returns the number of operations it made. */
+  updateLod() {
+    const operations = this.m._hexlod_lod_update(this.handle);
+    this.core.check(operations < 0, 'cannot update the level of detail');
+    return operations;
+  },
+
+  /** True when the last update changed nothing. */
+  lodConverged() {
+    return this.m._hexlod_lod_converged(this.handle) === 1;
+  },
+
+  /** Figures of the last update: {converged, splits, merges, updateMs, tau}. */
+  lodStats() {
+    return lodFigures(this.m, this.handle);
+  },
+
+  /** The mesh hash as 16 hexadecimal digits (high half first). */
+  meshHash() {
+    const m = this.m, h = this.handle;
+    const hex = (half) => (half >>> 0).toString(16).padStart(8, '0');
+    return hex(m._hexlod_mesh_hash_high(h)) + hex(m._hexlod_mesh_hash_low(h));
+  },
+
+  /**
+   * Measures the mesh against the samples (a pass over every sample).
+   * @param {boolean} againstStored true: the field the core stores (shifted rows interpolated
+   *   for the shifted embedding); false: the original samples at their true positions
+   * @returns {{max: number, p99: number, mean: number, uncovered: number}} metres, and samples
+   */
+  measureError(againstStored = false) {
+    const m = this.m;
+    const out = m._malloc(4 * 8);
+    this.core.check(out === 0, 'cannot measure the error: out of memory');
+    try {
+      const result = m._hexlod_mesh_measure_error(this.handle, againstStored ? 1 : 0, out);
+      this.core.check(result < 0, 'cannot measure the error');
+      const [max, p99, mean, uncovered] = this.core.view(Float64Array, out, 4);
+      return { max, p99, mean, uncovered };
+    } finally {
+      m._free(out);
+    }
+  },
+});

@@ -1,0 +1,265 @@
+// hexlod mesh, run as a user runs it: the OBJ it writes is checked as geometry (inside the data
+// rectangle, counter-clockwise from above, watertight, covering the rectangle exactly) and the
+// JSON's figures against the settings.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, copyFileSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const cli = fileURLToPath(new URL('../../bin/hexlod.js', import.meta.url));
+const fixture = (name) => fileURLToPath(new URL(`../fixtures/${name}`, import.meta.url));
+const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 60000 });
+const scratch = () => mkdtempSync(join(tmpdir(), 'hexlod-mesh-'));
+
+/** Vertices (x, y, z per vertex) and zero-based faces (3 per face) of an OBJ file written by hexlod mesh. */
+function readObj(path) {
+  const vertices = [], faces = [];
+  for (const line of readFileSync(path, 'utf8').split('\n')) {
+    if (line.startsWith('v ')) {
+      const [x, y, z, extra] = line.slice(2).split(' ');
+      assert.equal(extra, undefined, `vertex line '${line}'`);
+      vertices.push(Number(x), Number(y), Number(z));
+    } else if (line.startsWith('f ')) {
+      const [a, b, c, extra] = line.slice(2).split(' ');
+      assert.ok(c !== undefined && extra === undefined, `face line '${line}' is a triangle`);
+      faces.push(Number(a) - 1, Number(b) - 1, Number(c) - 1);
+    }
+  }
+  return { vertices: Float64Array.from(vertices), faces: Float64Array.from(faces) };
+}
+
+/**
+ * Checks an OBJ as a terrain over [0, xMax] x [0, zMax]: every vertex inside, every face
+ * counter-clockwise seen from +y (x east, z south: (b - a) x (c - a) has a positive y
+ * component), every interior edge shared by exactly two faces in opposite directions, edges
+ * of one face only on the rectangle's outline, and the faces' areas adding up to the
+ * rectangle's. Returns the number of faces.
+ */
+function checkTerrainObj(path, xMax, zMax) {
+  const { vertices: v, faces } = readObj(path);
+  const n = v.length / 3, faceCount = faces.length / 3;
+  assert.ok(faceCount > 0, 'the OBJ has faces');
+  for (let i = 0; i < n; i++) {
+    const x = v[3 * i], y = v[3 * i + 1], z = v[3 * i + 2];
+    if (!(Number.isFinite(y) && x >= 0 && x <= xMax && z >= 0 && z <= zMax)) {
+      assert.fail(`vertex ${i + 1} (${x}, ${y}, ${z}) must lie in [0, ${xMax}] x [0, ${zMax}]`);
+    }
+  }
+  const used = new Uint8Array(n);
+  const edges = new Float64Array(faces.length); // directed edge a -> b as a * n + b
+  let area = 0;
+  for (let f = 0; f < faceCount; f++) {
+    const a = faces[3 * f], b = faces[3 * f + 1], c = faces[3 * f + 2];
+    for (const i of [a, b, c]) {
+      if (!(Number.isInteger(i) && i >= 0 && i < n)) assert.fail(`face ${f + 1} indexes vertex ${i + 1} of ${n}`);
+      used[i] = 1;
+    }
+    const crossY = (v[3 * b + 2] - v[3 * a + 2]) * (v[3 * c] - v[3 * a]) - (v[3 * b] - v[3 * a]) * (v[3 * c + 2] - v[3 * a + 2]);
+    if (!(crossY > 0)) assert.fail(`face ${f + 1} must be counter-clockwise seen from +y (cross y = ${crossY})`);
+    area += crossY / 2;
+    edges[3 * f] = a * n + b;
+    edges[3 * f + 1] = b * n + c;
+    edges[3 * f + 2] = c * n + a;
+  }
+  assert.ok(used.every((u) => u === 1), 'every vertex is used by a face');
+  edges.sort();
+  const has = (key) => { // binary search in the sorted edges
+    let lo = 0, hi = edges.length - 1;
+    while (lo <= hi) {
+      const mid = (lo + hi) >> 1;
+      if (edges[mid] === key) return true;
+      if (edges[mid] < key) lo = mid + 1;
+      else hi = mid - 1;
+    }
+    return false;
+  };
+  const tolerance = 1e-3;
+  const onOutline = (a, b) => {
+    const x1 = v[3 * a], z1 = v[3 * a + 2], x2 = v[3 * b], z2 = v[3 * b + 2];
+    return (x1 <= tolerance && x2 <= tolerance) || (x1 >= xMax - tolerance && x2 >= xMax - tolerance) ||
+      (z1 <= tolerance && z2 <= tolerance) || (z1 >= zMax - tolerance && z2 >= zMax - tolerance);
+  };
+  let boundary = 0;
+  for (let k = 0; k < edges.length; k++) {
+    const a = Math.floor(edges[k] / n), b = edges[k] - a * n;
+    if (k > 0 && edges[k] === edges[k - 1]) assert.fail(`edge ${a + 1}-${b + 1} is used twice in the same direction`);
+    if (!has(b * n + a)) {
+      boundary += 1;
+      if (!onOutline(a, b)) {
+        assert.fail(`edge ${a + 1}-${b + 1} belongs to one face only, so it must lie on the rectangle's outline: ` +
+          `(${v[3 * a]}, ${v[3 * a + 2]}) to (${v[3 * b]}, ${v[3 * b + 2]})`);
+      }
+    }
+  }
+  assert.ok(boundary > 0, 'the mesh has an outline');
+  const rectangle = xMax * zMax;
+  assert.ok(Math.abs(area - rectangle) <= 1e-6 * rectangle, `faces cover the rectangle exactly: ${area} vs ${rectangle}`);
+  return faceCount;
+}
+
+const FIXTURES = [
+  ['volcano_maungawhau.png', 87, 61, 10, 10],
+  ['jacksboro_fault.f32', 403, 344, 74.4, 92.6],
+  ['grandcanyon_512.png', 512, 512, 61.7, 61.7],
+];
+
+for (const [file, width, height, dx, dy] of FIXTURES) {
+  test(`mesh --max-error 5 on ${file}: the OBJ is a watertight counter-clockwise terrain over the data rectangle, within 5 m`, () => {
+    const dir = scratch();
+    const obj = join(dir, 'mesh.obj'), json = join(dir, 'mesh.json');
+    const r = run('mesh', fixture(file), '--max-error', '5', '--obj', obj, '--json', json);
+    assert.equal(r.status, 0, r.stderr);
+    assert.equal(r.stderr, '');
+    assert.match(r.stdout, /converged after \d+ update/);
+    const report = JSON.parse(readFileSync(json, 'utf8'));
+    const xMax = (width - 1) * dx, zMax = (height - 1) * dy;
+    assert.ok(Math.abs(report.rectangle.xMax - xMax) < 1e-9 && Math.abs(report.rectangle.zMax - zMax) < 1e-9);
+    assert.equal(report.converged, true);
+    assert.equal(report.settings.embedding, 'exact');
+    assert.ok(report.error.original.max <= 5 + 1e-6, `max error vs original samples ${report.error.original.max} m`);
+    assert.ok(report.error.stored.max <= 5 + 1e-6, `max error vs stored field ${report.error.stored.max} m`);
+    assert.equal(report.error.original.uncovered, 0);
+    const faces = checkTerrainObj(obj, xMax, zMax);
+    assert.equal(faces, report.triangles.afterClipping);
+    // Figures agree with each other.
+    const { cells } = report;
+    assert.equal(cells.fullHexagons + cells.boundarySemiHexagons + cells.interiorSemiHexagons + cells.other, cells.total);
+    assert.ok(report.triangles.drawn >= report.triangles.keptWhole + report.triangles.cut);
+    assert.ok(report.maxLevel >= 0 && report.maxLevel <= report.finestLevel);
+    assert.equal(report.levels.reduce((s, l) => s + l.triangles, 0), report.triangles.drawn);
+    assert.ok(report.bytes > 0 && Math.abs(report.bytesPerTriangle - report.bytes / report.triangles.drawn) < 0.01);
+    assert.match(report.hash, /^[0-9a-f]{16}$/);
+  });
+}
+
+test('mesh --max-error is deterministic: the same hash and OBJ twice', () => {
+  const dir = scratch();
+  const outputs = [1, 2].map((k) => {
+    const r = run('mesh', fixture('volcano_maungawhau.png'), '--max-error', '2', '--obj', join(dir, `${k}.obj`), '--json', join(dir, `${k}.json`));
+    assert.equal(r.status, 0, r.stderr);
+    return [JSON.parse(readFileSync(join(dir, `${k}.json`), 'utf8')).hash, readFileSync(join(dir, `${k}.obj`), 'utf8')];
+  });
+  assert.deepEqual(outputs[0], outputs[1]);
+});
+
+test('mesh with a camera converges, reports its triangles and writes a valid OBJ', () => {
+  const dir = scratch();
+  const obj = join(dir, 'view.obj'), json = join(dir, 'view.json');
+  // Over the north-west corner of the Grand Canyon, 2.5 km up, looking south-east and down.
+  const r = run('mesh', fixture('grandcanyon_512.png'), '--camera', '-500,3000,-500', '--target', '15000,1000,15000',
+    '--fov', '50', '--viewport', '1280x720', '--tau', '2', '--obj', obj, '--json', json);
+  assert.equal(r.status, 0, r.stderr);
+  const report = JSON.parse(readFileSync(json, 'utf8'));
+  assert.equal(report.converged, true);
+  assert.equal(report.settings.mode, 'view');
+  assert.deepEqual(report.settings.camera, [-500, 3000, -500]);
+  assert.deepEqual(report.settings.viewport, [1280, 720]);
+  assert.equal(report.settings.tau, 2);
+  assert.ok(report.settings.near > 0 && report.settings.far > report.settings.near);
+  assert.ok(report.triangles.drawn > 1000, `${report.triangles.drawn} triangles`);
+  assert.match(r.stdout, new RegExp(`${report.triangles.drawn} triangles drawn`));
+  assert.equal(checkTerrainObj(obj, 511 * 61.7, 511 * 61.7), report.triangles.afterClipping);
+});
+
+test('mesh --budget-splits N stops after one update of at most N operations and still writes a valid mesh', () => {
+  const dir = scratch();
+  const obj = join(dir, 'budget.obj'), json = join(dir, 'budget.json');
+  const r = run('mesh', fixture('jacksboro_fault.f32'), '--camera', '15000,2500,40000', '--target', '15000,500,15000',
+    '--budget-splits', '40', '--obj', obj, '--json', json);
+  assert.equal(r.status, 0, r.stderr);
+  const report = JSON.parse(readFileSync(json, 'utf8'));
+  assert.equal(report.updates, 1);
+  assert.equal(report.settings.budgetSplits, 40);
+  assert.ok(report.operations >= 1 && report.operations <= 40, `${report.operations} operations`);
+  assert.ok(report.splits + report.merges <= 40, `${report.splits} splits, ${report.merges} merges`);
+  assert.equal(report.converged, false, '40 operations do not converge for this view');
+  assert.match(r.stdout, /budget 40 operations/);
+  assert.equal(checkTerrainObj(obj, 402 * 74.4, 343 * 92.6), report.triangles.afterClipping);
+});
+
+test('mesh --embedding shifted and --cell-size are applied', () => {
+  const dir = scratch();
+  const obj = join(dir, 'shifted.obj'), json = join(dir, 'shifted.json');
+  const r = run('mesh', fixture('volcano_maungawhau.png'), '--max-error', '3', '--embedding', 'shifted',
+    '--cell-size', '12,8', '--obj', obj, '--json', json);
+  assert.equal(r.status, 0, r.stderr);
+  const report = JSON.parse(readFileSync(json, 'utf8'));
+  assert.equal(report.settings.embedding, 'shifted');
+  assert.equal(report.spacingX, 12);
+  assert.equal(report.spacingY, 8);
+  assert.equal(checkTerrainObj(obj, 86 * 12, 60 * 8), report.triangles.afterClipping);
+});
+
+test('a PNG without a cell size warns on stderr and uses 1 m, unless --cell-size is given', () => {
+  const dir = scratch();
+  copyFileSync(fixture('volcano_maungawhau.png'), join(dir, 'alone.png'));
+  const warned = run('mesh', join(dir, 'alone.png'), '--max-error', '5', '--json', join(dir, 'a.json'));
+  assert.equal(warned.status, 0, warned.stderr);
+  assert.equal(warned.stderr, 'hexlod: warning: alone.png has no cell size; using 1 m, set --cell-size\n');
+  assert.equal(JSON.parse(readFileSync(join(dir, 'a.json'), 'utf8')).spacingX, 1);
+  const quiet = run('mesh', join(dir, 'alone.png'), '--max-error', '5', '--cell-size', '10', '--json', join(dir, 'b.json'));
+  assert.equal(quiet.status, 0, quiet.stderr);
+  assert.equal(quiet.stderr, '');
+  assert.equal(JSON.parse(readFileSync(join(dir, 'b.json'), 'utf8')).rectangle.xMax, 860);
+});
+
+test('bad arguments and bad files exit 2 or 1 with one clear line on stderr', () => {
+  const dir = scratch();
+  const png = fixture('volcano_maungawhau.png');
+  const truncated = join(dir, 'cut.png');
+  writeFileSync(truncated, readFileSync(png).subarray(0, 3000));
+  const camera = ['--camera', '100,300,100', '--target', '400,100,300'];
+  for (const [args, status, pattern] of [
+    [[join(dir, 'missing.png'), '--max-error', '5'], 1, /missing\.png: no such file/],
+    [[truncated, '--max-error', '5'], 1, /cut\.png/],
+    [[png, '--max-error', '5', '--frobnicate'], 2, /unknown option '--frobnicate'/],
+    [[png, ...camera, '--tau', '-1'], 2, /--tau must be greater than 0/],
+    [[png, '--camera', '1,2', '--target', '3,4,5'], 2, /--camera must be three numbers/],
+    [[png, '--max-error', '5', ...camera], 2, /either --max-error or --camera, not both/],
+    [[png], 2, /give --max-error M or --camera/],
+    [[png, '--camera', '1,2,3'], 2, /--camera needs --target/],
+    [[png, ...camera, '--viewport', '0x5'], 2, /--viewport must be WIDTHxHEIGHT/],
+    [[png, '--max-error', '5', '--embedding', 'foo'], 2, /--embedding must be 'shifted' or 'exact'/],
+    [[png, '--max-error', '5', '--cell-size', 'abc'], 2, /--cell-size must be DX or DX,DY/],
+    [[png, '--max-error', '0'], 2, /--max-error must be greater than 0/],
+    [[png, '--max-error', '5', '--budget-splits', '2.5'], 2, /--budget-splits must be an integer/],
+    [[png, '--max-error', '5', '--tau', '2'], 2, /--tau goes with --camera/],
+    [[png, '--camera', '1,2,3', '--target', '1,2,3'], 2, /the same point/],
+    [[], 2, /mesh needs a height field file/],
+  ]) {
+    const r = run('mesh', ...args);
+    assert.equal(r.status, status, `${args.join(' ')}: ${r.stderr}`);
+    const lines = r.stderr.trim().split('\n');
+    assert.equal(lines.length, 1, `one line for ${args.join(' ')}: ${r.stderr}`);
+    assert.match(lines[0], /^hexlod: /);
+    assert.match(lines[0], pattern);
+    assert.doesNotMatch(r.stderr, /\n\s+at /, 'no stack trace');
+    assert.equal(r.stdout, '');
+  }
+  const help = run('mesh', '--help');
+  assert.equal(help.status, 0);
+  assert.match(help.stdout, /usage: hexlod mesh <heightfield>/);
+});
+
+test('hexlod bench flies a short scripted flight, compares with martini and writes every figure as JSON', () => {
+  const dir = scratch();
+  const json = join(dir, 'bench.json');
+  const r = run('bench', fixture('volcano_maungawhau.png'), '--frames', '8', '--budget-ops', '50', '--max-error', '2', '--json', json);
+  assert.equal(r.status, 0, r.stderr);
+  assert.match(r.stdout, /update\s+p50 [\d.]+ ms, p95 [\d.]+ ms/);
+  assert.match(r.stdout, /ratio\s+triangles ours \/ martini [\d.]+/);
+  const report = JSON.parse(readFileSync(json, 'utf8'));
+  assert.equal(report.frames.length, 8);
+  assert.ok(report.frames.every((f) => f.operations <= 50 && f.triangles > 0));
+  assert.ok(report.firstFrame.warm.converged);
+  assert.ok(report.maxError.error.max <= 2 + 1e-6);
+  assert.ok(report.martini.error.max <= report.maxError.error.max + 1e-6, 'martini matched at no more than our error');
+  assert.ok(report.martini.triangles > 0 && report.ratios.trianglesOursOverMartini > 0);
+  assert.ok(report.native.missing || report.native.ratios.updateP50 > 0, 'a WASM/native ratio, or why there is none');
+  const bad = run('bench', fixture('volcano_maungawhau.png'), '--frames', '0');
+  assert.equal(bad.status, 2);
+  assert.match(bad.stderr, /^hexlod: --frames must be at least 1/);
+});
