@@ -36,8 +36,10 @@ export class OrbitCamera {
       this.target[2] + this.distance * cp * Math.cos(this.yaw));
     mat4.lookAt(this.view, this.position, this.target, this.up);
     // Near and far follow the distance so both a small tile and a continent keep depth precision.
-    const near = Math.max(0.5, this.distance * 0.002);
-    mat4.perspective(this.projection, this.fovY, aspect, near, this.distance * 20);
+    this.near = Math.max(0.5, this.distance * 0.002);
+    this.far = this.distance * 20;
+    this.aspect = aspect;
+    mat4.perspective(this.projection, this.fovY, aspect, this.near, this.far);
     mat4.multiply(this.viewProjection, this.projection, this.view);
   }
 }

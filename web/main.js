@@ -10,10 +10,8 @@ const DEFAULT_TERRAIN = [
   new URL('../public/terrain/globe_himalaya_2048.json', import.meta.url).href,
 ];
 const VERTICAL_EXAGGERATION = 2;
-// Until view-dependent refinement lands: uniform splits up to this many triangles, then a few
-// local rounds around the relief, so several levels show.
-const UNIFORM_TRIANGLES = 120000;
-const LOCAL_ROUNDS = 3;
+const TAU_PX = 1;          // screen-space error tolerance, device pixels
+const FRAME_BUDGET_MS = 4; // LOD update time per frame
 
 const canvas = document.getElementById('view');
 const hud = document.getElementById('hud');
@@ -63,7 +61,8 @@ async function main() {
   const camera = new OrbitCamera();
   let current = null; // { terrain, field, loadMs }
   let frameRequested = false;
-  const view = { colorByLevel: true, outline: true };
+  const view = { colorByLevel: false, outline: false };
+  const lodLine = document.createElement('div');
 
   function render() {
     frameRequested = false;
@@ -75,6 +74,22 @@ async function main() {
       canvas.height = height;
     }
     camera.update(width / height);
+    if (current) {
+      // §6: one budgeted refinement step per frame for the current camera, then the fans.
+      const { terrain } = current;
+      terrain.setLodCamera({ eye: camera.position, target: camera.target, fovY: camera.fovY, aspect: camera.aspect,
+        viewportHeight: height, near: camera.near, far: camera.far });
+      terrain.updateLod();
+      const lod = terrain.lodStats();
+      renderer.setStream(terrain.buildStream(VERTICAL_EXAGGERATION), current.low, current.high, current.extentX, current.extentZ);
+      const stats = terrain.meshStats();
+      state.triangles = stats.triangles;
+      state.mesh = stats;
+      state.converged = lod.converged;
+      lodLine.textContent = `LOD: ${stats.triangles.toLocaleString('en')} triangles, ${stats.cells.toLocaleString('en')} cells, ` +
+        `update ${lod.updateMs.toFixed(1)} ms (${lod.splits} splits, ${lod.merges} merges)${lod.converged ? '' : ', refining…'}`;
+      if (!lod.converged) requestRender();
+    }
     renderer.draw(camera, width, height, view);
     state.frames += 1;
   }
@@ -88,33 +103,29 @@ async function main() {
 
   function show(loaded) {
     const { terrain, field } = loaded;
-    const extentX = (terrain.width - 1) * field.spacingX;
-    const extentZ = (terrain.height - 1) * field.spacingY;
-    const low = terrain.minHeight * VERTICAL_EXAGGERATION, high = terrain.maxHeight * VERTICAL_EXAGGERATION;
+    loaded.extentX = (terrain.width - 1) * field.spacingX;
+    loaded.extentZ = (terrain.height - 1) * field.spacingY;
+    loaded.low = terrain.minHeight * VERTICAL_EXAGGERATION;
+    loaded.high = terrain.maxHeight * VERTICAL_EXAGGERATION;
     terrain.resetMesh('exact');
-    while (terrain.meshStats().triangles * 4 <= UNIFORM_TRIANGLES && terrain.refineUniform(1) > 0);
-    const focus = reliefCentroid(terrain.buildStream(VERTICAL_EXAGGERATION), low);
-    const extent = Math.hypot(extentX, extentZ);
-    terrain.refineNear(focus[0], focus[2], extent / 10, LOCAL_ROUNDS);
-    const stream = terrain.buildStream(VERTICAL_EXAGGERATION);
-    renderer.setStream(stream, low, high, extentX, extentZ);
-    camera.frame(focus[0], focus[1], focus[2], extent);
+    terrain.setLodVerticalScale(VERTICAL_EXAGGERATION);
+    terrain.setLodTolerance(TAU_PX);
+    terrain.setLodBudget(FRAME_BUDGET_MS, 0);
+    const focus = reliefCentroid(terrain.buildStream(VERTICAL_EXAGGERATION), loaded.low);
+    camera.frame(focus[0], focus[1], focus[2], Math.hypot(loaded.extentX, loaded.extentZ));
     current?.terrain.destroy();
     current = loaded;
-    const stats = terrain.meshStats();
     state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
       minHeight: terrain.minHeight, maxHeight: terrain.maxHeight };
-    state.triangles = stats.triangles;
-    state.mesh = stats;
     const spacing = field.spacingFromFile ? '' : ' (assumed: the file has none)';
     hud.textContent = [
       `${field.source}  ${terrain.width} × ${terrain.height} ${field.sampleType}`,
       `spacing ${field.spacingX.toFixed(1)} × ${field.spacingY.toFixed(1)} m${spacing}`,
       `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m, loaded in ${loaded.loadMs.toFixed(0)} ms`,
-      `hexagon mesh: ${stats.triangles.toLocaleString('en')} triangles, ${stats.cells.toLocaleString('en')} cells, ` +
-        `${(stats.bytes / stats.triangles).toFixed(1)} B/triangle`,
+      `τ ${TAU_PX} px, budget ${FRAME_BUDGET_MS} ms/frame, vertical ×${VERTICAL_EXAGGERATION}`,
       'L: colour by level   O: hexagon outlines',
     ].join('\n');
+    hud.appendChild(lodLine);
     requestRender();
   }
 

@@ -24,16 +24,18 @@ function pixelStats(png) {
   return { colours: colours.size, luminanceStd: Math.sqrt(sumSq / n - mean * mean) };
 }
 
-test('the default view shows a real terrain, not one flat colour, and logs no errors', async () => {
+test('the default view refines a real terrain until converged, not one flat colour, and logs no errors', async () => {
   const { page, problems } = await openPage(viewer.browser, viewer.url);
   await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 60000 });
-  await page.waitForFunction(() => window.hexlod.frames > 0, null, { timeout: 60000 });
+  // The view-dependent mesh refines over a few budgeted frames; SwiftShader draws slowly.
+  await page.waitForFunction(() => window.hexlod.status !== 'ready' || window.hexlod.converged, null, { timeout: 240000 });
   const state = await page.evaluate(() => window.hexlod);
   assert.equal(state.status, 'ready', `page status: ${state.error}`);
   assert.equal(state.terrain.name, 'globe_himalaya_2048.png');
   assert.deepEqual([state.terrain.width, state.terrain.height], [2048, 2048]);
   assert.ok(state.terrain.maxHeight > 8000, 'Everest is in the default terrain');
-  assert.ok(state.triangles > 100000, `only ${state.triangles} triangles drawn`);
+  assert.ok(state.triangles > 20000, `only ${state.triangles} triangles drawn`);
+  assert.ok(state.mesh.cells > 1000, 'the hexagon mesh refined');
 
   const png = await page.screenshot({ path: `${outDir}/viewer-default.png` });
   const stats = pixelStats(png);
