@@ -271,3 +271,30 @@ TEST(Refiner, ScriptedFlightWithAnOperationBudgetIsDeterministic) {
     std::printf("agree: flight-jacksboro %016llx %lld\n", (unsigned long long)mesh.hash(), (long long)mesh.triangleCount());
     ASSERT_EQ(mesh.checkInvariants(), nullptr);
 }
+
+TEST(Refiner, TheTriangleCapStopsSplittingAndAutoTauRaisesTau) {
+    auto field = test::loadFixture(test::kGrandCanyon);
+    const Camera cam = lowOblique(*field, 300.0);
+    HexMesh mesh;
+    mesh.reset(*field, Embedding::Exact);
+    Refiner refiner;
+    refiner.attach(mesh, *field);
+    refiner.setView(viewOf(cam));
+    converge(refiner);
+    const int64_t uncapped = mesh.triangleCount();
+
+    HexMesh capped;
+    capped.reset(*field, Embedding::Exact);
+    Refiner limited;
+    limited.attach(capped, *field);
+    limited.settings().maxTriangles = int32_t(uncapped / 4);
+    limited.settings().autoTau = true;
+    limited.setView(viewOf(cam));
+    for (int32_t n = 0; n < 200 && !limited.update().converged; ++n) {
+        // One split adds at most a ring's worth of triangles past the cap.
+        ASSERT_LE(capped.triangleCount(), uncapped / 4 + 64);
+    }
+    EXPECT_GT(limited.currentTau(), 1.0) << "auto tau raised tau while the cap held the mesh back";
+    EXPECT_LE(capped.triangleCount(), uncapped / 4 + 64);
+    ASSERT_EQ(capped.checkInvariants(), nullptr);
+}
