@@ -12,6 +12,7 @@ import {
 } from './cli_common.js';
 import { decodeFans } from './mesh_export.js';
 import { gridMeshError, padToPowerOfTwoPlusOne } from './rtin_error.js';
+import { seededRandom } from '../web/seeded_random.js';
 
 export const BENCH_USAGE = `usage: hexlod bench <heightfield> [options]
   Prints figures, asserts nothing: a scripted low-altitude flight across the field (per frame
@@ -71,17 +72,6 @@ function benchSettings(args) {
   };
 }
 
-/** mulberry32: a small seeded PRNG, uniform in [0, 1). */
-function random(seed) {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
 
 /**
  * The flight: a straight line through the field's centre along a seeded heading, 80 % of the
@@ -89,7 +79,7 @@ function random(seed) {
  * under the next 10 frames; looking ahead and 10 degrees down.
  */
 export function flightPath(terrain, { frames, seed, altitude }) {
-  const rand = random(seed);
+  const rand = seededRandom(seed);
   const { xMax, zMax } = extentOf(terrain);
   const heading = rand() * 2 * Math.PI;
   const phase = rand() * 2 * Math.PI;

@@ -164,6 +164,34 @@ void Refiner::restart() {
     noteChanges();
 }
 
+// Walks the level lists from the cursor (ascending in the refine pass, descending in the
+// coarsen pass), applying `step` to each cell; returns false when the budget stopped it, with
+// the cursor on the cell to resume at.
+template <typename Step>
+bool Refiner::walkLevels(int32_t lastLevel, int32_t direction, Step&& step) {
+    for (; cursorLevel_ * direction <= lastLevel * direction; cursorLevel_ += direction, cursorCell_ = kNone) {
+        int32_t c = resumeCell();
+        while (c != kNone) {
+            ++visits_;
+            if (progressed() && outOfBudget()) {
+                cursorCell_ = c;
+                return false;
+            }
+            int32_t next = mesh_->nextInLevel(c);
+            if (step(c)) {
+                ++operations_;
+                ++operationsThisCycle_;
+                noteChanges();
+                // An operation may have moved or freed the next cell: start the level again.
+                if (!mesh_->isLive(next) || mesh_->cell(next).level != cursorLevel_) next = mesh_->firstOfLevel(cursorLevel_);
+                if (mesh_->isLive(c) && mesh_->cell(c).level == cursorLevel_) next = c; // not done with c yet
+            }
+            c = next;
+        }
+    }
+    return true;
+}
+
 UpdateStats Refiner::update() {
     start_ = std::chrono::steady_clock::now();
     operations_ = 0;
@@ -176,58 +204,17 @@ UpdateStats Refiner::update() {
         if (phase_ == Phase::Refine) {
             // §6: levels in ascending order; cells a split creates land in finer lists and are
             // visited later in the same pass.
-            bool stopped = false;
-            for (; cursorLevel_ <= mesh_->maxLevel() && !stopped; ++cursorLevel_, cursorCell_ = kNone) {
-                int32_t c = resumeCell();
-                while (c != kNone) {
-                    ++visits_;
-                    if (progressed() && outOfBudget()) {
-                        cursorCell_ = c;
-                        stopped = true;
-                        break;
-                    }
-                    int32_t next = mesh_->nextInLevel(c);
-                    if (ownFails(c) && refineStep(c)) {
-                        ++operations_;
-                        ++operationsThisCycle_;
-                        noteChanges();
-                        // An operation may have moved or freed the next cell: start the level again.
-                        if (!mesh_->isLive(next) || mesh_->cell(next).level != cursorLevel_) next = mesh_->firstOfLevel(cursorLevel_);
-                        if (mesh_->isLive(c) && mesh_->cell(c).level == cursorLevel_) next = c; // not done with c yet
-                    }
-                    c = next;
-                }
-                if (stopped) break;
-            }
-            if (stopped) break;
+            if (!walkLevels(mesh_->maxLevel(), +1, [&](int32_t c) { return ownFails(c) && refineStep(c); })) break;
             phase_ = Phase::Coarsen;
             cursorLevel_ = mesh_->maxLevel();
             cursorCell_ = kNone;
         } else {
             // §6: levels in descending order; a cell is merged when what the merge makes passes.
-            bool stopped = false;
-            for (; cursorLevel_ >= 2 && !stopped; --cursorLevel_, cursorCell_ = kNone) {
-                int32_t c = resumeCell();
-                while (c != kNone) {
-                    ++visits_;
-                    if (progressed() && outOfBudget()) {
-                        cursorCell_ = c;
-                        stopped = true;
-                        break;
-                    }
-                    int32_t next = mesh_->nextInLevel(c);
-                    const Hexagon& h = mesh_->cell(c);
-                    if (h.kind != CellKind::Semi && h.splitCount > 0 && mergeWanted(c) && mesh_->merge(c)) {
-                        ++operations_;
-                        ++operationsThisCycle_;
-                        noteChanges();
-                        if (!mesh_->isLive(next) || mesh_->cell(next).level != cursorLevel_) next = mesh_->firstOfLevel(cursorLevel_);
-                    }
-                    c = next;
-                }
-                if (stopped) break;
-            }
-            if (stopped) break;
+            const bool done = walkLevels(2, -1, [&](int32_t c) {
+                const Hexagon& h = mesh_->cell(c);
+                return h.kind != CellKind::Semi && h.splitCount > 0 && mergeWanted(c) && mesh_->merge(c);
+            });
+            if (!done) break;
             // A whole cycle without an operation: converged.
             converged = operationsThisCycle_ == 0 && !cycleChanged_;
             operationsThisCycle_ = 0;

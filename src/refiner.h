@@ -85,6 +85,8 @@ private:
     bool mergeWanted(int32_t cell);  // the merge makes nothing that fails
     bool ownFails(int32_t cell);
     bool outOfBudget();
+    template <typename Step>
+    bool walkLevels(int32_t lastLevel, int32_t direction, Step&& step);
     bool progressed() const;
     int32_t resumeCell() const;
     void adaptTau();

@@ -13,6 +13,7 @@
 // WebAssembly, and prints the per-frame update figures, for the WASM/native ratio.
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <string>
 #include <chrono>
 #include <cstdio>
@@ -37,6 +38,21 @@ double msSince(std::chrono::steady_clock::time_point start) {
 int fail(const char* what, const char* detail) {
     std::fprintf(stderr, "hexlod_bench: %s%s\n", what, detail ? detail : "");
     return 1;
+}
+
+// Reads a raw float32 field and prepares it; null (after printing why) on failure.
+std::unique_ptr<hexlod::Heightfield> loadRawField(const char* path, int32_t width, int32_t height,
+                                                  const hexlod::HeightfieldScale& scale) {
+    const char* error = nullptr;
+    auto field = hexlod::Heightfield::create(width, height, hexlod::SampleType::F32, &error);
+    if (!field) return fail(error, nullptr), nullptr;
+    FILE* file = std::fopen(path, "rb");
+    if (!file) return fail("cannot open ", path), nullptr;
+    const size_t got = std::fread(field->samples(), 4, field->sampleCount(), file);
+    std::fclose(file);
+    if (got != field->sampleCount()) return fail("too few samples in ", path), nullptr;
+    if ((error = field->setScale(scale)) || (error = field->prepare())) return fail(error, nullptr), nullptr;
+    return field;
 }
 
 double percentile(std::vector<double> values, double p) {
@@ -118,16 +134,8 @@ int main(int argc, char** argv) {
         hexlod::HeightfieldScale scale;
         scale.spacingX = std::atof(argv[4]);
         scale.spacingY = std::atof(argv[5]);
-        const char* error = nullptr;
-        auto field = hexlod::Heightfield::create(std::atoi(argv[2]), std::atoi(argv[3]), hexlod::SampleType::F32, &error);
-        if (!field) return fail(error, nullptr);
-        FILE* file = std::fopen(argv[1], "rb");
-        if (!file) return fail("cannot open ", argv[1]);
-        const size_t got = std::fread(field->samples(), 4, field->sampleCount(), file);
-        std::fclose(file);
-        if (got != field->sampleCount()) return fail("too few samples in ", argv[1]);
-        if ((error = field->setScale(scale)) || (error = field->prepare())) return fail(error, nullptr);
-        return flight(*field, argc, argv);
+        auto field = loadRawField(argv[1], std::atoi(argv[2]), std::atoi(argv[3]), scale);
+        return field ? flight(*field, argc, argv) : 1;
     }
     if (argc != 4 && argc != 6) {
         std::fprintf(stderr, "usage: hexlod_bench FILE.f32 WIDTH HEIGHT [SPACING_X_M SPACING_Y_M]\n");
@@ -137,15 +145,8 @@ int main(int argc, char** argv) {
     hexlod::HeightfieldScale scale;
     if (argc == 6) scale.spacingX = std::atof(argv[4]), scale.spacingY = std::atof(argv[5]);
 
-    const char* error = nullptr;
-    auto field = hexlod::Heightfield::create(width, height, hexlod::SampleType::F32, &error);
-    if (!field) return fail(error, nullptr);
-    FILE* file = std::fopen(argv[1], "rb");
-    if (!file) return fail("cannot open ", argv[1]);
-    const size_t got = std::fread(field->samples(), 4, field->sampleCount(), file);
-    std::fclose(file);
-    if (got != field->sampleCount()) return fail("too few samples in ", argv[1]);
-    if ((error = field->setScale(scale)) || (error = field->prepare())) return fail(error, nullptr);
+    auto field = loadRawField(argv[1], width, height, scale);
+    if (!field) return 1;
     std::printf("%s: %dx%d samples, spacing %.1f x %.1f m, heights %.1f .. %.1f m\n", argv[1], width, height,
                 scale.spacingX, scale.spacingY, field->minHeight(), field->maxHeight());
 

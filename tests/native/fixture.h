@@ -33,20 +33,6 @@ inline std::vector<float> readF32(const Fixture& f) {
     return data;
 }
 
-// A prepared f32 height field holding the fixture's samples (null if the file is unreadable).
-inline std::unique_ptr<Heightfield> loadFixture(const Fixture& f) {
-    const std::vector<float> data = readF32(f);
-    if (data.empty()) return nullptr;
-    auto field = Heightfield::create(f.width, f.height, SampleType::F32, nullptr);
-    std::copy(data.begin(), data.end(), static_cast<float*>(field->samples()));
-    HeightfieldScale scale;
-    scale.spacingX = f.spacingX;
-    scale.spacingY = f.spacingY;
-    field->setScale(scale);
-    field->prepare();
-    return field;
-}
-
 // A prepared f32 field holding a crop of the fixture (null if the file is unreadable).
 inline std::unique_ptr<Heightfield> cropFixture(const Fixture& f, int32_t column, int32_t row, int32_t width, int32_t height) {
     const std::vector<float> data = readF32(f);
@@ -62,5 +48,8 @@ inline std::unique_ptr<Heightfield> cropFixture(const Fixture& f, int32_t column
     field->prepare();
     return field;
 }
+
+// A prepared f32 height field holding the fixture's samples (null if the file is unreadable).
+inline std::unique_ptr<Heightfield> loadFixture(const Fixture& f) { return cropFixture(f, 0, 0, f.width, f.height); }
 
 } // namespace hexlod::test

@@ -13,6 +13,7 @@ import { Worker, isMainThread, parentPort, workerData } from 'node:worker_thread
 import { decode as fastPngDecode, encode as fastPngEncode } from 'fast-png';
 import { zlibSync } from 'fflate';
 import { loadHeightfield, decodePng, HeightfieldError } from '../../web/loaders/index.js';
+import { seededRandom } from '../../web/seeded_random.js';
 
 const ROOT = new URL('../../', import.meta.url);
 const FIXTURES = ['volcano_maungawhau', 'jacksboro_fault', 'grandcanyon_512'];
@@ -552,17 +553,6 @@ if (isMainThread) {
 
 // ---------------------------------------------------------------------------
 
-/** mulberry32: a tiny seeded PRNG returning floats in [0, 1). */
-function prng(seed) {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
 
 /** One random byte flip / truncation / insertion / deletion of bytes. Returns [mutated, description]. */
 function mutate(bytes, rand) {
@@ -599,7 +589,7 @@ function mutateChunkData(png, rand) {
 }
 
 async function runFuzzWorker({ seed }) {
-  const rand = prng(seed);
+  const rand = seededRandom(seed);
   const png = read('tests/fixtures/volcano_maungawhau.png');
   const f32 = read('tests/fixtures/volcano_maungawhau.f32');
   const json = read('tests/fixtures/volcano_maungawhau.json');
