@@ -41,6 +41,18 @@ CellShape parentShapeOfCell(const HexMesh& mesh, int32_t cell);
 
 Footprint footprintOf(const Heightfield& field, Embedding embedding, const CellShape& shape);
 
+/// The range of slopes of the true surface under a footprint (paper §5's cone of normals, as a
+/// box of gradients): dh/dx in [dxLow, dxHigh] and dh/dz in [dzLow, dzHigh] over every
+/// triangle of the full-resolution triangulation of the samples there (both diagonals of each
+/// sample square, a superset). Unknown (never back-facing) for large cells and for the shifted
+/// embedding, whose stored surface is not the samples' triangulation.
+struct SlopeBox {
+    float dxLow = 0, dxHigh = 0, dzLow = 0, dzHigh = 0;
+    bool known = false;
+};
+
+SlopeBox slopesUnder(const Heightfield& field, Embedding embedding, const Footprint& footprint);
+
 /// Error bound of a cell against the original samples, each at its true position
 /// (x = j * spacingX, z = i * spacingY). Samples outside the field are not considered (the
 /// lattice reaches past it).

@@ -21,7 +21,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 3
+#define HEXLOD_ABI_VERSION 4
 
 /* Sample types: the native depth of the file's heights. */
 #define HEXLOD_SAMPLE_U8 1
@@ -156,6 +156,11 @@ int32_t hexlod_lod_set_limits(hexlod_terrain* terrain, int32_t max_triangles, in
 
 /* Frustum culling of cells (on by default; off refines outside the view as inside). */
 int32_t hexlod_lod_set_culling(hexlod_terrain* terrain, int32_t enabled);
+
+/* Back-face culling by the cells' cone of normals (on by default): a cell whose true surface
+ * faces away from every point of its bounding sphere is left coarse; its samples cannot be
+ * seen from an eye above the terrain. Exact embedding, cells of up to 4096 samples. */
+int32_t hexlod_lod_set_backface_culling(hexlod_terrain* terrain, int32_t enabled);
 
 /* One refinement step (§6): refine in ascending level order, then coarsen in descending level
  * order, until converged or out of budget; resumes where the last update stopped. The mesh is

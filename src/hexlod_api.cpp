@@ -265,6 +265,13 @@ int32_t hexlod_lod_set_culling(hexlod_terrain* terrain, int32_t enabled) {
     return 0;
 }
 
+int32_t hexlod_lod_set_backface_culling(hexlod_terrain* terrain, int32_t enabled) {
+    HEXLOD_NEED_MESH(-1);
+    terrain->refiner.settings().backfaceCulling = enabled != 0;
+    terrain->refiner.markChanged();
+    return 0;
+}
+
 int32_t hexlod_lod_update(hexlod_terrain* terrain) {
     HEXLOD_NEED_MESH(-1);
     return terrain->refiner.update().operations;

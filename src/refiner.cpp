@@ -53,12 +53,13 @@ bool Refiner::fails(const CellShape& shape, const CellError& e) const {
     return fails(footprintOf(*field_, mesh_->embedding(), shape), e);
 }
 
-bool Refiner::fails(const Footprint& f, const CellError& e) const {
+bool Refiner::fails(const Footprint& f, const CellError& e, const SlopeBox* slopes) const {
     if (settings_.viewIndependent) return e.error > settings_.maxError;
     glm::dvec3 center;
     double radius;
     boundingSphere(f, e, settings_.verticalScale, center, radius);
     if (settings_.culling && outsideFrustum(view_, center, radius)) return false;
+    if (settings_.backfaceCulling && slopes && backFacing(view_, center, radius, *slopes, settings_.verticalScale)) return false;
     const double tau = settings_.autoTau ? currentTau_ : settings_.tau;
     return projectedErrorPixels(view_, center, radius, double(e.error) * settings_.verticalScale) > tau;
 }
@@ -69,9 +70,10 @@ bool Refiner::ownFails(int32_t c) {
         const CellShape shape = shapeOfCell(*mesh_, c);
         cached.own = computeCellError(*field_, mesh_->embedding(), pyramid_, shape);
         cached.ownFootprint = footprintOf(*field_, mesh_->embedding(), shape);
+        cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), cached.ownFootprint);
         cached.valid |= 1;
     }
-    return fails(cached.ownFootprint, cached.own);
+    return fails(cached.ownFootprint, cached.own, &cached.ownSlopes);
 }
 
 bool Refiner::needsRefinement(int32_t c) {

@@ -30,7 +30,8 @@ struct RefinerSettings {
     int32_t maxOperations = 0;    // <= 0: no limit
     int32_t maxTriangles = 0;     // <= 0: no cap
     bool autoTau = false;
-    bool culling = true;
+    bool culling = true;          // frustum culling
+    bool backfaceCulling = true;  // cone-of-normals culling (exact embedding, cells of up to 4096 samples)
 };
 
 struct UpdateStats {
@@ -73,12 +74,13 @@ private:
     struct Cached {
         CellError own;
         Footprint ownFootprint; // kept with `own`: every update tests every cell against it
+        SlopeBox ownSlopes;
         CellError parent, half[2];
         uint8_t valid = 0; // bits: 1 own, 2 parent, 4 first half, 8 second half
     };
 
     bool fails(const CellShape& shape, const CellError& e) const;
-    bool fails(const Footprint& f, const CellError& e) const;
+    bool fails(const Footprint& f, const CellError& e, const SlopeBox* slopes = nullptr) const;
     const CellError& cachedError(int32_t cell, uint8_t bit, CellError& slot, const CellShape& shape);
     void noteChanges();
     bool refineStep(int32_t cell);   // one operation towards refining the cell; false if none

@@ -48,6 +48,19 @@ bool outsideFrustum(const View& view, const glm::dvec3& center, double radius) {
     return false;
 }
 
+bool backFacing(const View& view, const glm::dvec3& center, double radius, const SlopeBox& slopes, double verticalScale) {
+    if (!slopes.known) return false;
+    const glm::dvec3 v = center - view.eye;
+    // v . n - radius * |n| is concave in the slope, so its smallest value over the box is at
+    // one of the four corners.
+    for (double dx : {double(slopes.dxLow), double(slopes.dxHigh)})
+        for (double dz : {double(slopes.dzLow), double(slopes.dzHigh)}) {
+            const glm::dvec3 n(-verticalScale * dx, 1.0, -verticalScale * dz);
+            if (glm::dot(v, n) - radius * glm::length(n) <= 0.0) return false;
+        }
+    return true;
+}
+
 double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError) {
     if (verticalError <= 0.0) return 0.0;
     const glm::dvec3 d = center - view.eye;

@@ -30,6 +30,13 @@ void boundingSphere(const Footprint& f, const CellError& e, double verticalScale
 /// Whether the sphere lies completely outside one plane of the view frustum (§5, first test).
 bool outsideFrustum(const View& view, const glm::dvec3& center, double radius);
 
+/// Whether every point of the sphere sees the back of every surface with a slope in the box
+/// (§5, second test, made a bound): the normals (-s*dx, 1, -s*dz) for the vertical scale s
+/// all satisfy (p - eye) . n > 0 for every point p of the sphere. Such a cell's samples
+/// cannot be seen: where a ray from an eye above a height field first meets it, the surface
+/// faces the eye.
+bool backFacing(const View& view, const glm::dvec3& center, double radius, const SlopeBox& slopes, double verticalScale);
+
 /// Upper bound, in pixels, of the screen distance between any sample under the cell and the
 /// drawn surface above or below it (§5, third test, made a bound):
 ///   a vertical segment of length e = error * verticalScale inside the sphere projects to at

@@ -268,6 +268,11 @@ Object.assign(Terrain.prototype, {
     this.core.check(this.m._hexlod_lod_set_culling(this.handle, enabled ? 1 : 0) < 0, 'cannot set culling');
   },
 
+  /** Back-face culling by the cone of normals on (default) or off (hexlod_lod_set_backface_culling). */
+  setLodBackfaceCulling(enabled) {
+    this.core.check(this.m._hexlod_lod_set_backface_culling(this.handle, enabled ? 1 : 0) < 0, 'cannot set back-face culling');
+  },
+
   /** One refinement step within the budget; returns the number of operations it made. */
   updateLod() {
     const operations = this.m._hexlod_lod_update(this.handle);

@@ -82,13 +82,43 @@ bool project(const Camera& cam, const View& view, const glm::dvec3& p, double& p
     return true;
 }
 
+// Height of the true surface (the samples' full-resolution triangulation, as the exact
+// embedding's finest level draws it) at a ground position in metres, clamped to the field.
+double trueSurface(const Heightfield& f, double x, double z) {
+    const double u = std::clamp(x / f.scale().spacingX, 0.0, double(f.width() - 1));
+    const double v = std::clamp(z / f.scale().spacingY, 0.0, double(f.height() - 1));
+    const int32_t j = std::min(int32_t(u), f.width() - 2), i = std::min(int32_t(v), f.height() - 2);
+    const double a = u - j, b = v - i;
+    const double h00 = f.heightAt(j, i), h10 = f.heightAt(j + 1, i), h01 = f.heightAt(j, i + 1), h11 = f.heightAt(j + 1, i + 1);
+    if (i % 2 == 0) // diagonal from (j+1, i) to (j, i+1)
+        return a + b <= 1.0 ? h00 + a * (h10 - h00) + b * (h01 - h00) : h11 + (1.0 - a) * (h01 - h11) + (1.0 - b) * (h10 - h11);
+    // odd rows: diagonal from (j, i) to (j+1, i+1)
+    return a >= b ? h00 + a * (h10 - h00) + b * (h11 - h10) : h00 + b * (h01 - h00) + a * (h11 - h01);
+}
+
+// Whether the sample is seen from the eye: no point of the true surface rises above the
+// segment between them (marched at a tenth of a sample; the last sample's width is skipped).
+bool sampleVisible(const Heightfield& f, const glm::dvec3& eye, const glm::dvec3& sample) {
+    const glm::dvec3 d = sample - eye;
+    const double ground = std::hypot(d.x / f.scale().spacingX, d.z / f.scale().spacingY);
+    const int32_t steps = std::max(1, int32_t(ground * 10.0));
+    for (int32_t k = 1; k < steps; ++k) {
+        const double t = double(k) / steps;
+        if ((1.0 - t) * ground < 1.0) break;
+        const glm::dvec3 p = eye + t * d;
+        if (trueSurface(f, p.x, p.z) > p.y + 1e-6) return false;
+    }
+    return true;
+}
+
 struct BoundCheck {
     double worstPixels = 0.0;
     int64_t samplesInView = 0, uncovered = 0;
 };
 
 // Every sample inside the frustum against the drawn surface, on screen.
-BoundCheck checkTauBound(const HexMesh& mesh, const Heightfield& field, const Camera& cam, double verticalScale) {
+BoundCheck checkTauBound(const HexMesh& mesh, const Heightfield& field, const Camera& cam, double verticalScale,
+                         bool visibleOnly = false) {
     const View view = viewOf(cam);
     const std::vector<double> surface = meshHeightsAtSamples(mesh, field);
     BoundCheck check;
@@ -97,6 +127,7 @@ BoundCheck checkTauBound(const HexMesh& mesh, const Heightfield& field, const Ca
             const glm::dvec3 sample(j * field.scale().spacingX, field.heightAt(j, i) * verticalScale, i * field.scale().spacingY);
             double sx, sy, mx, my;
             if (!project(cam, view, sample, sx, sy)) continue;
+            if (visibleOnly && !sampleVisible(field, view.eye, sample)) continue;
             ++check.samplesInView;
             const double m = surface[size_t(i) * field.width() + j];
             if (std::isnan(m)) {
@@ -145,6 +176,7 @@ TEST(Refiner, AfterConvergenceEverySampleInTheFrustumIsWithinTauOnScreen) {
                 Refiner refiner;
                 refiner.attach(mesh, *field);
                 refiner.settings().tau = tau;
+                refiner.settings().backfaceCulling = false; // every sample in the frustum counts
                 refiner.setView(viewOf(cam));
                 converge(refiner);
                 ASSERT_EQ(mesh.checkInvariants(), nullptr);
@@ -155,6 +187,35 @@ TEST(Refiner, AfterConvergenceEverySampleInTheFrustumIsWithinTauOnScreen) {
                 EXPECT_EQ(check.uncovered, 0);
                 EXPECT_LE(check.worstPixels, tau * (1.0 + 1e-6)) << f->name;
             }
+        }
+    }
+}
+
+TEST(Refiner, BackFaceCullingLeavesCoarseOnlyWhatCannotBeSeen) {
+    for (const test::Fixture* f : {&test::kVolcano, &test::kGrandCanyon}) {
+        auto full = test::loadFixture(*f);
+        // The Grand Canyon's cliffs, cropped so the ray casting below stays quick.
+        auto field = f == &test::kVolcano ? std::move(full) : test::cropFixture(*f, 150, 150, 160, 140);
+        ASSERT_NE(field, nullptr);
+        for (const Camera& cam : {lowOblique(*field, 3.0 * field->scale().spacingX), lowOblique(*field, 30.0 * field->scale().spacingX)}) {
+            int64_t triangles[2];
+            for (int culled = 0; culled < 2; ++culled) {
+                HexMesh mesh;
+                mesh.reset(*field, Embedding::Exact);
+                Refiner refiner;
+                refiner.attach(mesh, *field);
+                refiner.settings().backfaceCulling = culled != 0;
+                refiner.setView(viewOf(cam));
+                converge(refiner);
+                triangles[culled] = mesh.triangleCount();
+                if (!culled) continue;
+                const BoundCheck check = checkTauBound(mesh, *field, cam, 1.0, true);
+                std::printf("back-face culling %s: %lld -> %lld triangles; %lld visible samples, worst %.3f px\n", f->name,
+                            (long long)triangles[0], (long long)triangles[1], (long long)check.samplesInView, check.worstPixels);
+                EXPECT_GT(check.samplesInView, 0);
+                EXPECT_LE(check.worstPixels, 1.0 + 1e-6) << f->name;
+            }
+            EXPECT_LE(triangles[1], triangles[0]);
         }
     }
 }
@@ -170,6 +231,7 @@ TEST(Refiner, TheTauBoundHoldsWithVerticalExaggeration) {
     Refiner refiner;
     refiner.attach(mesh, *field);
     refiner.settings().verticalScale = scale;
+    refiner.settings().backfaceCulling = false;
     refiner.setView(viewOf(cam));
     converge(refiner);
     const BoundCheck check = checkTauBound(mesh, *field, cam, scale);
@@ -237,6 +299,7 @@ TEST(Refiner, AnOperationBudgetIsRespectedAndStillConverges) {
     Refiner refiner;
     refiner.attach(mesh, *field);
     refiner.settings().maxOperations = 50;
+    refiner.settings().backfaceCulling = false;
     refiner.setView(viewOf(cam));
     int32_t updates = 0;
     for (bool converged = false; !converged; ++updates) {
