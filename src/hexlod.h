@@ -55,7 +55,9 @@ double hexlod_terrain_sample_bytes(const hexlod_terrain* terrain);
 
 /* Sets how samples become metres: spacing_x_m and spacing_y_m between columns and rows
  * (metres, > 0), height_m = raw * height_scale + height_offset_m. When has_nodata is non-zero,
- * samples equal to nodata_raw are missing (NaN and infinities always are).
+ * samples equal to nodata_raw are missing (NaN and infinities always are). If the terrain has
+ * a hexagon mesh, it is rebuilt from its base mesh for the new scale (positions and cached
+ * refinement data change; LOD settings are kept).
  * Returns 0, or -1 for a non-finite or non-positive spacing or a zero scale. */
 int32_t hexlod_terrain_set_scale(hexlod_terrain* terrain, double spacing_x_m, double spacing_y_m,
                                  double height_scale, double height_offset_m, int32_t has_nodata,

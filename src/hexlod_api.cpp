@@ -77,6 +77,12 @@ int32_t hexlod_terrain_set_scale(hexlod_terrain* terrain, double spacing_x_m, do
     scale.hasNodata = has_nodata != 0;
     scale.nodataRaw = nodata_raw;
     if (const char* error = terrain->field->setScale(scale)) return fail(error, -1);
+    if (terrain->hasMesh) {
+        // Every position and every cached bound depends on the scale: start again from the base.
+        if (const char* error = terrain->field->prepare()) return fail(error, -1);
+        terrain->mesh.reset(*terrain->field, terrain->mesh.embedding(), terrain->mesh.baseStep());
+        terrain->refiner.attach(terrain->mesh, *terrain->field);
+    }
     return 0;
 }
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -42,5 +43,18 @@ TEST(Api, RoundTripOfARealFieldThroughTheAbi) {
     EXPECT_EQ(hexlod_stream_index_count(t), indices);
     EXPECT_EQ(hexlod_stream_level_offsets(t)[hexlod_mesh_max_level(t) + 1], indices);
     EXPECT_GT(hexlod_mesh_memory_bytes(t), 0.0);
+
+    // A new cell size rebuilds the mesh: every position and every cached bound changes.
+    ASSERT_EQ(hexlod_lod_set_max_error(t, 20.0), 0);
+    ASSERT_EQ(hexlod_lod_update(t) >= 0, true);
+    ASSERT_EQ(hexlod_terrain_set_scale(t, 2 * 74.4, 2 * 92.6, 1.0, 0.0, 0, 0.0), 0);
+    EXPECT_EQ(hexlod_mesh_triangle_count(t), baseTriangles);
+    ASSERT_EQ(hexlod_stream_build(t, 1.0f) > 0, true);
+    float maxX = 0.0f;
+    for (int32_t v = 0; v < hexlod_stream_vertex_count(t); ++v) maxX = std::max(maxX, hexlod_stream_vertices(t)[v * 6]);
+    EXPECT_GT(maxX, 402 * 74.4f * 1.5f) << "positions use the new spacing";
+    while (hexlod_lod_update(t) > 0) {}
+    EXPECT_EQ(hexlod_lod_converged(t), 1);
+    EXPECT_EQ(hexlod_mesh_check(t), 0);
     hexlod_terrain_destroy(t);
 }
