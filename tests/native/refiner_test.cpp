@@ -33,6 +33,16 @@ View viewOf(const Camera& c) {
     return view;
 }
 
+// A hexagon mesh over a field with a refiner attached, built in place.
+struct Lod {
+    HexMesh mesh;
+    Refiner refiner;
+    explicit Lod(const Heightfield& field, Embedding embedding = Embedding::Exact) {
+        mesh.reset(field, embedding);
+        refiner.attach(mesh, field);
+    }
+};
+
 // Updates without a budget until converged (bounded).
 int32_t converge(Refiner& refiner) {
     for (int32_t n = 1; n <= 100; ++n)
@@ -171,10 +181,9 @@ TEST(Refiner, AfterConvergenceEverySampleInTheFrustumIsWithinTauOnScreen) {
         ASSERT_NE(field, nullptr);
         for (double tau : {1.0, 4.0}) {
             for (const Camera& cam : {lowOblique(*field, 20.0 * field->scale().spacingX), highDown(*field), fromOutside(*field)}) {
-                HexMesh mesh;
-                mesh.reset(*field, Embedding::Exact);
-                Refiner refiner;
-                refiner.attach(mesh, *field);
+                Lod lod(*field, Embedding::Exact);
+                HexMesh& mesh = lod.mesh;
+                Refiner& refiner = lod.refiner;
                 refiner.settings().tau = tau;
                 refiner.settings().backfaceCulling = false; // every sample in the frustum counts
                 refiner.setView(viewOf(cam));
@@ -200,10 +209,9 @@ TEST(Refiner, BackFaceCullingLeavesCoarseOnlyWhatCannotBeSeen) {
         for (const Camera& cam : {lowOblique(*field, 3.0 * field->scale().spacingX), lowOblique(*field, 30.0 * field->scale().spacingX)}) {
             int64_t triangles[2];
             for (int culled = 0; culled < 2; ++culled) {
-                HexMesh mesh;
-                mesh.reset(*field, Embedding::Exact);
-                Refiner refiner;
-                refiner.attach(mesh, *field);
+                Lod lod(*field, Embedding::Exact);
+                HexMesh& mesh = lod.mesh;
+                Refiner& refiner = lod.refiner;
                 refiner.settings().backfaceCulling = culled != 0;
                 refiner.setView(viewOf(cam));
                 converge(refiner);
@@ -226,10 +234,9 @@ TEST(Refiner, TheTauBoundHoldsWithVerticalExaggeration) {
     Camera cam = lowOblique(*field, 1500.0);
     cam.eye.y *= scale;
     cam.target.y *= scale;
-    HexMesh mesh;
-    mesh.reset(*field, Embedding::Exact);
-    Refiner refiner;
-    refiner.attach(mesh, *field);
+    Lod lod(*field, Embedding::Exact);
+    HexMesh& mesh = lod.mesh;
+    Refiner& refiner = lod.refiner;
     refiner.settings().verticalScale = scale;
     refiner.settings().backfaceCulling = false;
     refiner.setView(viewOf(cam));
@@ -242,10 +249,9 @@ TEST(Refiner, InMaxErrorModeEverySampleIsWithinE) {
     for (const test::Fixture* f : {&test::kVolcano, &test::kJacksboro, &test::kGrandCanyon}) {
         auto field = test::loadFixture(*f);
         for (double e : {0.5, 5.0, 40.0}) {
-            HexMesh mesh;
-            mesh.reset(*field, Embedding::Exact);
-            Refiner refiner;
-            refiner.attach(mesh, *field);
+            Lod lod(*field, Embedding::Exact);
+            HexMesh& mesh = lod.mesh;
+            Refiner& refiner = lod.refiner;
             refiner.settings().viewIndependent = true;
             refiner.settings().maxError = e;
             converge(refiner);
@@ -269,10 +275,9 @@ TEST(Refiner, InMaxErrorModeEverySampleIsWithinE) {
 
 TEST(Refiner, EveryUpdateLeavesAWatertightMeshAndMovingAwayCoarsens) {
     auto field = test::loadFixture(test::kJacksboro);
-    HexMesh mesh;
-    mesh.reset(*field, Embedding::Exact);
-    Refiner refiner;
-    refiner.attach(mesh, *field);
+    Lod lod(*field, Embedding::Exact);
+    HexMesh& mesh = lod.mesh;
+    Refiner& refiner = lod.refiner;
     refiner.settings().maxOperations = 200;
     Camera cam = lowOblique(*field, 300.0);
     const glm::dvec3 away = glm::normalize(cam.eye - cam.target);
@@ -294,10 +299,9 @@ TEST(Refiner, EveryUpdateLeavesAWatertightMeshAndMovingAwayCoarsens) {
 TEST(Refiner, AnOperationBudgetIsRespectedAndStillConverges) {
     auto field = test::loadFixture(test::kGrandCanyon);
     const Camera cam = lowOblique(*field, 800.0);
-    HexMesh mesh;
-    mesh.reset(*field, Embedding::Exact);
-    Refiner refiner;
-    refiner.attach(mesh, *field);
+    Lod lod(*field, Embedding::Exact);
+    HexMesh& mesh = lod.mesh;
+    Refiner& refiner = lod.refiner;
     refiner.settings().maxOperations = 50;
     refiner.settings().backfaceCulling = false;
     refiner.setView(viewOf(cam));
@@ -317,10 +321,9 @@ TEST(Refiner, AnOperationBudgetIsRespectedAndStillConverges) {
 
 TEST(Refiner, ScriptedFlightWithAnOperationBudgetIsDeterministic) {
     auto field = test::loadFixture(test::kJacksboro);
-    HexMesh mesh;
-    mesh.reset(*field, Embedding::Shifted);
-    Refiner refiner;
-    refiner.attach(mesh, *field);
+    Lod lod(*field, Embedding::Shifted);
+    HexMesh& mesh = lod.mesh;
+    Refiner& refiner = lod.refiner;
     refiner.settings().maxOperations = 120;
     refiner.settings().tau = 2.0;
     Camera cam = lowOblique(*field, 400.0);
@@ -338,18 +341,16 @@ TEST(Refiner, ScriptedFlightWithAnOperationBudgetIsDeterministic) {
 TEST(Refiner, TheTriangleCapStopsSplittingAndAutoTauRaisesTau) {
     auto field = test::loadFixture(test::kGrandCanyon);
     const Camera cam = lowOblique(*field, 300.0);
-    HexMesh mesh;
-    mesh.reset(*field, Embedding::Exact);
-    Refiner refiner;
-    refiner.attach(mesh, *field);
+    Lod lod(*field, Embedding::Exact);
+    HexMesh& mesh = lod.mesh;
+    Refiner& refiner = lod.refiner;
     refiner.setView(viewOf(cam));
     converge(refiner);
     const int64_t uncapped = mesh.triangleCount();
 
-    HexMesh capped;
-    capped.reset(*field, Embedding::Exact);
-    Refiner limited;
-    limited.attach(capped, *field);
+    Lod cappedLod(*field, Embedding::Exact);
+    HexMesh& capped = cappedLod.mesh;
+    Refiner& limited = cappedLod.refiner;
     limited.settings().maxTriangles = int32_t(uncapped / 4);
     limited.settings().autoTau = true;
     limited.setView(viewOf(cam));
