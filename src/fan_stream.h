@@ -23,10 +23,10 @@ constexpr int32_t kFloatsPerVertex = 6;
 struct FanStream {
     std::vector<float> vertices;       // kFloatsPerVertex per vertex slot of the mesh pool
     std::vector<uint32_t> indices;     // fans separated by kRestartIndex
-    std::vector<uint32_t> outline;     // line pairs: every cell edge once (hexagon outlines)
+    std::vector<uint32_t> outline;     // line pairs: every cell edge once (hexagon outlines), if withOutline
     std::vector<int32_t> levelOffsets; // first index of each level's fans; one more entry at the end
-    std::vector<float> normalSums;     // scratch, kept to avoid allocating every frame
     int32_t vertexCount = 0;           // vertex slots written (the pool's capacity)
+    bool withOutline = false;          // write the outline too (the wireframe view)
 };
 
 /// Writes the mesh's vertices, fans and outlines into the stream. The vectors only grow.

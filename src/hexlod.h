@@ -21,7 +21,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 4
+#define HEXLOD_ABI_VERSION 5
 
 /* Sample types: the native depth of the file's heights. */
 #define HEXLOD_SAMPLE_U8 1
@@ -109,9 +109,13 @@ int32_t hexlod_mesh_check(const hexlod_terrain* terrain);
 
 /* Writes the fan stream (paper §7): per vertex slot 6 floats (x, y, z in metres, y times
  * vertical_scale; unit normal averaged from the adjacent triangles), every cell as a triangle
- * fan closed by index 0xFFFFFFFF, grouped by level, and every cell edge once as a line pair.
+ * fan closed by index 0xFFFFFFFF, grouped by level, and (see hexlod_stream_set_outline) every
+ * cell edge once as a line pair.
  * Returns the number of fan indices, or -1. The arrays below stay valid until the next call. */
 int32_t hexlod_stream_build(hexlod_terrain* terrain, float vertical_scale);
+/* Whether hexlod_stream_build also writes the outline (off by default: it costs 8 bytes per
+ * cell edge, only needed while the wireframe is shown). Returns 0. */
+int32_t hexlod_stream_set_outline(hexlod_terrain* terrain, int32_t enabled);
 const float* hexlod_stream_vertices(const hexlod_terrain* terrain);
 int32_t hexlod_stream_vertex_count(const hexlod_terrain* terrain);
 const uint32_t* hexlod_stream_indices(const hexlod_terrain* terrain);

@@ -157,7 +157,7 @@ double hexlod_mesh_memory_bytes(const hexlod_terrain* terrain) {
     const hexlod::FanStream& s = terrain->stream;
     return double(terrain->mesh.memoryBytes() + terrain->refiner.memoryBytes() + s.vertices.capacity() * sizeof(float) +
                   (s.indices.capacity() + s.outline.capacity()) * sizeof(uint32_t) +
-                  s.normalSums.capacity() * sizeof(float) + s.levelOffsets.capacity() * sizeof(int32_t));
+                  s.levelOffsets.capacity() * sizeof(int32_t));
 }
 
 int32_t hexlod_mesh_check(const hexlod_terrain* terrain) {
@@ -172,6 +172,12 @@ int32_t hexlod_stream_build(hexlod_terrain* terrain, float vertical_scale) {
     if (!terrain->hasMesh) return fail(kNoMesh, -1);
     hexlod::buildFanStream(terrain->mesh, vertical_scale, terrain->stream);
     return int32_t(terrain->stream.indices.size());
+}
+
+int32_t hexlod_stream_set_outline(hexlod_terrain* terrain, int32_t enabled) {
+    if (!terrain) return fail(kNullHandle, -1);
+    terrain->stream.withOutline = enabled != 0;
+    return 0;
 }
 
 const float* hexlod_stream_vertices(const hexlod_terrain* terrain) {

@@ -174,6 +174,11 @@ export class Terrain {
     this.core.check(this.m._hexlod_mesh_check(this.handle) < 0, 'mesh invariant violated');
   }
 
+  /** Whether buildStream also writes the hexagon outlines (off by default; for the wireframe). */
+  setStreamOutline(enabled) {
+    this.core.check(this.m._hexlod_stream_set_outline(this.handle, enabled ? 1 : 0) < 0, 'cannot set the outline');
+  }
+
   /**
    * Writes the fan stream and returns views on it, valid until the next core call.
    * @param {number} verticalScale height exaggeration (1 = true scale)

@@ -111,6 +111,7 @@ async function main() {
     terrain.setLodVerticalScale(VERTICAL_EXAGGERATION);
     terrain.setLodTolerance(TAU_PX);
     terrain.setLodBudget(FRAME_BUDGET_MS, 0);
+    terrain.setStreamOutline(view.outline);
     const focus = reliefCentroid(terrain.buildStream(VERTICAL_EXAGGERATION), loaded.low);
     camera.frame(focus[0], focus[1], focus[2], Math.hypot(loaded.extentX, loaded.extentZ));
     current?.terrain.destroy();
@@ -146,7 +147,10 @@ async function main() {
   attachOrbitControls(canvas, camera, requestRender);
   window.addEventListener('keydown', (e) => {
     if (e.key === 'l' || e.key === 'L') view.colorByLevel = !view.colorByLevel;
-    else if (e.key === 'o' || e.key === 'O') view.outline = !view.outline;
+    else if (e.key === 'o' || e.key === 'O') {
+      view.outline = !view.outline;
+      current?.terrain.setStreamOutline(view.outline);
+    }
     else return;
     requestRender();
   });

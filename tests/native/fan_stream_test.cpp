@@ -97,10 +97,13 @@ TEST(FanStream, VerticesAreStoredOnceWithUnitUpwardNormals) {
     }
 }
 
-TEST(FanStream, OutlineHasEveryCellEdgeOnce) {
+TEST(FanStream, OutlineHasEveryCellEdgeOnceAndOnlyWhenAskedFor) {
     auto field = test::loadFixture(test::kVolcano);
     HexMesh mesh = refinedVolcano(*field);
     FanStream stream;
+    buildFanStream(mesh, 1.0f, stream);
+    EXPECT_TRUE(stream.outline.empty()) << "no outline unless the wireframe is shown";
+    stream.withOutline = true;
     buildFanStream(mesh, 1.0f, stream);
     std::vector<uint64_t> edges;
     for (size_t k = 0; k < stream.outline.size(); k += 2) {
