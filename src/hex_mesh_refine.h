@@ -1,6 +1,6 @@
-// Simple refinement drivers over the hexagon mesh operations: the uniform split (Fig. 4) and
-// a local refinement around a point. View-dependent refinement (§5, §6) builds on the same
-// operations.
+// Simple refinement drivers over the hexagon mesh operations, for tests and benchmarks: the
+// uniform split (Fig. 4) and a local refinement around a point. View-dependent refinement
+// (§5, §6) is refiner.h.
 #pragma once
 
 #include <cstdint>

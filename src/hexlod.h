@@ -21,7 +21,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 5
+#define HEXLOD_ABI_VERSION 6
 
 /* Sample types: the native depth of the file's heights. */
 #define HEXLOD_SAMPLE_U8 1
@@ -88,13 +88,6 @@ int32_t hexlod_mesh_reset(hexlod_terrain* terrain, int32_t embedding);
 /* Splits every whole cell of the coarsest levels, `rounds` times: the uniform split, equal to
  * that many 1-to-4 splits of the base triangulation. Returns the number of splits, or -1. */
 int32_t hexlod_mesh_refine_uniform(hexlod_terrain* terrain, int32_t rounds);
-
-/* Splits, `rounds` times, every cell of the finest level present whose centre lies within
- * radius_m metres (horizontally) of (x_m, z_m), and splits across the long edges of
- * semi-hexagons there; the balance rule adds the splits it forces. A demonstration of local
- * refinement until view-dependent refinement lands. Returns the number of splits, or -1. */
-int32_t hexlod_mesh_refine_near(hexlod_terrain* terrain, double x_m, double z_m, double radius_m,
-                                int32_t rounds);
 
 /* Finest level a cell can reach (2 * number of resolutions below the base). */
 int32_t hexlod_mesh_max_level(const hexlod_terrain* terrain);

@@ -122,15 +122,6 @@ int32_t hexlod_mesh_refine_uniform(hexlod_terrain* terrain, int32_t rounds) {
     return splits;
 }
 
-int32_t hexlod_mesh_refine_near(hexlod_terrain* terrain, double x_m, double z_m, double radius_m,
-                                int32_t rounds) {
-    if (!terrain) return fail(kNullHandle, -1);
-    if (!terrain->hasMesh) return fail(kNoMesh, -1);
-    const int32_t splits = int32_t(hexlod::refineNear(terrain->mesh, x_m, z_m, radius_m, rounds));
-    terrain->refiner.restart();
-    return splits;
-}
-
 int32_t hexlod_mesh_max_level(const hexlod_terrain* terrain) {
     if (!terrain) return fail(kNullHandle, -1);
     return terrain->hasMesh ? terrain->mesh.maxLevel() : fail(kNoMesh, -1);

@@ -9,7 +9,8 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     field_ = &field;
     pyramid_.build(field);
     mesh.setChangeLog(&changes_);
-    invalidateAll();
+    changes_.clear();
+    cache_.assign(cache_.size(), Cached{}); // every cached bound belongs to the old mesh
     currentTau_ = settings_.tau;
     last_ = {};
     restart();
@@ -22,11 +23,6 @@ void Refiner::setView(const View& view) {
                       view.farPlane == view_.farPlane;
     view_ = view;
     if (!same) markChanged();
-}
-
-void Refiner::invalidateAll() {
-    changes_.clear();
-    cache_.assign(cache_.size(), Cached{});
 }
 
 size_t Refiner::memoryBytes() const {
@@ -74,11 +70,6 @@ bool Refiner::ownFails(int32_t c) {
         cached.valid |= 1;
     }
     return fails(cached.ownFootprint, cached.own, &cached.ownSlopes);
-}
-
-bool Refiner::needsRefinement(int32_t c) {
-    noteChanges();
-    return ownFails(c);
 }
 
 bool Refiner::outOfBudget() {

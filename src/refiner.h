@@ -50,8 +50,6 @@ public:
     RefinerSettings& settings() { return settings_; }
     /// Sets the camera; a different one marks the cycle under way as changed (see markChanged).
     void setView(const View& view);
-    /// Forget every cached bound (after the field or its spacing changed).
-    void invalidateAll();
     /// Start the next update with a fresh cycle (after the mesh changed outside the refiner).
     void restart();
     /// The camera or a setting changed: the cycle under way cannot prove convergence, but the
@@ -64,8 +62,6 @@ public:
     double currentTau() const { return currentTau_; }
     size_t memoryBytes() const;
 
-    /// Whether the cell fails the criterion and needs refining (exposed for tests).
-    bool needsRefinement(int32_t cell);
 
 private:
     enum class Phase { Refine, Coarsen };

@@ -150,13 +150,6 @@ export class Terrain {
     return splits;
   }
 
-  /** Local refinement of cells within radius metres of (x, z) metres, `rounds` times. */
-  refineNear(x, z, radius, rounds) {
-    const splits = this.m._hexlod_mesh_refine_near(this.handle, x, z, radius, rounds);
-    this.core.check(splits < 0, 'cannot refine');
-    return splits;
-  }
-
   /** Figures of the hexagon mesh: triangles, cells, vertices, max level, bytes. */
   meshStats() {
     const m = this.m, h = this.handle;

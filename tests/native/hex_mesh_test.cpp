@@ -9,6 +9,7 @@
 #include <random>
 
 #include "fixture.h"
+#include "hex_mesh_refine.h"
 #include "hex_mesh_util.h"
 
 using namespace hexlod;
@@ -59,7 +60,7 @@ TEST(HexMesh, UniformSplitEqualsTheOneToFourSplitOfTheBaseTriangulation) {
             expected = test::oneToFour(expected);
             HexMesh mesh;
             mesh.reset(*field, Embedding::Exact);
-            test::splitUniformly(mesh, rounds);
+            refineUniformly(mesh, rounds);
             const char* problem = mesh.checkInvariants();
             ASSERT_EQ(problem, nullptr) << problem;
             // After all joins no interior semi-hexagon is left: only full hexagons and
@@ -77,7 +78,7 @@ TEST(HexMesh, FullRefinementMakesEverySampleAVertex) {
     ASSERT_NE(field, nullptr);
     HexMesh mesh;
     mesh.reset(*field, Embedding::Exact);
-    test::splitUniformly(mesh, mesh.maxLevel() / 2);
+    refineUniformly(mesh, mesh.maxLevel() / 2);
     ASSERT_EQ(mesh.checkInvariants(), nullptr);
     std::vector<uint8_t> seen(size_t(field->width()) * field->height(), 0);
     for (int32_t v = 0; v < mesh.vertexCapacity(); ++v) {
@@ -99,7 +100,7 @@ TEST(HexMesh, RefiningEverywhereThenCoarseningEverythingRestoresTheBaseMesh) {
         mesh.reset(*field, Embedding::Shifted);
         const auto baseTriangles = test::latticeTriangles(mesh);
         const int32_t baseCells = mesh.liveCells(), baseVertices = mesh.liveVertices();
-        test::splitUniformly(mesh, mesh.maxLevel() / 2);
+        refineUniformly(mesh, mesh.maxLevel() / 2);
         test::coarsenCompletely(mesh);
         const char* problem = mesh.checkInvariants();
         ASSERT_EQ(problem, nullptr) << problem;

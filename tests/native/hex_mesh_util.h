@@ -52,7 +52,6 @@ inline std::vector<LatticeTriangle> oneToFour(const std::vector<LatticeTriangle>
     return out;
 }
 
-inline void splitUniformly(HexMesh& mesh, int32_t rounds) { refineUniformly(mesh, rounds); }
 
 // Merges (and so breaks) everything back, finest level first, until nothing changes.
 inline void coarsenCompletely(HexMesh& mesh) {
