@@ -1,5 +1,7 @@
+// The fan stream of paper §7, kept incrementally; see fan_stream.h for the layouts.
 #include "fan_stream.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -8,89 +10,231 @@ namespace hexlod {
 
 namespace {
 
-// Appends the fan of one cell (see fan_stream.h), closed by the restart index.
-void appendFan(const HexMesh& mesh, const Hexagon& h, std::vector<uint32_t>& out) {
+// The fan of one cell (see fan_stream.h) into `out`; returns its length (without restart).
+int32_t cellFan(const HexMesh& mesh, const Hexagon& h, uint32_t out[8]) {
     const int32_t* v = h.vertex;
     if (h.kind == CellKind::Full) {
-        for (int32_t slot = 0; slot <= 7; ++slot) out.push_back(uint32_t(v[slot]));
-    } else if (h.kind == CellKind::BoundarySemi) {
-        out.push_back(uint32_t(v[0]));
-        for (int32_t i = 0; i < 4; ++i) out.push_back(uint32_t(v[wrapSlot(h.firstVisible + i)]));
-    } else {
-        int32_t slots[4];
-        mesh.semiFanSlots(h, slots); // the fixed rule for §7's "arbitrary corner"
-        for (int32_t slot : slots) out.push_back(uint32_t(v[slot]));
+        for (int32_t slot = 0; slot <= 7; ++slot) out[slot] = uint32_t(v[slot]);
+        return 8;
     }
-    out.push_back(kRestartIndex);
+    if (h.kind == CellKind::BoundarySemi) {
+        out[0] = uint32_t(v[0]);
+        for (int32_t i = 0; i < 4; ++i) out[1 + i] = uint32_t(v[wrapSlot(h.firstVisible + i)]);
+        return 5;
+    }
+    int32_t slots[4];
+    mesh.semiFanSlots(h, slots); // the fixed rule for §7's "arbitrary corner"
+    for (int32_t i = 0; i < 4; ++i) out[i] = uint32_t(v[slots[i]]);
+    return 4;
 }
 
 } // namespace
 
-void buildFanStream(const HexMesh& mesh, float verticalScale, FanStream& stream) {
-    stream.indices.clear();
-    stream.outline.clear();
-    if (!stream.withOutline) stream.outline.shrink_to_fit(); // its memory only while it is shown
-    stream.levelOffsets.clear();
+void FanStream::attach(HexMesh& mesh) {
+    mesh_ = &mesh;
+    mesh.setChangeLog(1, &changedCells_);
+    mesh.setVertexLog(&vertexLog_);
+    mesh.setDeferVertexReuse(true);
+    // Fixed point for the normal sums: a power of two as fine as 64 bits allow for faces as
+    // large as the whole mesh (a sum over a dozen faces stays below 2^62).
+    glm::dvec3 low(1e300), high(-1e300);
+    for (int32_t v = 0; v < mesh.vertexCapacity(); ++v) {
+        if (!mesh.isVertexLive(v)) continue;
+        low = glm::min(low, glm::dvec3(mesh.vertexPosition(v)));
+        high = glm::max(high, glm::dvec3(mesh.vertexPosition(v)));
+    }
+    const double extent = std::max(glm::length(high - low), 1.0);
+    normalScale_ = std::ldexp(1.0, int(std::floor(std::log2(std::ldexp(1.0, 57) / (extent * extent)))));
+    rewriteAll(mesh);
+}
+
+void FanStream::setLayout(IndexLayout layout) {
+    if (layout == layout_) return;
+    layout_ = layout;
+    if (mesh_) rewriteAll(*mesh_);
+}
+
+void FanStream::rewriteAll(HexMesh& mesh) {
+    indices_.assign(size_t(mesh.cellCapacity()) * size_t(slotSize()), kRestartIndex);
+    normalSum_.assign(size_t(mesh.vertexCapacity()), glm::i64vec3(0));
+    changedCells_.clear();
+    for (int32_t c = 0; c < mesh.cellCapacity(); ++c) changedCells_.push_back(c);
+    vertexLog_.clear();
+    dirtyVertexBlocks_.assign(size_t((mesh.vertexCapacity() >> kBlockShift) + 1), 1);
+    dirtyIndexBlocks_.assign(size_t((mesh.cellCapacity() >> kBlockShift) + 1), 1);
+    Geomorph still; // no blends: the mesh is drawn as it is
+    sync(mesh, still);
+}
+
+template <typename Visit>
+void FanStream::forEachTriangle(const uint32_t* slot, Visit&& visit) const {
+    if (layout_ == IndexLayout::Fans) {
+        if (slot[0] == kRestartIndex) return;
+        for (int32_t k = 1; k + 1 < kFanSlot && slot[k + 1] != kRestartIndex; ++k) visit(slot[0], slot[k], slot[k + 1]);
+        return;
+    }
+    for (int32_t k = 0; k < kTriangleSlot && slot[k] != kRestartIndex; k += 3) visit(slot[k], slot[k + 1], slot[k + 2]);
+}
+
+void FanStream::markVertex(int32_t v) {
+    if (vertexPending_[size_t(v)]) return;
+    vertexPending_[size_t(v)] = 1;
+    touchedVertices_.push_back(v);
+}
+
+// Adds (sign +1) or removes (-1) the face normals of a slot's triangles to their vertices.
+void FanStream::accumulate(const HexMesh& mesh, const uint32_t* slot, int64_t sign) {
+    forEachTriangle(slot, [&](uint32_t a, uint32_t b, uint32_t c) {
+        const glm::dvec3 pa(mesh.vertexPosition(int32_t(a))), pb(mesh.vertexPosition(int32_t(b))),
+            pc(mesh.vertexPosition(int32_t(c)));
+        // Counter-clockwise seen from +y: the face normal points up. Its length is twice the
+        // area, so larger faces weigh more.
+        const glm::dvec3 n = glm::cross(pb - pa, pc - pa) * normalScale_;
+        const glm::i64vec3 fixed(std::llround(n.x), std::llround(n.y), std::llround(n.z));
+        for (uint32_t v : {a, b, c}) {
+            normalSum_[v] += fixed * sign;
+            markVertex(int32_t(v));
+        }
+    });
+}
+
+void FanStream::writeSlot(const HexMesh& mesh, int32_t c) {
+    uint32_t* slot = indices_.data() + size_t(c) * size_t(slotSize());
+    std::fill(slot, slot + slotSize(), kRestartIndex);
+    if (!mesh.isLive(c)) return;
+    uint32_t fan[8];
+    const int32_t n = cellFan(mesh, mesh.cell(c), fan);
+    if (layout_ == IndexLayout::Fans) {
+        std::copy(fan, fan + n, slot);
+        return;
+    }
+    for (int32_t k = 1; k + 1 < n; ++k) {
+        slot[3 * (k - 1)] = fan[0];
+        slot[3 * (k - 1) + 1] = fan[k];
+        slot[3 * (k - 1) + 2] = fan[k + 1];
+    }
+}
+
+void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
+    // The pools may have grown: new slots start empty, new vertices with zero sums.
+    const size_t cells = size_t(mesh.cellCapacity()), vertices = size_t(mesh.vertexCapacity());
+    if (indices_.size() < cells * size_t(slotSize())) indices_.resize(cells * size_t(slotSize()), kRestartIndex);
+    if (normalSum_.size() < vertices) normalSum_.resize(vertices, glm::i64vec3(0));
+    if (cellPending_.size() < cells) cellPending_.resize(cells, 0);
+    if (vertexPending_.size() < vertices) vertexPending_.resize(vertices, 0);
+    if (dirtyIndexBlocks_.size() < (cells >> kBlockShift) + 1) dirtyIndexBlocks_.resize((cells >> kBlockShift) + 1, 0);
+    if (dirtyVertexBlocks_.size() < (vertices >> kBlockShift) + 1) dirtyVertexBlocks_.resize((vertices >> kBlockShift) + 1, 0);
+
+    bool wrote = false;
+    for (int32_t c : changedCells_) {
+        if (cellPending_[size_t(c)]) continue;
+        cellPending_[size_t(c)] = 1;
+        const uint32_t* slot = indices_.data() + size_t(c) * size_t(slotSize());
+        accumulate(mesh, slot, -1); // its old triangles: their vertices still hold their positions
+        writeSlot(mesh, c);
+        accumulate(mesh, slot, +1);
+        markBlock(dirtyIndexBlocks_, c);
+        wrote = true;
+    }
+    for (int32_t c : changedCells_) cellPending_[size_t(c)] = 0;
+    changedCells_.clear();
+
+    // New vertices blend in from their parent edges, in creation order (parents first).
+    for (int32_t entry : vertexLog_)
+        if (entry >= 0 && mesh.isVertexLive(entry)) morph.blendIn(mesh, entry);
+    vertexLog_.clear();
+    for (int32_t v : morph.changedVertices()) markVertex(v);
+    morph.changedVertices().clear();
+
+    finishNormals(mesh);
+    wrote = wrote || !touchedVertices_.empty();
+    touchedVertices_.clear();
+    mesh.releaseFreedVertices(); // every slot that used them has been rewritten
+    if (wrote) ++version_;
+}
+
+void FanStream::finishNormals(HexMesh& mesh) {
+    for (int32_t v : touchedVertices_) {
+        vertexPending_[size_t(v)] = 0;
+        markBlock(dirtyVertexBlocks_, v);
+        if (!mesh.isVertexLive(v)) continue; // its sum is back to exactly zero
+        const glm::dvec3 n(normalSum_[size_t(v)]);
+        const double length = glm::length(n);
+        int16_t* out = mesh.streamVertex(v).normal;
+        if (length > 0.0) {
+            for (int k = 0; k < 3; ++k) out[k] = int16_t(std::lround(n[k] / length * 32767.0));
+        } else {
+            out[0] = out[2] = 0, out[1] = 32767;
+        }
+        out[3] = 0;
+    }
+}
+
+void FanStream::markBlock(std::vector<uint8_t>& blocks, int32_t element) { blocks[size_t(element >> kBlockShift)] = 1; }
+
+void FanStream::collectRanges(const std::vector<uint8_t>& blocks, int32_t elements, std::vector<ElementRange>& out) {
+    out.clear();
+    const int32_t blockSize = 1 << kBlockShift;
+    for (int32_t b = 0; b < int32_t(blocks.size()); ++b) {
+        if (!blocks[size_t(b)]) continue;
+        const int32_t first = b * blockSize;
+        if (first >= elements) break;
+        const int32_t count = std::min(blockSize, elements - first);
+        if (!out.empty() && out.back().first + out.back().count == first) out.back().count += count;
+        else out.push_back({first, count});
+    }
+}
+
+const std::vector<ElementRange>& FanStream::dirtyVertices() {
+    collectRanges(dirtyVertexBlocks_, mesh_ ? mesh_->vertexCapacity() : 0, vertexRanges_);
+    return vertexRanges_;
+}
+
+const std::vector<ElementRange>& FanStream::dirtyIndices() {
+    collectRanges(dirtyIndexBlocks_, mesh_ ? mesh_->cellCapacity() : 0, indexRanges_);
+    for (ElementRange& r : indexRanges_) r = {r.first * slotSize(), r.count * slotSize()};
+    return indexRanges_;
+}
+
+void FanStream::acknowledge() {
+    std::fill(dirtyVertexBlocks_.begin(), dirtyVertexBlocks_.end(), 0);
+    std::fill(dirtyIndexBlocks_.begin(), dirtyIndexBlocks_.end(), 0);
+}
+
+void FanStream::buildLevelView(const HexMesh& mesh, bool outline) {
+    levelIndices_.clear();
+    levelOffsets_.clear();
+    outline_.clear();
+    if (!outline) outline_.shrink_to_fit(); // its memory only while it is shown
     for (int32_t level = 0; level <= mesh.maxLevel(); ++level) {
-        stream.levelOffsets.push_back(int32_t(stream.indices.size()));
+        levelOffsets_.push_back(int32_t(levelIndices_.size()));
         for (int32_t c = mesh.firstOfLevel(level); c != kNone; c = mesh.nextInLevel(c)) {
             const Hexagon& h = mesh.cell(c);
-            appendFan(mesh, h, stream.indices);
-            if (!stream.withOutline) continue;
-            // Outline: each cell edge once, from the cell with the lower index (or alone).
+            uint32_t fan[8];
+            const int32_t n = cellFan(mesh, h, fan);
+            levelIndices_.insert(levelIndices_.end(), fan, fan + n);
+            levelIndices_.push_back(kRestartIndex);
+            if (!outline) continue;
+            // Each cell edge once, from the cell with the lower index (or alone).
             for (int32_t slot = 1; slot <= 6; ++slot) {
                 if (h.vertex[slot] == kNone) continue;
-                const int32_t e = makeEdge(c, slot);
                 const int32_t o = h.opposite[slot - 1];
                 if (o != kNone && hexIdx(o) < c) continue;
-                stream.outline.push_back(uint32_t(mesh.edgeStart(e)));
-                stream.outline.push_back(uint32_t(mesh.edgeEnd(e)));
+                const int32_t e = makeEdge(c, slot);
+                outline_.push_back(uint32_t(mesh.edgeStart(e)));
+                outline_.push_back(uint32_t(mesh.edgeEnd(e)));
             }
         }
     }
-    stream.levelOffsets.push_back(int32_t(stream.indices.size()));
+    levelOffsets_.push_back(int32_t(levelIndices_.size()));
+}
 
-    // §7: normals averaged from the adjacent triangles of the current mesh (area-weighted
-    // sums of face normals, accumulated in the vertices' own normal slots), not taken from
-    // the full-resolution field.
-    const int32_t count = mesh.vertexCapacity();
-    stream.vertexCount = count;
-    stream.vertices.resize(size_t(count) * kFloatsPerVertex);
-    float* vertices = stream.vertices.data();
-    for (int32_t v = 0; v < count; ++v) {
-        float* out = vertices + size_t(v) * kFloatsPerVertex;
-        const glm::vec3& p = mesh.vertexPosition(v);
-        out[0] = p.x, out[1] = p.y * verticalScale, out[2] = p.z;
-        out[3] = out[4] = out[5] = 0.0f;
-    }
-    auto position = [&](uint32_t v) {
-        const float* p = vertices + size_t(v) * kFloatsPerVertex;
-        return glm::vec3(p[0], p[1], p[2]);
-    };
-    auto addTriangle = [&](uint32_t a, uint32_t b, uint32_t c) {
-        const glm::vec3 n = glm::cross(position(b) - position(a), position(c) - position(a));
-        for (uint32_t v : {a, b, c})
-            for (int k = 0; k < 3; ++k) vertices[size_t(v) * kFloatsPerVertex + 3 + size_t(k)] += n[k];
-    };
-    const std::vector<uint32_t>& idx = stream.indices;
-    for (size_t start = 0; start < idx.size();) {
-        size_t end = start;
-        while (idx[end] != kRestartIndex) ++end;
-        for (size_t k = start + 1; k + 1 < end; ++k) addTriangle(idx[start], idx[k], idx[k + 1]);
-        start = end + 1;
-    }
-    for (int32_t v = 0; v < count; ++v) {
-        float* out = vertices + size_t(v) * kFloatsPerVertex;
-        if (!mesh.isVertexLive(v)) {
-            std::fill(out, out + kFloatsPerVertex, 0.0f);
-            continue;
-        }
-        glm::vec3 n(out[3], out[4], out[5]);
-        // Counter-clockwise triangles seen from +y have normals with y > 0 in this frame.
-        const float length = glm::length(n);
-        n = length > 0.0f ? n / length : glm::vec3(0.0f, 1.0f, 0.0f);
-        out[3] = n.x, out[4] = n.y, out[5] = n.z;
-    }
+size_t FanStream::memoryBytes() const {
+    return indices_.capacity() * sizeof(uint32_t) + normalSum_.capacity() * sizeof(glm::i64vec3) +
+           (changedCells_.capacity() + vertexLog_.capacity() + touchedVertices_.capacity()) * sizeof(int32_t) +
+           cellPending_.capacity() + vertexPending_.capacity() + dirtyVertexBlocks_.capacity() + dirtyIndexBlocks_.capacity() +
+           (vertexRanges_.capacity() + indexRanges_.capacity()) * sizeof(ElementRange) +
+           (levelIndices_.capacity() + outline_.capacity()) * sizeof(uint32_t) + levelOffsets_.capacity() * sizeof(int32_t);
 }
 
 } // namespace hexlod

@@ -49,7 +49,7 @@ int32_t HexMesh::allocateCell() {
     h.kind = CellKind::Full;
     h.firstVisible = 0;
     ++liveCells_;
-    if (changeLog_) changeLog_->push_back(c);
+    logChange(c);
     return c;
 }
 
@@ -60,31 +60,62 @@ void HexMesh::freeCell(int32_t c) {
     h.prev = kNone;
     freeCell_ = c;
     --liveCells_;
-    if (changeLog_) changeLog_->push_back(c);
+    logChange(c);
 }
 
-int32_t HexMesh::allocateVertex(LatticePoint p) {
+int32_t HexMesh::allocateVertex(LatticePoint p, int32_t parentA, int32_t parentB) {
     int32_t v;
     if (!freeVertices_.empty()) {
         v = freeVertices_.back();
         freeVertices_.pop_back();
     } else {
         v = int32_t(vertexLattice_.size());
-        vertexLattice_.emplace_back();
-        vertexPosition_.emplace_back();
+        vertexLattice_.emplace_back(); // all grow by doubling: no allocation per operation on average
+        vertices_.emplace_back();
+        vertexParents_.emplace_back();
         vertexLive_.emplace_back();
     }
     vertexLattice_[size_t(v)] = p;
-    vertexPosition_[size_t(v)] = embedLatticePoint(*field_, embedding_, p);
+    StreamVertex& sv = vertices_[size_t(v)];
+    sv.position = embedLatticePoint(*field_, embedding_, p);
+    sv.normal[0] = sv.normal[2] = sv.normal[3] = 0;
+    sv.normal[1] = 32767;
+    sv.morphFrom = sv.position;
+    sv.morphKey = 0.0f;
+    vertexParents_[size_t(v)] = {parentA, parentB, kNone};
     vertexLive_[size_t(v)] = 1;
     ++liveVertices_;
+    if (vertexLog_) vertexLog_->push_back(v);
     return v;
+}
+
+void HexMesh::setAcross(int32_t v, int32_t candidate1, int32_t candidate2) {
+    const Parents& p = vertexParents_[size_t(v)];
+    const glm::vec3 a = vertices_[size_t(p.a)].position, b = vertices_[size_t(p.b)].position;
+    // Side of a ground-plane point relative to the edge a -> b, in double: exact for floats.
+    auto side = [&](const glm::vec3& q) {
+        const double cross = (double(b.x) - a.x) * (double(q.z) - a.z) - (double(b.z) - a.z) * (double(q.x) - a.x);
+        return (cross > 0.0) - (cross < 0.0);
+    };
+    const int own = side(vertices_[size_t(v)].position);
+    int32_t across = kNone;
+    if (own != 0) {
+        for (int32_t c : {candidate1, candidate2})
+            if (c != kNone && side(vertices_[size_t(c)].position) == own) across = c;
+    }
+    vertexParents_[size_t(v)].across = across;
 }
 
 void HexMesh::freeVertex(int32_t v) {
     vertexLive_[size_t(v)] = 0;
-    freeVertices_.push_back(v);
+    (deferVertexReuse_ ? freedVertices_ : freeVertices_).push_back(v);
     --liveVertices_;
+    if (vertexLog_) vertexLog_->push_back(~v);
+}
+
+void HexMesh::releaseFreedVertices() {
+    freeVertices_.insert(freeVertices_.end(), freedVertices_.begin(), freedVertices_.end());
+    freedVertices_.clear();
 }
 
 void HexMesh::linkLevel(int32_t c) {
@@ -108,7 +139,7 @@ void HexMesh::unlinkLevel(int32_t c) {
 }
 
 void HexMesh::setLevel(int32_t c, int32_t level) {
-    if (changeLog_) changeLog_->push_back(c); // every operation changes the level of what it changes
+    logChange(c); // every operation changes the level of what it changes
     unlinkLevel(c);
     cells_[size_t(c)].level = uint8_t(level);
     linkLevel(c);
@@ -164,8 +195,8 @@ int64_t HexMesh::cellTriangles(const Hexagon& h) const {
 size_t HexMesh::memoryBytes() const {
     return cells_.capacity() * sizeof(Hexagon) +
            vertexLattice_.capacity() * sizeof(LatticePoint) +
-           vertexPosition_.capacity() * sizeof(glm::vec3) + vertexLive_.capacity() +
-           freeVertices_.capacity() * sizeof(int32_t) +
+           vertices_.capacity() * sizeof(StreamVertex) + vertexParents_.capacity() * sizeof(Parents) +
+           vertexLive_.capacity() + (freeVertices_.capacity() + freedVertices_.capacity()) * sizeof(int32_t) +
            (levelHead_.capacity() + levelTail_.capacity()) * sizeof(int32_t);
 }
 
@@ -209,7 +240,7 @@ uint64_t HexMesh::hash() const {
                 const int32_t v = cell.vertex[slot];
                 if (v == kNone) continue;
                 mix(latticeKey(vertexLattice_[size_t(v)]));
-                const glm::vec3& p = vertexPosition_[size_t(v)];
+                const glm::vec3& p = vertices_[size_t(v)].position;
                 uint32_t bits[3];
                 std::memcpy(bits, &p, sizeof(bits));
                 mix(uint64_t(bits[0]) << 32 | bits[1]);
@@ -275,7 +306,9 @@ void HexMesh::splitUnchecked(int32_t c) {
     std::fill(std::begin(ring), std::end(ring), kNone);
     for (int32_t i = 0; i < slots.cornerCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i);
-        newCorner[k] = allocateVertex(latticeAdd(center, kDirections[k - 1], half));
+        newCorner[k] = allocateVertex(latticeAdd(center, kDirections[k - 1], half), h.vertex[0], h.vertex[k]);
+        // The spoke's two triangles in the fan: towards corner k-1 and corner k+1.
+        setAcross(newCorner[k], h.vertex[wrapSlot(k + 5)], h.vertex[wrapSlot(k + 1)]);
     }
     for (int32_t i = 0; i < slots.edgeCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i), k1 = wrapSlot(k + 1);
@@ -297,7 +330,9 @@ void HexMesh::splitUnchecked(int32_t c) {
         ring[k] = r;
         if (R.kind == CellKind::BoundarySemi) { // allocateVertex does not touch the cell pool
             const int32_t m = allocateVertex(latticeMidpoint(vertexLattice_[size_t(h.vertex[k])],
-                                                             vertexLattice_[size_t(h.vertex[k1])]));
+                                                             vertexLattice_[size_t(h.vertex[k1])]),
+                                             h.vertex[k], h.vertex[k1]);
+            setAcross(m, h.vertex[0], kNone); // the fan triangle (centre, k, k+1); outside is no surface
             cells_[size_t(r)].vertex[0] = m;
         }
         linkLevel(r);
@@ -344,10 +379,21 @@ bool HexMesh::join(int32_t s) {
     return true;
 }
 
+int32_t HexMesh::longEdgeFanCorner(const Hexagon& semi) const {
+    // The fan (q0; q1, q2, q3) has triangles (q0, q1, q2) and (q0, q2, q3); the long edge joins
+    // corners a and a+3, so its triangle's third corner is a+2 when fanning from a, else a+1.
+    int32_t slots[4];
+    semiFanSlots(semi, slots);
+    const int32_t a = semi.firstVisible;
+    return semi.vertex[slots[0] == a ? wrapSlot(a + 2) : wrapSlot(a + 1)];
+}
+
 void HexMesh::joinPair(int32_t keep, int32_t other) {
     const Hexagon o = cells_[size_t(other)];
     const int32_t a = cells_[size_t(keep)].firstVisible;
-    const int32_t m = allocateVertex(cellCenter(keep)); // the midpoint of the shared long edge
+    const int32_t m = allocateVertex(cellCenter(keep), cells_[size_t(keep)].vertex[a], // the midpoint of the shared long edge
+                                     cells_[size_t(keep)].vertex[wrapSlot(a + 3)]);
+    setAcross(m, longEdgeFanCorner(cells_[size_t(keep)]), longEdgeFanCorner(o));
     Hexagon& k = cells_[size_t(keep)];
     k.vertex[0] = m;
     k.vertex[wrapSlot(a + 4)] = o.vertex[wrapSlot(a + 4)];
@@ -365,7 +411,10 @@ void HexMesh::joinPair(int32_t keep, int32_t other) {
 }
 
 void HexMesh::joinBoundary(int32_t s) {
-    const int32_t m = allocateVertex(cellCenter(s)); // the midpoint of its long edge
+    const Hexagon& h = cells_[size_t(s)];
+    const int32_t m = allocateVertex(cellCenter(s), h.vertex[h.firstVisible], // the midpoint of its long edge
+                                     h.vertex[wrapSlot(h.firstVisible + 3)]);
+    setAcross(m, longEdgeFanCorner(cells_[size_t(s)]), kNone);
     cells_[size_t(s)].vertex[0] = m;
     cells_[size_t(s)].kind = CellKind::BoundarySemi;
     setLevel(s, cells_[size_t(s)].level + 1);
@@ -471,6 +520,16 @@ bool HexMesh::canMerge(int32_t c) const {
         }
     }
     return true;
+}
+
+void HexMesh::verticesFreedByMerge(int32_t c, std::vector<int32_t>& out) const {
+    const Hexagon& h = cells_[size_t(c)];
+    const CellSlots slots = slotsOf(h);
+    for (int32_t i = 0; i < slots.edgeCount; ++i) { // the centres of the ring cells merge breaks first
+        const Hexagon& n = cells_[size_t(hexIdx(h.opposite[wrapSlot(slots.firstEdge + i) - 1]))];
+        if (n.kind != CellKind::Semi) out.push_back(n.vertex[0]);
+    }
+    for (int32_t i = 0; i < slots.cornerCount; ++i) out.push_back(h.vertex[wrapSlot(slots.firstEdge + i)]);
 }
 
 bool HexMesh::merge(int32_t c) {

@@ -28,6 +28,7 @@
 #include "embedding.h"
 #include "heightfield.h"
 #include "lattice.h"
+#include "stream_vertex.h"
 
 namespace hexlod {
 
@@ -96,8 +97,15 @@ public:
     /// Performs one step from firstStepToSplit.
     void applyStep(const SplitStep& step);
 
-    /// Records every cell an operation creates, changes or frees (for caches); null: none.
-    void setChangeLog(std::vector<int32_t>* log) { changeLog_ = log; }
+    /// Records every cell an operation creates, changes or frees, into up to two logs (the
+    /// refiner's caches and the fan stream); null: none. Slot 0 or 1.
+    void setChangeLog(int32_t slot, std::vector<int32_t>* log) { changeLog_[slot] = log; }
+    /// Records every vertex an operation creates (v) or frees (~v), in order; null: none.
+    void setVertexLog(std::vector<int32_t>* log) { vertexLog_ = log; }
+    /// While on, freed vertex slots are not reused until releaseFreedVertices(): a consumer of
+    /// the logs can still read the positions of the vertices the old cells used.
+    void setDeferVertexReuse(bool defer) { deferVertexReuse_ = defer; }
+    void releaseFreedVertices();
 
     /// For a hexagon made by a join: the corner slot k (1..3) where the joined long edge starts;
     /// the halves a break makes own corners k..k+3 and k+3..k+6.
@@ -121,9 +129,27 @@ public:
     int32_t firstOfLevel(int32_t level) const { return levelHead_[size_t(level)]; }
     int32_t nextInLevel(int32_t c) const { return cells_[size_t(c)].next; }
     LatticePoint vertexLattice(int32_t v) const { return vertexLattice_[size_t(v)]; }
-    const glm::vec3& vertexPosition(int32_t v) const { return vertexPosition_[size_t(v)]; }
-    /// All vertex positions, 3 floats each (free slots hold stale values), for the evaluator.
-    const float* positionData() const { return vertexPosition_.empty() ? nullptr : &vertexPosition_[0].x; }
+    const glm::vec3& vertexPosition(int32_t v) const { return vertices_[size_t(v)].position; }
+    /// The vertex pool (free slots hold stale values), kStreamVertexWords floats a vertex with
+    /// the position first: what the renderer uploads and the evaluator reads.
+    const StreamVertex* vertexData() const { return vertices_.empty() ? nullptr : vertices_.data(); }
+    /// The first position of the pool, with kStreamVertexWords floats between positions.
+    const float* positionData() const { return vertices_.empty() ? nullptr : &vertices_[0].position.x; }
+    /// The renderer's part of a vertex (normal and blend) is written by FanStream and Geomorph.
+    StreamVertex& streamVertex(int32_t v) { return vertices_[size_t(v)]; }
+    const StreamVertex& streamVertex(int32_t v) const { return vertices_[size_t(v)]; }
+    /// The two ends of the coarser edge whose midpoint a vertex was created at (§7: the blend
+    /// starts there); kNone for the base mesh's vertices. `across` is the third corner of the
+    /// coarser triangle on the side of that edge where the vertex lies in the ground plane (the
+    /// exact embedding moves vertices off their parent edge by up to half a sample), or kNone
+    /// when the vertex lies on the edge; the coarser surface under the vertex is in triangle
+    /// (a, b, across). The same triangle is there again when a merge or break removes it.
+    int32_t vertexParentA(int32_t v) const { return vertexParents_[size_t(v)].a; }
+    int32_t vertexParentB(int32_t v) const { return vertexParents_[size_t(v)].b; }
+    int32_t vertexAcross(int32_t v) const { return vertexParents_[size_t(v)].across; }
+    /// Appends the vertices merge(cell) would free, forced breaks included. Call when
+    /// canMerge(cell): the geomorph fades them out before the merge happens (§7).
+    void verticesFreedByMerge(int32_t cell, std::vector<int32_t>& out) const;
     bool isVertexLive(int32_t v) const { return vertexLive_[size_t(v)] != 0; }
     /// Lattice step of a cell: the distance from its (possibly virtual) centre to its corners.
     int32_t cellStep(int32_t c) const;
@@ -133,8 +159,11 @@ public:
     Embedding embedding() const { return embedding_; }
     /// Number of triangles drawn: 6 per full hexagon, 3 per boundary, 2 per interior semi.
     int64_t triangleCount() const { return triangles_; }
-    /// Bytes held by the mesh structures (pools at capacity, lists, free lists).
+    /// Bytes held by the mesh structures (pools at capacity, lists, free lists), the vertex
+    /// pool's render data (StreamVertex) included.
     size_t memoryBytes() const;
+    /// Of memoryBytes(), the StreamVertex pool (what the renderer uploads).
+    size_t vertexPoolBytes() const { return vertices_.capacity() * sizeof(StreamVertex); }
     /// The domain outline: lattice segments of the base mesh's boundary edges.
     const std::vector<std::pair<LatticePoint, LatticePoint>>& domainBoundary() const { return boundary_; }
     /// Twice the domain's area in lattice units (see latticeDoubleArea).
@@ -171,7 +200,11 @@ private:
     friend class HexMeshInvariants;
     int32_t allocateCell();
     void freeCell(int32_t c);
-    int32_t allocateVertex(LatticePoint p);
+    int32_t allocateVertex(LatticePoint p, int32_t parentA, int32_t parentB);
+    /// Sets a new vertex's `across` (see vertexAcross): whichever candidate lies on its side.
+    void setAcross(int32_t v, int32_t candidate1, int32_t candidate2);
+    /// The third corner of the semi-hexagon's fan triangle that holds its long edge.
+    int32_t longEdgeFanCorner(const Hexagon& semi) const;
     void freeVertex(int32_t v);
     void linkLevel(int32_t c);
     void unlinkLevel(int32_t c);
@@ -195,16 +228,25 @@ private:
     std::vector<int32_t> levelHead_, levelTail_;
 
     std::vector<LatticePoint> vertexLattice_;
-    std::vector<glm::vec3> vertexPosition_;
+    struct Parents { int32_t a, b, across; };
+    std::vector<StreamVertex> vertices_;
+    std::vector<Parents> vertexParents_;
     std::vector<uint8_t> vertexLive_;
     std::vector<int32_t> freeVertices_;
+    std::vector<int32_t> freedVertices_; // freed while reuse is deferred
+    bool deferVertexReuse_ = false;
     int32_t liveVertices_ = 0;
 
     std::vector<std::pair<LatticePoint, LatticePoint>> boundary_;
     int64_t domainDoubleArea_ = 0;
     int64_t triangles_ = 0;
     OperationCounts counts_;
-    std::vector<int32_t>* changeLog_ = nullptr;
+    std::vector<int32_t>* changeLog_[2] = {nullptr, nullptr};
+    std::vector<int32_t>* vertexLog_ = nullptr;
+    void logChange(int32_t c) {
+        for (std::vector<int32_t>* log : changeLog_)
+            if (log) log->push_back(c);
+    }
 };
 
 } // namespace hexlod

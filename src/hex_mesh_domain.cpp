@@ -50,9 +50,11 @@ const char* HexMesh::reset(const Heightfield& field, Embedding embedding, int32_
     levelHead_.assign(size_t(maxLevel_) + 1, kNone);
     levelTail_.assign(size_t(maxLevel_) + 1, kNone);
     vertexLattice_.clear();
-    vertexPosition_.clear();
+    vertices_.clear();
+    vertexParents_.clear();
     vertexLive_.clear();
     freeVertices_.clear();
+    freedVertices_.clear();
     liveVertices_ = 0;
     boundary_.clear();
     domainDoubleArea_ = 0;
@@ -65,7 +67,7 @@ const char* HexMesh::reset(const Heightfield& field, Embedding embedding, int32_
     std::unordered_map<uint64_t, int32_t> vertexAt; // set-up only: shares corners between cells
     auto vertexOf = [&](LatticePoint p) {
         auto [it, inserted] = vertexAt.try_emplace(latticeKey(p), kNone);
-        if (inserted) it->second = allocateVertex(p);
+        if (inserted) it->second = allocateVertex(p, kNone, kNone);
         return it->second;
     };
 

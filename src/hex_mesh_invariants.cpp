@@ -146,9 +146,17 @@ const char* HexMesh::checkInvariants() const {
         ++liveVertices;
         if (!used[v]) return failure("live vertex %zu is used by no cell", v);
         if (!points.insert(latticeKey(vertexLattice_[v]))) return failure("two live vertices share lattice point (%d, %d)", vertexLattice_[v].q, vertexLattice_[v].r);
-        if (vertexPosition_[v] != embedLatticePoint(*field_, embedding_, vertexLattice_[v])) return failure("vertex %zu is not where the embedding puts it", v);
+        if (vertices_[v].position != embedLatticePoint(*field_, embedding_, vertexLattice_[v])) return failure("vertex %zu is not where the embedding puts it", v);
+        // §7's blend starts at the midpoint of the parent edge: both ends live, p their midpoint.
+        const Parents parents = vertexParents_[v];
+        if (parents.a == kNone && parents.b == kNone) continue;
+        if (parents.a == kNone || parents.b == kNone || !vertexLive_[size_t(parents.a)] || !vertexLive_[size_t(parents.b)])
+            return failure("vertex %zu has a dead parent", v);
+        if (latticeMidpoint(vertexLattice_[size_t(parents.a)], vertexLattice_[size_t(parents.b)]) != vertexLattice_[v])
+            return failure("vertex %zu is not the midpoint of its parents", v);
     }
-    if (liveVertices != liveVertices_ || freeVertices != int32_t(freeVertices_.size())) return failure("vertex accounting is off");
+    if (liveVertices != liveVertices_ || freeVertices != int32_t(freeVertices_.size() + freedVertices_.size()))
+        return failure("vertex accounting is off");
 
     // Edges: neighbour symmetry, and the balance rule (§4.5): no short edge of a semi-hexagon
     // carries the long edge of another semi-hexagon (they would be two levels apart).

@@ -21,7 +21,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 6
+#define HEXLOD_ABI_VERSION 7
 
 /* Sample types: the native depth of the file's heights. */
 #define HEXLOD_SAMPLE_U8 1
@@ -95,25 +95,61 @@ int32_t hexlod_mesh_max_level(const hexlod_terrain* terrain);
 int32_t hexlod_mesh_triangle_count(const hexlod_terrain* terrain);
 int32_t hexlod_mesh_cell_count(const hexlod_terrain* terrain);
 int32_t hexlod_mesh_vertex_count(const hexlod_terrain* terrain);
-/* Bytes held by the mesh structures (cell and vertex pools, lists) and by the fan stream. */
+/* Bytes held by the mesh structures (cell and vertex pools, lists), the refiner's caches and
+ * the fan stream. */
 double hexlod_mesh_memory_bytes(const hexlod_terrain* terrain);
 /* Checks every invariant of the mesh; returns 0, or -1 with the violation in hexlod_last_error. */
 int32_t hexlod_mesh_check(const hexlod_terrain* terrain);
 
-/* Writes the fan stream (paper §7): per vertex slot 6 floats (x, y, z in metres, y times
- * vertical_scale; unit normal averaged from the adjacent triangles), every cell as a triangle
- * fan closed by index 0xFFFFFFFF, grouped by level, and (see hexlod_stream_set_outline) every
- * cell edge once as a line pair.
- * Returns the number of fan indices, or -1. The arrays below stay valid until the next call. */
-int32_t hexlod_stream_build(hexlod_terrain* terrain, float vertical_scale);
-/* Whether hexlod_stream_build also writes the outline (off by default: it costs 8 bytes per
- * cell edge, only needed while the wireframe is shown). Returns 0. */
-int32_t hexlod_stream_set_outline(hexlod_terrain* terrain, int32_t enabled);
-const float* hexlod_stream_vertices(const hexlod_terrain* terrain);
+/* --- The fan stream (paper §7) ---------------------------------------------------------------
+ * What the renderer uploads, kept in step with the mesh: hexlod_lod_update changes the mesh,
+ * hexlod_stream_update applies those changes to the arrays, rewriting only what changed.
+ *
+ * Vertices: the mesh's own vertex pool (vertex data exists once), 36 bytes a slot:
+ *   bytes  0..11  position, 3 float32, metres (y unscaled: the shader multiplies heights by the
+ *                 vertical exaggeration)
+ *   bytes 12..19  normal, 4 snorm16 (x, y, z, 0), averaged from the adjacent triangles
+ *   bytes 20..31  morph start, 3 float32, metres: the midpoint of the vertex's parent edge
+ *   bytes 32..35  morph key, float32: 0 at rest; f+1 blending in since frame f; -(f+1)
+ *                 blending out since frame f. With n = hexlod_lod_morph_frames and F the
+ *                 current frame, the drawn position is mix(morph start, position, w), with
+ *                 t = clamp((F - f) / n, 0, 1) and w = t blending in, 1 - t blending out,
+ *                 1 at rest or when n = 0.
+ * Free slots hold stale data and are never indexed.
+ * Indices: a fixed slot per cell record: HEXLOD_LAYOUT_FANS, 9 indices (a triangle fan then
+ * 0xFFFFFFFF; full hexagon: centre, six corners, first corner; boundary semi-hexagon: centre,
+ * four corners; interior semi-hexagon: four corners from the fixed-rule corner; the rest of the
+ * slot and free records: 0xFFFFFFFF), drawn as TRIANGLE_FAN with primitive restart; or
+ * HEXLOD_LAYOUT_TRIANGLES, 18 indices (the same triangles as a list, padded with 0xFFFFFFFF).
+ * The arrays stay valid until the next hexlod_stream_update, layout change or mesh reset. */
+#define HEXLOD_LAYOUT_FANS 0
+#define HEXLOD_LAYOUT_TRIANGLES 1
+
+/* Applies the mesh's changes to the arrays; returns the version (it moves whenever anything
+ * was written), or -1. Allocates only when the pools grew. */
+int32_t hexlod_stream_update(hexlod_terrain* terrain);
+/* Chooses the index layout (everything is rewritten). Returns 0 or -1. */
+int32_t hexlod_stream_set_layout(hexlod_terrain* terrain, int32_t layout);
+int32_t hexlod_stream_version(const hexlod_terrain* terrain);
+/* The vertex pool (see above) and its slot count; the index array and its length. */
+const void* hexlod_stream_vertices(const hexlod_terrain* terrain);
 int32_t hexlod_stream_vertex_count(const hexlod_terrain* terrain);
 const uint32_t* hexlod_stream_indices(const hexlod_terrain* terrain);
 int32_t hexlod_stream_index_count(const hexlod_terrain* terrain);
-/* First fan index of each level 0..max_level, then the total: max_level + 2 entries. */
+/* What changed since the last hexlod_stream_acknowledge, as (first, count) pairs of int32:
+ * vertex slots and indices. The pointer is valid until the next call. The count is the number
+ * of pairs. */
+const int32_t* hexlod_stream_dirty_vertices(hexlod_terrain* terrain, int32_t* pair_count);
+const int32_t* hexlod_stream_dirty_indices(hexlod_terrain* terrain, int32_t* pair_count);
+/* The renderer has uploaded every dirty range: forget them. Returns 0. */
+int32_t hexlod_stream_acknowledge(hexlod_terrain* terrain);
+
+/* The level-ordered view for diagnostics (colour by level, hexagon outlines): every cell's fan
+ * closed by 0xFFFFFFFF, grouped by level, and with outline non-zero every cell edge once as a
+ * line pair. Written on each call (not incrementally). Returns the index count or -1. */
+int32_t hexlod_stream_build_level_view(hexlod_terrain* terrain, int32_t outline);
+const uint32_t* hexlod_stream_level_indices(const hexlod_terrain* terrain);
+/* First index of each level 0..max_level in the level view, then its length: max_level + 2. */
 const int32_t* hexlod_stream_level_offsets(const hexlod_terrain* terrain);
 const uint32_t* hexlod_stream_outline(const hexlod_terrain* terrain);
 int32_t hexlod_stream_outline_count(const hexlod_terrain* terrain);
@@ -161,13 +197,29 @@ int32_t hexlod_lod_set_culling(hexlod_terrain* terrain, int32_t enabled);
  * seen from an eye above the terrain. Exact embedding, cells of up to 4096 samples. */
 int32_t hexlod_lod_set_backface_culling(hexlod_terrain* terrain, int32_t enabled);
 
+/* Geomorphing (§7): a vertex the mesh creates blends from its parent edge's midpoint to its
+ * place over `frames` frames, and a merge first blends the vertices it frees back and happens
+ * when they have faded out. 0 (the default) turns it off. At most 1000. Returns 0 or -1. */
+int32_t hexlod_lod_set_morph_frames(hexlod_terrain* terrain, int32_t frames);
+/* The frame counter of the blends (one tick per hexlod_lod_update): the shader's F. */
+double hexlod_lod_frame(const hexlod_terrain* terrain);
+/* Merges waiting for their vertices to fade out. */
+int32_t hexlod_lod_pending_merges(const hexlod_terrain* terrain);
+
+/* Popping (for benchmarks): the largest screen-space jump of any vertex, in pixels, between
+ * the frame now drawn and the one measured last, with the camera of the last
+ * hexlod_lod_set_camera (see src/popping_meter.h); out[0] = max jump px, out[1] = jumps over
+ * 0.5 px, out[2] = jumps measured. The first call only records the frame. Returns 0 or -1. */
+int32_t hexlod_measure_popping(hexlod_terrain* terrain, double* out);
+
 /* One refinement step (§6): refine in ascending level order, then coarsen in descending level
  * order, until converged or out of budget; resumes where the last update stopped. The mesh is
  * consistent after every operation. Returns the number of operations done (splits, joins,
  * merges and breaks that the refiner asked for; forced splits count too), or -1. */
 int32_t hexlod_lod_update(hexlod_terrain* terrain);
 
-/* 1 when the last update visited every cell without changing anything (converged). */
+/* 1 when the last update visited every cell without changing anything and no merge is
+ * waiting for a fade-out (converged). */
 int32_t hexlod_lod_converged(const hexlod_terrain* terrain);
 
 /* Figures of the last update: splits, merges, milliseconds spent, and the current tau (which

@@ -7,10 +7,12 @@
 #include <vector>
 
 #include "fan_stream.h"
+#include "geomorph.h"
 #include "heightfield.h"
 #include "hex_mesh.h"
 #include "hex_mesh_refine.h"
 #include "error_evaluator.h"
+#include "popping_meter.h"
 #include "refiner.h"
 
 struct hexlod_terrain {
@@ -18,7 +20,19 @@ struct hexlod_terrain {
     hexlod::HexMesh mesh;
     bool hasMesh = false;
     hexlod::FanStream stream;
+    hexlod::Geomorph morph;
     hexlod::Refiner refiner;
+    hexlod::PoppingMeter popping;
+
+    // After the mesh was rebuilt: every consumer starts from the base mesh.
+    void attachMesh() {
+        refiner.attach(mesh, *field);
+        refiner.setGeomorph(&morph);
+        morph.resetClock();
+        morph.changedVertices().clear();
+        stream.attach(mesh);
+        popping.reset();
+    }
 };
 
 namespace {
@@ -36,6 +50,10 @@ constexpr const char* kNullHandle = "the terrain handle is NULL (create it with 
 constexpr const char* kNoMesh = "the terrain has no hexagon mesh yet (call hexlod_mesh_reset)";
 
 } // namespace
+
+#define HEXLOD_NEED_MESH(result)                      \
+    if (!terrain) return fail(kNullHandle, result);   \
+    if (!terrain->hasMesh) return fail(kNoMesh, result)
 
 extern "C" {
 
@@ -81,7 +99,7 @@ int32_t hexlod_terrain_set_scale(hexlod_terrain* terrain, double spacing_x_m, do
         // Every position and every cached bound depends on the scale: start again from the base.
         if (const char* error = terrain->field->prepare()) return fail(error, -1);
         terrain->mesh.reset(*terrain->field, terrain->mesh.embedding(), terrain->mesh.baseStep());
-        terrain->refiner.attach(terrain->mesh, *terrain->field);
+        terrain->attachMesh();
     }
     return 0;
 }
@@ -110,13 +128,12 @@ int32_t hexlod_mesh_reset(hexlod_terrain* terrain, int32_t embedding) {
         return fail("unknown embedding (expected 0 = shifted, 1 = exact)", -1);
     if (const char* error = terrain->mesh.reset(*terrain->field, hexlod::Embedding(embedding))) return fail(error, -1);
     terrain->hasMesh = true;
-    terrain->refiner.attach(terrain->mesh, *terrain->field);
+    terrain->attachMesh();
     return 0;
 }
 
 int32_t hexlod_mesh_refine_uniform(hexlod_terrain* terrain, int32_t rounds) {
-    if (!terrain) return fail(kNullHandle, -1);
-    if (!terrain->hasMesh) return fail(kNoMesh, -1);
+    HEXLOD_NEED_MESH(-1);
     const int32_t splits = int32_t(hexlod::refineUniformly(terrain->mesh, rounds));
     terrain->refiner.restart();
     return splits;
@@ -145,10 +162,7 @@ int32_t hexlod_mesh_vertex_count(const hexlod_terrain* terrain) {
 double hexlod_mesh_memory_bytes(const hexlod_terrain* terrain) {
     if (!terrain) return fail(kNullHandle, -1.0);
     if (!terrain->hasMesh) return fail(kNoMesh, -1.0);
-    const hexlod::FanStream& s = terrain->stream;
-    return double(terrain->mesh.memoryBytes() + terrain->refiner.memoryBytes() + s.vertices.capacity() * sizeof(float) +
-                  (s.indices.capacity() + s.outline.capacity()) * sizeof(uint32_t) +
-                  s.levelOffsets.capacity() * sizeof(int32_t));
+    return double(terrain->mesh.memoryBytes() + terrain->refiner.memoryBytes() + terrain->stream.memoryBytes());
 }
 
 int32_t hexlod_mesh_check(const hexlod_terrain* terrain) {
@@ -158,50 +172,122 @@ int32_t hexlod_mesh_check(const hexlod_terrain* terrain) {
     return 0;
 }
 
-int32_t hexlod_stream_build(hexlod_terrain* terrain, float vertical_scale) {
-    if (!terrain) return fail(kNullHandle, -1);
-    if (!terrain->hasMesh) return fail(kNoMesh, -1);
-    hexlod::buildFanStream(terrain->mesh, vertical_scale, terrain->stream);
-    return int32_t(terrain->stream.indices.size());
+int32_t hexlod_stream_update(hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1);
+    terrain->stream.sync(terrain->mesh, terrain->morph);
+    return int32_t(terrain->stream.version() & 0x7FFFFFFF);
 }
 
-int32_t hexlod_stream_set_outline(hexlod_terrain* terrain, int32_t enabled) {
-    if (!terrain) return fail(kNullHandle, -1);
-    terrain->stream.withOutline = enabled != 0;
+int32_t hexlod_stream_set_layout(hexlod_terrain* terrain, int32_t layout) {
+    HEXLOD_NEED_MESH(-1);
+    if (layout != HEXLOD_LAYOUT_FANS && layout != HEXLOD_LAYOUT_TRIANGLES)
+        return fail("unknown index layout (expected 0 = fans, 1 = triangles)", -1);
+    terrain->stream.setLayout(hexlod::IndexLayout(layout));
     return 0;
 }
 
-const float* hexlod_stream_vertices(const hexlod_terrain* terrain) {
-    return terrain ? terrain->stream.vertices.data() : fail(kNullHandle, static_cast<const float*>(nullptr));
+int32_t hexlod_stream_version(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1);
+    return int32_t(terrain->stream.version() & 0x7FFFFFFF);
+}
+
+const void* hexlod_stream_vertices(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(static_cast<const void*>(nullptr));
+    return terrain->mesh.vertexData();
 }
 
 int32_t hexlod_stream_vertex_count(const hexlod_terrain* terrain) {
-    return terrain ? terrain->stream.vertexCount : fail(kNullHandle, -1);
+    HEXLOD_NEED_MESH(-1);
+    return terrain->mesh.vertexCapacity();
 }
 
 const uint32_t* hexlod_stream_indices(const hexlod_terrain* terrain) {
-    return terrain ? terrain->stream.indices.data() : fail(kNullHandle, static_cast<const uint32_t*>(nullptr));
+    HEXLOD_NEED_MESH(static_cast<const uint32_t*>(nullptr));
+    return terrain->stream.indices().data();
 }
 
 int32_t hexlod_stream_index_count(const hexlod_terrain* terrain) {
-    return terrain ? int32_t(terrain->stream.indices.size()) : fail(kNullHandle, -1);
+    HEXLOD_NEED_MESH(-1);
+    return terrain->stream.indexCount();
+}
+
+namespace {
+const int32_t* rangePairs(const std::vector<hexlod::ElementRange>& ranges, int32_t* pair_count) {
+    static_assert(sizeof(hexlod::ElementRange) == 2 * sizeof(int32_t), "ranges are read as int32 pairs");
+    if (pair_count) *pair_count = int32_t(ranges.size());
+    return ranges.empty() ? nullptr : &ranges[0].first;
+}
+} // namespace
+
+const int32_t* hexlod_stream_dirty_vertices(hexlod_terrain* terrain, int32_t* pair_count) {
+    HEXLOD_NEED_MESH(static_cast<const int32_t*>(nullptr));
+    return rangePairs(terrain->stream.dirtyVertices(), pair_count);
+}
+
+const int32_t* hexlod_stream_dirty_indices(hexlod_terrain* terrain, int32_t* pair_count) {
+    HEXLOD_NEED_MESH(static_cast<const int32_t*>(nullptr));
+    return rangePairs(terrain->stream.dirtyIndices(), pair_count);
+}
+
+int32_t hexlod_stream_acknowledge(hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1);
+    terrain->stream.acknowledge();
+    return 0;
+}
+
+int32_t hexlod_stream_build_level_view(hexlod_terrain* terrain, int32_t outline) {
+    HEXLOD_NEED_MESH(-1);
+    terrain->stream.buildLevelView(terrain->mesh, outline != 0);
+    return int32_t(terrain->stream.levelIndices().size());
+}
+
+const uint32_t* hexlod_stream_level_indices(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(static_cast<const uint32_t*>(nullptr));
+    return terrain->stream.levelIndices().data();
 }
 
 const int32_t* hexlod_stream_level_offsets(const hexlod_terrain* terrain) {
-    return terrain ? terrain->stream.levelOffsets.data() : fail(kNullHandle, static_cast<const int32_t*>(nullptr));
+    HEXLOD_NEED_MESH(static_cast<const int32_t*>(nullptr));
+    return terrain->stream.levelOffsets().data();
 }
 
 const uint32_t* hexlod_stream_outline(const hexlod_terrain* terrain) {
-    return terrain ? terrain->stream.outline.data() : fail(kNullHandle, static_cast<const uint32_t*>(nullptr));
+    HEXLOD_NEED_MESH(static_cast<const uint32_t*>(nullptr));
+    return terrain->stream.outline().data();
 }
 
 int32_t hexlod_stream_outline_count(const hexlod_terrain* terrain) {
-    return terrain ? int32_t(terrain->stream.outline.size()) : fail(kNullHandle, -1);
+    HEXLOD_NEED_MESH(-1);
+    return int32_t(terrain->stream.outline().size());
 }
 
-#define HEXLOD_NEED_MESH(result)                      \
-    if (!terrain) return fail(kNullHandle, result);   \
-    if (!terrain->hasMesh) return fail(kNoMesh, result)
+int32_t hexlod_lod_set_morph_frames(hexlod_terrain* terrain, int32_t frames) {
+    HEXLOD_NEED_MESH(-1);
+    if (frames < 0 || frames > hexlod::Geomorph::kMaxFrames) return fail("morph frames must be 0 (off) to 1000", -1);
+    terrain->morph.setFrames(frames);
+    return 0;
+}
+
+double hexlod_lod_frame(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1.0);
+    return double(terrain->morph.frame());
+}
+
+int32_t hexlod_lod_pending_merges(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1);
+    return terrain->refiner.pendingMerges();
+}
+
+int32_t hexlod_measure_popping(hexlod_terrain* terrain, double* out) {
+    HEXLOD_NEED_MESH(-1);
+    if (!out) return fail("out must point to 3 doubles", -1);
+    const hexlod::PoppingStats stats = terrain->popping.measure(terrain->mesh, terrain->morph, terrain->refiner.view(),
+                                                                terrain->refiner.settings().verticalScale);
+    out[0] = stats.maxJumpPx;
+    out[1] = double(stats.jumpsOverHalfPx);
+    out[2] = double(stats.measured);
+    return 0;
+}
 
 int32_t hexlod_lod_set_camera(hexlod_terrain* terrain, double eye_x, double eye_y, double eye_z,
                               double target_x, double target_y, double target_z, double up_x,
@@ -323,7 +409,7 @@ int32_t hexlod_mesh_measure_error(const hexlod_terrain* terrain, int32_t against
     hexlod::ErrorOptions options;
     options.shiftedOddRows = against_stored != 0 && terrain->mesh.embedding() == hexlod::Embedding::Shifted;
     const hexlod::ErrorStats stats = hexlod::evaluateMeshError(*terrain->field, terrain->mesh.positionData(),
-                                                               size_t(terrain->mesh.vertexCapacity()), 3, triangles.data(),
+                                                               size_t(terrain->mesh.vertexCapacity()), hexlod::kStreamVertexWords, triangles.data(),
                                                                triangles.size(), options);
     if (stats.error) return fail(stats.error, -1);
     out[0] = stats.maxError;

@@ -8,11 +8,12 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     mesh_ = &mesh;
     field_ = &field;
     pyramid_.build(field);
-    mesh.setChangeLog(&changes_);
+    mesh.setChangeLog(0, &changes_);
     changes_.clear();
     cache_.assign(cache_.size(), Cached{}); // every cached bound belongs to the old mesh
     currentTau_ = settings_.tau;
     last_ = {};
+    pending_.clear(); // their vertices belong to the old mesh
     restart();
 }
 
@@ -26,7 +27,8 @@ void Refiner::setView(const View& view) {
 }
 
 size_t Refiner::memoryBytes() const {
-    return cache_.capacity() * sizeof(Cached) + changes_.capacity() * sizeof(int32_t) + pyramid_.memoryBytes();
+    return cache_.capacity() * sizeof(Cached) + (changes_.capacity() + freedScratch_.capacity()) * sizeof(int32_t) +
+           pending_.capacity() * sizeof(PendingMerge) + pyramid_.memoryBytes();
 }
 
 void Refiner::noteChanges() {
@@ -54,7 +56,14 @@ bool Refiner::fails(const Footprint& f, const CellError& e, const SlopeBox* slop
     glm::dvec3 center;
     double radius;
     boundingSphere(f, e, settings_.verticalScale, center, radius);
-    if (settings_.culling && outsideFrustum(view_, center, radius)) return false;
+    if (settings_.culling) {
+        // The culling frustum may be widened so that cells entering the view are refined
+        // already, rather than all at once as they appear (popping at the screen's edges).
+        View widened = view_;
+        widened.tanHalfX *= 1.0 + settings_.cullMargin;
+        widened.tanHalfY *= 1.0 + settings_.cullMargin;
+        if (outsideFrustum(widened, center, radius)) return false;
+    }
     if (settings_.backfaceCulling && slopes && backFacing(view_, center, radius, *slopes, settings_.verticalScale)) return false;
     const double tau = settings_.autoTau ? currentTau_ : settings_.tau;
     return projectedErrorPixels(view_, center, radius, double(e.error) * settings_.verticalScale) > tau;
@@ -127,6 +136,67 @@ bool Refiner::mergeWanted(int32_t c) {
     return true;
 }
 
+// §7: "If a vertex v is to be removed, inverse blending is triggered by a merge [...], which
+// [is] finished when the vertex has faded out." Without geomorphing the merge happens now.
+bool Refiner::beginMerge(int32_t c) {
+    if (!morph_ || !morph_->enabled()) return mesh_->merge(c);
+    if (!mesh_->canMerge(c)) return false;
+    PendingMerge merge{c, 0, {}};
+    freedScratch_.clear();
+    mesh_->verticesFreedByMerge(c, freedScratch_);
+    for (int32_t v : freedScratch_) {
+        merge.vertices[merge.count++] = v;
+        morph_->blendOut(*mesh_, v);
+    }
+    pending_.push_back(merge);
+    cache_[size_t(c)].pendingMerge = 1;
+    return false; // nothing changed in the mesh yet
+}
+
+// Whether the merge would still free exactly the vertices that are fading out.
+bool Refiner::stillFrees(const PendingMerge& merge) {
+    if (!mesh_->canMerge(merge.cell)) return false;
+    freedScratch_.clear();
+    mesh_->verticesFreedByMerge(merge.cell, freedScratch_);
+    return std::equal(freedScratch_.begin(), freedScratch_.end(), merge.vertices, merge.vertices + merge.count);
+}
+
+void Refiner::callOff(const PendingMerge& merge) {
+    for (int32_t i = 0; i < merge.count; ++i)
+        if (mesh_->isVertexLive(merge.vertices[i])) morph_->cancelBlendOut(*mesh_, merge.vertices[i]);
+    cache_[size_t(merge.cell)].pendingMerge = 0;
+}
+
+void Refiner::advancePendingMerges() {
+    size_t kept = 0;
+    for (size_t i = 0; i < pending_.size(); ++i) {
+        const PendingMerge merge = pending_[i];
+        if (!stillFrees(merge) || !mergeWanted(merge.cell)) {
+            callOff(merge); // the mesh changed around it, or the view wants the detail back
+            continue;
+        }
+        bool faded = morph_ == nullptr || !morph_->enabled();
+        if (!faded) {
+            faded = true;
+            for (int32_t k = 0; k < merge.count; ++k) {
+                const StreamVertex& v = mesh_->streamVertex(merge.vertices[k]);
+                if (!morph_->blendingOut(v)) morph_->blendOut(*mesh_, merge.vertices[k]); // reversed by a called-off merge
+                faded = faded && morph_->fadedOut(v);
+            }
+        }
+        if (!faded) {
+            pending_[kept++] = merge;
+            continue;
+        }
+        cache_[size_t(merge.cell)].pendingMerge = 0;
+        mesh_->merge(merge.cell);
+        ++operations_;
+        ++operationsThisCycle_;
+        noteChanges();
+    }
+    pending_.resize(kept);
+}
+
 void Refiner::adaptTau() {
     if (settings_.viewIndependent || !settings_.autoTau) {
         currentTau_ = settings_.tau;
@@ -149,6 +219,8 @@ int32_t Refiner::resumeCell() const {
 }
 
 void Refiner::restart() {
+    for (const PendingMerge& merge : pending_) callOff(merge);
+    pending_.clear();
     phase_ = Phase::Refine;
     cursorLevel_ = 0;
     cursorCell_ = kNone;
@@ -192,6 +264,8 @@ UpdateStats Refiner::update() {
     const OperationCounts before = mesh_->counts();
     bool converged = false;
     noteChanges();
+    if (morph_) morph_->advance(); // one frame per update
+    advancePendingMerges();
     // Consistent criteria converge in a few cycles; the cap only guarantees the update ends.
     for (int32_t cycle = 0; cycle < kMaxCyclesPerUpdate && !converged && !(progressed() && outOfBudget()); ++cycle) {
         if (phase_ == Phase::Refine) {
@@ -205,16 +279,19 @@ UpdateStats Refiner::update() {
             // §6: levels in descending order; a cell is merged when what the merge makes passes.
             const bool done = walkLevels(2, -1, [&](int32_t c) {
                 const Hexagon& h = mesh_->cell(c);
-                return h.kind != CellKind::Semi && h.splitCount > 0 && mergeWanted(c) && mesh_->merge(c);
+                return h.kind != CellKind::Semi && h.splitCount > 0 && !cache_[size_t(c)].pendingMerge && mergeWanted(c) &&
+                       beginMerge(c);
             });
             if (!done) break;
             // A whole cycle without an operation: converged.
-            converged = operationsThisCycle_ == 0 && !cycleChanged_;
+            const bool quiet = operationsThisCycle_ == 0 && !cycleChanged_;
+            converged = quiet && pending_.empty();
             operationsThisCycle_ = 0;
             cycleChanged_ = false;
             phase_ = Phase::Refine;
             cursorLevel_ = 0;
             cursorCell_ = kNone;
+            if (quiet) break; // only fades are left, and they need frames to pass
         }
     }
     last_.operations = operations_;

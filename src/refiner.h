@@ -6,6 +6,8 @@
 // in descending level order (a cell is merged back when the cell the merge would make passes).
 // Each step is one mesh operation, after which the mesh is consistent; the update stops when
 // the time or operation budget is spent and the next update resumes where it stopped.
+// With geomorphing (§7), a merge first fades out the vertices it will free and happens in the
+// update where they have faded; it is called off if the mesh or the view no longer allow it.
 // Refinement data is cached per cell record (§5.1) and recomputed only for cells an
 // operation changed.
 #pragma once
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "cell_bounds.h"
+#include "geomorph.h"
 #include "hex_mesh.h"
 #include "min_max_pyramid.h"
 #include "view_criteria.h"
@@ -31,6 +34,7 @@ struct RefinerSettings {
     int32_t maxTriangles = 0;     // <= 0: no cap
     bool autoTau = false;
     bool culling = true;          // frustum culling
+    double cullMargin = 0.0;      // the culling frustum's half-angle tangents widened by this fraction
     bool backfaceCulling = true;  // cone-of-normals culling (exact embedding, cells of up to 4096 samples)
 };
 
@@ -46,8 +50,12 @@ public:
     /// Attaches to a mesh over `field` (both outlive the refiner's use) and builds the
     /// min/max pyramid (one pass over the samples).
     void attach(HexMesh& mesh, const Heightfield& field);
+    /// The blends to drive (their clock ticks once per update); null: merges happen at once.
+    void setGeomorph(Geomorph* morph) { morph_ = morph; }
 
     RefinerSettings& settings() { return settings_; }
+    const RefinerSettings& settings() const { return settings_; }
+    const View& view() const { return view_; }
     /// Sets the camera; a different one marks the cycle under way as changed (see markChanged).
     void setView(const View& view);
     /// Start the next update with a fresh cycle (after the mesh changed outside the refiner).
@@ -60,6 +68,8 @@ public:
     UpdateStats update();
     const UpdateStats& lastUpdate() const { return last_; }
     double currentTau() const { return currentTau_; }
+    /// Merges waiting for their vertices to fade out.
+    int32_t pendingMerges() const { return int32_t(pending_.size()); }
     size_t memoryBytes() const;
 
 
@@ -73,6 +83,13 @@ private:
         SlopeBox ownSlopes;
         CellError parent, half[2];
         uint8_t valid = 0; // bits: 1 own, 2 parent, 4 first half, 8 second half
+        uint8_t pendingMerge = 0; // a merge of this record is fading its vertices out
+    };
+    // A merge started under geomorphing: the vertices it frees, fading out (§7).
+    struct PendingMerge {
+        int32_t cell;
+        int32_t count;
+        int32_t vertices[12]; // six corners and up to six centres of the ring cells it breaks
     };
 
     bool fails(const CellShape& shape, const CellError& e) const;
@@ -81,6 +98,10 @@ private:
     void noteChanges();
     bool refineStep(int32_t cell);   // one operation towards refining the cell; false if none
     bool mergeWanted(int32_t cell);  // the merge makes nothing that fails
+    bool beginMerge(int32_t cell);   // merges now, or starts fading out (then false)
+    void advancePendingMerges();     // completes faded merges, calls off the stale ones
+    void callOff(const PendingMerge& merge);
+    bool stillFrees(const PendingMerge& merge);
     bool ownFails(int32_t cell);
     bool outOfBudget();
     template <typename Step>
@@ -96,6 +117,9 @@ private:
     View view_;
     std::vector<Cached> cache_;
     std::vector<int32_t> changes_;
+    Geomorph* morph_ = nullptr;
+    std::vector<PendingMerge> pending_;
+    std::vector<int32_t> freedScratch_;
     double currentTau_ = 1.0;
 
     // Where the loop stands, kept across updates.

@@ -24,6 +24,8 @@
 
 #include "error_evaluator.h"
 #include "fan_stream.h"
+#include "geomorph.h"
+#include "popping_meter.h"
 #include "heightfield.h"
 #include "hex_mesh.h"
 #include "hex_mesh_refine.h"
@@ -65,7 +67,7 @@ double percentile(std::vector<double> values, double p) {
 int flight(const hexlod::Heightfield& field, int argc, char** argv) {
     const char* path = nullptr;
     double tau = 1.0, budgetMs = 0.0, tanHalfFov = 0.57735026918962573, width = 1920, height = 1080;
-    int32_t budgetOps = 0;
+    int32_t budgetOps = 0, morphFrames = 0;
     for (int k = 6; k < argc; ++k) {
         const std::string flag = argv[k];
         const char* value = k + 1 < argc ? argv[k + 1] : nullptr;
@@ -75,6 +77,7 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
         else if (flag == "--tau") tau = std::atof(value);
         else if (flag == "--budget-ms") budgetMs = std::atof(value);
         else if (flag == "--budget-ops") budgetOps = std::atoi(value);
+        else if (flag == "--morph-frames") morphFrames = std::atoi(value);
         else if (flag == "--tan-half-fov") tanHalfFov = std::atof(value);
         else if (flag == "--viewport") {
             if (std::sscanf(value, "%lfx%lf", &width, &height) != 2) return fail("bad --viewport ", value);
@@ -96,8 +99,13 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
     refiner.settings().tau = tau;
     refiner.settings().budgetMs = budgetMs;
     refiner.settings().maxOperations = budgetOps;
+    hexlod::Geomorph morph;
+    morph.setFrames(morphFrames);
+    refiner.setGeomorph(&morph);
     hexlod::FanStream stream;
-    std::vector<double> updateMs, streamMs, triangles, splits, merges;
+    stream.attach(mesh);
+    hexlod::PoppingMeter popping;
+    std::vector<double> updateMs, streamMs, triangles, splits, merges, jumps;
     for (const auto& cam : cameras) {
         hexlod::View view;
         const glm::dvec3 eye(cam[0], cam[1], cam[2]), target(cam[3], cam[4], cam[5]);
@@ -108,22 +116,25 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
         refiner.markChanged();
         const hexlod::UpdateStats stats = refiner.update();
         const auto start = std::chrono::steady_clock::now();
-        hexlod::buildFanStream(mesh, 1.0f, stream);
+        stream.sync(mesh, morph);
         streamMs.push_back(msSince(start));
+        jumps.push_back(popping.measure(mesh, morph, view, 1.0).maxJumpPx);
         updateMs.push_back(stats.milliseconds);
         triangles.push_back(double(mesh.triangleCount()));
         splits.push_back(stats.splits);
         merges.push_back(stats.merges);
     }
     const double p95 = percentile(updateMs, 0.95), tri50 = percentile(triangles, 0.5);
-    std::printf("native flight: %zu frames, tau %.2f px, budget %.1f ms / %d ops\n", cameras.size(), tau, budgetMs, budgetOps);
+    std::printf("native flight: %zu frames, tau %.2f px, budget %.1f ms / %d ops, geomorph %d frames\n", cameras.size(), tau,
+                budgetMs, budgetOps, morphFrames);
     std::printf("  update ms p50 %.3f p95 %.3f; stream ms p50 %.3f p95 %.3f\n", percentile(updateMs, 0.5), p95,
                 percentile(streamMs, 0.5), percentile(streamMs, 0.95));
     std::printf("  triangles min %.0f p50 %.0f max %.0f; splits p50 %.0f max %.0f; merges p50 %.0f max %.0f\n",
                 percentile(triangles, 0.0), tri50, percentile(triangles, 1.0), percentile(splits, 0.5), percentile(splits, 1.0),
                 percentile(merges, 0.5), percentile(merges, 1.0));
-    std::printf("  p95 update per million triangles: %.3f ms; mesh + refiner %.1f B/triangle\n", p95 / (tri50 / 1e6),
-                double(mesh.memoryBytes() + refiner.memoryBytes()) / double(mesh.triangleCount()));
+    std::printf("  popping: largest vertex jump %.3f px, p99 of frames %.3f px\n", percentile(jumps, 1.0), percentile(jumps, 0.99));
+    std::printf("  p95 update per million triangles: %.3f ms; mesh + refiner + stream %.1f B/triangle\n", p95 / (tri50 / 1e6),
+                double(mesh.memoryBytes() + refiner.memoryBytes() + stream.memoryBytes()) / double(mesh.triangleCount()));
     return 0;
 }
 
@@ -159,12 +170,12 @@ int main(int argc, char** argv) {
         const double refineMs = msSince(start);
         hexlod::FanStream stream;
         start = std::chrono::steady_clock::now();
-        hexlod::buildFanStream(mesh, 1.0f, stream);
+        stream.attach(mesh);
         const double streamMs = msSince(start);
         std::vector<uint32_t> triangles;
         mesh.appendTriangles(triangles);
         const hexlod::ErrorStats stats = hexlod::evaluateMeshError(
-            *field, stream.vertices.data(), size_t(stream.vertexCount), hexlod::kFloatsPerVertex, triangles.data(), triangles.size());
+            *field, mesh.positionData(), size_t(mesh.vertexCapacity()), hexlod::kStreamVertexWords, triangles.data(), triangles.size());
         if (stats.error) return fail(stats.error, nullptr);
         std::printf("  %-7s full refinement: %lld triangles (%lld splits) in %.0f ms; fan stream %.0f ms; "
                     "mesh structures %.1f B/triangle; error vs samples: max %.3f m, p99 %.3f m, mean %.4f m, uncovered %lld\n",

@@ -38,10 +38,17 @@ TEST(Api, RoundTripOfARealFieldThroughTheAbi) {
     EXPECT_GT(hexlod_mesh_refine_uniform(t, 2), 0);
     EXPECT_EQ(hexlod_mesh_triangle_count(t), 16 * baseTriangles);
     EXPECT_EQ(hexlod_mesh_check(t), 0);
-    const int32_t indices = hexlod_stream_build(t, 1.0f);
-    ASSERT_GT(indices, 0);
-    EXPECT_EQ(hexlod_stream_index_count(t), indices);
-    EXPECT_EQ(hexlod_stream_level_offsets(t)[hexlod_mesh_max_level(t) + 1], indices);
+    ASSERT_GE(hexlod_stream_update(t), 0);
+    const int32_t fanIndices = hexlod_stream_index_count(t);
+    EXPECT_EQ(fanIndices % 9, 0) << "a slot of 9 indices per cell record";
+    EXPECT_GE(fanIndices, hexlod_mesh_cell_count(t) * 9);
+    const int32_t levelIndices = hexlod_stream_build_level_view(t, 0);
+    EXPECT_EQ(hexlod_stream_level_offsets(t)[hexlod_mesh_max_level(t) + 1], levelIndices);
+    EXPECT_EQ(hexlod_stream_set_layout(t, 2), -1);
+    ASSERT_EQ(hexlod_stream_set_layout(t, HEXLOD_LAYOUT_TRIANGLES), 0);
+    EXPECT_EQ(hexlod_stream_index_count(t), fanIndices * 2) << "a slot of 18 indices per cell record";
+    EXPECT_EQ(hexlod_lod_set_morph_frames(t, -1), -1);
+    EXPECT_EQ(hexlod_lod_set_morph_frames(t, 1001), -1);
     EXPECT_GT(hexlod_mesh_memory_bytes(t), 0.0);
 
     // A new cell size rebuilds the mesh: every position and every cached bound changes.
@@ -49,9 +56,10 @@ TEST(Api, RoundTripOfARealFieldThroughTheAbi) {
     ASSERT_EQ(hexlod_lod_update(t) >= 0, true);
     ASSERT_EQ(hexlod_terrain_set_scale(t, 2 * 74.4, 2 * 92.6, 1.0, 0.0, 0, 0.0), 0);
     EXPECT_EQ(hexlod_mesh_triangle_count(t), baseTriangles);
-    ASSERT_EQ(hexlod_stream_build(t, 1.0f) > 0, true);
+    ASSERT_GE(hexlod_stream_update(t), 0);
     float maxX = 0.0f;
-    for (int32_t v = 0; v < hexlod_stream_vertex_count(t); ++v) maxX = std::max(maxX, hexlod_stream_vertices(t)[v * 6]);
+    const auto* vertices = static_cast<const float*>(hexlod_stream_vertices(t));
+    for (int32_t v = 0; v < hexlod_stream_vertex_count(t); ++v) maxX = std::max(maxX, vertices[v * 9]);
     EXPECT_GT(maxX, 402 * 74.4f * 1.5f) << "positions use the new spacing";
     while (hexlod_lod_update(t) > 0) {}
     EXPECT_EQ(hexlod_lod_converged(t), 1);

@@ -1,11 +1,15 @@
-// The fan stream (paper §7): decoding the fans gives exactly the mesh's triangles, restart
-// indices close every fan, levels are contiguous ranges, normals are unit and upward.
+// The fan stream (paper §7): decoding the slots gives exactly the mesh's triangles, restart
+// indices close every fan, nothing exceeds capacity, incremental updates equal a rewrite bit
+// for bit, and the dirty ranges carry every change to a renderer's copy.
 #include "fan_stream.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
+#include <random>
 
 #include "fixture.h"
 #include "hex_mesh_refine.h"
@@ -14,100 +18,243 @@ using namespace hexlod;
 
 namespace {
 
-std::vector<uint32_t> decodeFans(const std::vector<uint32_t>& indices) {
-    std::vector<uint32_t> triangles;
-    for (size_t start = 0; start < indices.size();) {
-        size_t end = start;
-        while (end < indices.size() && indices[end] != kRestartIndex) ++end;
-        for (size_t k = start + 1; k + 1 < end; ++k) triangles.insert(triangles.end(), {indices[start], indices[k], indices[k + 1]});
-        start = end + 1;
+using Triangle = std::array<uint32_t, 3>;
+
+// Decodes one slot per cell into triangles, checking the slot's shape on the way.
+std::vector<Triangle> decode(const FanStream& stream) {
+    std::vector<Triangle> out;
+    const std::vector<uint32_t>& idx = stream.indices();
+    const int32_t size = stream.slotSize();
+    for (size_t first = 0; first < idx.size(); first += size_t(size)) {
+        const uint32_t* slot = idx.data() + first;
+        if (stream.layout() == IndexLayout::Fans) {
+            int32_t n = 0;
+            while (n < size && slot[n] != kRestartIndex) ++n;
+            EXPECT_LT(n, size) << "a fan slot must end with the restart index";
+            for (int32_t k = n; k < size; ++k) EXPECT_EQ(slot[k], kRestartIndex) << "only restarts after the fan";
+            for (int32_t k = 1; k + 1 < n; ++k) out.push_back({slot[0], slot[k], slot[k + 1]});
+        } else {
+            for (int32_t k = 0; k < size; k += 3) {
+                if (slot[k] == kRestartIndex) {
+                    EXPECT_TRUE(slot[k + 1] == kRestartIndex && slot[k + 2] == kRestartIndex) << "padding is whole triangles";
+                    continue;
+                }
+                out.push_back({slot[k], slot[k + 1], slot[k + 2]});
+            }
+        }
     }
-    return triangles;
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+std::vector<Triangle> meshTriangles(const HexMesh& mesh) {
+    std::vector<uint32_t> flat;
+    mesh.appendTriangles(flat);
+    std::vector<Triangle> out;
+    for (size_t t = 0; t < flat.size(); t += 3) out.push_back({flat[t], flat[t + 1], flat[t + 2]});
+    std::sort(out.begin(), out.end());
+    return out;
 }
 
 // A refined mesh with every kind of cell at several levels: uniform rounds, then local ones.
-HexMesh refinedVolcano(const Heightfield& field) {
-    HexMesh mesh;
+void refineVolcano(HexMesh& mesh, const Heightfield& field) {
     mesh.reset(field, Embedding::Exact);
     refineUniformly(mesh, 1);
     refineNear(mesh, 300.0, 250.0, 150.0, 3);
-    return mesh;
 }
+
+// Random splits and merges, as a moving camera would cause.
+void randomOperations(HexMesh& mesh, std::mt19937& random, int32_t count) {
+    for (int32_t i = 0; i < count; ++i) {
+        const int32_t c = int32_t(random() % uint32_t(mesh.cellCapacity()));
+        if (!mesh.isLive(c)) continue;
+        if (random() % 2) mesh.split(c) || mesh.join(c);
+        else mesh.merge(c) || mesh.breakHexagon(c);
+    }
+}
+
+// What a renderer holds: copies updated only through the dirty ranges.
+struct RendererCopy {
+    std::vector<uint32_t> indices;
+    std::vector<StreamVertex> vertices;
+    void upload(FanStream& stream, const HexMesh& mesh) {
+        indices.resize(stream.indices().size(), 0xDEADBEEFu);
+        vertices.resize(size_t(mesh.vertexCapacity()));
+        for (const ElementRange& r : stream.dirtyIndices()) {
+            ASSERT_LE(size_t(r.first + r.count), stream.indices().size()) << "a dirty range past the used indices";
+            std::copy_n(stream.indices().begin() + r.first, r.count, indices.begin() + r.first);
+        }
+        for (const ElementRange& r : stream.dirtyVertices()) {
+            ASSERT_LE(r.first + r.count, mesh.vertexCapacity()) << "a dirty range past the vertex pool";
+            std::copy_n(mesh.vertexData() + r.first, r.count, vertices.begin() + r.first);
+        }
+        stream.acknowledge();
+    }
+};
 
 } // namespace
 
-TEST(FanStream, DecodedFansAreExactlyTheMeshTriangles) {
+TEST(FanStream, DecodedFansAreExactlyTheMeshTrianglesInBothLayouts) {
     auto field = test::loadFixture(test::kVolcano);
     ASSERT_NE(field, nullptr);
-    HexMesh mesh = refinedVolcano(*field);
+    HexMesh mesh;
+    refineVolcano(mesh, *field);
     ASSERT_EQ(mesh.checkInvariants(), nullptr);
     FanStream stream;
-    buildFanStream(mesh, 1.0f, stream);
-    std::vector<uint32_t> expected;
-    mesh.appendTriangles(expected);
-    EXPECT_EQ(decodeFans(stream.indices), expected);
-    EXPECT_EQ(int64_t(expected.size() / 3), mesh.triangleCount());
-    // Every fan ends with the restart index, and every index is a live vertex.
-    ASSERT_FALSE(stream.indices.empty());
-    EXPECT_EQ(stream.indices.back(), kRestartIndex);
-    int32_t fans = 0;
-    for (uint32_t index : stream.indices) {
-        if (index == kRestartIndex) {
-            ++fans;
-            continue;
-        }
-        ASSERT_LT(int32_t(index), stream.vertexCount);
-        ASSERT_TRUE(mesh.isVertexLive(int32_t(index)));
-    }
-    EXPECT_EQ(fans, mesh.liveCells());
+    stream.attach(mesh);
+    const std::vector<Triangle> expected = meshTriangles(mesh);
+    EXPECT_EQ(int64_t(expected.size()), mesh.triangleCount());
+    EXPECT_EQ(decode(stream), expected);
+    stream.setLayout(IndexLayout::Triangles);
+    EXPECT_EQ(decode(stream), expected);
 }
 
-TEST(FanStream, LevelRangesHoldTheFansOfOneLevelEach) {
+TEST(FanStream, EverySlotIsItsCellsFanThenRestartsAndNothingExceedsCapacity) {
     auto field = test::loadFixture(test::kVolcano);
-    HexMesh mesh = refinedVolcano(*field);
+    HexMesh mesh;
+    refineVolcano(mesh, *field);
     FanStream stream;
-    buildFanStream(mesh, 1.0f, stream);
-    ASSERT_EQ(stream.levelOffsets.size(), size_t(mesh.maxLevel()) + 2);
+    stream.attach(mesh);
+    Geomorph morph;
+    std::mt19937 random(7);
+    for (int32_t round = 0; round < 20; ++round) {
+        randomOperations(mesh, random, 300);
+        stream.sync(mesh, morph);
+        ASSERT_EQ(stream.indexCount(), mesh.cellCapacity() * FanStream::kFanSlot);
+        for (int32_t c = 0; c < mesh.cellCapacity(); ++c) {
+            const uint32_t* slot = stream.indices().data() + size_t(c) * FanStream::kFanSlot;
+            const int32_t expected = !mesh.isLive(c) ? 0 : mesh.cell(c).kind == CellKind::Full ? 8
+                                   : mesh.cell(c).kind == CellKind::BoundarySemi ? 5 : 4;
+            for (int32_t k = 0; k < FanStream::kFanSlot; ++k) {
+                if (k < expected) {
+                    ASSERT_NE(slot[k], kRestartIndex) << "cell " << c;
+                    ASSERT_LT(int32_t(slot[k]), mesh.vertexCapacity()) << "an index past the vertex pool";
+                    ASSERT_TRUE(mesh.isVertexLive(int32_t(slot[k])));
+                } else {
+                    ASSERT_EQ(slot[k], kRestartIndex) << "cell " << c << " slot index " << k;
+                }
+            }
+        }
+    }
+}
+
+TEST(FanStream, IncrementalUpdatesEqualARewriteBitForBit) {
+    auto field = test::loadFixture(test::kJacksboro);
+    ASSERT_NE(field, nullptr);
+    HexMesh mesh;
+    mesh.reset(*field, Embedding::Exact);
+    refineUniformly(mesh, 2);
+    FanStream stream;
+    stream.attach(mesh);
+    Geomorph morph;
+    std::mt19937 random(11);
+    for (int32_t round = 0; round < 30; ++round) {
+        randomOperations(mesh, random, 200);
+        stream.sync(mesh, morph);
+        ASSERT_EQ(mesh.checkInvariants(), nullptr);
+        const std::vector<uint32_t> indices = stream.indices();
+        std::vector<StreamVertex> vertices(mesh.vertexData(), mesh.vertexData() + mesh.vertexCapacity());
+        stream.attach(mesh); // a rewrite from scratch
+        ASSERT_EQ(stream.indices(), indices) << "round " << round;
+        for (int32_t v = 0; v < mesh.vertexCapacity(); ++v) {
+            if (!mesh.isVertexLive(v)) continue;
+            ASSERT_EQ(std::memcmp(vertices[size_t(v)].normal, mesh.streamVertex(v).normal, sizeof(int16_t) * 4), 0)
+                << "vertex " << v << " round " << round;
+        }
+    }
+}
+
+TEST(FanStream, NormalsAreUnitUpwardAndAveragedFromTheAdjacentTriangles) {
+    auto field = test::loadFixture(test::kVolcano);
+    HexMesh mesh;
+    refineVolcano(mesh, *field);
+    FanStream stream;
+    stream.attach(mesh);
+    // Reference: area-weighted face normals summed in double over the decoded triangles.
+    std::vector<glm::dvec3> sum(size_t(mesh.vertexCapacity()), glm::dvec3(0.0));
+    for (const Triangle& t : meshTriangles(mesh)) {
+        const glm::dvec3 a(mesh.vertexPosition(int32_t(t[0]))), b(mesh.vertexPosition(int32_t(t[1]))),
+            c(mesh.vertexPosition(int32_t(t[2])));
+        const glm::dvec3 n = glm::cross(b - a, c - a);
+        for (uint32_t v : t) sum[v] += n;
+    }
+    for (int32_t v = 0; v < mesh.vertexCapacity(); ++v) {
+        if (!mesh.isVertexLive(v)) continue;
+        const int16_t* n = mesh.streamVertex(v).normal;
+        const glm::dvec3 got(n[0] / 32767.0, n[1] / 32767.0, n[2] / 32767.0);
+        ASSERT_NEAR(glm::length(got), 1.0, 1e-4);
+        ASSERT_GT(got.y, 0.0);
+        const glm::dvec3 want = glm::normalize(sum[size_t(v)]);
+        ASSERT_NEAR(glm::length(got - want), 0.0, 1e-4) << "vertex " << v;
+    }
+}
+
+TEST(FanStream, TheDirtyRangesCarryEveryChangeToARenderersCopy) {
+    auto field = test::loadFixture(test::kVolcano);
+    HexMesh mesh;
+    refineVolcano(mesh, *field);
+    FanStream stream;
+    stream.attach(mesh);
+    Geomorph morph;
+    morph.setFrames(8);
+    RendererCopy gpu;
+    gpu.upload(stream, mesh);
+    std::mt19937 random(3);
+    uint32_t version = stream.version();
+    for (int32_t round = 0; round < 25; ++round) {
+        randomOperations(mesh, random, round % 5 == 0 ? 0 : 100);
+        morph.advance();
+        stream.sync(mesh, morph);
+        if (round % 5 == 0) {
+            EXPECT_EQ(stream.version(), version) << "nothing changed: the version stays";
+            EXPECT_TRUE(stream.dirtyIndices().empty());
+        } else {
+            EXPECT_NE(stream.version(), version);
+        }
+        version = stream.version();
+        gpu.upload(stream, mesh);
+        ASSERT_EQ(gpu.indices, stream.indices()) << "round " << round;
+        for (int32_t v = 0; v < mesh.vertexCapacity(); ++v) {
+            if (!mesh.isVertexLive(v)) continue;
+            ASSERT_EQ(std::memcmp(&gpu.vertices[size_t(v)], &mesh.streamVertex(v), sizeof(StreamVertex)), 0) << "vertex " << v;
+        }
+    }
+}
+
+TEST(FanStream, LevelViewHoldsTheFansOfOneLevelPerRange) {
+    auto field = test::loadFixture(test::kVolcano);
+    HexMesh mesh;
+    refineVolcano(mesh, *field);
+    FanStream stream;
+    stream.attach(mesh);
+    stream.buildLevelView(mesh, false);
+    ASSERT_EQ(stream.levelOffsets().size(), size_t(mesh.maxLevel()) + 2);
     int levelsUsed = 0;
     for (int32_t level = 0; level <= mesh.maxLevel(); ++level) {
         int32_t cells = 0;
         for (int32_t c = mesh.firstOfLevel(level); c != kNone; c = mesh.nextInLevel(c)) ++cells;
-        const auto begin = stream.indices.begin() + stream.levelOffsets[size_t(level)];
-        const auto end = stream.indices.begin() + stream.levelOffsets[size_t(level) + 1];
+        const auto begin = stream.levelIndices().begin() + stream.levelOffsets()[size_t(level)];
+        const auto end = stream.levelIndices().begin() + stream.levelOffsets()[size_t(level) + 1];
         EXPECT_EQ(std::count(begin, end, kRestartIndex), cells) << "level " << level;
         levelsUsed += cells > 0;
     }
     EXPECT_GE(levelsUsed, 3) << "the test mesh should mix levels";
-    EXPECT_EQ(stream.levelOffsets.back(), int32_t(stream.indices.size()));
-}
-
-TEST(FanStream, VerticesAreStoredOnceWithUnitUpwardNormals) {
-    auto field = test::loadFixture(test::kVolcano);
-    HexMesh mesh = refinedVolcano(*field);
-    FanStream stream;
-    buildFanStream(mesh, 2.0f, stream);
-    for (int32_t v = 0; v < stream.vertexCount; ++v) {
-        if (!mesh.isVertexLive(v)) continue;
-        const float* p = &stream.vertices[size_t(v) * kFloatsPerVertex];
-        ASSERT_EQ(p[0], mesh.vertexPosition(v).x);
-        ASSERT_EQ(p[1], 2.0f * mesh.vertexPosition(v).y);
-        ASSERT_EQ(p[2], mesh.vertexPosition(v).z);
-        ASSERT_NEAR(std::sqrt(p[3] * p[3] + p[4] * p[4] + p[5] * p[5]), 1.0f, 1e-5f);
-        ASSERT_GT(p[4], 0.0f);
-    }
+    EXPECT_EQ(stream.levelOffsets().back(), int32_t(stream.levelIndices().size()));
 }
 
 TEST(FanStream, OutlineHasEveryCellEdgeOnceAndOnlyWhenAskedFor) {
     auto field = test::loadFixture(test::kVolcano);
-    HexMesh mesh = refinedVolcano(*field);
+    HexMesh mesh;
+    refineVolcano(mesh, *field);
     FanStream stream;
-    buildFanStream(mesh, 1.0f, stream);
-    EXPECT_TRUE(stream.outline.empty()) << "no outline unless the wireframe is shown";
-    stream.withOutline = true;
-    buildFanStream(mesh, 1.0f, stream);
+    stream.attach(mesh);
+    stream.buildLevelView(mesh, false);
+    EXPECT_TRUE(stream.outline().empty()) << "no outline unless the wireframe is shown";
+    stream.buildLevelView(mesh, true);
     std::vector<uint64_t> edges;
-    for (size_t k = 0; k < stream.outline.size(); k += 2) {
-        const uint32_t a = std::min(stream.outline[k], stream.outline[k + 1]), b = std::max(stream.outline[k], stream.outline[k + 1]);
+    const std::vector<uint32_t>& outline = stream.outline();
+    for (size_t k = 0; k < outline.size(); k += 2) {
+        const uint32_t a = std::min(outline[k], outline[k + 1]), b = std::max(outline[k], outline[k + 1]);
         edges.push_back(uint64_t(a) << 32 | b);
     }
     std::sort(edges.begin(), edges.end());

@@ -258,7 +258,7 @@ TEST(Refiner, InMaxErrorModeEverySampleIsWithinE) {
             ASSERT_EQ(mesh.checkInvariants(), nullptr);
             std::vector<uint32_t> tris;
             mesh.appendTriangles(tris);
-            const ErrorStats stats = evaluateMeshError(*field, mesh.positionData(), size_t(mesh.vertexCapacity()), 3, tris.data(), tris.size());
+            const ErrorStats stats = evaluateMeshError(*field, mesh.positionData(), size_t(mesh.vertexCapacity()), kStreamVertexWords, tris.data(), tris.size());
             std::printf("max error %s E %.1f m: measured %.3f m, %lld triangles\n", f->name, e, stats.maxError, (long long)mesh.triangleCount());
             EXPECT_EQ(stats.uncovered, 0);
             EXPECT_LE(stats.maxError, e + 1e-9) << f->name;
