@@ -11,6 +11,7 @@ import {
   extentOf, cameraFor, quantile, round,
 } from './cli_common.js';
 import { decodeFans } from './mesh_export.js';
+import { STREAM_VERTEX_BYTES, STREAM_VERTEX_WORDS } from '../web/core.js';
 import { gridMeshError, padToPowerOfTwoPlusOne } from './rtin_error.js';
 import { seededRandom } from '../web/seeded_random.js';
 
@@ -31,6 +32,8 @@ export const BENCH_USAGE = `usage: hexlod bench <heightfield> [options]
   --viewport WxH        viewport in pixels (default 1920x1080)
   --max-error M         max error of the comparison with martini (default 5)
   --embedding E         exact (default) or shifted
+  --morph-frames N      geomorph blends over N frames in the flight (default 8); popping is
+                        measured with them and again without (0)
   --cell-size DX[,DY]   metres between columns (and rows); default: from the file, else 1
   --verbose             one line per frame
   --no-native           skip the comparison with build/native/hexlod_bench --flight (the same
@@ -40,7 +43,7 @@ export const BENCH_USAGE = `usage: hexlod bench <heightfield> [options]
 const OPTIONS = {
   frames: 'string', seed: 'string', 'budget-ms': 'string', 'budget-ops': 'string', altitude: 'string',
   tau: 'string', fov: 'string', viewport: 'string', 'max-error': 'string', embedding: 'string',
-  'cell-size': 'string', verbose: 'boolean', json: 'string', 'no-native': 'boolean',
+  'cell-size': 'string', verbose: 'boolean', json: 'string', 'no-native': 'boolean', 'morph-frames': 'string',
 };
 const MAX_UPDATES = 10000;
 const NATIVE_BENCH = fileURLToPath(new URL('../build/native/hexlod_bench', import.meta.url));
@@ -65,6 +68,7 @@ function benchSettings(args) {
     viewport: values.viewport !== undefined ? parseViewport(values.viewport) : [1920, 1080],
     maxError: number('max-error', 5, { min: 0, exclusiveMin: true }),
     embedding: parseEmbedding(values.embedding),
+    morphFrames: number('morph-frames', 8, { min: 0, max: 1000, integer: true }),
     cellSize: values['cell-size'] !== undefined ? parseCellSize(values['cell-size']) : null,
     verbose: !!values.verbose,
     native: !values['no-native'],
@@ -135,14 +139,15 @@ function heightsInMetres(terrain, field) {
 }
 
 /** Triangles of the stream that reach into the rectangle [0, xMax] x [0, zMax]. */
-function trianglesOverField(stream, xMax, zMax) {
-  const { triangles } = decodeFans(stream.indices);
-  const p = stream.vertices;
+function trianglesOverField(terrain, xMax, zMax) {
+  const { triangles } = decodeFans(terrain.levelView(false).indices.slice());
+  terrain.updateStream();
+  const p = terrain.stream().vertices;
   let count = 0;
   for (let t = 0; t < triangles.length; t += 3) {
     let left = 0, right = 0, top = 0, bottom = 0;
     for (let k = 0; k < 3; k++) {
-      const v = triangles[t + k] * 6;
+      const v = triangles[t + k] * STREAM_VERTEX_WORDS;
       if (p[v] <= 0) left += 1;
       if (p[v] >= xMax) right += 1;
       if (p[v + 2] <= 0) top += 1;
@@ -303,13 +308,14 @@ function nativeComparison(heights, terrain, path, settings) {
   terrain.resetMesh('exact');
   terrain.setLodTolerance(settings.tau);
   terrain.setLodBudget(0, 0);
+  terrain.setMorphFrames(0);
   const updateMs = [], streamMs = [], triangles = [];
   for (const { eye, target } of path.cameras) {
     terrain.setLodCamera(nativeStyleCamera(eye, target, settings));
     terrain.updateLod();
     updateMs.push(terrain.lodStats().updateMs);
     const start = performance.now();
-    terrain.buildStream(1);
+    terrain.updateStream();
     streamMs.push(performance.now() - start);
     triangles.push(terrain.meshStats().triangles);
   }
@@ -329,6 +335,36 @@ function nativeComparison(heights, terrain, path, settings) {
       streamP50: wasm.streamMsP50 / native.streamMsP50,
     },
   };
+}
+
+/**
+ * Puts the terrain where the flight starts: converged for the first camera, every blend done,
+ * the popping meter primed; then sets the flight's budget.
+ */
+function startFlight(terrain, camera, settings, morphFrames) {
+  terrain.resetMesh(settings.embedding);
+  terrain.setLodTolerance(settings.tau);
+  terrain.setLodBudget(0, 0);
+  terrain.setMorphFrames(morphFrames);
+  terrain.setLodCamera(camera);
+  refineToConvergence(terrain);
+  for (let i = 0; i <= morphFrames; i++) terrain.updateLod();
+  terrain.updateStream();
+  terrain.acknowledgeStream();
+  terrain.measurePopping();
+  terrain.setLodBudget(settings.budgetMs, settings.budgetOps);
+}
+
+/** The flight with `morphFrames` blends: the largest vertex jump on screen, max and p99 of frames. */
+function popping(terrain, cameras, settings, morphFrames) {
+  startFlight(terrain, cameras[0], settings, morphFrames);
+  const jumps = cameras.map((camera) => {
+    terrain.setLodCamera(camera);
+    terrain.updateLod();
+    terrain.updateStream();
+    return terrain.measurePopping().maxJumpPx;
+  });
+  return { max: Math.max(...jumps), p99: quantile(jumps, 0.99) };
 }
 
 export async function bench(args) {
@@ -355,25 +391,35 @@ export async function bench(args) {
     terrain.setLodCamera(cameras[0]);
     terrain.setLodTolerance(settings.tau);
     const refined = refineToConvergence(terrain);
-    const stream = terrain.buildStream(1);
+    terrain.updateStream();
     const ms = performance.now() - start;
     firstFrame.push({ ms, updates: refined.updates, operations: refined.operations, converged: refined.converged,
-      triangles: terrain.meshStats().triangles, streamIndices: stream.indices.length });
+      triangles: terrain.meshStats().triangles, streamIndices: terrain.stream().indices.length });
   }
 
-  // 2. The flight, from that converged mesh: per frame one budgeted update, then the stream.
-  terrain.setLodBudget(settings.budgetMs, settings.budgetOps);
+  // 2. The flight, from that converged mesh: per frame one budgeted update, then the stream,
+  // as the page does; with geomorphing, and again without it for the popping figure.
+  const withoutMorph = popping(terrain, cameras, settings, 0);
   const frames = [];
+  const jumps = [];
+  startFlight(terrain, cameras[0], settings, settings.morphFrames);
   for (let i = 0; i < cameras.length; i++) {
     terrain.setLodCamera(cameras[i]);
     const t0 = performance.now();
     const operations = terrain.updateLod();
     const t1 = performance.now();
-    terrain.buildStream(1);
+    terrain.updateStream();
     const t2 = performance.now();
     const lod = terrain.lodStats();
+    const stream = terrain.stream();
+    let uploadBytes = 0;
+    for (let k = 1; k < stream.dirtyVertices.length; k += 2) uploadBytes += stream.dirtyVertices[k] * STREAM_VERTEX_BYTES;
+    for (let k = 1; k < stream.dirtyIndices.length; k += 2) uploadBytes += stream.dirtyIndices[k] * 4;
+    terrain.acknowledgeStream();
+    jumps.push(terrain.measurePopping().maxJumpPx);
     const frame = {
-      frame: i, updateMs: t1 - t0, coreUpdateMs: lod.updateMs, streamMs: t2 - t1, operations,
+      frame: i, updateMs: t1 - t0, coreUpdateMs: lod.updateMs, streamMs: t2 - t1, operations, uploadBytes,
+      fullBytes: stream.vertexBytes.length + stream.indices.length * 4, popPx: jumps.at(-1),
       splits: lod.splits, merges: lod.merges, triangles: terrain.meshStats().triangles, converged: lod.converged, tau: lod.tau,
     };
     frames.push(frame);
@@ -406,17 +452,26 @@ export async function bench(args) {
     mergesMax: Math.max(...col('merges')),
     convergedFrames: frames.filter((f) => f.converged).length,
     updateMsPerMillionTrianglesP95: quantile(perMillion, 0.95),
+    uploadBytesP50: quantile(col('uploadBytes'), 0.5),
+    uploadBytesP95: quantile(col('uploadBytes'), 0.95),
+    fullStreamBytesP50: quantile(col('fullBytes'), 0.5),
+    morphFrames: settings.morphFrames,
+    poppingMaxPx: Math.max(...jumps),
+    poppingP99Px: quantile(jumps, 0.99),
+    poppingWithoutMorphMaxPx: withoutMorph.max,
+    poppingWithoutMorphP99Px: withoutMorph.p99,
   };
 
   // 3. View-independent: ours to a max error, measured on the original samples.
   const start = performance.now();
   terrain.resetMesh(settings.embedding);
+  terrain.setMorphFrames(0);
   terrain.setLodMaxError(settings.maxError);
   const refined = refineToConvergence(terrain);
-  const stream = terrain.buildStream(1);
+  terrain.updateStream();
   const oursMs = performance.now() - start;
   const oursTriangles = terrain.meshStats().triangles;
-  const oursOverField = trianglesOverField(stream, xMax, zMax);
+  const oursOverField = trianglesOverField(terrain, xMax, zMax);
   const oursError = terrain.measureError(false);
   const ours = { maxError: settings.maxError, ms: oursMs, updates: refined.updates, converged: refined.converged,
     triangles: oursTriangles, trianglesOverField: oursOverField, error: oursError };
@@ -428,6 +483,7 @@ export async function bench(args) {
   const native = settings.native ? nativeComparison(heights, terrain, path, settings) : { missing: 'skipped (--no-native)' };
 
   const ms = (v) => `${v.toFixed(2)} ms`;
+  const kb = (bytes) => `${(bytes / 1024).toFixed(1)} KB`;
   const [cold, warm] = firstFrame;
   const budget = [settings.budgetMs > 0 && `${settings.budgetMs} ms`, settings.budgetOps > 0 && `${settings.budgetOps} operations`]
     .filter(Boolean).join(' and ') || 'none';
@@ -435,7 +491,11 @@ export async function bench(args) {
     `${settings.viewport.join('x')} px, fov ${settings.fov} deg, tau ${settings.tau} px, budget ${budget} per update`);
   print(`  update  p50 ${ms(flight.updateMsP50)}, p95 ${ms(flight.updateMsP95)}, max ${ms(flight.updateMsMax)}; ` +
     `p95 per million triangles ${ms(flight.updateMsPerMillionTrianglesP95)}`);
-  print(`  stream  p50 ${ms(flight.streamMsP50)}, p95 ${ms(flight.streamMsP95)}`);
+  print(`  stream  p50 ${ms(flight.streamMsP50)}, p95 ${ms(flight.streamMsP95)}; uploaded per frame p50 ` +
+    `${kb(flight.uploadBytesP50)}, p95 ${kb(flight.uploadBytesP95)} of ${kb(flight.fullStreamBytesP50)} in the whole stream`);
+  print(`  popping largest vertex jump ${round(flight.poppingMaxPx, 3)} px (p99 of frames ${round(flight.poppingP99Px, 3)} px) ` +
+    `with geomorphing over ${settings.morphFrames} frames; ${round(flight.poppingWithoutMorphMaxPx, 3)} px ` +
+    `(p99 ${round(flight.poppingWithoutMorphP99Px, 3)} px) without`);
   print(`  mesh    triangles min ${flight.trianglesMin}, p50 ${flight.trianglesP50}, max ${flight.trianglesMax}; ` +
     `splits per frame p50 ${flight.splitsP50}, max ${flight.splitsMax}; merges p50 ${flight.mergesP50}, max ${flight.mergesMax}; ` +
     `converged in ${flight.convergedFrames} of ${flight.frames} frames`);

@@ -8,6 +8,7 @@ import {
   loadForCommand, extentOf, cameraFor, highestLevel, round,
 } from './cli_common.js';
 import { decodeFans, resolveDegenerate, clipToRectangle, writeObj } from './mesh_export.js';
+import { STREAM_VERTEX_WORDS } from '../web/core.js';
 
 export const MESH_USAGE = `usage: hexlod mesh <heightfield> (--max-error M | --camera X,Y,Z --target X,Y,Z) [options]
   Refines the hexagon mesh until it converges (or for --budget-splits operations), prints a
@@ -140,20 +141,22 @@ export async function mesh(args) {
   const run = refine(terrain, settings);
 
   const stats = terrain.meshStats();
-  const stream = terrain.buildStream(1);
   // Copies: the views die at the next core call that grows memory.
-  const positions = stream.vertices.slice();
-  const levelOffsets = Int32Array.from(stream.levelOffsets);
-  const { triangles, fans } = decodeFans(stream.indices);
-  const levels = levelFigures(stream.indices, levelOffsets);
+  const levelView = terrain.levelView(false);
+  const indices = levelView.indices.slice();
+  const levelOffsets = Int32Array.from(levelView.levelOffsets);
+  terrain.updateStream();
+  const positions = terrain.stream().vertices.slice();
+  const { triangles, fans } = decodeFans(indices);
+  const levels = levelFigures(indices, levelOffsets);
   const bytes = terrain.meshStats().bytes; // now including the fan stream
   const hash = terrain.meshHash();
   const errorStored = terrain.measureError(true);
   const errorOriginal = terrain.measureError(false);
 
   const { xMax, zMax } = extentOf(terrain);
-  const repaired = resolveDegenerate(positions, 6, triangles);
-  const clipped = clipToRectangle(positions, 6, repaired.triangles, xMax, zMax);
+  const repaired = resolveDegenerate(positions, STREAM_VERTEX_WORDS, triangles);
+  const clipped = clipToRectangle(positions, STREAM_VERTEX_WORDS, repaired.triangles, xMax, zMax);
   const name = basename(settings.file);
   if (settings.obj) {
     writeObj(settings.obj, clipped, [
@@ -210,7 +213,7 @@ export async function mesh(args) {
       interiorSemiHexagons: fans.interiorSemi,
       other: fans.other,
     },
-    vertices: { mesh: stats.vertices, stream: stream.vertexCount, obj: clipped.vertices.length / 3 },
+    vertices: { mesh: stats.vertices, stream: positions.length / STREAM_VERTEX_WORDS, obj: clipped.vertices.length / 3 },
     maxLevel: highestLevel(levelOffsets),
     finestLevel: stats.maxLevel,
     levels,

@@ -14,6 +14,18 @@ export const SAMPLE_TYPES = {
   f32: { code: 4, Array: Float32Array },
 };
 
+/** Index layouts of the fan stream (HEXLOD_LAYOUT_*). */
+export const STREAM_LAYOUTS = { fans: 0, triangles: 1 };
+/** Indices per cell record in each layout. */
+export const STREAM_SLOT = { fans: 9, triangles: 18 };
+/**
+ * A stream vertex (src/stream_vertex.h): position 3 x f32 at byte 0, normal 4 x snorm16 at 12,
+ * morph start 3 x f32 at 20, morph key f32 at 32.
+ */
+export const STREAM_VERTEX_BYTES = 36;
+export const STREAM_VERTEX_WORDS = 9;
+export const RESTART_INDEX = 0xffffffff;
+
 /** A failure reported by the core through hexlod_last_error(). */
 export class CoreError extends Error {}
 
@@ -167,29 +179,74 @@ export class Terrain {
     this.core.check(this.m._hexlod_mesh_check(this.handle) < 0, 'mesh invariant violated');
   }
 
-  /** Whether buildStream also writes the hexagon outlines (off by default; for the wireframe). */
-  setStreamOutline(enabled) {
-    this.core.check(this.m._hexlod_stream_set_outline(this.handle, enabled ? 1 : 0) < 0, 'cannot set the outline');
+  /**
+   * Applies the mesh's changes to the fan stream (hexlod_stream_update); call after updateLod.
+   * @returns {number} the stream version: it moves whenever anything was written
+   */
+  updateStream() {
+    const version = this.m._hexlod_stream_update(this.handle);
+    this.core.check(version < 0, 'cannot update the fan stream');
+    return version;
+  }
+
+  /** 'fans' (TRIANGLE_FAN with primitive restart, 9 indices a cell) or 'triangles' (18). */
+  setStreamLayout(layout) {
+    const code = STREAM_LAYOUTS[layout];
+    if (code === undefined) throw new TypeError(`unknown stream layout ${layout} (expected fans or triangles)`);
+    this.core.check(this.m._hexlod_stream_set_layout(this.handle, code) < 0, 'cannot set the stream layout');
   }
 
   /**
-   * Writes the fan stream and returns views on it, valid until the next core call.
-   * @param {number} verticalScale height exaggeration (1 = true scale)
-   * @returns {{vertices: Float32Array, indices: Uint32Array, outline: Uint32Array,
-   *   levelOffsets: Int32Array, vertexCount: number}}
+   * Views on the fan stream, valid until the next core call (src/hexlod.h, "The fan stream"):
+   * the vertex pool as bytes (STREAM_VERTEX_BYTES a slot) and as floats (STREAM_VERTEX_WORDS a
+   * slot; the position comes first), the index array, and the ranges written since the last
+   * acknowledgeStream() as [first, count] pairs of vertex slots and of indices.
    */
-  buildStream(verticalScale = 1) {
+  stream() {
     const m = this.m, h = this.handle, core = this.core;
-    const indexCount = m._hexlod_stream_build(h, verticalScale);
-    core.check(indexCount < 0, 'cannot build the fan stream');
     const vertexCount = m._hexlod_stream_vertex_count(h);
-    const levels = m._hexlod_mesh_max_level(h) + 2;
+    const indexCount = m._hexlod_stream_index_count(h);
+    core.check(vertexCount < 0 || indexCount < 0, 'no fan stream');
+    const pairs = m._malloc(4);
+    try {
+      const ranges = (fn) => {
+        const pointer = fn(h, pairs);
+        const count = core.view(Int32Array, pairs, 1)[0];
+        return count > 0 ? core.view(Int32Array, pointer, 2 * count) : new Int32Array(0);
+      };
+      const vertexPointer = m._hexlod_stream_vertices(h);
+      return {
+        version: m._hexlod_stream_version(h),
+        vertexCount,
+        vertexBytes: core.view(Uint8Array, vertexPointer, vertexCount * STREAM_VERTEX_BYTES),
+        vertices: core.view(Float32Array, vertexPointer, vertexCount * STREAM_VERTEX_WORDS),
+        indices: core.view(Uint32Array, m._hexlod_stream_indices(h), indexCount),
+        dirtyVertices: ranges(m._hexlod_stream_dirty_vertices),
+        dirtyIndices: ranges(m._hexlod_stream_dirty_indices),
+      };
+    } finally {
+      m._free(pairs);
+    }
+  }
+
+  /** The renderer has uploaded every dirty range (hexlod_stream_acknowledge). */
+  acknowledgeStream() {
+    this.core.check(this.m._hexlod_stream_acknowledge(this.handle) < 0, 'cannot acknowledge the stream');
+  }
+
+  /**
+   * The level-ordered view for diagnostics, written anew: every cell's fan grouped by level,
+   * levelOffsets (max level + 2 entries), and with outline every cell edge once as a line pair.
+   * Views valid until the next core call.
+   */
+  levelView(outline = false) {
+    const m = this.m, h = this.handle, core = this.core;
+    const count = m._hexlod_stream_build_level_view(h, outline ? 1 : 0);
+    core.check(count < 0, 'cannot build the level view');
     return {
-      vertexCount,
-      vertices: core.view(Float32Array, m._hexlod_stream_vertices(h), vertexCount * 6),
-      indices: core.view(Uint32Array, m._hexlod_stream_indices(h), indexCount),
+      indices: core.view(Uint32Array, m._hexlod_stream_level_indices(h), count),
+      levelOffsets: core.view(Int32Array, m._hexlod_stream_level_offsets(h), m._hexlod_mesh_max_level(h) + 2),
       outline: core.view(Uint32Array, m._hexlod_stream_outline(h), m._hexlod_stream_outline_count(h)),
-      levelOffsets: core.view(Int32Array, m._hexlod_stream_level_offsets(h), levels),
     };
   }
 
@@ -207,6 +264,8 @@ export class Terrain {
 /** The per-update figures of the refiner (hexlod_lod_last_* and hexlod_lod_converged). */
 function lodFigures(m, h) {
   return {
+    frame: m._hexlod_lod_frame(h),
+    pendingMerges: m._hexlod_lod_pending_merges(h),
     converged: m._hexlod_lod_converged(h) === 1,
     splits: m._hexlod_lod_last_splits(h),
     merges: m._hexlod_lod_last_merges(h),
@@ -269,6 +328,33 @@ Object.assign(Terrain.prototype, {
   /** Back-face culling by the cone of normals on (default) or off (hexlod_lod_set_backface_culling). */
   setLodBackfaceCulling(enabled) {
     this.core.check(this.m._hexlod_lod_set_backface_culling(this.handle, enabled ? 1 : 0) < 0, 'cannot set back-face culling');
+  },
+
+  /** Geomorphing over `frames` frames (0 = off, at most 1000; paper §7). */
+  setMorphFrames(frames) {
+    this.core.check(this.m._hexlod_lod_set_morph_frames(this.handle, frames) < 0, 'invalid morph frames');
+  },
+
+  /** The blends' frame counter: the shader's u_frame. */
+  lodFrame() {
+    return this.m._hexlod_lod_frame(this.handle);
+  },
+
+  /**
+   * The largest screen-space jump of any vertex since the last call, for benchmarks
+   * (hexlod_measure_popping): {maxJumpPx, jumpsOverHalfPx, measured}.
+   */
+  measurePopping() {
+    const m = this.m;
+    const out = m._malloc(3 * 8);
+    this.core.check(out === 0, 'cannot measure popping: out of memory');
+    try {
+      this.core.check(m._hexlod_measure_popping(this.handle, out) < 0, 'cannot measure popping');
+      const [maxJumpPx, jumpsOverHalfPx, measured] = this.core.view(Float64Array, out, 3);
+      return { maxJumpPx, jumpsOverHalfPx, measured };
+    } finally {
+      m._free(out);
+    }
   },
 
   /** One refinement step within the budget; returns the number of operations it made. */

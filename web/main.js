@@ -1,6 +1,6 @@
 // The viewer page: loads the core and the default terrain, draws it, and lets the user drop
 // another height field. State for headless tests is published on window.hexlod.
-import { createCore } from './core.js';
+import { createCore, RESTART_INDEX, STREAM_VERTEX_WORDS } from './core.js';
 import { loadTerrain } from './terrain_source.js';
 import { TerrainRenderer } from './renderer.js';
 import { OrbitCamera, attachOrbitControls } from './camera.js';
@@ -12,6 +12,14 @@ const DEFAULT_TERRAIN = [
 const VERTICAL_EXAGGERATION = 2;
 const TAU_PX = 1;          // screen-space error tolerance, device pixels
 const FRAME_BUDGET_MS = 4; // LOD update time per frame
+const MORPH_FRAMES = 8;    // geomorph blends (paper §7), frames
+const params = new URLSearchParams(location.search);
+// The index layout: TRIANGLE_FAN with primitive restart (default, see BENCHMARKS.md) or an
+// indexed TRIANGLES list; ?layout=triangles switches, for measuring.
+const LAYOUT = params.get('layout') === 'triangles' ? 'triangles' : 'fans';
+// ?timing=1 waits for the GPU after drawing (gl.finish) so that frame figures include it; for
+// benchmarks only, since it stalls the pipeline.
+const TIMING = params.get('timing') === '1';
 
 const canvas = document.getElementById('view');
 const hud = document.getElementById('hud');
@@ -28,20 +36,21 @@ function showStatus(message, isError = false) {
 /**
  * Where the relief is: the centroid of the drawn vertices weighted by the square of their
  * height above the lowest point, so a view opens on the mountains rather than the plain.
+ * Heights in the stream are unscaled; the result is in drawn (exaggerated) metres.
  */
-function reliefCentroid({ vertices, indices }, lowest) {
+function reliefCentroid({ vertices, indices }, lowest, verticalScale) {
   let x = 0, y = 0, z = 0, total = 0;
   for (const v of indices) {
-    if (v === 0xffffffff) continue;
-    const k = v * 6;
+    if (v === RESTART_INDEX) continue;
+    const k = v * STREAM_VERTEX_WORDS;
     const w = (vertices[k + 1] - lowest) ** 2;
     x += vertices[k] * w;
     y += vertices[k + 1] * w;
     z += vertices[k + 2] * w;
     total += w;
   }
-  if (total === 0) return [vertices[0], vertices[1], vertices[2]];
-  return [x / total, y / total, z / total];
+  if (total === 0) return [vertices[0], vertices[1] * verticalScale, vertices[2]];
+  return [x / total, (y / total) * verticalScale, z / total];
 }
 
 async function fetchFiles(urls) {
@@ -61,11 +70,12 @@ async function main() {
   const camera = new OrbitCamera();
   let current = null; // { terrain, field, loadMs }
   let frameRequested = false;
-  const view = { colorByLevel: false, outline: false };
+  const view = { colorByLevel: false, outline: false, frame: 0, morphFrames: MORPH_FRAMES, verticalScale: VERTICAL_EXAGGERATION };
   const lodLine = document.createElement('div');
 
   function render() {
     frameRequested = false;
+    const frameStart = performance.now();
     const dpr = window.devicePixelRatio || 1;
     const width = Math.max(1, Math.round(canvas.clientWidth * dpr));
     const height = Math.max(1, Math.round(canvas.clientHeight * dpr));
@@ -81,16 +91,28 @@ async function main() {
         viewportHeight: height, near: camera.near, far: camera.far });
       terrain.updateLod();
       const lod = terrain.lodStats();
-      renderer.setStream(terrain.buildStream(VERTICAL_EXAGGERATION), current.low, current.high, current.extentX, current.extentZ);
+      const streamStart = performance.now();
+      const version = terrain.updateStream();
+      const uploadStart = performance.now();
+      if (version !== current.streamVersion) current.blendsEnd = lod.frame + MORPH_FRAMES; // new blends run
+      current.streamVersion = version;
+      state.uploadBytes = renderer.upload(terrain, LAYOUT);
+      state.streamBytes = renderer.streamBytes;
+      if (view.colorByLevel || view.outline) renderer.setLevelView(terrain.levelView(view.outline));
+      state.timing = { updateMs: lod.updateMs, streamMs: uploadStart - streamStart, uploadMs: performance.now() - uploadStart };
+      view.frame = lod.frame;
       const stats = terrain.meshStats();
       state.triangles = stats.triangles;
       state.mesh = stats;
       state.converged = lod.converged;
       lodLine.textContent = `LOD: ${stats.triangles.toLocaleString('en')} triangles, ${stats.cells.toLocaleString('en')} cells, ` +
         `update ${lod.updateMs.toFixed(1)} ms (${lod.splits} splits, ${lod.merges} merges)${lod.converged ? '' : ', refining…'}`;
-      if (!lod.converged) requestRender();
+      if (!lod.converged || lod.frame < current.blendsEnd) requestRender();
     }
+    const drawStart = performance.now();
     renderer.draw(camera, width, height, view);
+    if (TIMING) gl.finish();
+    if (state.timing) Object.assign(state.timing, { drawMs: performance.now() - drawStart, frameMs: performance.now() - frameStart });
     state.frames += 1;
   }
 
@@ -111,11 +133,15 @@ async function main() {
     terrain.setLodVerticalScale(VERTICAL_EXAGGERATION);
     terrain.setLodTolerance(TAU_PX);
     terrain.setLodBudget(FRAME_BUDGET_MS, 0);
-    terrain.setStreamOutline(view.outline);
-    const focus = reliefCentroid(terrain.buildStream(VERTICAL_EXAGGERATION), loaded.low);
+    terrain.setMorphFrames(MORPH_FRAMES);
+    terrain.setStreamLayout(LAYOUT);
+    terrain.updateStream();
+    const focus = reliefCentroid(terrain.stream(), terrain.minHeight, VERTICAL_EXAGGERATION);
     camera.frame(focus[0], focus[1], focus[2], Math.hypot(loaded.extentX, loaded.extentZ));
     current?.terrain.destroy();
     current = loaded;
+    renderer.invalidate();
+    renderer.setShading(loaded.low, loaded.high, loaded.extentX, loaded.extentZ);
     state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
       minHeight: terrain.minHeight, maxHeight: terrain.maxHeight };
     const spacing = field.spacingFromFile ? '' : ' (assumed: the file has none)';
@@ -144,13 +170,12 @@ async function main() {
     }
   }
 
+  // For headless tests and benchmarks: drive the camera, ask for frames, read GL errors.
+  Object.assign(state, { camera, requestRender, glError: () => gl.getError() });
   attachOrbitControls(canvas, camera, requestRender);
   window.addEventListener('keydown', (e) => {
     if (e.key === 'l' || e.key === 'L') view.colorByLevel = !view.colorByLevel;
-    else if (e.key === 'o' || e.key === 'O') {
-      view.outline = !view.outline;
-      current?.terrain.setStreamOutline(view.outline);
-    }
+    else if (e.key === 'o' || e.key === 'O') view.outline = !view.outline;
     else return;
     requestRender();
   });

@@ -1,22 +1,29 @@
 // WebGL2 renderer of the hexagon mesh's fan stream (paper §7). It only uploads and draws
 // arrays the core filled; it computes no geometry. Attribute locations match the layout()
 // qualifiers in shaders/.
+//
+// Uploads follow the stream's version: buffers are sized to capacity (they grow by doubling)
+// and only the ranges the core marked dirty are copied, straight from WASM memory. One
+// drawElements call draws every cell: TRIANGLE_FAN with primitive restart (the paper's layout),
+// or TRIANGLES when the stream is in the list layout.
 import vertexSource from '../shaders/terrain.vert?raw';
 import fragmentSource from '../shaders/terrain.frag?raw';
+import { STREAM_VERTEX_BYTES } from './core.js';
 
 export const ATTRIB_POSITION = 0;
 export const ATTRIB_NORMAL = 1;
-const FLOATS_PER_VERTEX = 6; // x, y, z, nx, ny, nz (src/fan_stream.h kFloatsPerVertex)
+export const ATTRIB_MORPH_FROM = 2;
+export const ATTRIB_MORPH_KEY = 3;
 const SKY_COLOR = [0.62, 0.74, 0.88];
 const OUTLINE_COLOR = [0.08, 0.09, 0.12, 0.55];
 const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeightRange', 'uSkyColor',
-  'uFogDistance', 'uTint', 'uTintAmount', 'uExtent', 'uLineColor'];
+  'uFogDistance', 'uTint', 'uTintAmount', 'uExtent', 'uLineColor', 'uFrame', 'uMorphFrames', 'uVerticalScale'];
 
 function compile(gl, type, source) {
   const shader = gl.createShader(type);
   gl.shaderSource(shader, source);
   gl.compileShader(shader);
-  if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS)) {
+  if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS) && !gl.isContextLost()) {
     throw new Error(`shader compile failed: ${gl.getShaderInfoLog(shader)}`);
   }
   return shader;
@@ -27,7 +34,7 @@ function link(gl, vertex, fragment) {
   gl.attachShader(program, compile(gl, gl.VERTEX_SHADER, vertex));
   gl.attachShader(program, compile(gl, gl.FRAGMENT_SHADER, fragment));
   gl.linkProgram(program);
-  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) {
+  if (!gl.getProgramParameter(program, gl.LINK_STATUS) && !gl.isContextLost()) {
     throw new Error(`shader link failed: ${gl.getProgramInfoLog(program)}`);
   }
   return program;
@@ -45,70 +52,147 @@ function levelColor(level) {
   return [channel(0), channel(8), channel(4)];
 }
 
+/** A GL buffer that follows an array in WASM memory: grown by doubling, filled by ranges. */
+class MirroredBuffer {
+  constructor(gl, target) {
+    this.gl = gl;
+    this.target = target;
+    this.buffer = gl.createBuffer();
+    this.capacity = 0; // bytes allocated on the GPU
+  }
+
+  /**
+   * Makes the GPU copy equal `bytes` where `ranges` ([first, count] pairs, in elements of
+   * `elementBytes`) say it changed, or everywhere when `all`. Returns the bytes uploaded.
+   */
+  update(bytes, ranges, elementBytes, all) {
+    const gl = this.gl;
+    gl.bindBuffer(this.target, this.buffer);
+    if (bytes.byteLength > this.capacity) {
+      this.capacity = Math.max(bytes.byteLength, 2 * this.capacity, 1 << 16);
+      gl.bufferData(this.target, this.capacity, gl.DYNAMIC_DRAW);
+      all = true;
+    }
+    if (all) {
+      if (bytes.byteLength > 0) gl.bufferSubData(this.target, 0, bytes);
+      return bytes.byteLength;
+    }
+    let uploaded = 0;
+    for (let k = 0; k < ranges.length; k += 2) {
+      const offset = ranges[k] * elementBytes, length = ranges[k + 1] * elementBytes;
+      gl.bufferSubData(this.target, offset, bytes, offset, length);
+      uploaded += length;
+    }
+    return uploaded;
+  }
+}
+
 export class TerrainRenderer {
   /** @param {WebGL2RenderingContext} gl */
   constructor(gl) {
     this.gl = gl;
     this.program = link(gl, vertexSource, fragmentSource);
     this.uniforms = Object.fromEntries(UNIFORMS.map((name) => [name, gl.getUniformLocation(this.program, name)]));
-    this.vertexBuffer = gl.createBuffer();
-    this.fanBuffer = gl.createBuffer();
+    this.vertices = new MirroredBuffer(gl, gl.ARRAY_BUFFER);
+    this.indices = new MirroredBuffer(gl, gl.ELEMENT_ARRAY_BUFFER);
+    this.levelBuffer = gl.createBuffer();
     this.outlineBuffer = gl.createBuffer();
-    this.fanVao = this.makeVao(this.fanBuffer);
+    this.mainVao = this.makeVao(this.indices.buffer);
+    this.levelVao = this.makeVao(this.levelBuffer);
     this.outlineVao = this.makeVao(this.outlineBuffer);
+    this.indexCount = 0;
+    this.layout = 'fans';
+    this.version = -1;      // stream version on the GPU; -1: nothing uploaded yet
     this.levelOffsets = [];
     this.outlineCount = 0;
     this.heightRange = [0, 1];
     this.extent = [0, 0];
     this.sunDirection = normalize([-0.55, 0.55, -0.35]);
+    this.lastUploadBytes = 0;
+    this.streamBytes = 0; // bytes of the whole stream (what a full upload would copy)
   }
 
   makeVao(indexBuffer) {
     const gl = this.gl;
     const vao = gl.createVertexArray();
     gl.bindVertexArray(vao);
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.vertexBuffer);
-    const stride = FLOATS_PER_VERTEX * 4;
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.vertices.buffer);
+    const stride = STREAM_VERTEX_BYTES; // src/stream_vertex.h
     gl.enableVertexAttribArray(ATTRIB_POSITION);
     gl.vertexAttribPointer(ATTRIB_POSITION, 3, gl.FLOAT, false, stride, 0);
     gl.enableVertexAttribArray(ATTRIB_NORMAL);
-    gl.vertexAttribPointer(ATTRIB_NORMAL, 3, gl.FLOAT, false, stride, 12);
+    gl.vertexAttribPointer(ATTRIB_NORMAL, 3, gl.SHORT, true, stride, 12);
+    gl.enableVertexAttribArray(ATTRIB_MORPH_FROM);
+    gl.vertexAttribPointer(ATTRIB_MORPH_FROM, 3, gl.FLOAT, false, stride, 20);
+    gl.enableVertexAttribArray(ATTRIB_MORPH_KEY);
+    gl.vertexAttribPointer(ATTRIB_MORPH_KEY, 1, gl.FLOAT, false, stride, 32);
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indexBuffer);
     gl.bindVertexArray(null);
     return vao;
   }
 
+  /** A new terrain (or a lost context): the next upload copies everything. */
+  invalidate() {
+    this.version = -1;
+  }
+
   /**
-   * Uploads a fan stream (see Terrain.buildStream) and what the shading needs to know.
-   * @param {number} minHeight @param {number} maxHeight drawn height range, metres
+   * Brings the GPU copy of the terrain's stream up to date, uploading only what changed since
+   * the last call, and only when the version moved. Returns the bytes uploaded.
+   * @param {import('./core.js').Terrain} terrain after updateLod and updateStream
+   * @param {'fans'|'triangles'} layout the stream's index layout
+   */
+  upload(terrain, layout) {
+    const stream = terrain.stream();
+    const all = this.version < 0 || layout !== this.layout;
+    let bytes = 0;
+    if (all || stream.version !== this.version) {
+      bytes += this.vertices.update(stream.vertexBytes, stream.dirtyVertices, STREAM_VERTEX_BYTES, all);
+      this.gl.bindVertexArray(null);
+      bytes += this.indices.update(new Uint8Array(stream.indices.buffer, stream.indices.byteOffset, stream.indices.byteLength),
+        stream.dirtyIndices, 4, all);
+      terrain.acknowledgeStream();
+      this.version = stream.version;
+      this.layout = layout;
+      this.indexCount = stream.indices.length;
+      this.streamBytes = stream.vertexBytes.byteLength + stream.indices.byteLength;
+    }
+    this.lastUploadBytes = bytes;
+    return bytes;
+  }
+
+  /** The level-ordered view (Terrain.levelView) for colour by level and the outlines. */
+  setLevelView(levelView) {
+    const gl = this.gl;
+    gl.bindVertexArray(null);
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.levelBuffer);
+    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, levelView.indices, gl.DYNAMIC_DRAW);
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.outlineBuffer);
+    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, levelView.outline, gl.DYNAMIC_DRAW);
+    this.levelOffsets = Array.from(levelView.levelOffsets);
+    this.outlineCount = levelView.outline.length;
+  }
+
+  /**
+   * @param {number} minHeight @param {number} maxHeight drawn height range, metres (exaggerated)
    * @param {number} extentX @param {number} extentZ the field's rectangle, metres
    */
-  setStream(stream, minHeight, maxHeight, extentX, extentZ) {
-    const gl = this.gl;
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.vertexBuffer);
-    gl.bufferData(gl.ARRAY_BUFFER, stream.vertices, gl.STATIC_DRAW);
-    gl.bindVertexArray(this.fanVao);
-    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, stream.indices, gl.STATIC_DRAW);
-    gl.bindVertexArray(this.outlineVao);
-    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, stream.outline, gl.STATIC_DRAW);
-    gl.bindVertexArray(null);
-    this.levelOffsets = Array.from(stream.levelOffsets);
-    this.outlineCount = stream.outline.length;
+  setShading(minHeight, maxHeight, extentX, extentZ) {
     this.heightRange = [minHeight, maxHeight];
     this.extent = [extentX, extentZ];
   }
 
   /**
-   * Draws the terrain seen by an OrbitCamera whose matrices are up to date.
-   * @param {{colorByLevel?: boolean, outline?: boolean}} view
+   * Draws the terrain seen by a camera whose matrices are up to date.
+   * @param {{colorByLevel?: boolean, outline?: boolean, frame?: number, morphFrames?: number,
+   *   verticalScale?: number}} view frame and morphFrames drive the geomorph blend
    */
   draw(camera, width, height, view = {}) {
     const gl = this.gl;
     gl.viewport(0, 0, width, height);
     gl.clearColor(SKY_COLOR[0], SKY_COLOR[1], SKY_COLOR[2], 1);
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
-    const total = this.levelOffsets.at(-1) ?? 0;
-    if (total === 0) return;
+    if (this.indexCount === 0) return;
     gl.enable(gl.DEPTH_TEST);
     gl.enable(gl.CULL_FACE);
     gl.useProgram(this.program);
@@ -121,13 +205,15 @@ export class TerrainRenderer {
     gl.uniform1f(u.uFogDistance, camera.distance * 8);
     gl.uniform2f(u.uExtent, this.extent[0], this.extent[1]);
     gl.uniform4f(u.uLineColor, 0, 0, 0, 0);
+    gl.uniform1f(u.uFrame, view.frame ?? 0);
+    gl.uniform1f(u.uMorphFrames, view.morphFrames ?? 0);
+    gl.uniform1f(u.uVerticalScale, view.verticalScale ?? 1);
     // Push the surface back a little so the outlines on it are not lost in the depth test.
     gl.enable(gl.POLYGON_OFFSET_FILL);
     gl.polygonOffset(1, 1);
-    gl.bindVertexArray(this.fanVao);
-    // WebGL2 always restarts primitives at index 0xFFFFFFFF: all fans go out in one call, or
-    // one call per level when each level gets its own colour.
-    if (view.colorByLevel) {
+    if (view.colorByLevel && this.levelOffsets.length > 1) {
+      // One range per level, each in its own colour (the level-ordered view's fans).
+      gl.bindVertexArray(this.levelVao);
       gl.uniform1f(u.uTintAmount, 0.45);
       for (let level = 0; level + 1 < this.levelOffsets.length; ++level) {
         const first = this.levelOffsets[level], count = this.levelOffsets[level + 1] - first;
@@ -136,8 +222,10 @@ export class TerrainRenderer {
         gl.drawElements(gl.TRIANGLE_FAN, count, gl.UNSIGNED_INT, first * 4);
       }
     } else {
+      // WebGL2 always restarts primitives at index 0xFFFFFFFF: every cell in one call.
+      gl.bindVertexArray(this.mainVao);
       gl.uniform1f(u.uTintAmount, 0);
-      gl.drawElements(gl.TRIANGLE_FAN, total, gl.UNSIGNED_INT, 0);
+      gl.drawElements(this.layout === 'fans' ? gl.TRIANGLE_FAN : gl.TRIANGLES, this.indexCount, gl.UNSIGNED_INT, 0);
     }
     gl.disable(gl.POLYGON_OFFSET_FILL);
     if (view.outline && this.outlineCount > 0) {

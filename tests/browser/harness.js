@@ -2,6 +2,7 @@
 // Chromium driven by playwright-core (never a browser that a tool downloads).
 import { createServer } from 'vite';
 import { chromium } from 'playwright-core';
+import { decode } from 'fast-png';
 import { mkdirSync } from 'node:fs';
 import { createServer as createNetServer } from 'node:net';
 import { fileURLToPath } from 'node:url';
@@ -62,4 +63,27 @@ export async function openPage(browser, url, viewport = { width: 960, height: 60
   page.on('requestfailed', (request) => problems.push(`request failed: ${request.url()}`));
   await page.goto(url);
   return { page, problems };
+}
+
+/** The renderer's clear colour (web/renderer.js SKY_COLOR) as 8-bit RGB. */
+const SKY_RGB = [158, 189, 224];
+
+/**
+ * Colour statistics of a PNG screenshot: distinct quantised colours, luminance spread, and the
+ * fraction of pixels that are the sky (clear) colour.
+ */
+export function pixelStats(png) {
+  const image = decode(png);
+  const { data, channels } = image;
+  const colours = new Set();
+  let sum = 0, sumSq = 0, n = 0, sky = 0;
+  for (let k = 0; k < data.length; k += channels * 7) {
+    const r = data[k], g = data[k + 1], b = data[k + 2];
+    colours.add(((r >> 3) << 10) | ((g >> 3) << 5) | (b >> 3));
+    if (Math.abs(r - SKY_RGB[0]) + Math.abs(g - SKY_RGB[1]) + Math.abs(b - SKY_RGB[2]) < 12) sky += 1;
+    const y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+    sum += y; sumSq += y * y; n += 1;
+  }
+  const mean = sum / n;
+  return { colours: colours.size, luminanceStd: Math.sqrt(sumSq / n - mean * mean), skyFraction: sky / n };
 }

@@ -1,35 +1,21 @@
 // The page as a user opens it: the default terrain appears, drawn with WebGL2, with no errors.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { decode } from 'fast-png';
-import { startViewer, openPage, outDir } from './harness.js';
+import { startViewer, openPage, outDir, pixelStats } from './harness.js';
 
 let viewer;
 before(async () => { viewer = await startViewer(); });
 after(async () => { await viewer?.close(); });
-
-/** Colour statistics of a PNG screenshot: distinct quantised colours and luminance spread. */
-function pixelStats(png) {
-  const image = decode(png);
-  const { data, channels } = image;
-  const colours = new Set();
-  let sum = 0, sumSq = 0, n = 0;
-  for (let k = 0; k < data.length; k += channels * 7) {
-    const r = data[k], g = data[k + 1], b = data[k + 2];
-    colours.add(((r >> 3) << 10) | ((g >> 3) << 5) | (b >> 3));
-    const y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
-    sum += y; sumSq += y * y; n += 1;
-  }
-  const mean = sum / n;
-  return { colours: colours.size, luminanceStd: Math.sqrt(sumSq / n - mean * mean) };
-}
 
 test('the default view refines a real terrain until converged, not one flat colour, and logs no errors', async () => {
   const { page, problems } = await openPage(viewer.browser, viewer.url);
   await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 60000 });
   // The view-dependent mesh refines over a few budgeted frames; SwiftShader draws slowly.
   await page.waitForFunction(() => window.hexlod.status !== 'ready' || window.hexlod.converged, null, { timeout: 240000 });
-  const state = await page.evaluate(() => window.hexlod);
+  const state = await page.evaluate(() => {
+    const { status, error, terrain, triangles, mesh } = window.hexlod;
+    return { status, error, terrain, triangles, mesh };
+  });
   assert.equal(state.status, 'ready', `page status: ${state.error}`);
   assert.equal(state.terrain.name, 'globe_himalaya_2048.png');
   assert.deepEqual([state.terrain.width, state.terrain.height], [2048, 2048]);

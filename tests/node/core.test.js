@@ -15,7 +15,7 @@ const core = await createNodeCore();
 const BASES = ['volcano_maungawhau', 'jacksboro_fault', 'grandcanyon_512'];
 
 test('the WASM core reports the ABI version of src/hexlod.h', () => {
-  assert.equal(core.abiVersion, 6);
+  assert.equal(core.abiVersion, 7);
 });
 
 for (const base of BASES) {
@@ -103,21 +103,28 @@ test('the hexagon mesh through the ABI: uniform and local refinement, fans decod
   assert.ok(terrain.updateLod() > 0);
   terrain.checkMesh();
   const stats = terrain.meshStats();
-  const stream = terrain.buildStream(1.5);
-  let triangles = 0, fanLength = 0, fans = 0;
-  for (const index of stream.indices) {
-    if (index === 0xffffffff) {
-      triangles += fanLength - 2;
-      fanLength = 0;
+  terrain.updateStream();
+  const stream = terrain.stream();
+  // One slot of 9 per cell record: a fan, then restarts (free records: restarts only).
+  assert.equal(stream.indices.length % 9, 0);
+  let triangles = 0, fans = 0;
+  for (let slot = 0; slot < stream.indices.length; slot += 9) {
+    let length = 0;
+    while (length < 9 && stream.indices[slot + length] !== 0xffffffff) {
+      assert.ok(stream.indices[slot + length] < stream.vertexCount);
+      length += 1;
+    }
+    assert.ok(length < 9, 'every slot ends with a restart');
+    for (let k = length; k < 9; k++) assert.equal(stream.indices[slot + k], 0xffffffff);
+    if (length > 0) {
+      triangles += length - 2;
       fans += 1;
-    } else {
-      assert.ok(index < stream.vertexCount);
-      fanLength += 1;
     }
   }
   assert.equal(triangles, stats.triangles);
   assert.equal(fans, stats.cells);
-  assert.equal(stream.levelOffsets.at(-1), stream.indices.length);
+  const level = terrain.levelView(false);
+  assert.equal(level.levelOffsets.at(-1), level.indices.length);
   assert.ok(stats.bytes / stats.triangles < 100, `${stats.bytes / stats.triangles} bytes per triangle`);
   terrain.destroy();
 });
