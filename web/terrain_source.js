@@ -1,31 +1,48 @@
 // Glue between the loaders (web/loaders) and the core (web/core.js): the file's samples are
 // decoded straight into a terrain's WASM buffer at their native depth, then scaled and prepared.
 // Runs in the browser and in Node.
-import { loadHeightfield } from './loaders/index.js';
+import { loadHeightfield, HeightfieldError } from './loaders/index.js';
+import { extensionOf } from './loaders/common.js';
+
+const BYTES = { u8: 1, u16: 2, i16: 2, f32: 4 };
 
 /**
  * Loads files into a new core terrain.
  * @param {import('./core.js').HexlodCore} core
  * @param {Array<{name: string, bytes: Uint8Array}>} files one height field (with its sidecar)
- * @param {{spacing?: {x: number, y: number}}} [options] spacing: metres between columns and rows
- *   to use instead of the file's (field still reports the file's)
+ * @param {{spacing?: {x: number, y: number}, width?: number, height?: number, encoding?: string,
+ *   onProgress?: (fraction: number, phase: string) => void}} [options] spacing: metres between
+ *   columns and rows to use instead of the file's (field still reports the file's); width,
+ *   height, encoding, onProgress: see loadHeightfield
  * @returns {Promise<{terrain: import('./core.js').Terrain, field: object, missing: number, loadMs: number}>}
- *   field is the loader's metadata (its `samples` view is dropped: it may be detached later).
- * @throws HeightfieldError for a bad file, CoreError when the core cannot hold it. Nothing is
- *   left allocated in the core on failure.
+ *   field is the loader's metadata (its `samples` view is dropped: it may be detached later);
+ *   missing counts the no-data samples that were filled.
+ * @throws HeightfieldError for a bad file (including one too big for the core's memory),
+ *   CoreError when the core fails otherwise. Nothing is left allocated in the core on failure.
  */
 export async function loadTerrain(core, files, options = {}) {
   const start = performance.now();
   let terrain = null;
+  const main = files.find((f) => extensionOf(f?.name ?? '') !== 'json')?.name ?? '';
   try {
     const field = await loadHeightfield(files, {
+      width: options.width,
+      height: options.height,
+      encoding: options.encoding,
+      onProgress: options.onProgress,
       allocate(sampleType, width, height) {
-        terrain = core.createTerrain(width, height, sampleType);
+        try {
+          terrain = core.createTerrain(width, height, sampleType);
+        } catch (error) {
+          const mb = Math.round((width * height * BYTES[sampleType]) / 2 ** 20);
+          throw new HeightfieldError(main, `too big for memory: ${width}x${height} ${sampleType} samples need ${mb} MB (${error.message})`);
+        }
         return terrain.samples();
       },
+      reacquire: () => terrain.samples(),
     });
     terrain.setScale(options.spacing ? { ...field, spacingX: options.spacing.x, spacingY: options.spacing.y } : field);
-    const missing = terrain.prepare();
+    const missing = field.missing + terrain.prepare();
     const { samples, ...metadata } = field;
     return { terrain, field: metadata, missing, loadMs: performance.now() - start };
   } catch (error) {
