@@ -34,8 +34,11 @@ export async function loadTerrain(core, files, options = {}) {
         try {
           terrain = core.createTerrain(width, height, sampleType);
         } catch (error) {
+          // The core refuses for lack of memory, or for a size it cannot mesh (e.g. 1 x N).
           const mb = Math.round((width * height * BYTES[sampleType]) / 2 ** 20);
-          throw new HeightfieldError(main, `too big for memory: ${width}x${height} ${sampleType} samples need ${mb} MB (${error.message})`);
+          const problem = /memory|address space/.test(error.message)
+            ? `too big for memory: ${width}x${height} ${sampleType} samples need ${mb} MB` : error.message.replace(/^[^:]*: /, '');
+          throw new HeightfieldError(main, problem);
         }
         return terrain.samples();
       },

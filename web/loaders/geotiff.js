@@ -36,6 +36,8 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   const fail = (problem) => { throw new HeightfieldError(name, problem); };
   if (bytes.length < 8) fail(bytes.length === 0 ? 'empty file' : `truncated: ${bytes.length} bytes, no TIFF header`);
   if (!hasTiffSignature(bytes)) fail('not a TIFF file (bad signature)');
+  const ifd = firstDirectoryOffset(bytes);
+  if (ifd + 2 > bytes.length) fail(`truncated: the image directory at byte ${ifd} lies past the end (${bytes.length} bytes)`);
 
   // Any failure inside the library on a damaged file is that file's problem.
   const guard = async (what, step) => {
@@ -77,6 +79,14 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   return { width, height, sampleType, samples: sink.samples, nodata: Number.isFinite(nodata) ? nodata : null, ...geo };
 }
 
+/** Byte offset of the first image file directory (classic TIFF or BigTIFF header). */
+function firstDirectoryOffset(bytes) {
+  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.length);
+  const little = bytes[0] === 0x49;
+  if (view.getUint16(2, little) === 43) return bytes.length < 16 ? Infinity : Number(view.getBigUint64(8, little));
+  return view.getUint32(4, little);
+}
+
 function sampleTypeOf(format, bits) {
   if (format === 1 && bits === 8) return 'u8';
   if (format === 1 && bits === 16) return 'u16';
@@ -98,11 +108,19 @@ async function checkBlocksInFile(image, fileBytes, fail) {
   if (offsets.length < across * down || counts.length < across * down) {
     fail(`bad TIFF: ${offsets.length} ${tiled ? 'tiles' : 'strips'} listed, ${across * down} needed`);
   }
+  let stored = 0;
   for (let i = 0; i < offsets.length; i++) {
     if (Number(offsets[i]) + Number(counts[i]) > fileBytes) {
       fail(`truncated: ${tiled ? 'tile' : 'strip'} ${i} ends at byte ${Number(offsets[i]) + Number(counts[i])}, the file has ${fileBytes}`);
     }
+    stored += Number(counts[i]);
   }
+  // No codec expands more than LZW (a 12-bit code stands for at most 4096 bytes): fewer
+  // stored bytes than that cannot hold the declared image. Checked before allocating.
+  const bits = Array.from(dir.getValue('BitsPerSample') ?? [1]).reduce((a, b) => a + b, 0);
+  const rawBytes = image.getWidth() * image.getHeight() * (bits / 8);
+  const ratio = (dir.getValue('Compression') ?? 1) === 1 ? 1 : 2731;
+  if (stored * ratio < rawBytes) fail(`truncated: ${stored} bytes of image data cannot hold ${image.getWidth()}x${image.getHeight()} samples`);
 }
 
 /** Metres between columns and rows from the geotransform, or nulls without one. */
