@@ -5,7 +5,11 @@
 // watchdog, so a hang is caught instead of hanging the run).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync } from 'node:fs';
+import { readFileSync, writeFileSync, mkdtempSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { Worker, isMainThread, parentPort, workerData } from 'node:worker_threads';
 import { zlibSync } from 'fflate';
 import { loadHeightfield, HeightfieldError } from '../../web/loaders/index.js';
@@ -153,6 +157,32 @@ if (isMainThread) {
     const ok = await loadTerrain(core, [file('everest_16bit.png')]);
     assert.equal(ok.terrain.width, 200);
     ok.terrain.destroy();
+  });
+
+  test('the CLI ends a bad file with exactly one line and a non-zero exit; RAW size and encoding flags work', () => {
+    const dir = mkdtempSync(join(tmpdir(), 'hexlod-bad-'));
+    const cli = fileURLToPath(new URL('bin/hexlod.js', ROOT));
+    const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 60000 });
+    writeFileSync(join(dir, 'cut.pgm'), read(`${DIR}everest.pgm`).subarray(0, 3000));
+    for (const command of ['info', 'mesh', 'bench']) {
+      const extra = command === 'mesh' ? ['--max-error', '5'] : command === 'bench' ? ['--frames', '1', '--no-native'] : [];
+      const r = run(command, join(dir, 'cut.pgm'), ...extra);
+      assert.equal(r.status, 1, `${command}: ${r.stderr}`);
+      assert.equal(r.stderr, 'hexlod: cut.pgm: truncated: 2966 bytes of samples, 80000 needed for 200x200 at 16 bits\n');
+      assert.equal(r.stdout, '');
+    }
+    const raw = run('info', fileURLToPath(new URL(`${DIR}volcano.r16`, ROOT)), '--json');
+    assert.equal(raw.status, 1);
+    assert.equal(raw.stderr, 'hexlod: volcano.r16: 5307 samples do not make a square: give its width and height (--width and --height)\n');
+    const sized = run('info', fileURLToPath(new URL(`${DIR}volcano.r16`, ROOT)), '--json', '--width', '87', '--height', '61');
+    assert.equal(sized.status, 0, sized.stderr);
+    assert.deepEqual([JSON.parse(sized.stdout).width, JSON.parse(sized.stdout).height], [87, 61]);
+    const forced = run('info', fileURLToPath(new URL(`${DIR}etopo_terrarium.png`, ROOT)), '--json', '--encoding', 'terrain-rgb');
+    assert.equal(forced.status, 0, forced.stderr);
+    assert.ok(JSON.parse(forced.stdout).minHeight > 100000, 'Terrarium colours read as Terrain-RGB give absurd heights: the flag was obeyed');
+    const wrong = run('info', join(dir, 'cut.pgm'), '--encoding', 'mapbox');
+    assert.equal(wrong.status, 2);
+    assert.match(wrong.stderr, /^hexlod: --encoding must be terrain-rgb or terrarium, got 'mapbox'; usage: hexlod info/);
   });
 
   test('fuzzed files of every format load a sane field or are refused clearly, each within a time bound', async (t) => {
