@@ -10,7 +10,8 @@ import { spawnSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { Worker, isMainThread, parentPort, workerData } from 'node:worker_threads';
+import { isMainThread, parentPort, workerData } from 'node:worker_threads';
+import { runWatchedWorker } from './watched_worker.js';
 import { zlibSync } from 'fflate';
 import { loadHeightfield, HeightfieldError } from '../../web/loaders/index.js';
 import { loadTerrain } from '../../web/terrain_source.js';
@@ -187,19 +188,7 @@ if (isMainThread) {
 
   test('fuzzed files of every format load a sane field or are refused clearly, each within a time bound', async (t) => {
     const PER_CASE_MS = 5000;
-    const summary = await new Promise((resolve, reject) => {
-      const worker = new Worker(new URL(import.meta.url), { workerData: { seed: 0xf11e5 } });
-      let timer = null, current = null;
-      worker.on('message', (m) => {
-        clearTimeout(timer);
-        if (m.start) {
-          current = m.start;
-          timer = setTimeout(() => { worker.terminate(); reject(new Error(`fuzz case ${current} took over ${PER_CASE_MS} ms`)); }, PER_CASE_MS);
-        } else if (m.done) resolve(m.done);
-      });
-      worker.on('error', reject);
-      worker.on('exit', (code) => { clearTimeout(timer); if (code !== 0) reject(new Error(`fuzz worker exited with ${code} during ${current}`)); });
-    });
+    const summary = await runWatchedWorker(new URL(import.meta.url), { seed: 0xf11e5 }, PER_CASE_MS);
     t.diagnostic(JSON.stringify(summary.counts));
     assert.deepEqual(summary.failures, []);
     for (const [format, c] of Object.entries(summary.counts)) assert.ok(c.rejected > 5, `${format}: the mutations never reached an error path`);

@@ -9,7 +9,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { Worker, isMainThread, parentPort, workerData } from 'node:worker_threads';
+import { isMainThread, parentPort, workerData } from 'node:worker_threads';
+import { runWatchedWorker } from './watched_worker.js';
 import { decode as fastPngDecode, encode as fastPngEncode } from 'fast-png';
 import { zlibSync } from 'fflate';
 import { loadHeightfield, decodePng, HeightfieldError } from '../../web/loaders/index.js';
@@ -529,24 +530,7 @@ if (isMainThread) {
 
   test('fuzzed files load or reject with HeightfieldError, each within a time bound', async (t) => {
     const PER_CASE_MS = 3000;
-    const summary = await new Promise((resolve, reject) => {
-      const worker = new Worker(new URL(import.meta.url), { workerData: { seed: 0x5eed } });
-      let timer = null, current = null;
-      worker.on('message', (m) => {
-        clearTimeout(timer);
-        if (m.start) {
-          current = m.start;
-          timer = setTimeout(() => {
-            worker.terminate();
-            reject(new Error(`fuzz case ${current} did not finish within ${PER_CASE_MS} ms`));
-          }, PER_CASE_MS);
-        } else if (m.done) {
-          resolve(m.done);
-        }
-      });
-      worker.on('error', reject);
-      worker.on('exit', (code) => { clearTimeout(timer); if (code !== 0) reject(new Error(`fuzz worker exited with ${code}`)); });
-    });
+    const summary = await runWatchedWorker(new URL(import.meta.url), { seed: 0x5eed }, PER_CASE_MS);
     t.diagnostic(JSON.stringify(summary.counts));
     assert.deepEqual(summary.failures, []);
     // Sanity: the mutations exercise both outcomes.
