@@ -8,6 +8,7 @@ import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import {
   UsageError, parseOptions, parseNumber, parseViewport, parseCellSize, parseEmbedding, loadForCommand,
+  FILE_OPTIONS, FILE_USAGE, parseFileOptions,
   extentOf, cameraFor, quantile, round,
 } from './cli_common.js';
 import { decodeFans } from './mesh_export.js';
@@ -38,12 +39,14 @@ export const BENCH_USAGE = `usage: hexlod bench <heightfield> [options]
   --verbose             one line per frame
   --no-native           skip the comparison with build/native/hexlod_bench --flight (the same
                         flight without a budget in both builds, for the WASM/native ratio)
-  --json FILE           every figure as JSON`;
+  --json FILE           every figure as JSON
+${FILE_USAGE}`;
 
 const OPTIONS = {
   frames: 'string', seed: 'string', 'budget-ms': 'string', 'budget-ops': 'string', altitude: 'string',
   tau: 'string', fov: 'string', viewport: 'string', 'max-error': 'string', embedding: 'string',
   'cell-size': 'string', verbose: 'boolean', json: 'string', 'no-native': 'boolean', 'morph-frames': 'string',
+  ...FILE_OPTIONS,
 };
 const MAX_UPDATES = 10000;
 const NATIVE_BENCH = fileURLToPath(new URL('../build/native/hexlod_bench', import.meta.url));
@@ -70,6 +73,7 @@ function benchSettings(args) {
     embedding: parseEmbedding(values.embedding),
     morphFrames: number('morph-frames', 8, { min: 0, max: 1000, integer: true }),
     cellSize: values['cell-size'] !== undefined ? parseCellSize(values['cell-size']) : null,
+    fileOptions: parseFileOptions(values),
     verbose: !!values.verbose,
     native: !values['no-native'],
     json: values.json ?? null,
@@ -373,7 +377,7 @@ export async function bench(args) {
     console.log(BENCH_USAGE);
     return;
   }
-  const { terrain, field, spacingX, spacingY } = await loadForCommand(settings.file, settings.cellSize);
+  const { terrain, field, spacingX, spacingY } = await loadForCommand(settings.file, settings.cellSize, settings.fileOptions);
   const { xMax, zMax } = extentOf(terrain);
   const heights = heightsInMetres(terrain, field);
   const path = flightPath(terrain, settings);

@@ -104,6 +104,21 @@ export function parseEmbedding(text = 'exact') {
   return text;
 }
 
+/** Options of every command that say how to read the file (RAW size, PNG colour encoding). */
+export const FILE_OPTIONS = { width: 'string', height: 'string', encoding: 'string' };
+export const FILE_USAGE = `  --width N, --height N  size of a RAW/R16 file (a square one is inferred)
+  --encoding E          heights of an RGB PNG: terrain-rgb or terrarium (default: from the name or colours)`;
+
+/** { width, height, encoding } for the loaders from parsed option values; throws UsageError. */
+export function parseFileOptions(values) {
+  const size = (name) => (values[name] !== undefined ? parseNumber(name, values[name], { min: 1, integer: true, max: 2 ** 31 - 1 }) : undefined);
+  const encoding = values.encoding ?? 'auto';
+  if (!['auto', 'terrain-rgb', 'terrarium'].includes(encoding)) {
+    throw new UsageError(`--encoding must be terrain-rgb or terrarium, got '${encoding}'`);
+  }
+  return { width: size('width'), height: size('height'), encoding };
+}
+
 /** The file and, when one sits beside it, its .json sidecar, as loader inputs. */
 export function readInputs(path) {
   if (!existsSync(path)) throw new Error(`${path}: no such file`);
@@ -121,14 +136,24 @@ export function readInputs(path) {
  * when given. Warns on stderr when neither gives one.
  * @returns {Promise<{core, terrain, field, missing, loadMs, spacingX: number, spacingY: number}>}
  */
-export async function loadForCommand(path, cellSize) {
+export async function loadForCommand(path, cellSize, fileOptions = {}) {
   const files = readInputs(path);
   const core = await createNodeCore();
-  const loaded = await loadTerrain(core, files, cellSize ? { spacing: cellSize } : {});
+  const loaded = await loadFiles(core, files, { ...fileOptions, ...(cellSize ? { spacing: cellSize } : {}) });
   if (!cellSize && !loaded.field.spacingFromFile) {
     console.error(`hexlod: warning: ${basename(path)} has no cell size; using 1 m, set --cell-size`);
   }
   return { core, ...loaded, spacingX: loaded.terrain.spacingX, spacingY: loaded.terrain.spacingY };
+}
+
+/** loadTerrain, with the flags named when a RAW file needs its size. */
+export async function loadFiles(core, files, options) {
+  try {
+    return await loadTerrain(core, files, options);
+  } catch (error) {
+    if (error.needsSize) error.message += ' (--width and --height)';
+    throw error;
+  }
 }
 
 /** Metres east and south from the first sample to the last column and row. */

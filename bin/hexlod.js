@@ -3,29 +3,32 @@
 //   hexlod info <file> [--json]   size, spacing, height range and load time of a height field
 //   hexlod mesh <file> ...        refine (max error or camera), write OBJ and JSON (mesh_command.js)
 //   hexlod bench <file> ...       a scripted flight, and @mapbox/martini on the same data (bench_flight.js)
-import { parseArgs } from 'node:util';
 import { createNodeCore } from './node_core.js';
-import { loadTerrain } from '../web/terrain_source.js';
-import { UsageError, readInputs } from './cli_common.js';
+import { UsageError, readInputs, parseOptions, FILE_OPTIONS, FILE_USAGE, parseFileOptions, loadFiles } from './cli_common.js';
 import { mesh, MESH_USAGE } from './mesh_command.js';
 import { bench, BENCH_USAGE } from './bench_flight.js';
 
-const INFO_USAGE = `usage: hexlod info <heightfield> [--json]
-  A .png or .f32 file; a .json sidecar with the same name beside it is read too.`;
+const INFO_USAGE = `usage: hexlod info <heightfield> [--json] [--width N --height N] [--encoding E]
+  A height field: PNG (16/8-bit grayscale, Terrain-RGB, Terrarium), GeoTIFF (.tif), SRTM .hgt,
+  ESRI .asc, PGM (P5), RAW/R16 (.r16, .raw), or .f32; a .json sidecar with the same name beside
+  it is read too (required for .f32).
+${FILE_USAGE}`;
 const USAGE = [INFO_USAGE, MESH_USAGE, BENCH_USAGE].join('\n\n');
 // The one line a usage mistake ends with, per command.
 const SHORT_USAGE = {
-  info: 'usage: hexlod info <heightfield> [--json]',
+  info: 'usage: hexlod info <heightfield> [--json] [--width N --height N] [--encoding E]',
   mesh: 'see hexlod mesh --help',
   bench: 'see hexlod bench --help',
   '': 'usage: hexlod info|mesh|bench <heightfield> [options]; see hexlod --help',
 };
 
 async function info(args) {
-  const { values, positionals } = parseArgs({ args, options: { json: { type: 'boolean' } }, allowPositionals: true });
+  const { values, positionals } = parseOptions(args, { json: 'boolean', ...FILE_OPTIONS });
+  if (values.help) { console.log(INFO_USAGE); return; }
   if (positionals.length !== 1) throw new UsageError('info takes exactly one height field file');
+  const fileOptions = parseFileOptions(values);
   const core = await createNodeCore();
-  const { terrain, field, missing, loadMs } = await loadTerrain(core, readInputs(positionals[0]));
+  const { terrain, field, missing, loadMs } = await loadFiles(core, readInputs(positionals[0]), fileOptions);
   const report = {
     file: field.source,
     format: field.format,

@@ -5,7 +5,7 @@ import { writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import {
   UsageError, parseOptions, parseNumber, parseTriple, parseViewport, parseCellSize, parseEmbedding,
-  loadForCommand, extentOf, cameraFor, highestLevel, round,
+  loadForCommand, FILE_OPTIONS, FILE_USAGE, parseFileOptions, extentOf, cameraFor, highestLevel, round,
 } from './cli_common.js';
 import { decodeFans, resolveDegenerate, clipToRectangle, writeObj } from './mesh_export.js';
 import { STREAM_VERTEX_WORDS } from '../web/core.js';
@@ -26,11 +26,13 @@ export const MESH_USAGE = `usage: hexlod mesh <heightfield> (--max-error M | --c
                         converged, at most ${10000} updates)
   --embedding E         lattice embedding: exact (default) or shifted (the paper's)
   --obj FILE            write the mesh as Wavefront OBJ (y up, faces counter-clockwise from +y)
-  --json FILE           write every figure as JSON`;
+  --json FILE           write every figure as JSON
+${FILE_USAGE}`;
 
 const OPTIONS = {
   'max-error': 'string', camera: 'string', target: 'string', fov: 'string', viewport: 'string', tau: 'string',
   'cell-size': 'string', 'budget-splits': 'string', embedding: 'string', obj: 'string', json: 'string',
+  ...FILE_OPTIONS,
 };
 const MAX_UPDATES = 10000;
 
@@ -57,6 +59,7 @@ export function meshSettings(args) {
     mode: hasCamera ? 'view' : 'max-error',
     embedding: parseEmbedding(values.embedding),
     cellSize: values['cell-size'] !== undefined ? parseCellSize(values['cell-size']) : null,
+    fileOptions: parseFileOptions(values),
     budgetSplits: values['budget-splits'] !== undefined
       ? parseNumber('budget-splits', values['budget-splits'], { min: 1, integer: true, max: 2 ** 31 - 1 }) : null,
     obj: values.obj ?? null,

@@ -1,7 +1,7 @@
 // The viewer page: loads the core and the default terrain, draws it, and lets the user drop
 // another height field. State for headless tests is published on window.hexlod.
 import { createCore, RESTART_INDEX, STREAM_VERTEX_WORDS } from './core.js';
-import { loadTerrain } from './terrain_source.js';
+import { createFileIntake } from './file_intake.js';
 import { TerrainRenderer } from './renderer.js';
 import { OrbitCamera, attachOrbitControls } from './camera.js';
 
@@ -156,19 +156,8 @@ async function main() {
     requestRender();
   }
 
-  /** Loads files into a new terrain; on failure the current one stays and the message shows. */
-  async function open(files) {
-    showStatus(`Loading ${files.map((f) => f.name).join(' + ')}…`);
-    try {
-      show(await loadTerrain(core, files));
-      showStatus('');
-      state.error = null;
-    } catch (error) {
-      state.error = error.message;
-      showStatus(error.message, true);
-      console.warn(`hexlod: ${error.message}`);
-    }
-  }
+  // Drop, file picker, ?src=, progress, RAW size dialog and error display (file_intake.js).
+  const intake = createFileIntake({ core, state, show, showStatus });
 
   // For headless tests and benchmarks: drive the camera, ask for frames, read GL errors.
   Object.assign(state, { camera, requestRender, glError: () => gl.getError() });
@@ -180,21 +169,14 @@ async function main() {
     requestRender();
   });
   window.addEventListener('resize', requestRender);
-  window.addEventListener('dragover', (e) => {
-    e.preventDefault();
-    document.body.classList.add('dragging');
-  });
-  window.addEventListener('dragleave', () => document.body.classList.remove('dragging'));
-  window.addEventListener('drop', async (e) => {
-    e.preventDefault();
-    document.body.classList.remove('dragging');
-    const dropped = [...(e.dataTransfer?.files ?? [])];
-    if (dropped.length === 0) return;
-    await open(await Promise.all(dropped.map(async (file) => (
-      { name: file.name, bytes: new Uint8Array(await file.arrayBuffer()) }))));
-  });
 
-  await open(await fetchFiles(DEFAULT_TERRAIN));
+  // ?src=URL opens that file instead of the default terrain (which still loads if it fails).
+  const src = new URLSearchParams(location.search).get('src');
+  if (!(src && await intake.openUrl(src))) {
+    const error = state.error;
+    await intake.open(await fetchFiles(DEFAULT_TERRAIN));
+    if (error) { state.error = error; showStatus(error, true); }
+  }
   if (!current) throw new Error(`the default terrain did not load: ${state.error}`);
   state.status = 'ready';
 }

@@ -1,31 +1,62 @@
 // Glue between the loaders (web/loaders) and the core (web/core.js): the file's samples are
 // decoded straight into a terrain's WASM buffer at their native depth, then scaled and prepared.
 // Runs in the browser and in Node.
-import { loadHeightfield } from './loaders/index.js';
+import { loadHeightfield, HeightfieldError } from './loaders/index.js';
+import { extensionOf } from './loaders/common.js';
+
+const BYTES = { u8: 1, u16: 2, i16: 2, f32: 4 };
+const RELIEF_RATIO = 0.05; // height range / extent of a guessed spacing
 
 /**
  * Loads files into a new core terrain.
  * @param {import('./core.js').HexlodCore} core
  * @param {Array<{name: string, bytes: Uint8Array}>} files one height field (with its sidecar)
- * @param {{spacing?: {x: number, y: number}}} [options] spacing: metres between columns and rows
- *   to use instead of the file's (field still reports the file's)
+ * @param {{spacing?: {x: number, y: number}, guessSpacing?: boolean, width?: number, height?: number, encoding?: string,
+ *   onProgress?: (fraction: number, phase: string) => void}} [options] spacing: metres between
+ *   columns and rows to use instead of the file's (field still reports the file's); width,
+ *   height, encoding, onProgress: see loadHeightfield; guessSpacing: when neither the file nor
+ *   `spacing` gives one, pick a spacing from the relief instead of 1 m (the page does)
  * @returns {Promise<{terrain: import('./core.js').Terrain, field: object, missing: number, loadMs: number}>}
- *   field is the loader's metadata (its `samples` view is dropped: it may be detached later).
- * @throws HeightfieldError for a bad file, CoreError when the core cannot hold it. Nothing is
- *   left allocated in the core on failure.
+ *   field is the loader's metadata (its `samples` view is dropped: it may be detached later);
+ *   missing counts the no-data samples that were filled.
+ * @throws HeightfieldError for a bad file (including one too big for the core's memory),
+ *   CoreError when the core fails otherwise. Nothing is left allocated in the core on failure.
  */
 export async function loadTerrain(core, files, options = {}) {
   const start = performance.now();
   let terrain = null;
+  const main = files.find((f) => extensionOf(f?.name ?? '') !== 'json')?.name ?? '';
   try {
     const field = await loadHeightfield(files, {
+      width: options.width,
+      height: options.height,
+      encoding: options.encoding,
+      onProgress: options.onProgress,
       allocate(sampleType, width, height) {
-        terrain = core.createTerrain(width, height, sampleType);
+        try {
+          terrain = core.createTerrain(width, height, sampleType);
+        } catch (error) {
+          // The core refuses for lack of memory, or for a size it cannot mesh (e.g. 1 x N).
+          const mb = Math.round((width * height * BYTES[sampleType]) / 2 ** 20);
+          const problem = /memory|address space/.test(error.message)
+            ? `too big for memory: ${width}x${height} ${sampleType} samples need ${mb} MB` : error.message.replace(/^[^:]*: /, '');
+          throw new HeightfieldError(main, problem);
+        }
         return terrain.samples();
       },
+      reacquire: () => terrain.samples(),
     });
     terrain.setScale(options.spacing ? { ...field, spacingX: options.spacing.x, spacingY: options.spacing.y } : field);
-    const missing = terrain.prepare();
+    const missing = field.missing + terrain.prepare();
+    if (options.guessSpacing && !field.spacingFromFile && !options.spacing) {
+      // No spacing anywhere: one that makes the relief a twentieth of the extent, a plausible
+      // landscape, rather than 1 m, which turns any real DEM into needles. No mesh exists
+      // yet, so setting the scale again costs nothing.
+      const relief = terrain.maxHeight - terrain.minHeight;
+      const guess = relief > 0 ? relief / (RELIEF_RATIO * (Math.max(terrain.width, terrain.height) - 1)) : 1;
+      field.spacingX = field.spacingY = Number(guess.toPrecision(3));
+      terrain.setScale(field);
+    }
     const { samples, ...metadata } = field;
     return { terrain, field: metadata, missing, loadMs: performance.now() - start };
   } catch (error) {

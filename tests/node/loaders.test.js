@@ -9,7 +9,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { Worker, isMainThread, parentPort, workerData } from 'node:worker_threads';
+import { isMainThread, parentPort, workerData } from 'node:worker_threads';
+import { runWatchedWorker } from './watched_worker.js';
 import { decode as fastPngDecode, encode as fastPngEncode } from 'fast-png';
 import { zlibSync } from 'fflate';
 import { loadHeightfield, decodePng, HeightfieldError } from '../../web/loaders/index.js';
@@ -213,9 +214,9 @@ if (isMainThread) {
       }
     });
 
-    test(`${name}.png: same samples as fast-png`, () => {
+    test(`${name}.png: same samples as fast-png`, async () => {
       const bytes = read(`tests/fixtures/${name}.png`);
-      const ours = decodePng(bytes, `${name}.png`, (t, w, h) => new Uint16Array(w * h));
+      const ours = await decodePng(bytes, `${name}.png`, (t, w, h) => new Uint16Array(w * h));
       const ref = fastPngDecode(bytes);
       assert.equal(ref.depth, 16);
       assert.equal(ref.channels, 1);
@@ -363,11 +364,14 @@ if (isMainThread) {
     assert.equal(firstMismatch(h.samples, f32Of('volcano_maungawhau')), null);
   });
 
-  test('f32 NaN samples load (no-data); sidecar nodata is passed on', async () => {
-    const values = new Float32Array([1, NaN, 3, -9999]);
+  test('f32 NaN samples and the sidecar nodata are filled from their neighbours', async () => {
+    const values = new Float32Array([1, 2, 3, 4, NaN, 6, 7, 8, -9999]);
     const h = await loadHeightfield([{ name: 'n.f32', bytes: new Uint8Array(values.buffer) },
-      { name: 'n.json', bytes: asciiBytes('{"width": 2, "height": 2, "nodata": -9999}') }]);
-    assert.ok(Number.isNaN(h.samples[1]));
+      { name: 'n.json', bytes: asciiBytes('{"width": 3, "height": 3, "nodata": -9999}') }]);
+    // The centre: its row and its column both interpolate to 5. The corner: its row gives 8
+    // (nearest, no right end), its column 6 (nearest, no lower end): the mean is 7.
+    assert.deepEqual([...h.samples], [1, 2, 3, 4, 5, 6, 7, 8, 7]);
+    assert.equal(h.missing, 2);
     assert.equal(h.nodata, -9999);
     assert.equal(h.spacingFromFile, false);
   });
@@ -390,7 +394,8 @@ if (isMainThread) {
     await rejects([{ name: 'e.png', bytes: new Uint8Array(0) }], 'e.png', /^e\.png: empty file$/);
     await rejects([{ name: 'e.f32', bytes: new Uint8Array(0) }, { name: 'e.json', bytes: volcanoJson }], 'e.f32', /empty file/);
     await rejects([{ name: 'x.png', bytes: 'not bytes' }], 'x.png', /bytes must be a Uint8Array/);
-    await rejects([{ name: 'x.tif', bytes: new Uint8Array([0x49, 0x49, 0x2a, 0, 1, 2]) }], 'x.tif', /unsupported file type \(looks like TIFF data\)/);
+    await rejects([{ name: 'x.tif', bytes: new Uint8Array([0x49, 0x49, 0x2a, 0, 1, 2]) }], 'x.tif', /truncated: 6 bytes, no TIFF header/);
+    await rejects([{ name: 'x.gif', bytes: new Uint8Array([0x47, 0x49, 0x46, 0x38, 1, 2]) }], 'x.gif', /unsupported file type \(looks like GIF data\)/);
     await rejects([{ name: 'photo.jpg', bytes: new Uint8Array([0xff, 0xd8, 0xff, 0xe0, 0, 16]) }], 'photo.jpg', /unsupported file type \(looks like JPEG data\)/);
     await rejects([{ name: 'README', bytes: asciiBytes('hello') }], 'README', /unsupported file type/);
     // Without an extension, a PNG is recognised by its signature.
@@ -469,9 +474,9 @@ if (isMainThread) {
       [ihdr(0, 61, 16, 0), /zero width/],
       [ihdr(87, 0, 16, 0), /zero height/],
       [ihdr(0x80000000, 1, 8, 0), /exceeds the PNG limit/],
-      [ihdr(87, 61, 8, 2), /unsupported PNG: colour type 2 \(RGB\); expected grayscale/],
+      [ihdr(87, 61, 16, 2), /unsupported PNG: 16-bit RGB; heights are grayscale, or 8-bit RGB/],
       [ihdr(87, 61, 8, 3), /unsupported PNG: colour type 3 \(palette\)/],
-      [ihdr(87, 61, 8, 6), /unsupported PNG: colour type 6 \(RGBA\)/],
+      [ihdr(87, 61, 16, 6), /unsupported PNG: 16-bit RGBA/],
       [ihdr(87, 61, 8, 5), /colour type 5 does not exist/],
       [ihdr(87, 61, 12, 0), /bit depth 12 is not allowed/],
       [ihdr(87, 61, 16, 0, 1), /interlaced \(Adam7\)/],
@@ -484,8 +489,9 @@ if (isMainThread) {
     // The limit is configurable.
     await rejects([fixtureFile('volcano_maungawhau', 'png')], 'volcano_maungawhau.png', /declared size 87x61 is absurd \(5307 samples; limit 5000\)/, { maxSamples: 5000 });
     // A real RGB file from fast-png.
-    const rgb = fastPngEncode({ width: 4, height: 3, data: new Uint8Array(36), depth: 8, channels: 3 });
-    await rejects([{ name: 'rgb.png', bytes: rgb }], 'rgb.png', /colour type 2 \(RGB\)/);
+    // A real RGB file from fast-png that holds no heights (R = 50: neither encoding fits).
+    const rgb = fastPngEncode({ width: 4, height: 3, data: new Uint8Array(36).fill(50), depth: 8, channels: 3 });
+    await rejects([{ name: 'rgb.png', bytes: rgb }], 'rgb.png', /colour PNG whose first row is neither Terrain-RGB nor Terrarium/);
   });
 
   test('bad input: tEXt height range', async () => {
@@ -524,24 +530,7 @@ if (isMainThread) {
 
   test('fuzzed files load or reject with HeightfieldError, each within a time bound', async (t) => {
     const PER_CASE_MS = 3000;
-    const summary = await new Promise((resolve, reject) => {
-      const worker = new Worker(new URL(import.meta.url), { workerData: { seed: 0x5eed } });
-      let timer = null, current = null;
-      worker.on('message', (m) => {
-        clearTimeout(timer);
-        if (m.start) {
-          current = m.start;
-          timer = setTimeout(() => {
-            worker.terminate();
-            reject(new Error(`fuzz case ${current} did not finish within ${PER_CASE_MS} ms`));
-          }, PER_CASE_MS);
-        } else if (m.done) {
-          resolve(m.done);
-        }
-      });
-      worker.on('error', reject);
-      worker.on('exit', (code) => { clearTimeout(timer); if (code !== 0) reject(new Error(`fuzz worker exited with ${code}`)); });
-    });
+    const summary = await runWatchedWorker(new URL(import.meta.url), { seed: 0x5eed }, PER_CASE_MS);
     t.diagnostic(JSON.stringify(summary.counts));
     assert.deepEqual(summary.failures, []);
     // Sanity: the mutations exercise both outcomes.

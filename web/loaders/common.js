@@ -97,3 +97,26 @@ export function baseNameOf(name) {
   const ext = extensionOf(name);
   return ext ? name.slice(0, name.length - ext.length - 1) : name;
 }
+
+/** Name of a file without its directories ('a/b/N27E086.hgt' -> 'N27E086.hgt'). */
+export function fileNameOf(name) {
+  return name.slice(Math.max(name.lastIndexOf('/'), name.lastIndexOf('\\')) + 1);
+}
+
+/** Mean radius of the Earth in metres (the sphere EPSG:4326 distances are taken on here). */
+const EARTH_RADIUS_M = 6371008.8;
+const METRES_PER_DEGREE = (Math.PI / 180) * EARTH_RADIUS_M;
+
+/**
+ * Ground spacing of a geographic grid (steps in degrees) at a latitude: north-south is the
+ * arc of the step, east-west shrinks with cos(latitude). Accurate to ~0.5 % against the
+ * ellipsoid, far below what a viewer can see.
+ * @param {number} stepLonDeg degrees between columns
+ * @param {number} stepLatDeg degrees between rows
+ * @param {number} latitudeDeg latitude of the data's centre
+ * @returns {{ spacingX: number, spacingY: number }} metres
+ */
+export function degreesToMetres(stepLonDeg, stepLatDeg, latitudeDeg) {
+  const cos = Math.max(Math.cos((latitudeDeg * Math.PI) / 180), 1e-6);
+  return { spacingX: Math.abs(stepLonDeg) * METRES_PER_DEGREE * cos, spacingY: Math.abs(stepLatDeg) * METRES_PER_DEGREE };
+}

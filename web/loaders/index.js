@@ -7,32 +7,52 @@ import {
 } from './common.js';
 import { decodePng, hasPngSignature } from './png.js';
 import { decodeF32 } from './f32.js';
+import { decodeRaw, SizeNeededError } from './raw.js';
+import { decodePgm, hasPgmSignature } from './pgm.js';
+import { decodeHgt } from './hgt.js';
+import { decodeAsc, hasAscHeader } from './asc.js';
+import { decodeGeoTiff, hasTiffSignature } from './geotiff.js';
 import { parseSidecar } from './sidecar.js';
+import { fillNodata } from './nodata.js';
+import { SampleSink } from './pacing.js';
 
-export { HeightfieldError, DEFAULT_MAX_SAMPLES, decodePng, decodeF32, parseSidecar };
+export { HeightfieldError, SizeNeededError, DEFAULT_MAX_SAMPLES, decodePng, decodeF32, parseSidecar };
+
+/** File kinds by extension. */
+const KIND_OF_EXTENSION = {
+  png: 'png', f32: 'f32', json: 'json', r16: 'raw', raw: 'raw', pgm: 'pgm', hgt: 'hgt', asc: 'asc',
+  tif: 'geotiff', tiff: 'geotiff',
+};
+/** What the loaders accept, for messages and the file picker. */
+export const ACCEPTED = '.png, .tif/.tiff (GeoTIFF), .hgt (SRTM), .asc (ESRI ASCII), .pgm, .r16/.raw, or .f32 with its .json sidecar';
+export const ACCEPT_EXTENSIONS = Object.keys(KIND_OF_EXTENSION).map((e) => `.${e}`);
 
 /**
  * @typedef {object} Heightfield
  * @property {number} width samples per row
  * @property {number} height rows
  * @property {'u8'|'u16'|'i16'|'f32'} sampleType
- * @property {Uint8Array|Uint16Array|Int16Array|Float32Array} samples the array allocate() returned,
- *   row-major, row 0 first
+ * @property {Uint8Array|Uint16Array|Int16Array|Float32Array} samples the array allocate() returned
+ *   (or its latest view, see options.reacquire), row-major, row 0 first (north)
  * @property {number} spacingX metres between neighbouring columns
  * @property {number} spacingY metres between neighbouring rows
  * @property {boolean} spacingFromFile false when the spacing defaulted to 1
+ * @property {boolean} geographic the file's grid is in degrees (spacing is metres at its latitude)
  * @property {number} heightScale metres per raw unit: metres = raw*heightScale + heightOffset
  * @property {number} heightOffset metres
  * @property {number|null} nodata raw value meaning "no data", or null. For f32, NaN samples
- *   are always no-data in addition.
+ *   are always no-data in addition. Missing samples are already filled (see `missing`).
+ * @property {number} missing how many no-data samples were filled by interpolation
+ * @property {string|null} encoding 'terrain-rgb' | 'terrarium' for encoded PNGs
  * @property {string} source file name of the height field
- * @property {'png'|'f32'} format
+ * @property {'png'|'f32'|'raw'|'pgm'|'hgt'|'asc'|'geotiff'} format
  */
 
 /**
- * Loads a height field from one or more files: a .png (optionally with its
- * .json sidecar, which then supplies spacing), or a .f32 with its .json sidecar.
- * Sidecars pair with a height field by base name (x.png + x.json).
+ * Loads a height field from one or more files: one height field (.png, .tif/.tiff, .hgt,
+ * .asc, .pgm, .r16/.raw, .f32), optionally with its .json sidecar (required for .f32), which
+ * then supplies spacing and, for raw integer formats, the height range. Sidecars pair with a
+ * height field by base name (x.png + x.json).
  *
  * @param {Array<{ name: string, bytes: Uint8Array }>} files
  * @param {object} [options]
@@ -40,10 +60,17 @@ export { HeightfieldError, DEFAULT_MAX_SAMPLES, decodePng, decodeF32, parseSidec
  *   returns the typed array (Uint8Array | Uint16Array | Int16Array | Float32Array) of exactly
  *   width*height elements that samples are decoded into; called exactly once, only after the
  *   file has been validated far enough to trust its size. Default: a fresh typed array.
+ * @param {() => ArrayLike<number>} [options.reacquire] returns a fresh view on the same samples;
+ *   called after every pause of the decoder (needed when they live in memory that may grow)
+ * @param {(fraction: number, phase: string) => void} [options.onProgress] 0..1 at every pause
  * @param {number} [options.maxSamples] reject files declaring more than this many samples
  *   (default DEFAULT_MAX_SAMPLES = 32769^2)
+ * @param {number} [options.width] width of a RAW file (else inferred when square, or sidecar)
+ * @param {number} [options.height] height of a RAW file
+ * @param {'auto'|'terrain-rgb'|'terrarium'} [options.encoding] how an RGB PNG holds heights
  * @returns {Promise<Heightfield>}
- * @throws {HeightfieldError} for any bad, missing, or unsupported input
+ * @throws {HeightfieldError} for any bad, missing, or unsupported input (SizeNeededError when a
+ *   RAW file needs its width and height)
  */
 export async function loadHeightfield(files, options = {}) {
   const allocate = options.allocate ?? defaultAllocate;
@@ -60,7 +87,7 @@ export async function loadHeightfield(files, options = {}) {
   const fields = kinds.filter((f) => f.kind !== 'json');
   const jsons = kinds.filter((f) => f.kind === 'json');
   if (fields.length === 0) {
-    throw new HeightfieldError(jsons[0].name, 'a .json sidecar alone is not a height field; add the .png or .f32 it describes');
+    throw new HeightfieldError(jsons[0].name, 'a .json sidecar alone is not a height field; add the file it describes');
   }
   if (fields.length > 1) {
     throw new HeightfieldError('', `several height fields given (${fields.map((f) => f.name).join(', ')}); load one at a time`);
@@ -72,32 +99,63 @@ export async function loadHeightfield(files, options = {}) {
   if (jsons.length > 1) throw new HeightfieldError('', `several sidecars given for ${main.name} (${jsons.map((j) => j.name).join(', ')})`);
   const sidecar = jsons.length ? parseSidecar(jsons[0].bytes, jsons[0].name) : null;
 
-  let decoded, heightScale = 1, heightOffset = 0, nodata = null;
-  if (main.kind === 'png') {
-    decoded = decodePng(main.bytes, main.name, allocate, { maxSamples, sidecar });
-    ({ heightScale, heightOffset, nodata } = decoded);
-  } else {
-    if (!sidecar) throw new HeightfieldError(main.name, `missing sidecar ${base}.json (it gives width, height and cell size)`);
-    decoded = decodeF32(main.bytes, main.name, sidecar, allocate, { maxSamples });
-    nodata = sidecar.nodata;
+  const progress = options.onProgress;
+  const decodeOptions = {
+    maxSamples, sidecar, reacquire: options.reacquire,
+    onProgress: progress && ((fraction) => progress(fraction, 'decoding')),
+    width: options.width, height: options.height, encoding: options.encoding,
+  };
+  if (main.kind === 'f32' && !sidecar) {
+    throw new HeightfieldError(main.name, `missing sidecar ${base}.json (it gives width, height and cell size)`);
+  }
+  const decoded = await DECODERS[main.kind](main.bytes, main.name, allocate, decodeOptions, sidecar);
+  if (sidecar && main.kind !== 'png' && main.kind !== 'pgm' && main.kind !== 'raw' && main.kind !== 'f32' &&
+      ((sidecar.width ?? decoded.width) !== decoded.width || (sidecar.height ?? decoded.height) !== decoded.height)) {
+    throw new HeightfieldError(main.name, `size ${decoded.width}x${decoded.height} does not match ${sidecar.width ?? '?'}x${sidecar.height ?? '?'} from ${sidecar.name}`);
   }
 
-  const spacingFromFile = !!sidecar && sidecar.spacingX !== null;
+  const nodata = decoded.nodata ?? (sidecar?.nodata ?? null);
+  let missing = 0;
+  if (nodata !== null || decoded.sampleType === 'f32') {
+    const sink = SampleSink.over(decoded.samples, { reacquire: options.reacquire,
+      onProgress: progress && ((fraction) => progress(fraction, 'filling no-data')) });
+    missing = await fillNodata(sink, decoded.width, decoded.height, nodata, main.name);
+    decoded.samples = sink.samples;
+  }
+
+  // Spacing: the sidecar's, else the file's own, else 1 m (the user can change it).
+  const sidecarSpacing = sidecar && sidecar.spacingX !== null;
+  const fileSpacing = !sidecarSpacing && decoded.spacingX != null && decoded.spacingFromFile !== false;
+  const spacingFromFile = sidecarSpacing || fileSpacing;
   return {
     width: decoded.width,
     height: decoded.height,
     sampleType: decoded.sampleType,
     samples: decoded.samples,
-    spacingX: spacingFromFile ? sidecar.spacingX : 1,
-    spacingY: spacingFromFile ? sidecar.spacingY : 1,
+    spacingX: sidecarSpacing ? sidecar.spacingX : decoded.spacingX ?? 1,
+    spacingY: sidecarSpacing ? sidecar.spacingY : decoded.spacingY ?? 1,
     spacingFromFile,
-    heightScale,
-    heightOffset,
+    geographic: fileSpacing && !!decoded.geographic,
+    heightScale: decoded.heightScale ?? 1,
+    heightOffset: decoded.heightOffset ?? 0,
     nodata,
+    missing,
+    encoding: decoded.encoding ?? null,
     source: main.name,
     format: main.kind,
   };
 }
+
+/** Decoders by kind: (bytes, name, allocate, options, sidecar) -> decoded field. */
+const DECODERS = {
+  png: (bytes, name, allocate, options) => decodePng(bytes, name, allocate, options),
+  f32: async (bytes, name, allocate, options, sidecar) => decodeF32(bytes, name, sidecar, allocate, options),
+  raw: (bytes, name, allocate, options) => decodeRaw(bytes, name, allocate, options),
+  pgm: (bytes, name, allocate, options) => decodePgm(bytes, name, allocate, options),
+  hgt: (bytes, name, allocate, options) => decodeHgt(bytes, name, allocate, options),
+  asc: (bytes, name, allocate, options) => decodeAsc(bytes, name, allocate, options),
+  geotiff: (bytes, name, allocate, options) => decodeGeoTiff(bytes, name, allocate, options),
+};
 
 /** Validates one { name, bytes } entry; accepts an ArrayBuffer for bytes too. */
 function checkFileEntry(f, i) {
@@ -109,12 +167,14 @@ function checkFileEntry(f, i) {
   return { name: label, bytes };
 }
 
-/** 'png' | 'f32' | 'json', by extension, then by magic bytes; throws for anything else. */
+/** The file's kind by extension, then by magic bytes; throws for anything else. */
 function kindOf({ name, bytes }) {
-  const ext = extensionOf(name);
-  if (ext === 'png' || ext === 'f32' || ext === 'json') return ext;
+  const kind = KIND_OF_EXTENSION[extensionOf(name)];
+  if (kind) return kind;
   if (hasPngSignature(bytes)) return 'png';
+  if (hasTiffSignature(bytes)) return 'geotiff';
+  if (hasPgmSignature(bytes)) return 'pgm';
+  if (hasAscHeader(bytes)) return 'asc';
   const what = describeContent(bytes);
-  throw new HeightfieldError(name,
-    `unsupported file type${what ? ` (looks like ${what})` : ''}; expected a .png, or a .f32 with its .json sidecar`);
+  throw new HeightfieldError(name, `unsupported file type${what ? ` (looks like ${what})` : ''}; expected ${ACCEPTED}`);
 }

@@ -1,4 +1,4 @@
-// Grayscale PNG height fields, decoded straight into the caller's array.
+// Grayscale PNG height fields (and 8-bit RGB Terrain-RGB/Terrarium), decoded straight into the caller's array.
 //
 // Memory is the point of this decoder: a 16385x16385 16-bit field is 512 MB,
 // so it can afford neither the whole inflated stream nor a second copy of the
@@ -10,8 +10,10 @@
 
 import { Unzlib } from 'fflate';
 import {
-  HeightfieldError, DEFAULT_MAX_SAMPLES, allocateSamples, checkSize, describeContent,
+  HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, describeContent,
 } from './common.js';
+import { SampleSink } from './pacing.js';
+import { ENCODINGS, encodingFromName, detectEncoding } from './terrain_rgb.js';
 
 const SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];
 const COLOUR_TYPES = { 0: 'grayscale', 2: 'RGB', 3: 'palette', 4: 'grayscale+alpha', 6: 'RGBA' };
@@ -28,24 +30,29 @@ export function hasPngSignature(bytes) {
 
 /**
  * Decodes a grayscale PNG (colour type 0, bit depth 1/2/4/8/16, or colour
- * type 4 grey+alpha with the alpha ignored) into an array from allocate().
+ * type 4 grey+alpha with the alpha ignored) into an array from allocate(),
+ * or an 8-bit RGB(A) PNG holding Terrain-RGB or Terrarium heights into float32 metres.
  *
  * @param {Uint8Array} bytes the whole file
  * @param {string} name file name, used in error messages
  * @param {(sampleType: string, width: number, height: number) => ArrayLike<number>} allocate
  *   called once, after the file structure has been validated, with 'u16' for
- *   16-bit files and 'u8' otherwise; must return a Uint16Array / Uint8Array of width*height
+ *   16-bit files, 'f32' for encoded RGB and 'u8' otherwise; must return a typed array of width*height
  * @param {object} [options]
  * @param {number} [options.maxSamples] reject width*height above this
  * @param {import('./sidecar.js').Sidecar} [options.sidecar] if given, its width/height must
  *   match and its min/max (metres) give the height range when the PNG has no min_m/max_m tEXt
+ * @param {'terrain-rgb'|'terrarium'|'auto'} [options.encoding] how an RGB(A) PNG holds heights;
+ *   'auto' (default) takes it from the file name, else from the first row's colours
+ * @param {(fraction: number) => void} [options.onProgress] see SampleSink
+ * @param {() => ArrayLike<number>} [options.reacquire] see SampleSink
  * @returns {{ width: number, height: number, sampleType: 'u8'|'u16', samples: Uint8Array|Uint16Array,
  *   bitDepth: number, heightScale: number, heightOffset: number, heightFromFile: boolean,
- *   nodata: number|null }} heights in metres are raw*heightScale + heightOffset; nodata is the
+ *   nodata: number|null, encoding: string|null }} heights in metres are raw*heightScale + heightOffset; nodata is the
  *   raw grey value named by a tRNS chunk, if any
  * @throws {HeightfieldError} for any malformed, truncated or unsupported file
  */
-export function decodePng(bytes, name, allocate, options = {}) {
+export async function decodePng(bytes, name, allocate, options = {}) {
   const maxSamples = options.maxSamples ?? DEFAULT_MAX_SAMPLES;
   const fail = (problem) => { throw new HeightfieldError(name, problem); };
   if (!(bytes instanceof Uint8Array)) fail('file contents are not a Uint8Array');
@@ -60,7 +67,17 @@ export function decodePng(bytes, name, allocate, options = {}) {
   }
 
   const png = readStructure(bytes, name, maxSamples);
-  const { width, height, bitDepth } = png.ihdr;
+  const { width, height, bitDepth, colourType } = png.ihdr;
+  const rgb = colourType === 2 || colourType === 6;
+  let encoding = null;
+  if (rgb) {
+    encoding = options.encoding && options.encoding !== 'auto' ? options.encoding : encodingFromName(name);
+    if (encoding && !ENCODINGS[encoding]) throw new TypeError(`unknown encoding '${encoding}'`);
+    encoding ??= detectEncoding(await firstRow(png), png.ihdr.channels);
+    if (!encoding) {
+      fail(`colour PNG whose first row is neither Terrain-RGB nor Terrarium heights; choose the encoding (or save heights as grayscale)`);
+    }
+  }
 
   const sidecar = options.sidecar;
   if (sidecar && ((sidecar.width !== undefined && sidecar.width !== width) ||
@@ -71,19 +88,20 @@ export function decodePng(bytes, name, allocate, options = {}) {
   // Height range: tEXt min_m/max_m, else the sidecar's min/max, else raw units.
   const maxRaw = 2 ** bitDepth - 1;
   let heightScale = 1, heightOffset = 0, heightFromFile = false;
-  const range = png.range ?? (sidecar && sidecar.min !== undefined ? { min: sidecar.min, max: sidecar.max } : null);
+  const range = rgb ? null : png.range ?? (sidecar && sidecar.min !== undefined ? { min: sidecar.min, max: sidecar.max } : null);
   if (range) {
     heightOffset = range.min;
     heightScale = (range.max - range.min) / maxRaw;
     heightFromFile = true;
   }
 
-  const sampleType = bitDepth === 16 ? 'u16' : 'u8';
-  const samples = allocateSamples(allocate, sampleType, width, height);
-  const rows = inflateRows(png, samples);
+  const sampleType = rgb ? 'f32' : bitDepth === 16 ? 'u16' : 'u8';
+  const sink = new SampleSink(allocate, sampleType, width, height, options);
+  const rows = await inflateRows({ ...png, decodeRgb: ENCODINGS[encoding] }, sink);
   if (rows.error) fail(`corrupt IDAT data (${rows.error}) after ${rows.done} of ${height} rows`);
   if (rows.done < height) fail(`truncated: IDAT data ends after ${rows.done} of ${height} rows`);
-  return { width, height, sampleType, samples, bitDepth, heightScale, heightOffset, heightFromFile, nodata: png.nodata };
+  return { width, height, sampleType, samples: sink.samples, bitDepth, heightScale, heightOffset,
+    heightFromFile: heightFromFile || rgb, nodata: rgb ? null : png.nodata, encoding };
 }
 
 /**
@@ -138,7 +156,8 @@ function readStructure(bytes, name, maxSamples) {
         if (length !== 2) fail(`bad tRNS chunk length ${length} (expected 2 for grayscale)`);
         nodata = ((bytes[data] << 8) | bytes[data + 1]) & (2 ** ihdr.bitDepth - 1);
       } else if (type === 'PLTE') {
-        fail('PLTE chunk in a grayscale PNG');
+        // A suggested palette is allowed in RGB files, never in grayscale ones.
+        if (ihdr.colourType === 0 || ihdr.colourType === 4) fail('PLTE chunk in a grayscale PNG');
       } else if (/^[A-Z]/.test(type)) {
         // Critical chunks we do not know change how the image must be read.
         fail(`unsupported PNG: unknown critical chunk ${type}`);
@@ -149,7 +168,7 @@ function readStructure(bytes, name, maxSamples) {
 
   if (truncatedIn) {
     let problem = `truncated: file ends after ${n} bytes, ${truncatedIn}`;
-    if (ihdr) problem += ` (image data: ${idat.length ? inflateRows({ ihdr, idat }, null).done : 0} of ${ihdr.height} rows)`;
+    if (ihdr) problem += ` (image data: ${idat.length ? countRows({ ihdr, idat }) : 0} of ${ihdr.height} rows)`;
     fail(problem);
   }
   if (!idat.length) fail('no IDAT chunk (the file holds no image data)');
@@ -169,16 +188,19 @@ function parseIhdr(bytes, p, u32, name, maxSamples) {
   if (width > 0x7fffffff || height > 0x7fffffff) fail(`bad IHDR: declared size ${width}x${height} exceeds the PNG limit of 2^31-1`);
   checkSize(name, width, height, maxSamples);
   if (!(colourType in COLOUR_TYPES)) fail(`bad IHDR: colour type ${colourType} does not exist`);
-  if (colourType !== 0 && colourType !== 4) {
-    fail(`unsupported PNG: colour type ${colourType} (${COLOUR_TYPES[colourType]}); expected grayscale`);
+  if (colourType === 3) {
+    fail(`unsupported PNG: colour type 3 (palette); expected grayscale, or RGB with Terrain-RGB/Terrarium heights`);
   }
   const depths = colourType === 0 ? [1, 2, 4, 8, 16] : [8, 16];
   if (!depths.includes(bitDepth)) fail(`bad IHDR: bit depth ${bitDepth} is not allowed for colour type ${colourType}`);
+  if ((colourType === 2 || colourType === 6) && bitDepth !== 8) {
+    fail(`unsupported PNG: 16-bit ${COLOUR_TYPES[colourType]}; heights are grayscale, or 8-bit RGB (Terrain-RGB/Terrarium)`);
+  }
   if (compression !== 0) fail(`bad IHDR: compression method ${compression} (only 0, deflate, exists)`);
   if (filter !== 0) fail(`bad IHDR: filter method ${filter} (only 0 exists)`);
   if (interlace === 1) fail('unsupported PNG: interlaced (Adam7); re-save it without interlacing');
   if (interlace !== 0) fail(`bad IHDR: interlace method ${interlace} does not exist`);
-  const channels = colourType === 4 ? 2 : 1;
+  const channels = { 0: 1, 2: 3, 4: 2, 6: 4 }[colourType];
   const bitsPerPixel = bitDepth * channels;
   return {
     width, height, bitDepth, colourType, channels,
@@ -210,28 +232,24 @@ function latin1(bytes, start, end) {
 }
 
 /**
- * Inflates the IDAT stream and unfilters it row by row into dest. With dest
- * null only counts the complete rows (used to describe truncated files).
- * Returns { done: rows completed, error: inflate/unfilter problem or null }.
+ * Inflates the IDAT stream and unfilters it row by row into the sink's samples (pausing
+ * through the sink between slices), or, with no sink, only up to the first row, which it
+ * returns as `first` (pixel bytes without the filter byte).
+ * Returns { done: rows completed, error: inflate/unfilter problem or null, first }.
  */
-function inflateRows({ ihdr, idat }, dest) {
+async function inflateRows({ ihdr, idat, decodeRgb }, sink) {
   const { width, height, rowBytes, bpp } = ihdr;
   const rowLen = rowBytes + 1; // filter-type byte + row
-  let cur = new Uint8Array(dest ? rowLen : 0);
-  let prev = new Uint8Array(dest ? rowLen : 0); // all zero: the row above row 0
-  let filled = 0, done = 0, error = null;
+  let cur = new Uint8Array(rowLen);
+  let prev = new Uint8Array(rowLen); // all zero: the row above row 0
+  let filled = 0, done = 0, error = null, first = null;
   const headerProblem = zlibHeaderProblem(idat);
-  if (headerProblem) return { done, error: headerProblem };
+  if (headerProblem) return { done, error: headerProblem, first };
+  const wanted = sink ? height : 1;
 
   const inflater = new Unzlib((chunk) => {
-    if (!dest) {
-      // Counting only: keep the running byte total in `filled`.
-      filled += chunk.length;
-      done = Math.min(height, Math.floor(filled / rowLen));
-      return;
-    }
     let p = 0;
-    while (p < chunk.length && done < height) {
+    while (p < chunk.length && done < wanted) {
       const take = Math.min(rowLen - filled, chunk.length - p);
       cur.set(chunk.subarray(p, p + take), filled);
       filled += take;
@@ -239,7 +257,8 @@ function inflateRows({ ihdr, idat }, dest) {
       if (filled === rowLen) {
         if (cur[0] > 4) throw new BadFilter(cur[0]);
         unfilter(cur, prev, bpp);
-        storeRow(cur, dest, done * width, ihdr);
+        if (sink) storeRow(cur, sink.samples, done * width, ihdr, decodeRgb);
+        else first = cur.slice(1);
         [cur, prev] = [prev, cur];
         filled = 0;
         done++;
@@ -251,10 +270,11 @@ function inflateRows({ ihdr, idat }, dest) {
     feed: for (const part of idat) {
       for (let p = 0; p < part.length; p += SLICE) {
         inflater.push(part.subarray(p, p + SLICE), false);
-        if (done === height) break feed; // anything after the last row is ignored
+        if (done === wanted) break feed; // anything after the last row is ignored
+        if (sink) await sink.pace(done / height);
       }
     }
-    if (dest && done < height) inflater.push(new Uint8Array(0), true);
+    if (done < wanted) inflater.push(new Uint8Array(0), true);
   } catch (e) {
     if (e instanceof BadFilter) error = `bad filter type ${e.type} on row ${done}`;
     else if (isInflateError(e)) {
@@ -264,7 +284,26 @@ function inflateRows({ ihdr, idat }, dest) {
       if (!/^(unexpected EOF|invalid zlib data)$/.test(e.message)) error = `zlib: ${e.message}`;
     } else throw e;
   }
-  return { done, error };
+  return { done, error, first };
+}
+
+/** Complete rows in a (truncated) IDAT stream, counted without keeping any of them. */
+function countRows({ ihdr, idat }) {
+  if (zlibHeaderProblem(idat)) return 0;
+  let inflated = 0;
+  const inflater = new Unzlib((chunk) => { inflated += chunk.length; });
+  try {
+    for (const part of idat) for (let p = 0; p < part.length; p += SLICE) inflater.push(part.subarray(p, p + SLICE), false);
+  } catch (e) {
+    if (!isInflateError(e)) throw e;
+  }
+  return Math.min(ihdr.height, Math.floor(inflated / (ihdr.rowBytes + 1)));
+}
+
+/** The first row's pixel bytes (to guess an RGB encoding); an empty array when unreadable. */
+async function firstRow(png) {
+  const { first } = await inflateRows(png, null);
+  return first ?? new Uint8Array(0);
 }
 
 /** Checks the 2-byte zlib header (which may straddle IDAT chunks); returns a problem or null. */
@@ -323,8 +362,10 @@ function unfilter(row, prev, bpp) {
 }
 
 /** Writes one unfiltered row (row[0] is the filter byte) as samples at dest[offset..]. */
-function storeRow(row, dest, offset, { width, bitDepth, channels }) {
-  if (bitDepth === 16) {
+function storeRow(row, dest, offset, { width, bitDepth, channels }, decodeRgb) {
+  if (decodeRgb) {
+    for (let x = 0, i = 1; x < width; x++, i += channels) dest[offset + x] = decodeRgb(row[i], row[i + 1], row[i + 2]);
+  } else if (bitDepth === 16) {
     const step = 2 * channels; // grey is the first sample of a pixel, big-endian
     for (let x = 0, i = 1; x < width; x++, i += step) dest[offset + x] = (row[i] << 8) | row[i + 1];
   } else if (bitDepth === 8) {

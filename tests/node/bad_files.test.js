@@ -1,0 +1,260 @@
+// Bad height-field files of every format: each is refused with a HeightfieldError whose one
+// line names the file and the problem (truncated, empty, wrong type, absurd declared size,
+// too big for memory, all no-data), and a seeded fuzz of every valid fixture either loads a
+// sane field or is refused that way, each case within a time bound (in a worker with a
+// watchdog, so a hang is caught instead of hanging the run).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync, writeFileSync, mkdtempSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { isMainThread, parentPort, workerData } from 'node:worker_threads';
+import { runWatchedWorker } from './watched_worker.js';
+import { zlibSync } from 'fflate';
+import { loadHeightfield, HeightfieldError } from '../../web/loaders/index.js';
+import { loadTerrain } from '../../web/terrain_source.js';
+import { createNodeCore } from '../../bin/node_core.js';
+import { seededRandom } from '../../web/seeded_random.js';
+
+const ROOT = new URL('../../', import.meta.url);
+const DIR = 'tests/fixtures/formats/';
+const read = (path) => new Uint8Array(readFileSync(new URL(path, ROOT)));
+const file = (name) => ({ name, bytes: read(DIR + name) });
+const text = (s) => new TextEncoder().encode(s);
+const manifest = JSON.parse(new TextDecoder().decode(read(`${DIR}manifest.json`)));
+
+/** Expects files to be refused with a one-line HeightfieldError naming `name` and matching `problem`; counts allocations. */
+async function refused(files, name, problem, options = {}) {
+  let allocations = 0;
+  const allocate = (type, w, h) => { allocations++; return new { u8: Uint8Array, u16: Uint16Array, i16: Int16Array, f32: Float32Array }[type](w * h); };
+  await assert.rejects(loadHeightfield(files, { allocate, ...options }), (e) => {
+    assert.ok(e instanceof HeightfieldError, `expected a HeightfieldError, got ${e?.name}: ${e?.message}`);
+    assert.ok(e.message.startsWith(`${name}: `), `message does not name ${name}: ${e.message}`);
+    assert.match(e.message, problem);
+    assert.ok(!e.message.includes('\n'), 'one line');
+    return true;
+  });
+  return allocations;
+}
+
+if (isMainThread) {
+  const formats = ['x.png', 'x.tif', 'x.hgt', 'x.asc', 'x.pgm', 'x.r16'];
+
+  test('empty files of every format', async () => {
+    for (const name of formats) await refused([{ name, bytes: new Uint8Array(0) }], name, /^[^:]+: empty file$/);
+  });
+
+  test('truncated files of every format, refused before anything is allocated', async () => {
+    const cut = (name, keep) => { const b = read(DIR + name); return b.subarray(0, Math.floor(b.length * keep)); };
+    const cases = [
+      ['canyon_terrain-rgb.png', 0.5, /truncated/],
+      ['everest_i16_strips.tif', 0.6, /truncated: the image directory at byte \d+ lies past the end \(\d+ bytes\)/],
+      ['canyon_u16_tiled_deflate.tif', 0.9, /truncated: the image directory/],
+      ['everest.pgm', 0.7, /truncated: \d+ bytes of samples, 80000 needed for 200x200 at 16 bits/],
+      ['jacksboro_voids.asc', 0.3, /truncated: \d+ bytes cannot hold 250x190 values/],
+    ];
+    for (const [name, keep, problem] of cases) {
+      assert.equal(await refused([{ name, bytes: cut(name, keep) }], name, problem), 0, `${name} allocated`);
+    }
+    // An ASCII grid cut near its end still passes the byte estimate: it is refused while reading.
+    await refused([{ name: 'j.asc', bytes: cut('jacksboro_voids.asc', 0.97) }], 'j.asc', /truncated: \d+ of 47500 values \(ends on row 1\d\d\)/);
+    await refused([{ name: 'N27E086.hgt', bytes: new Uint8Array(1201 * 1201 * 2 - 2) }], 'N27E086.hgt',
+      /truncated: 2884800 bytes, but an SRTM tile has 1201x1201 or 3601x3601 16-bit samples/);
+    await refused([{ name: 'c.r16', bytes: cut('canyon.r16', 0.5).subarray(1) }], 'c.r16', /odd length 36863 bytes/);
+    await refused([{ name: 'c.pgm', bytes: text('P5\n200 ') }], 'c.pgm', /truncated: header ends before its height/);
+  });
+
+  test('wrong types: the file is not what its name says', async () => {
+    const png = read(`${DIR}everest_16bit.png`);
+    await refused([{ name: 'a.tif', bytes: png }], 'a.tif', /not a TIFF file \(bad signature\)/);
+    await refused([{ name: 'a.pgm', bytes: png }], 'a.pgm', /not a PGM file/);
+    await refused([{ name: 'a.asc', bytes: png }], 'a.asc', /bad header: no ncols line \(is this an ESRI ASCII grid\?\)/);
+    await refused([{ name: 'a.png', bytes: read(`${DIR}everest_i16_strips.tif`) }], 'a.png', /not a PNG file \(bad signature; looks like TIFF data\)/);
+    await refused([{ name: 'N27E086.hgt', bytes: png }], 'N27E086.hgt', /truncated: \d+ bytes, but an SRTM tile has/);
+    await refused([{ name: 'a.pgm', bytes: text('P2\n2 2\n255\n1 2 3 4\n') }], 'a.pgm', /unsupported PGM: ASCII \(P2\)/);
+    await refused([{ name: 'a.pgm', bytes: text('P6\n2 2\n255\n') }], 'a.pgm', /not a grayscale PGM \(magic P6; expected P5\)/);
+    await refused([{ name: 'a.asc', bytes: text('ncols 2\nnrows 2\ncellsize 1\n1 2\nx 4\n') }], 'a.asc', /line 5: 'x' is not a number/);
+    await refused([{ name: 'README', bytes: text('hello') }], 'README', /unsupported file type \(looks like text\); expected \.png, \.tif/);
+    // An RGBA GeoTIFF (a photo) is no height field.
+    const rgb = read(`${DIR}everest_i16_strips.tif`).slice();
+    const view = new DataView(rgb.buffer);
+    const ifd = view.getUint32(4, true);
+    for (let i = 0; i < view.getUint16(ifd, true); i++) {
+      if (view.getUint16(ifd + 2 + 12 * i, true) === 339) view.setUint16(ifd + 2 + 12 * i + 8, 3, true); // int16 -> "float16"
+    }
+    await refused([{ name: 'h.tif', bytes: rgb }], 'h.tif', /unsupported TIFF sample type: float 16-bit/);
+  });
+
+  test('absurd declared sizes are refused before anything is allocated', async () => {
+    const cases = [
+      [{ name: 'a.pgm', bytes: text('P5\n100000 100000\n65535\n\0\0') }, /declared size 100000x100000 is absurd/],
+      [{ name: 'a.pgm', bytes: text('P5\n0 10\n255\n\0') }, /zero width/],
+      [{ name: 'a.asc', bytes: text('ncols 100000\nnrows 100000\ncellsize 1\n1 2 3\n') }, /declared size 100000x100000 is absurd/],
+      [{ name: 'a.asc', bytes: text('ncols 2.5\nnrows 2\ncellsize 1\n1 2 3\n') }, /ncols 2.5, nrows 2 must be whole numbers/],
+      [{ name: 'a.asc', bytes: text('ncols 2\nnrows 2\ncellsize -1\n1 2 3 4\n') }, /cellsize missing or not positive/],
+    ];
+    // A GeoTIFF claiming 1,000,000 x 1,000,000 samples, and one claiming more than its strips hold.
+    const tif = (width, height) => {
+      const b = read(`${DIR}everest_i16_strips.tif`).slice();
+      const v = new DataView(b.buffer), ifd = v.getUint32(4, true);
+      for (let i = 0; i < v.getUint16(ifd, true); i++) {
+        const e = ifd + 2 + 12 * i, tag = v.getUint16(e, true);
+        if (tag === 256) v.setUint32(e + 8, width, true);
+        if (tag === 257) v.setUint32(e + 8, height, true);
+      }
+      return b;
+    };
+    cases.push([{ name: 'w.tif', bytes: tif(1000000, 1000000) }, /declared size 1000000x1000000 is absurd/]);
+    cases.push([{ name: 'w.tif', bytes: tif(20000, 200) }, /truncated: \d+ bytes of image data cannot hold 20000x200 samples/]);
+    for (const [f, problem] of cases) assert.equal(await refused([f], f.name, problem), 0, `${f.name} allocated`);
+    // RAW sizes that do not fit the bytes.
+    await refused([file('volcano.r16')], 'volcano.r16', /size 100000x100000 does not fit 5307/, { width: 100000, height: 100000 });
+  });
+
+  test('all no-data: refused with the reason, in every format that has no-data', async () => {
+    await refused([{ name: 'v.asc', bytes: text('ncols 3\nnrows 2\ncellsize 1\nNODATA_value -9999\n-9999 -9999 -9999\n-9999 -9999 -9999\n') }],
+      'v.asc', /every sample is no-data \(value -9999\): nothing to show/);
+    const voids = new Uint8Array(1201 * 1201 * 2);
+    for (let i = 0; i < voids.length; i += 2) voids[i] = 0x80; // -32768 big-endian
+    await refused([{ name: 'N27E086.hgt', bytes: voids }], 'N27E086.hgt', /every sample is no-data \(value -32768\)/);
+    const nan = new Float32Array(6).fill(NaN);
+    await refused([{ name: 'n.f32', bytes: new Uint8Array(nan.buffer) }, { name: 'n.json', bytes: text('{"width": 3, "height": 2}') }],
+      'n.f32', /every sample is no-data \(NaN\)/);
+  });
+
+  test('too big for memory: the core cannot hold the field, the file is named, nothing stays allocated', async () => {
+    // A 32769^2 Terrarium PNG decodes to float32: 4 GiB + 512 MiB of samples, more than a 32-bit
+    // WebAssembly memory can hold. Its IDAT is just long enough to pass the deflate-ratio check.
+    const side = 32769, idatBytes = Math.ceil((side * (3 * side + 1)) / 1032) + 1032;
+    const idat = new Uint8Array(idatBytes);
+    idat.set(zlibSync(new Uint8Array(16)).subarray(0, 2)); // a valid zlib header
+    const chunk = (type, data) => {
+      const out = new Uint8Array(12 + data.length), v = new DataView(out.buffer);
+      v.setUint32(0, data.length);
+      out.set(text(type), 4);
+      out.set(data, 8);
+      let c = 0xffffffff;
+      for (let i = 4; i < 8 + data.length; i++) { c ^= out[i]; for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1; }
+      v.setUint32(8 + data.length, (c ^ 0xffffffff) >>> 0);
+      return out;
+    };
+    const ihdr = new Uint8Array(13);
+    new DataView(ihdr.buffer).setUint32(0, side);
+    new DataView(ihdr.buffer).setUint32(4, side);
+    ihdr.set([8, 2, 0, 0, 0], 8);
+    const parts = [new Uint8Array([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]), chunk('IHDR', ihdr), chunk('IDAT', idat), chunk('IEND', new Uint8Array(0))];
+    const png = new Uint8Array(parts.reduce((n, p) => n + p.length, 0));
+    parts.reduce((o, p) => { png.set(p, o); return o + p.length; }, 0);
+
+    const core = await createNodeCore();
+    await assert.rejects(loadTerrain(core, [{ name: 'huge_terrarium.png', bytes: png }]), (e) => {
+      assert.ok(e instanceof HeightfieldError, `${e?.name}: ${e?.message}`);
+      assert.equal(e.message, 'huge_terrarium.png: too big for memory: 32769x32769 f32 samples need 4096 MB');
+      return true;
+    });
+    // The core is still usable and holds nothing from the failed load.
+    const ok = await loadTerrain(core, [file('everest_16bit.png')]);
+    assert.equal(ok.terrain.width, 200);
+    ok.terrain.destroy();
+  });
+
+  test('the CLI ends a bad file with exactly one line and a non-zero exit; RAW size and encoding flags work', () => {
+    const dir = mkdtempSync(join(tmpdir(), 'hexlod-bad-'));
+    const cli = fileURLToPath(new URL('bin/hexlod.js', ROOT));
+    const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 60000 });
+    writeFileSync(join(dir, 'cut.pgm'), read(`${DIR}everest.pgm`).subarray(0, 3000));
+    for (const command of ['info', 'mesh', 'bench']) {
+      const extra = command === 'mesh' ? ['--max-error', '5'] : command === 'bench' ? ['--frames', '1', '--no-native'] : [];
+      const r = run(command, join(dir, 'cut.pgm'), ...extra);
+      assert.equal(r.status, 1, `${command}: ${r.stderr}`);
+      assert.equal(r.stderr, 'hexlod: cut.pgm: truncated: 2966 bytes of samples, 80000 needed for 200x200 at 16 bits\n');
+      assert.equal(r.stdout, '');
+    }
+    const raw = run('info', fileURLToPath(new URL(`${DIR}volcano.r16`, ROOT)), '--json');
+    assert.equal(raw.status, 1);
+    assert.equal(raw.stderr, 'hexlod: volcano.r16: 5307 samples do not make a square: give its width and height (--width and --height)\n');
+    const sized = run('info', fileURLToPath(new URL(`${DIR}volcano.r16`, ROOT)), '--json', '--width', '87', '--height', '61');
+    assert.equal(sized.status, 0, sized.stderr);
+    assert.deepEqual([JSON.parse(sized.stdout).width, JSON.parse(sized.stdout).height], [87, 61]);
+    const forced = run('info', fileURLToPath(new URL(`${DIR}etopo_terrarium.png`, ROOT)), '--json', '--encoding', 'terrain-rgb');
+    assert.equal(forced.status, 0, forced.stderr);
+    assert.ok(JSON.parse(forced.stdout).minHeight > 100000, 'Terrarium colours read as Terrain-RGB give absurd heights: the flag was obeyed');
+    const wrong = run('info', join(dir, 'cut.pgm'), '--encoding', 'mapbox');
+    assert.equal(wrong.status, 2);
+    assert.match(wrong.stderr, /^hexlod: --encoding must be terrain-rgb or terrarium, got 'mapbox'; usage: hexlod info/);
+  });
+
+  test('fuzzed files of every format load a sane field or are refused clearly, each within a time bound', async (t) => {
+    const PER_CASE_MS = 5000;
+    const summary = await runWatchedWorker(new URL(import.meta.url), { seed: 0xf11e5 }, PER_CASE_MS);
+    t.diagnostic(JSON.stringify(summary.counts));
+    assert.deepEqual(summary.failures, []);
+    for (const [format, c] of Object.entries(summary.counts)) assert.ok(c.rejected > 5, `${format}: the mutations never reached an error path`);
+  });
+} else {
+  await runFuzz(workerData);
+}
+
+/** One mutation: truncation, byte flips (anywhere or in the first 64 bytes, where headers are), insertion, deletion. */
+function mutate(bytes, rand) {
+  const int = (n) => Math.floor(rand() * n);
+  const out = () => bytes.slice();
+  switch (int(5)) {
+    case 0: { const n = int(bytes.length); return [bytes.slice(0, n), `truncate at ${n}`]; }
+    case 1: { const b = out(); const k = 1 + int(4); for (let i = 0; i < k; i++) b[int(b.length)] ^= 1 + int(255); return [b, `${k} flips`]; }
+    case 2: { const b = out(); const k = 1 + int(3); for (let i = 0; i < k; i++) b[int(Math.min(64, b.length))] = int(256); return [b, `${k} header bytes`]; }
+    case 3: {
+      const at = int(bytes.length), extra = Uint8Array.from({ length: 1 + int(8) }, () => int(256));
+      const b = new Uint8Array(bytes.length + extra.length);
+      b.set(bytes.subarray(0, at)); b.set(extra, at); b.set(bytes.subarray(at), at + extra.length);
+      return [b, `insert ${extra.length} at ${at}`];
+    }
+    default: {
+      const at = int(bytes.length), n = 1 + int(8);
+      const b = new Uint8Array(Math.max(0, bytes.length - n));
+      b.set(bytes.subarray(0, at)); b.set(bytes.subarray(at + n), at);
+      return [b, `delete ${n} at ${at}`];
+    }
+  }
+}
+
+/** Corrupts one TIFF tag value (in the IFD, past the header bytes the generic mutation hits). */
+function mutateTiffTag(bytes, rand) {
+  const b = bytes.slice(), v = new DataView(b.buffer), ifd = v.getUint32(4, true), n = v.getUint16(ifd, true);
+  const i = Math.floor(rand() * n), e = ifd + 2 + 12 * i;
+  const choices = [0, 1, 0xffff, 0x7fffffff, Math.floor(rand() * 100000)];
+  v.setUint32(e + (rand() < 0.3 ? 4 : 8), choices[Math.floor(rand() * choices.length)], true);
+  return [b, `tag ${v.getUint16(e, true)} value corrupted`];
+}
+
+async function runFuzz({ seed }) {
+  const rand = seededRandom(seed);
+  const counts = {}, failures = [];
+  let k = 0;
+  for (const entry of manifest) {
+    const [main, sidecar] = entry.files;
+    const format = main.split('.').pop();
+    counts[format] ??= { loaded: 0, rejected: 0 };
+    const original = read(DIR + main);
+    const cases = main.endsWith('.tif') ? 40 : 30;
+    for (let c = 0; c < cases; c++) {
+      const [bytes, how] = main.endsWith('.tif') && c % 3 === 0 ? mutateTiffTag(original, rand) : mutate(original, rand);
+      const files = [{ name: main, bytes }, ...(sidecar ? [file(sidecar)] : [])];
+      parentPort.postMessage({ start: `#${k++} ${main}: ${how}` });
+      try {
+        // The limit keeps a corrupted header from allocating gigabytes in this test worker.
+        const h = await loadHeightfield(files, { ...(entry.options ?? {}), maxSamples: 1 << 24 });
+        const sane = [h.width, h.height, h.spacingX, h.spacingY, h.heightScale, h.heightOffset].every(Number.isFinite) &&
+          h.samples.length === h.width * h.height && (h.sampleType !== 'f32' || h.samples.every(Number.isFinite));
+        if (!sane) failures.push(`${main} ${how}: loaded an insane field`);
+        counts[format].loaded++;
+      } catch (e) {
+        if (e instanceof HeightfieldError && e.message.startsWith(`${e.file}: `) && e.file && !e.message.includes('\n')) counts[format].rejected++;
+        else failures.push(`${main} ${how}: ${e?.name}: ${e?.message}`);
+      }
+    }
+  }
+  parentPort.postMessage({ done: { counts, failures } });
+}

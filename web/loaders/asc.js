@@ -1,0 +1,107 @@
+// ESRI ASCII grids (.asc): a header of "key value" lines (ncols, nrows, xllcorner|xllcenter,
+// yllcorner|yllcenter, cellsize or dx/dy, optional NODATA_value), then nrows lines of ncols
+// numbers, north row first. Heights become float32 metres; NODATA cells are filled later.
+// The numbers are parsed straight from the bytes: no string per value, no copy of the text.
+
+import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, degreesToMetres } from './common.js';
+import { SampleSink } from './pacing.js';
+
+const KEYS = ['ncols', 'nrows', 'xllcorner', 'xllcenter', 'yllcorner', 'yllcenter', 'cellsize', 'dx', 'dy', 'nodata_value'];
+
+/** True when the text starts with an ncols or nrows line. */
+export function hasAscHeader(bytes) {
+  const head = String.fromCharCode(...bytes.subarray(0, 6)).toLowerCase();
+  return head.startsWith('ncols') || head.startsWith('nrows');
+}
+
+/**
+ * @returns {Promise<{ width, height, sampleType: 'f32', samples: Float32Array, nodata: number|null,
+ *   spacingX: number, spacingY: number, geographic: boolean }>} spacing in metres. A cell size is in
+ *   the grid's own units; a grid whose cell size and corner look like degrees (cell <= 0.1, corner
+ *   within -180..360 / -90..90, the whole grid on the globe) is taken as geographic.
+ */
+export async function decodeAsc(bytes, name, allocate, options = {}) {
+  const fail = (problem) => { throw new HeightfieldError(name, problem); };
+  const n = bytes.length;
+  let pos = 0, line = 1;
+
+  /** Next whitespace-separated token as [start, end), or null at the end. Counts lines. */
+  const token = () => {
+    while (pos < n) {
+      const c = bytes[pos];
+      if (c === 0x0a) line++;
+      else if (c !== 0x20 && c !== 0x09 && c !== 0x0d) break;
+      pos++;
+    }
+    if (pos >= n) return null;
+    const start = pos;
+    while (pos < n && bytes[pos] > 0x20) pos++;
+    return [start, pos];
+  };
+  const text = ([s, e]) => String.fromCharCode(...bytes.subarray(s, Math.min(e, s + 40)));
+
+  // Header: key/value pairs until the first token that is not a known key.
+  const header = {};
+  for (;;) {
+    const save = pos, saveLine = line;
+    const key = token();
+    if (!key) fail('truncated: the file ends in its header');
+    const k = text(key).toLowerCase();
+    if (!KEYS.includes(k)) { pos = save; line = saveLine; break; }
+    const value = token();
+    const v = value ? Number(text(value)) : NaN;
+    if (!Number.isFinite(v)) fail(`bad header: ${k} on line ${line} is not a number`);
+    header[k] = v;
+  }
+  for (const k of ['ncols', 'nrows']) if (!(k in header)) fail(`bad header: no ${k} line (is this an ESRI ASCII grid?)`);
+  const width = header.ncols, height = header.nrows;
+  if (!Number.isInteger(width) || !Number.isInteger(height) || width < 0 || height < 0) {
+    fail(`bad header: ncols ${width}, nrows ${height} must be whole numbers`);
+  }
+  checkSize(name, width, height, options.maxSamples ?? DEFAULT_MAX_SAMPLES);
+  const dx = header.cellsize ?? header.dx, dy = header.cellsize ?? header.dy ?? dx;
+  if (!(dx > 0) || !(dy > 0)) fail('bad header: cellsize missing or not positive');
+  // Every value takes at least two bytes (a digit and a separator): reject before allocating.
+  if ((n - pos) < width * height * 2 - 1) fail(`truncated: ${n - pos} bytes cannot hold ${width}x${height} values`);
+
+  const sink = new SampleSink(allocate, 'f32', width, height, options);
+  for (let y = 0; y < height; y++) {
+    const samples = sink.samples, row = y * width;
+    for (let x = 0; x < width; x++) {
+      const t = token();
+      if (!t) fail(`truncated: ${row + x} of ${width * height} values (ends on row ${y + 1})`);
+      const v = parseNumber(bytes, t[0], t[1]);
+      if (!Number.isFinite(v)) fail(`line ${line}: '${text(t)}' is not a number`);
+      samples[row + x] = v;
+    }
+    await sink.pace(y / height);
+  }
+  if (token()) fail(`more values than ncols x nrows (${width}x${height})`);
+
+  const x0 = header.xllcorner ?? header.xllcenter ?? 0, y0 = header.yllcorner ?? header.yllcenter ?? 0;
+  const geographic = dx <= 0.1 && dy <= 0.1 && x0 >= -180 && x0 + width * dx <= 360 &&
+    y0 >= -90 && y0 + height * dy <= 90;
+  const spacing = geographic ? degreesToMetres(dx, dy, y0 + (height * dy) / 2) : { spacingX: dx, spacingY: dy };
+  return { width, height, sampleType: 'f32', samples: sink.samples, nodata: header.nodata_value ?? null,
+    ...spacing, geographic };
+}
+
+/** A decimal number (sign, digits, fraction, exponent) from bytes[s, e); NaN if malformed. */
+function parseNumber(bytes, s, e) {
+  let i = s, sign = 1;
+  if (bytes[i] === 0x2d) { sign = -1; i++; } else if (bytes[i] === 0x2b) i++;
+  let value = 0, digits = 0;
+  while (i < e && bytes[i] >= 0x30 && bytes[i] <= 0x39) { value = value * 10 + (bytes[i++] - 0x30); digits++; }
+  if (i < e && bytes[i] === 0x2e) {
+    i++;
+    let scale = 1, frac = 0;
+    while (i < e && bytes[i] >= 0x30 && bytes[i] <= 0x39) { frac = frac * 10 + (bytes[i++] - 0x30); scale *= 10; digits++; }
+    value += frac / scale;
+  }
+  if (digits === 0) return NaN;
+  if (i < e && (bytes[i] === 0x65 || bytes[i] === 0x45)) {
+    // Rare in grids: hand the whole token to Number() for exact exponent handling.
+    return Number(String.fromCharCode(...bytes.subarray(s, e)));
+  }
+  return i === e ? sign * value : NaN;
+}

@@ -1,0 +1,39 @@
+// SRTM .hgt tiles: 1201 x 1201 (3 arc-seconds) or 3601 x 3601 (1 arc-second) big-endian int16
+// metres, no header, voids = -32768. A tile spans one degree; its name gives its south-west
+// corner (N27E086.hgt), hence the latitude that turns arc-seconds into metres.
+
+import { HeightfieldError, degreesToMetres, fileNameOf } from './common.js';
+import { SampleSink } from './pacing.js';
+import { copyRows } from './copy_rows.js';
+
+export const HGT_VOID = -32768;
+const SIDES = [1201, 3601];
+
+/** Latitude of the south edge from a tile name like N27E086 / s12w077, or null. */
+export function tileLatitude(name) {
+  const m = /^([NS])(\d{2})[EW]\d{3}/i.exec(fileNameOf(name));
+  if (!m) return null;
+  const lat = Number(m[2]);
+  return m[1].toUpperCase() === 'N' ? lat : -lat;
+}
+
+/**
+ * @returns {Promise<{ width, height, sampleType: 'i16', samples: Int16Array, nodata: number,
+ *   spacingX: number, spacingY: number, spacingFromFile: boolean }>} spacing in metres; without a
+ *   tile name the spacing is the equator's and spacingFromFile is false
+ */
+export async function decodeHgt(bytes, name, allocate, options = {}) {
+  const side = SIDES.find((n) => n * n * 2 === bytes.length);
+  if (!side) {
+    const near = bytes.length < SIDES[0] * SIDES[0] * 2 ? 'truncated' : 'wrong size';
+    throw new HeightfieldError(name, `${near}: ${bytes.length} bytes, but an SRTM tile has ` +
+      `${SIDES.map((n) => `${n}x${n}`).join(' or ')} 16-bit samples (${SIDES.map((n) => n * n * 2).join(' or ')} bytes)`);
+  }
+  const south = tileLatitude(name);
+  const step = 1 / (side - 1); // degrees between samples
+  const { spacingX, spacingY } = degreesToMetres(step, step, south === null ? 0 : south + 0.5);
+  const sink = new SampleSink(allocate, 'i16', side, side, options);
+  await copyRows(bytes, 0, sink, side, side, false);
+  return { width: side, height: side, sampleType: 'i16', samples: sink.samples, nodata: HGT_VOID,
+    spacingX, spacingY, spacingFromFile: south !== null };
+}
