@@ -21,13 +21,14 @@ export const BENCH_USAGE = `usage: hexlod bench <heightfield> [options]
   one LOD update, then the fan stream, as the page does), the time from heights in memory to a
   converged mesh, and @mapbox/martini on the same heights at the same measured max error.
   The flight: a straight line through the field's centre on a seeded heading, 80 % of the
-  shorter side long, swaying sideways, --altitude above the highest ground under the next 10
+  shorter side long (or --step metres a frame), swaying sideways, --altitude above the highest ground under the next 10
   frames, looking 10 degrees down; it starts from the mesh converged for its first camera.
   --frames N            frames of the flight (default 300)
   --seed S              seed of the flight's heading and sway (default 1)
   --budget-ms MS        time budget per update (default 4, or none with --budget-ops alone)
   --budget-ops N        operations per update (default: no limit)
   --altitude M          height above the terrain in metres (default 300)
+  --step M              metres flown per frame (default: 80 % of the shorter side over --frames)
   --tau PX              screen-space tolerance in pixels (default 1)
   --fov DEG             vertical field of view in degrees (default 60)
   --viewport WxH        viewport in pixels (default 1920x1080)
@@ -44,7 +45,7 @@ ${FILE_USAGE}`;
 
 const OPTIONS = {
   frames: 'string', seed: 'string', 'budget-ms': 'string', 'budget-ops': 'string', altitude: 'string',
-  tau: 'string', fov: 'string', viewport: 'string', 'max-error': 'string', embedding: 'string',
+  tau: 'string', fov: 'string', viewport: 'string', 'max-error': 'string', embedding: 'string', step: 'string',
   'cell-size': 'string', verbose: 'boolean', json: 'string', 'no-native': 'boolean', 'morph-frames': 'string',
   ...FILE_OPTIONS,
 };
@@ -66,6 +67,7 @@ function benchSettings(args) {
     budgetMs: number('budget-ms', values['budget-ops'] !== undefined ? 0 : 4, { min: 0 }),
     budgetOps,
     altitude: number('altitude', 300, { min: 0, exclusiveMin: true }),
+    step: number('step', 0, { min: 0, exclusiveMin: true }),
     tau: number('tau', 1, { min: 0, exclusiveMin: true }),
     fov: number('fov', 60, { min: 0, exclusiveMin: true, max: 179 }),
     viewport: values.viewport !== undefined ? parseViewport(values.viewport) : [1920, 1080],
@@ -86,13 +88,13 @@ function benchSettings(args) {
  * shorter extent long, with a gentle sideways sway; `altitude` metres above the highest ground
  * under the next 10 frames; looking ahead and 10 degrees down.
  */
-export function flightPath(terrain, { frames, seed, altitude }) {
+export function flightPath(terrain, { frames, seed, altitude, step = 0 }) {
   const rand = seededRandom(seed);
   const { xMax, zMax } = extentOf(terrain);
   const heading = rand() * 2 * Math.PI;
   const phase = rand() * 2 * Math.PI;
-  const length = 0.8 * Math.min(xMax, zMax);
-  const sway = 0.05 * Math.min(xMax, zMax);
+  const length = step > 0 ? Math.min(step * Math.max(frames - 1, 1), 0.8 * Math.min(xMax, zMax)) : 0.8 * Math.min(xMax, zMax);
+  const sway = 0.0625 * length; // 5 % of the shorter side for the default length
   const [dx, dz] = [Math.cos(heading), Math.sin(heading)];
   const ground = [];
   const positions = [];
@@ -352,8 +354,11 @@ function startFlight(terrain, camera, settings, morphFrames) {
   terrain.setMorphFrames(morphFrames);
   terrain.setLodCamera(camera);
   refineToConvergence(terrain);
-  for (let i = 0; i <= morphFrames; i++) terrain.updateLod();
-  terrain.updateStream();
+  terrain.updateStream(); // blends start when the stream takes the new vertices, as in the page
+  for (let i = 0; i <= morphFrames; i++) {
+    terrain.updateLod();
+    terrain.updateStream();
+  }
   terrain.acknowledgeStream();
   terrain.measurePopping();
   terrain.setLodBudget(settings.budgetMs, settings.budgetOps);

@@ -60,8 +60,8 @@ void FanStream::rewriteAll(HexMesh& mesh) {
     changedCells_.clear();
     for (int32_t c = 0; c < mesh.cellCapacity(); ++c) changedCells_.push_back(c);
     vertexLog_.clear();
-    dirtyVertexBlocks_.assign(size_t((mesh.vertexCapacity() >> kBlockShift) + 1), 1);
-    dirtyIndexBlocks_.assign(size_t((mesh.cellCapacity() >> kBlockShift) + 1), 1);
+    dirtyVertices_.markAll(mesh.vertexCapacity());
+    dirtyIndices_.markAll(mesh.cellCapacity());
     Geomorph still; // no blends: the mesh is drawn as it is
     sync(mesh, still);
 }
@@ -122,8 +122,6 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
     if (normalSum_.size() < vertices) normalSum_.resize(vertices, glm::i64vec3(0));
     if (cellPending_.size() < cells) cellPending_.resize(cells, 0);
     if (vertexPending_.size() < vertices) vertexPending_.resize(vertices, 0);
-    if (dirtyIndexBlocks_.size() < (cells >> kBlockShift) + 1) dirtyIndexBlocks_.resize((cells >> kBlockShift) + 1, 0);
-    if (dirtyVertexBlocks_.size() < (vertices >> kBlockShift) + 1) dirtyVertexBlocks_.resize((vertices >> kBlockShift) + 1, 0);
 
     bool wrote = false;
     for (int32_t c : changedCells_) {
@@ -133,7 +131,7 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
         accumulate(mesh, slot, -1); // its old triangles: their vertices still hold their positions
         writeSlot(mesh, c);
         accumulate(mesh, slot, +1);
-        markBlock(dirtyIndexBlocks_, c);
+        dirtyIndices_.mark(c);
         wrote = true;
     }
     for (int32_t c : changedCells_) cellPending_[size_t(c)] = 0;
@@ -156,7 +154,7 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
 void FanStream::finishNormals(HexMesh& mesh) {
     for (int32_t v : touchedVertices_) {
         vertexPending_[size_t(v)] = 0;
-        markBlock(dirtyVertexBlocks_, v);
+        dirtyVertices_.mark(v);
         if (!mesh.isVertexLive(v)) continue; // its sum is back to exactly zero
         const glm::dvec3 n(normalSum_[size_t(v)]);
         const double length = glm::length(n);
@@ -170,35 +168,54 @@ void FanStream::finishNormals(HexMesh& mesh) {
     }
 }
 
-void FanStream::markBlock(std::vector<uint8_t>& blocks, int32_t element) { blocks[size_t(element >> kBlockShift)] = 1; }
+void FanStream::DirtySet::mark(int32_t element) {
+    const size_t block = size_t(element >> kBlockShift);
+    if (block >= marked.size()) marked.resize(block + 1, 0); // the pools grew
+    if (marked[block]) return;
+    marked[block] = 1;
+    list.push_back(int32_t(block));
+}
 
-void FanStream::collectRanges(const std::vector<uint8_t>& blocks, int32_t elements, std::vector<ElementRange>& out) {
+void FanStream::DirtySet::markAll(int32_t elements) {
+    clear();
+    for (int32_t element = 0; element < elements; element += 1 << kBlockShift) mark(element);
+}
+
+void FanStream::DirtySet::clear() {
+    for (int32_t block : list) marked[size_t(block)] = 0;
+    list.clear();
+}
+
+void FanStream::DirtySet::collect(int32_t elements, std::vector<ElementRange>& out) {
     out.clear();
+    std::sort(list.begin(), list.end());
     const int32_t blockSize = 1 << kBlockShift;
-    for (int32_t b = 0; b < int32_t(blocks.size()); ++b) {
-        if (!blocks[size_t(b)]) continue;
-        const int32_t first = b * blockSize;
+    for (int32_t block : list) {
+        const int32_t first = block * blockSize;
         if (first >= elements) break;
-        const int32_t count = std::min(blockSize, elements - first);
-        if (!out.empty() && out.back().first + out.back().count == first) out.back().count += count;
-        else out.push_back({first, count});
+        const int32_t end = std::min(first + blockSize, elements);
+        if (!out.empty() && first - (out.back().first + out.back().count) <= kMergeGap * blockSize) {
+            out.back().count = end - out.back().first;
+        } else {
+            out.push_back({first, end - first});
+        }
     }
 }
 
 const std::vector<ElementRange>& FanStream::dirtyVertices() {
-    collectRanges(dirtyVertexBlocks_, mesh_ ? mesh_->vertexCapacity() : 0, vertexRanges_);
+    dirtyVertices_.collect(mesh_ ? mesh_->vertexCapacity() : 0, vertexRanges_);
     return vertexRanges_;
 }
 
 const std::vector<ElementRange>& FanStream::dirtyIndices() {
-    collectRanges(dirtyIndexBlocks_, mesh_ ? mesh_->cellCapacity() : 0, indexRanges_);
+    dirtyIndices_.collect(mesh_ ? mesh_->cellCapacity() : 0, indexRanges_);
     for (ElementRange& r : indexRanges_) r = {r.first * slotSize(), r.count * slotSize()};
     return indexRanges_;
 }
 
 void FanStream::acknowledge() {
-    std::fill(dirtyVertexBlocks_.begin(), dirtyVertexBlocks_.end(), 0);
-    std::fill(dirtyIndexBlocks_.begin(), dirtyIndexBlocks_.end(), 0);
+    dirtyVertices_.clear();
+    dirtyIndices_.clear();
 }
 
 void FanStream::buildLevelView(const HexMesh& mesh, bool outline) {
@@ -232,7 +249,8 @@ void FanStream::buildLevelView(const HexMesh& mesh, bool outline) {
 size_t FanStream::memoryBytes() const {
     return indices_.capacity() * sizeof(uint32_t) + normalSum_.capacity() * sizeof(glm::i64vec3) +
            (changedCells_.capacity() + vertexLog_.capacity() + touchedVertices_.capacity()) * sizeof(int32_t) +
-           cellPending_.capacity() + vertexPending_.capacity() + dirtyVertexBlocks_.capacity() + dirtyIndexBlocks_.capacity() +
+           cellPending_.capacity() + vertexPending_.capacity() + dirtyVertices_.marked.capacity() + dirtyIndices_.marked.capacity() +
+           (dirtyVertices_.list.capacity() + dirtyIndices_.list.capacity()) * sizeof(int32_t) +
            (vertexRanges_.capacity() + indexRanges_.capacity()) * sizeof(ElementRange) +
            (levelIndices_.capacity() + outline_.capacity()) * sizeof(uint32_t) + levelOffsets_.capacity() * sizeof(int32_t);
 }

@@ -56,14 +56,7 @@ bool Refiner::fails(const Footprint& f, const CellError& e, const SlopeBox* slop
     glm::dvec3 center;
     double radius;
     boundingSphere(f, e, settings_.verticalScale, center, radius);
-    if (settings_.culling) {
-        // The culling frustum may be widened so that cells entering the view are refined
-        // already, rather than all at once as they appear (popping at the screen's edges).
-        View widened = view_;
-        widened.tanHalfX *= 1.0 + settings_.cullMargin;
-        widened.tanHalfY *= 1.0 + settings_.cullMargin;
-        if (outsideFrustum(widened, center, radius)) return false;
-    }
+    if (settings_.culling && outsideFrustum(view_, center, radius)) return false;
     if (settings_.backfaceCulling && slopes && backFacing(view_, center, radius, *slopes, settings_.verticalScale)) return false;
     const double tau = settings_.autoTau ? currentTau_ : settings_.tau;
     return projectedErrorPixels(view_, center, radius, double(e.error) * settings_.verticalScale) > tau;

@@ -34,7 +34,6 @@ struct RefinerSettings {
     int32_t maxTriangles = 0;     // <= 0: no cap
     bool autoTau = false;
     bool culling = true;          // frustum culling
-    double cullMargin = 0.0;      // the culling frustum's half-angle tangents widened by this fraction
     bool backfaceCulling = true;  // cone-of-normals culling (exact embedding, cells of up to 4096 samples)
 };
 

@@ -14,12 +14,14 @@ const TAU_PX = 1;          // screen-space error tolerance, device pixels
 const FRAME_BUDGET_MS = 4; // LOD update time per frame
 const MORPH_FRAMES = 8;    // geomorph blends (paper §7), frames
 const params = new URLSearchParams(location.search);
-// The index layout: TRIANGLE_FAN with primitive restart (default, see BENCHMARKS.md) or an
-// indexed TRIANGLES list; ?layout=triangles switches, for measuring.
-const LAYOUT = params.get('layout') === 'triangles' ? 'triangles' : 'fans';
-// ?timing=1 waits for the GPU after drawing (gl.finish) so that frame figures include it; for
-// benchmarks only, since it stalls the pipeline.
+// The index layout: an indexed TRIANGLES list (the default: it drew in 0.61x the time of the
+// paper's TRIANGLE_FAN with primitive restart on the same mesh, and ANGLE on Direct3D and
+// Metal rewrites fans on the CPU; see BENCHMARKS.md), or ?layout=fans.
+const LAYOUT = params.get('layout') === 'fans' ? 'fans' : 'triangles';
+// ?timing=1 waits for the GPU after drawing (a one-pixel readPixels: gl.finish does not wait in
+// Chromium) so that frame figures include it; for benchmarks only, since it stalls the pipeline.
 const TIMING = params.get('timing') === '1';
+const timingPixel = new Uint8Array(4);
 
 const canvas = document.getElementById('view');
 const hud = document.getElementById('hud');
@@ -70,7 +72,8 @@ async function main() {
   const camera = new OrbitCamera();
   let current = null; // { terrain, field, loadMs }
   let frameRequested = false;
-  const view = { colorByLevel: false, outline: false, frame: 0, morphFrames: MORPH_FRAMES, verticalScale: VERTICAL_EXAGGERATION };
+  const view = { colorByLevel: false, outline: false, frame: 0, morphFrames: MORPH_FRAMES, verticalScale: VERTICAL_EXAGGERATION,
+    layout: LAYOUT };
   const lodLine = document.createElement('div');
 
   function render() {
@@ -89,14 +92,14 @@ async function main() {
       const { terrain } = current;
       terrain.setLodCamera({ eye: camera.position, target: camera.target, fovY: camera.fovY, aspect: camera.aspect,
         viewportHeight: height, near: camera.near, far: camera.far });
-      terrain.updateLod();
+      if (!state.frozen) terrain.updateLod(); // frozen: keep the mesh (benchmarks, inspection)
       const lod = terrain.lodStats();
       const streamStart = performance.now();
       const version = terrain.updateStream();
       const uploadStart = performance.now();
       if (version !== current.streamVersion) current.blendsEnd = lod.frame + MORPH_FRAMES; // new blends run
       current.streamVersion = version;
-      state.uploadBytes = renderer.upload(terrain, LAYOUT);
+      state.uploadBytes = renderer.upload(terrain, view.layout);
       state.streamBytes = renderer.streamBytes;
       if (view.colorByLevel || view.outline) renderer.setLevelView(terrain.levelView(view.outline));
       state.timing = { updateMs: lod.updateMs, streamMs: uploadStart - streamStart, uploadMs: performance.now() - uploadStart };
@@ -111,7 +114,7 @@ async function main() {
     }
     const drawStart = performance.now();
     renderer.draw(camera, width, height, view);
-    if (TIMING) gl.finish();
+    if (TIMING) gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, timingPixel); // waits for the draw
     if (state.timing) Object.assign(state.timing, { drawMs: performance.now() - drawStart, frameMs: performance.now() - frameStart });
     state.frames += 1;
   }
@@ -134,7 +137,7 @@ async function main() {
     terrain.setLodTolerance(TAU_PX);
     terrain.setLodBudget(FRAME_BUDGET_MS, 0);
     terrain.setMorphFrames(MORPH_FRAMES);
-    terrain.setStreamLayout(LAYOUT);
+    terrain.setStreamLayout(view.layout);
     terrain.updateStream();
     const focus = reliefCentroid(terrain.stream(), terrain.minHeight, VERTICAL_EXAGGERATION);
     camera.frame(focus[0], focus[1], focus[2], Math.hypot(loaded.extentX, loaded.extentZ));
@@ -161,6 +164,12 @@ async function main() {
 
   // For headless tests and benchmarks: drive the camera, ask for frames, read GL errors.
   Object.assign(state, { camera, requestRender, glError: () => gl.getError() });
+  // For benchmarks: the same mesh drawn with the other index layout ('fans' | 'triangles').
+  state.setLayout = (layout) => {
+    view.layout = layout;
+    current?.terrain.setStreamLayout(layout);
+    requestRender();
+  };
   attachOrbitControls(canvas, camera, requestRender);
   window.addEventListener('keydown', (e) => {
     if (e.key === 'l' || e.key === 'L') view.colorByLevel = !view.colorByLevel;
