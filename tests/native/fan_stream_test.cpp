@@ -63,6 +63,17 @@ void refineVolcano(HexMesh& mesh, const Heightfield& field) {
     refineNear(mesh, 300.0, 250.0, 150.0, 3);
 }
 
+// The refined volcano with its stream, built in place (the stream points at the mesh).
+struct VolcanoStream {
+    std::unique_ptr<Heightfield> field = test::loadFixture(test::kVolcano);
+    HexMesh mesh;
+    FanStream stream;
+    VolcanoStream() {
+        refineVolcano(mesh, *field);
+        stream.attach(mesh);
+    }
+};
+
 // Random splits and merges, as a moving camera would cause.
 void randomOperations(HexMesh& mesh, std::mt19937& random, int32_t count) {
     for (int32_t i = 0; i < count; ++i) {
@@ -95,13 +106,11 @@ struct RendererCopy {
 } // namespace
 
 TEST(FanStream, DecodedFansAreExactlyTheMeshTrianglesInBothLayouts) {
-    auto field = test::loadFixture(test::kVolcano);
-    ASSERT_NE(field, nullptr);
-    HexMesh mesh;
-    refineVolcano(mesh, *field);
+    VolcanoStream volcano;
+    ASSERT_NE(volcano.field, nullptr);
+    HexMesh& mesh = volcano.mesh;
+    FanStream& stream = volcano.stream;
     ASSERT_EQ(mesh.checkInvariants(), nullptr);
-    FanStream stream;
-    stream.attach(mesh);
     const std::vector<Triangle> expected = meshTriangles(mesh);
     EXPECT_EQ(int64_t(expected.size()), mesh.triangleCount());
     EXPECT_EQ(decode(stream), expected);
@@ -110,11 +119,9 @@ TEST(FanStream, DecodedFansAreExactlyTheMeshTrianglesInBothLayouts) {
 }
 
 TEST(FanStream, EverySlotIsItsCellsFanThenRestartsAndNothingExceedsCapacity) {
-    auto field = test::loadFixture(test::kVolcano);
-    HexMesh mesh;
-    refineVolcano(mesh, *field);
-    FanStream stream;
-    stream.attach(mesh);
+    VolcanoStream volcano;
+    HexMesh& mesh = volcano.mesh;
+    FanStream& stream = volcano.stream;
     Geomorph morph;
     std::mt19937 random(7);
     for (int32_t round = 0; round < 20; ++round) {
@@ -165,11 +172,8 @@ TEST(FanStream, IncrementalUpdatesEqualARewriteBitForBit) {
 }
 
 TEST(FanStream, NormalsAreUnitUpwardAndAveragedFromTheAdjacentTriangles) {
-    auto field = test::loadFixture(test::kVolcano);
-    HexMesh mesh;
-    refineVolcano(mesh, *field);
-    FanStream stream;
-    stream.attach(mesh);
+    VolcanoStream volcano; // its stream wrote the normals
+    HexMesh& mesh = volcano.mesh;
     // Reference: area-weighted face normals summed in double over the decoded triangles.
     std::vector<glm::dvec3> sum(size_t(mesh.vertexCapacity()), glm::dvec3(0.0));
     for (const Triangle& t : meshTriangles(mesh)) {
@@ -190,11 +194,9 @@ TEST(FanStream, NormalsAreUnitUpwardAndAveragedFromTheAdjacentTriangles) {
 }
 
 TEST(FanStream, TheDirtyRangesCarryEveryChangeToARenderersCopy) {
-    auto field = test::loadFixture(test::kVolcano);
-    HexMesh mesh;
-    refineVolcano(mesh, *field);
-    FanStream stream;
-    stream.attach(mesh);
+    VolcanoStream volcano;
+    HexMesh& mesh = volcano.mesh;
+    FanStream& stream = volcano.stream;
     Geomorph morph;
     morph.setFrames(8);
     RendererCopy gpu;
@@ -222,11 +224,9 @@ TEST(FanStream, TheDirtyRangesCarryEveryChangeToARenderersCopy) {
 }
 
 TEST(FanStream, LevelViewHoldsTheFansOfOneLevelPerRange) {
-    auto field = test::loadFixture(test::kVolcano);
-    HexMesh mesh;
-    refineVolcano(mesh, *field);
-    FanStream stream;
-    stream.attach(mesh);
+    VolcanoStream volcano;
+    HexMesh& mesh = volcano.mesh;
+    FanStream& stream = volcano.stream;
     stream.buildLevelView(mesh, false);
     ASSERT_EQ(stream.levelOffsets().size(), size_t(mesh.maxLevel()) + 2);
     int levelsUsed = 0;
@@ -243,11 +243,9 @@ TEST(FanStream, LevelViewHoldsTheFansOfOneLevelPerRange) {
 }
 
 TEST(FanStream, OutlineHasEveryCellEdgeOnceAndOnlyWhenAskedFor) {
-    auto field = test::loadFixture(test::kVolcano);
-    HexMesh mesh;
-    refineVolcano(mesh, *field);
-    FanStream stream;
-    stream.attach(mesh);
+    VolcanoStream volcano;
+    HexMesh& mesh = volcano.mesh;
+    FanStream& stream = volcano.stream;
     stream.buildLevelView(mesh, false);
     EXPECT_TRUE(stream.outline().empty()) << "no outline unless the wireframe is shown";
     stream.buildLevelView(mesh, true);
