@@ -29,6 +29,9 @@ export const BENCH_USAGE = `usage: hexlod bench <heightfield> [options]
   --budget-ops N        operations per update (default: no limit)
   --altitude M          height above the terrain in metres (default 300)
   --step M              metres flown per frame (default: 80 % of the shorter side over --frames)
+  --no-backface         turn off back-face culling (the popping meter cannot tell a vertex hidden
+                        behind a ridge from a visible one; back-face culled cells that turn to
+                        face the camera are refined at once)
   --tau PX              screen-space tolerance in pixels (default 1)
   --fov DEG             vertical field of view in degrees (default 60)
   --viewport WxH        viewport in pixels (default 1920x1080)
@@ -46,7 +49,7 @@ ${FILE_USAGE}`;
 const OPTIONS = {
   frames: 'string', seed: 'string', 'budget-ms': 'string', 'budget-ops': 'string', altitude: 'string',
   tau: 'string', fov: 'string', viewport: 'string', 'max-error': 'string', embedding: 'string', step: 'string',
-  'cell-size': 'string', verbose: 'boolean', json: 'string', 'no-native': 'boolean', 'morph-frames': 'string',
+  'cell-size': 'string', verbose: 'boolean', json: 'string', 'no-native': 'boolean', 'morph-frames': 'string', 'no-backface': 'boolean',
   ...FILE_OPTIONS,
 };
 const MAX_UPDATES = 10000;
@@ -68,6 +71,7 @@ function benchSettings(args) {
     budgetOps,
     altitude: number('altitude', 300, { min: 0, exclusiveMin: true }),
     step: number('step', 0, { min: 0, exclusiveMin: true }),
+    backface: !values['no-backface'],
     tau: number('tau', 1, { min: 0, exclusiveMin: true }),
     fov: number('fov', 60, { min: 0, exclusiveMin: true, max: 179 }),
     viewport: values.viewport !== undefined ? parseViewport(values.viewport) : [1920, 1080],
@@ -352,6 +356,7 @@ function startFlight(terrain, camera, settings, morphFrames) {
   terrain.setLodTolerance(settings.tau);
   terrain.setLodBudget(0, 0);
   terrain.setMorphFrames(morphFrames);
+  terrain.setLodBackfaceCulling(settings.backface);
   terrain.setLodCamera(camera);
   refineToConvergence(terrain);
   terrain.updateStream(); // blends start when the stream takes the new vertices, as in the page

@@ -209,7 +209,9 @@ int32_t hexlod_lod_pending_merges(const hexlod_terrain* terrain);
 /* Popping (for benchmarks): the largest screen-space jump of any vertex, in pixels, between
  * the frame now drawn and the one measured last, with the camera of the last
  * hexlod_lod_set_camera (see src/popping_meter.h); out[0] = max jump px, out[1] = jumps over
- * 0.5 px, out[2] = jumps measured. The first call only records the frame. Returns 0 or -1. */
+ * 0.5 px, out[2] = jumps measured; where the largest was: out[3], out[4] screen x, y in pixels
+ * from the centre (y up), out[5] depth in metres, out[6] 0 a kept vertex, 1 a new one, 2 a
+ * freed one. The first call only records the frame. Returns 0 or -1. */
 int32_t hexlod_measure_popping(hexlod_terrain* terrain, double* out);
 
 /* One refinement step (§6): refine in ascending level order, then coarsen in descending level

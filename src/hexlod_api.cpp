@@ -280,12 +280,16 @@ int32_t hexlod_lod_pending_merges(const hexlod_terrain* terrain) {
 
 int32_t hexlod_measure_popping(hexlod_terrain* terrain, double* out) {
     HEXLOD_NEED_MESH(-1);
-    if (!out) return fail("out must point to 3 doubles", -1);
+    if (!out) return fail("out must point to 7 doubles", -1);
     const hexlod::PoppingStats stats = terrain->popping.measure(terrain->mesh, terrain->morph, terrain->refiner.view(),
                                                                 terrain->refiner.settings().verticalScale);
     out[0] = stats.maxJumpPx;
     out[1] = double(stats.jumpsOverHalfPx);
     out[2] = double(stats.measured);
+    out[3] = stats.atX;
+    out[4] = stats.atY;
+    out[5] = stats.atDepth;
+    out[6] = double(stats.kind);
     return 0;
 }
 

@@ -50,27 +50,30 @@ PoppingStats PoppingMeter::measure(const HexMesh& mesh, const Geomorph& morph, c
     PoppingStats stats;
     const int32_t slots = mesh.vertexCapacity();
     const bool first = previous_.empty();
-    auto jump = [&](const glm::vec3& from, const glm::vec3& to) {
+    auto jump = [&](const glm::vec3& from, const glm::vec3& to, int32_t kind) {
         double x0, y0, x1, y1;
         bool on0, on1;
         if (!project(view, from, verticalScale, x0, y0, on0) || !project(view, to, verticalScale, x1, y1, on1)) return;
         if (!on0 && !on1) return;
         const double px = std::hypot(x1 - x0, y1 - y0);
         ++stats.measured;
-        stats.maxJumpPx = std::max(stats.maxJumpPx, px);
         if (px > 0.5) ++stats.jumpsOverHalfPx;
+        if (px <= stats.maxJumpPx) return;
+        stats.maxJumpPx = px;
+        stats.atX = x1, stats.atY = y1, stats.kind = kind;
+        stats.atDepth = glm::dot(glm::dvec3(to.x, double(to.y) * verticalScale, to.z) - view.eye, view.forward);
     };
     if (!first) {
         for (int32_t v = 0; v < slots; ++v) {
             const bool live = mesh.isVertexLive(v);
             const glm::vec3 now = live ? morph.displayed(mesh.streamVertex(v)) : glm::vec3(0.0f);
             if (sameVertex(mesh, v)) {
-                jump(previous_[size_t(v)].drawn, now);
+                jump(previous_[size_t(v)].drawn, now, 0);
                 continue;
             }
             if (size_t(v) < previous_.size() && previous_[size_t(v)].live) // freed (or its slot reused)
-                jump(previous_[size_t(v)].drawn, currentSurfaceAt(mesh, morph, v, 0));
-            if (live) jump(previousSurfaceAt(mesh, morph, v, 0), now); // new
+                jump(previous_[size_t(v)].drawn, currentSurfaceAt(mesh, morph, v, 0), 2);
+            if (live) jump(previousSurfaceAt(mesh, morph, v, 0), now, 1); // new
         }
     }
     previous_.resize(size_t(slots));

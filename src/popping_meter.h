@@ -22,6 +22,10 @@ struct PoppingStats {
     double maxJumpPx = 0.0;  // largest jump this frame, pixels
     int32_t jumpsOverHalfPx = 0;
     int32_t measured = 0;    // vertex jumps measured (on screen)
+    // Where the largest jump was: screen position (pixels from the centre, y up), depth
+    // (metres) and what the vertex did: 0 kept, 1 new, 2 freed.
+    double atX = 0.0, atY = 0.0, atDepth = 0.0;
+    int32_t kind = 0;
 };
 
 class PoppingMeter {

@@ -342,16 +342,18 @@ Object.assign(Terrain.prototype, {
 
   /**
    * The largest screen-space jump of any vertex since the last call, for benchmarks
-   * (hexlod_measure_popping): {maxJumpPx, jumpsOverHalfPx, measured}.
+   * (hexlod_measure_popping): {maxJumpPx, jumpsOverHalfPx, measured, at: {x, y, depth, kind}}, where
+   * at is the largest jump's screen position (pixels from the centre), depth (metres) and
+   * whether its vertex was kept, new or freed.
    */
   measurePopping() {
     const m = this.m;
-    const out = m._malloc(3 * 8);
+    const out = m._malloc(7 * 8);
     this.core.check(out === 0, 'cannot measure popping: out of memory');
     try {
       this.core.check(m._hexlod_measure_popping(this.handle, out) < 0, 'cannot measure popping');
-      const [maxJumpPx, jumpsOverHalfPx, measured] = this.core.view(Float64Array, out, 3);
-      return { maxJumpPx, jumpsOverHalfPx, measured };
+      const [maxJumpPx, jumpsOverHalfPx, measured, x, y, depth, kind] = this.core.view(Float64Array, out, 7);
+      return { maxJumpPx, jumpsOverHalfPx, measured, at: { x, y, depth, kind: ['kept', 'new', 'freed'][kind] } };
     } finally {
       m._free(out);
     }
