@@ -287,7 +287,7 @@ async function main() {
 
   // For headless tests and benchmarks: drive the camera, ask for frames, read GL errors.
   Object.assign(state, { rig, settings, requestRender, setSetting: (key, value) => { settings[key] = value; onSetting(key, value); },
-    glError: () => gl.getError(), screenshot, flushUrl: () => urlWriter.flush() });
+    glError: () => gl.getError(), screenshot, terrainObject: () => current?.terrain, flushUrl: () => urlWriter.flush() });
   Object.defineProperty(state, 'camera', { get: () => rig.active, enumerable: true });
   rig.attach(canvas);
   window.addEventListener('keydown', (e) => {

@@ -91,7 +91,7 @@ export class CameraRig {
     element.addEventListener('pointerdown', (e) => {
       if (e.pointerType === 'touch') return;
       drag = { x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey };
-      element.setPointerCapture(e.pointerId);
+      try { element.setPointerCapture(e.pointerId); } catch { /* a synthetic or finished pointer */ }
     });
     element.addEventListener('pointermove', (e) => {
       if (!drag || e.pointerType === 'touch') return;

@@ -16,7 +16,7 @@ export function attachTouchControls(element, rig) {
   element.addEventListener('pointerdown', (e) => {
     if (e.pointerType !== 'touch') return;
     touches.set(e.pointerId, { x: e.clientX, y: e.clientY });
-    element.setPointerCapture(e.pointerId);
+    try { element.setPointerCapture(e.pointerId); } catch { /* a synthetic or finished pointer */ }
     last = gesture();
   });
   element.addEventListener('pointermove', (e) => {
