@@ -89,7 +89,7 @@ try {
 
   // 2. Fans against a triangle list on the same mesh: the LOD frozen at the last camera, then
   // alternating layouts, the first draw after each switch (the full upload) not timed.
-  await page.evaluate(() => { window.hexlod.frozen = true; });
+  await page.evaluate(() => window.hexlod.setSetting('freeze', true));
   const times = { fans: [], triangles: [] };
   let triangles = 0;
   for (let round = 0; round < 3; round++) {

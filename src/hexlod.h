@@ -21,7 +21,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 7
+#define HEXLOD_ABI_VERSION 8
 
 /* Sample types: the native depth of the file's heights. */
 #define HEXLOD_SAMPLE_U8 1
@@ -98,6 +98,10 @@ int32_t hexlod_mesh_vertex_count(const hexlod_terrain* terrain);
 /* Bytes held by the mesh structures (cell and vertex pools, lists), the refiner's caches and
  * the fan stream. */
 double hexlod_mesh_memory_bytes(const hexlod_terrain* terrain);
+/* Live cells by kind (§4.2): out[0] full hexagons, out[1] interior semi-hexagons, out[2]
+ * boundary semi-hexagons. Returns their total (= hexlod_mesh_cell_count), or -1. A pass over
+ * the cell pool. */
+int32_t hexlod_mesh_cell_kinds(const hexlod_terrain* terrain, int32_t* out);
 /* Checks every invariant of the mesh; returns 0, or -1 with the violation in hexlod_last_error. */
 int32_t hexlod_mesh_check(const hexlod_terrain* terrain);
 
@@ -143,6 +147,14 @@ const int32_t* hexlod_stream_dirty_vertices(hexlod_terrain* terrain, int32_t* pa
 const int32_t* hexlod_stream_dirty_indices(hexlod_terrain* terrain, int32_t* pair_count);
 /* The renderer has uploaded every dirty range: forget them. Returns 0. */
 int32_t hexlod_stream_acknowledge(hexlod_terrain* terrain);
+
+/* Height in metres (unscaled: times the vertical scale for the drawn world) of the surface as
+ * drawn now at ground position (x_m, z_m): the triangles of the stream's index array, each
+ * vertex where its geomorph blend puts it at the current frame (hexlod_lod_frame), the
+ * highest where triangles meet. Call after hexlod_stream_update. Returns NaN where no drawn
+ * triangle covers the point (outside the domain), or with no mesh. Scans every cell: about a
+ * millisecond for 100k triangles. */
+double hexlod_stream_drawn_height_at(const hexlod_terrain* terrain, double x_m, double z_m);
 
 /* The level-ordered view for diagnostics (colour by level, hexagon outlines): every cell's fan
  * closed by 0xFFFFFFFF, grouped by level, and with outline non-zero every cell edge once as a
@@ -230,6 +242,13 @@ int32_t hexlod_lod_last_splits(const hexlod_terrain* terrain);
 int32_t hexlod_lod_last_merges(const hexlod_terrain* terrain);
 double hexlod_lod_last_update_ms(const hexlod_terrain* terrain);
 double hexlod_lod_current_tau(const hexlod_terrain* terrain);
+
+/* The achieved screen error in pixels for the camera of the last hexlod_lod_set_camera: the
+ * largest bound on the projected error (the refiner's criterion, §5) over the live cells in
+ * view whose bound the refiner has computed (not back-facing, inside the frustum when culling
+ * is on). At most tau once converged. -1 in max-error mode or with no mesh. A pass over the
+ * cells. */
+double hexlod_lod_achieved_error_px(const hexlod_terrain* terrain);
 
 /* The mesh hash (cells, levels, lattice points and positions) as two 32-bit halves. */
 uint32_t hexlod_mesh_hash_low(const hexlod_terrain* terrain);

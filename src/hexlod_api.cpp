@@ -7,10 +7,12 @@
 #include <vector>
 
 #include "fan_stream.h"
+#include "drawn_surface.h"
 #include "geomorph.h"
 #include "heightfield.h"
 #include "hex_mesh.h"
 #include "hex_mesh_refine.h"
+#include "mesh_census.h"
 #include "error_evaluator.h"
 #include "popping_meter.h"
 #include "refiner.h"
@@ -393,6 +395,26 @@ double hexlod_lod_last_update_ms(const hexlod_terrain* terrain) {
 double hexlod_lod_current_tau(const hexlod_terrain* terrain) {
     HEXLOD_NEED_MESH(-1.0);
     return terrain->refiner.currentTau();
+}
+
+double hexlod_lod_achieved_error_px(const hexlod_terrain* terrain) {
+    HEXLOD_NEED_MESH(-1.0);
+    return terrain->refiner.achievedErrorPixels();
+}
+
+int32_t hexlod_mesh_cell_kinds(const hexlod_terrain* terrain, int32_t* out) {
+    HEXLOD_NEED_MESH(-1);
+    if (!out) return fail("hexlod_mesh_cell_kinds needs an array of 3 int32 to write to", -1);
+    const auto counts = hexlod::countCellKinds(terrain->mesh);
+    for (size_t k = 0; k < 3; ++k) out[k] = counts[k];
+    return counts[0] + counts[1] + counts[2];
+}
+
+double hexlod_stream_drawn_height_at(const hexlod_terrain* terrain, double x_m, double z_m) {
+    if (!terrain || !terrain->hasMesh) return std::nan("");
+    float height = 0.0f;
+    if (!hexlod::drawnHeightAt(*terrain->field, terrain->mesh, terrain->stream, terrain->morph, x_m, z_m, height)) return std::nan("");
+    return double(height);
 }
 
 uint32_t hexlod_mesh_hash_low(const hexlod_terrain* terrain) {

@@ -70,7 +70,9 @@ public:
     /// Merges waiting for their vertices to fade out.
     int32_t pendingMerges() const { return int32_t(pending_.size()); }
     size_t memoryBytes() const;
-
+    /// The achieved screen error (refiner_achieved_error.cpp): the largest projected error in
+    /// pixels over the live cells in view whose bound is cached; -1 in view-independent mode.
+    double achievedErrorPixels() const;
 
 private:
     enum class Phase { Refine, Coarsen };

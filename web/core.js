@@ -174,6 +174,28 @@ export class Terrain {
     };
   }
 
+  /** Live cells by kind (hexlod_mesh_cell_kinds): {full, semi, boundarySemi}. */
+  cellKinds() {
+    const m = this.m;
+    const out = m._malloc(3 * 4);
+    this.core.check(out === 0, 'cannot count cells: out of memory');
+    try {
+      this.core.check(m._hexlod_mesh_cell_kinds(this.handle, out) < 0, 'cannot count cells');
+      const [full, semi, boundarySemi] = this.core.view(Int32Array, out, 3);
+      return { full, semi, boundarySemi };
+    } finally {
+      m._free(out);
+    }
+  }
+
+  /**
+   * Height in metres (unscaled) of the surface as drawn now, geomorph blends included, at
+   * (x, z) metres (hexlod_stream_drawn_height_at); NaN where nothing is drawn. After updateStream.
+   */
+  drawnHeightAt(x, z) {
+    return this.m._hexlod_stream_drawn_height_at(this.handle, x, z);
+  }
+
   /** Runs the core's invariant check; throws a CoreError naming the first violation. */
   checkMesh() {
     this.core.check(this.m._hexlod_mesh_check(this.handle) < 0, 'mesh invariant violated');
@@ -374,6 +396,14 @@ Object.assign(Terrain.prototype, {
   /** Figures of the last update: {converged, splits, merges, updateMs, tau}. */
   lodStats() {
     return lodFigures(this.m, this.handle);
+  },
+
+  /**
+   * The achieved screen error in pixels of the current mesh for the current camera
+   * (hexlod_lod_achieved_error_px); -1 in max-error mode.
+   */
+  achievedErrorPx() {
+    return this.m._hexlod_lod_achieved_error_px(this.handle);
   },
 
   /** The mesh hash as 16 hexadecimal digits (high half first). */

@@ -1,58 +1,46 @@
-// The viewer page: loads the core and the default terrain, draws it, and lets the user drop
-// another height field. State for headless tests is published on window.hexlod.
-import { createCore, RESTART_INDEX, STREAM_VERTEX_WORDS } from './core.js';
+// The viewer page: loads the core and the default terrain, runs the frame loop (cameras, LOD
+// update, fan stream, upload, draw), and wires the panel, HUD, URL state, screenshots and
+// context loss to it. State for headless tests is published on window.hexlod.
+import { createCore } from './core.js';
 import { createFileIntake } from './file_intake.js';
 import { TerrainRenderer } from './renderer.js';
-import { OrbitCamera, attachOrbitControls } from './camera.js';
+import { CameraRig, CAMERA_MODES, isTyping } from './cameras/rig.js';
+import { createWorld } from './ground.js';
+import { reliefFocus } from './default_view.js';
+import { defaultSettings, applyLodSettings, MORPH_FRAMES } from './settings.js';
+import { createControlsPanel } from './controls_panel.js';
+import { Hud } from './hud.js';
+import { pickGround } from './picking.js';
+import { parseUrlState, applyCameraState, UrlWriter } from './url_state.js';
+import { captureView, download } from './screenshot.js';
+import { handleContextLoss } from './context_loss.js';
 
 const DEFAULT_TERRAIN = [
   new URL('../public/terrain/globe_himalaya_2048.png', import.meta.url).href,
   new URL('../public/terrain/globe_himalaya_2048.json', import.meta.url).href,
 ];
-const VERTICAL_EXAGGERATION = 2;
-const TAU_PX = 1;          // screen-space error tolerance, device pixels
-const FRAME_BUDGET_MS = 4; // LOD update time per frame
-const MORPH_FRAMES = 8;    // geomorph blends (paper §7), frames
 const params = new URLSearchParams(location.search);
 // The index layout: an indexed TRIANGLES list (the default: it drew in 0.61x the time of the
-// paper's TRIANGLE_FAN with primitive restart on the same mesh, and ANGLE on Direct3D and
-// Metal rewrites fans on the CPU; see BENCHMARKS.md), or ?layout=fans.
+// paper's TRIANGLE_FAN with primitive restart on the same mesh, and ANGLE on Direct3D 11 and
+// Metal converts fans to lists; see BENCHMARKS.md), or ?layout=fans.
 const LAYOUT = params.get('layout') === 'fans' ? 'fans' : 'triangles';
 // ?timing=1 waits for the GPU after drawing (a one-pixel readPixels: gl.finish does not wait in
 // Chromium) so that frame figures include it; for benchmarks only, since it stalls the pipeline.
 const TIMING = params.get('timing') === '1';
 const timingPixel = new Uint8Array(4);
+const FRAME_LOG = 4096; // frames kept in window.hexlod.frameLog while recording
 
 const canvas = document.getElementById('view');
-const hud = document.getElementById('hud');
 const statusBox = document.getElementById('status');
+const helpBox = document.getElementById('help');
 
 /** What headless tests read: 'loading' | 'ready' | 'error', and figures of the current view. */
-const state = (window.hexlod = { status: 'loading', frames: 0, error: null, terrain: null, triangles: 0 });
+const state = (window.hexlod = { status: 'loading', frames: 0, error: null, terrain: null, triangles: 0,
+  contextLost: false, contextRestores: 0, recordFrames: false, frameLog: [], cursor: null });
 
 function showStatus(message, isError = false) {
   statusBox.textContent = message;
   statusBox.classList.toggle('error', isError);
-}
-
-/**
- * Where the relief is: the centroid of the drawn vertices weighted by the square of their
- * height above the lowest point, so a view opens on the mountains rather than the plain.
- * Heights in the stream are unscaled; the result is in drawn (exaggerated) metres.
- */
-function reliefCentroid({ vertices, indices }, lowest, verticalScale) {
-  let x = 0, y = 0, z = 0, total = 0;
-  for (const v of indices) {
-    if (v === RESTART_INDEX) continue;
-    const k = v * STREAM_VERTEX_WORDS;
-    const w = (vertices[k + 1] - lowest) ** 2;
-    x += vertices[k] * w;
-    y += vertices[k + 1] * w;
-    z += vertices[k + 2] * w;
-    total += w;
-  }
-  if (total === 0) return [vertices[0], vertices[1] * verticalScale, vertices[2]];
-  return [x / total, (y / total) * verticalScale, z / total];
 }
 
 async function fetchFiles(urls) {
@@ -69,16 +57,38 @@ async function main() {
   if (!gl) throw new Error('this browser has no WebGL2');
   const core = await createCore();
   const renderer = new TerrainRenderer(gl);
-  const camera = new OrbitCamera();
-  let current = null; // { terrain, field, loadMs }
+  const settings = defaultSettings();
+  const urlState = parseUrlState(location.search);
+  Object.assign(settings, urlState.settings);
+  const urlWriter = new UrlWriter();
+  let source = null;         // the data's URL, while the terrain on screen came from one
+  let pendingSource = null;  // the URL being opened
+  let current = null;        // { terrain, field, loadMs, world, streamVersion, blendsEnd }
   let frameRequested = false;
-  const view = { colorByLevel: false, outline: false, frame: 0, morphFrames: MORPH_FRAMES, verticalScale: VERTICAL_EXAGGERATION,
+  let contextLost = false;
+  let lastFrameTime = 0;
+  let lastFrameMs = 0; // CPU time of the previous frame, for the HUD
+  const view = { colorByLevel: false, outline: false, frame: 0, morphFrames: MORPH_FRAMES, verticalScale: settings.exaggeration,
     layout: LAYOUT };
-  const lodLine = document.createElement('div');
+  const hud = new Hud(document.getElementById('hud'));
+  const rig = new CameraRig(requestRender);
+  rig.cameras.walk.eyeHeight = settings.eyeHeight;
+  const cameraMode = { mode: rig.mode }; // the panel's view of the rig
 
-  function render() {
+  function syncView() {
+    view.colorByLevel = settings.colorByLevel;
+    view.outline = settings.wireframe;
+    view.morphFrames = settings.geomorph ? MORPH_FRAMES : 0;
+    view.verticalScale = settings.exaggeration;
+  }
+
+  function render(now) {
     frameRequested = false;
+    if (contextLost) return;
     const frameStart = performance.now();
+    const seconds = now - lastFrameTime < 200 ? (now - lastFrameTime) / 1000 : 1 / 60;
+    lastFrameTime = now;
+    const moving = rig.step(seconds);
     const dpr = window.devicePixelRatio || 1;
     const width = Math.max(1, Math.round(canvas.clientWidth * dpr));
     const height = Math.max(1, Math.round(canvas.clientHeight * dpr));
@@ -86,37 +96,60 @@ async function main() {
       canvas.width = width;
       canvas.height = height;
     }
+    const camera = rig.active;
     camera.update(width / height);
+    let lodMs = 0, streamMs = 0, uploadMs = 0;
     if (current) {
       // §6: one budgeted refinement step per frame for the current camera, then the fans.
+      // Frozen: the mesh stays as it is while the camera moves (to look at it from outside).
       const { terrain } = current;
-      terrain.setLodCamera({ eye: camera.position, target: camera.target, fovY: camera.fovY, aspect: camera.aspect,
-        viewportHeight: height, near: camera.near, far: camera.far });
-      if (!state.frozen) terrain.updateLod(); // frozen: keep the mesh (benchmarks, inspection)
+      if (!settings.freeze) {
+        terrain.setLodCamera({ eye: camera.position, target: camera.target, fovY: camera.fovY, aspect: camera.aspect,
+          viewportHeight: height, near: camera.near, far: camera.far });
+        terrain.updateLod();
+      }
       const lod = terrain.lodStats();
+      lodMs = settings.freeze ? 0 : lod.updateMs;
       const streamStart = performance.now();
       const version = terrain.updateStream();
+      current.world.version += 1; // the drawn surface may have moved: the walk floor is asked anew
+      if (camera.mode === 'walk') {
+        camera.settle(); // stand on the surface as it is drawn in this frame
+        camera.update(width / height);
+      }
       const uploadStart = performance.now();
+      streamMs = uploadStart - streamStart;
       if (version !== current.streamVersion) current.blendsEnd = lod.frame + MORPH_FRAMES; // new blends run
       current.streamVersion = version;
       state.uploadBytes = renderer.upload(terrain, view.layout);
       state.streamBytes = renderer.streamBytes;
       if (view.colorByLevel || view.outline) renderer.setLevelView(terrain.levelView(view.outline));
-      state.timing = { updateMs: lod.updateMs, streamMs: uploadStart - streamStart, uploadMs: performance.now() - uploadStart };
+      uploadMs = performance.now() - uploadStart;
       view.frame = lod.frame;
       const stats = terrain.meshStats();
       state.triangles = stats.triangles;
       state.mesh = stats;
       state.converged = lod.converged;
-      lodLine.textContent = `LOD: ${stats.triangles.toLocaleString('en')} triangles, ${stats.cells.toLocaleString('en')} cells, ` +
-        `update ${lod.updateMs.toFixed(1)} ms (${lod.splits} splits, ${lod.merges} merges)${lod.converged ? '' : ', refining…'}`;
-      if (!lod.converged || lod.frame < current.blendsEnd) requestRender();
+      state.lod = lod;
+      state.timing = { updateMs: lod.updateMs, streamMs, uploadMs, frameMs: lastFrameMs };
+      if (!settings.freeze && (!lod.converged || lod.frame < current.blendsEnd)) requestRender();
+      hud.tick(now);
+      hud.update({ terrain, lod, stats, timing: state.timing, settings, camera }, now);
+      state.hud = hud.values;
+      state.eye = Array.from(camera.position);
     }
     const drawStart = performance.now();
     renderer.draw(camera, width, height, view);
     if (TIMING) gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, timingPixel); // waits for the draw
-    if (state.timing) Object.assign(state.timing, { drawMs: performance.now() - drawStart, frameMs: performance.now() - frameStart });
+    const drawMs = performance.now() - drawStart;
+    lastFrameMs = performance.now() - frameStart;
+    if (state.timing) Object.assign(state.timing, { drawMs, frameMs: performance.now() - frameStart });
+    if (state.recordFrames && state.frameLog.length < FRAME_LOG) {
+      state.frameLog.push({ time: now, lodMs, streamMs, uploadMs, drawMs, cpuMs: performance.now() - frameStart });
+    }
     state.frames += 1;
+    if (moving) requestRender();
+    if (current) urlWriter.write({ settings, camera, src: source });
   }
 
   function requestRender() {
@@ -126,67 +159,219 @@ async function main() {
     }
   }
 
+  /** Heights and extent of the world in drawn metres, for the cameras (ground.js). */
+  function makeWorld(loaded) {
+    const { terrain } = loaded;
+    const s = settings.exaggeration;
+    const extent = { extentX: (terrain.width - 1) * terrain.spacingX, extentZ: (terrain.height - 1) * terrain.spacingY,
+      low: terrain.minHeight * s, high: terrain.maxHeight * s };
+    loaded.world = createWorld(terrain, extent, () => settings.exaggeration, () => 0.5 * rig.cameras.walk.eyeHeight);
+    rig.setWorld(loaded.world);
+    renderer.setShading(extent.low, extent.high, extent.extentX, extent.extentZ);
+  }
+
+  /** The opening view: the region of most relief, from the south. */
+  function frameDefault(loaded) {
+    const { world, terrain } = loaded;
+    const focus = reliefFocus(terrain, world.extentX, world.extentZ);
+    const orbit = rig.cameras.orbit;
+    orbit.frame(focus.x, focus.height * settings.exaggeration * 0.6, focus.z, focus.extent * 1.4, 0.4);
+    orbit.pitch = 0.3;
+    rig.active = orbit;
+  }
+
   function show(loaded) {
     const { terrain, field } = loaded;
-    loaded.extentX = (terrain.width - 1) * field.spacingX;
-    loaded.extentZ = (terrain.height - 1) * field.spacingY;
-    loaded.low = terrain.minHeight * VERTICAL_EXAGGERATION;
-    loaded.high = terrain.maxHeight * VERTICAL_EXAGGERATION;
-    terrain.resetMesh('exact');
-    terrain.setLodVerticalScale(VERTICAL_EXAGGERATION);
-    terrain.setLodTolerance(TAU_PX);
-    terrain.setLodBudget(FRAME_BUDGET_MS, 0);
-    terrain.setMorphFrames(MORPH_FRAMES);
+    source = pendingSource; // a dropped or picked file has no URL to share
+    terrain.resetMesh(settings.embedding);
+    applyLodSettings(terrain, settings);
     terrain.setStreamLayout(view.layout);
-    terrain.updateStream();
-    const focus = reliefCentroid(terrain.stream(), terrain.minHeight, VERTICAL_EXAGGERATION);
-    camera.frame(focus[0], focus[1], focus[2], Math.hypot(loaded.extentX, loaded.extentZ));
     current?.terrain.destroy();
     current = loaded;
+    makeWorld(loaded);
+    frameDefault(loaded);
     renderer.invalidate();
-    renderer.setShading(loaded.low, loaded.high, loaded.extentX, loaded.extentZ);
+    settings.cellSize = terrain.spacingX;
+    panel.setCellSizeRange(terrain.spacingX);
     state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
       minHeight: terrain.minHeight, maxHeight: terrain.maxHeight };
-    const spacing = field.spacingFromFile ? '' : ' (assumed: the file has none)';
-    hud.textContent = [
-      `${field.source}  ${terrain.width} × ${terrain.height} ${field.sampleType}`,
-      `spacing ${field.spacingX.toFixed(1)} × ${field.spacingY.toFixed(1)} m${spacing}`,
-      `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m, loaded in ${loaded.loadMs.toFixed(0)} ms`,
-      `τ ${TAU_PX} px, budget ${FRAME_BUDGET_MS} ms/frame, vertical ×${VERTICAL_EXAGGERATION}`,
-      'L: colour by level   O: hexagon outlines',
-    ].join('\n');
-    hud.appendChild(lodLine);
+    hud.setTerrain(field, terrain, loaded.loadMs);
+    syncPanel();
     requestRender();
   }
+
+  /** Scales the cameras' heights when the exaggeration changes from `from` to `to`. */
+  function rescaleHeights(from, to) {
+    const k = to / from;
+    rig.cameras.orbit.target[1] *= k;
+    rig.cameras.fly.position[1] *= k;
+    rig.cameras.walk.position[1] *= k;
+  }
+
+  /** Scales the cameras' ground positions when the cell size changes by `k`. */
+  function rescaleGround(k) {
+    for (const p of [rig.cameras.orbit.target, rig.cameras.fly.position, rig.cameras.walk.position]) {
+      p[0] *= k;
+      p[2] *= k;
+    }
+    rig.cameras.orbit.distance *= k;
+  }
+
+  /** A setting changed (panel, key or URL): apply it to the core, the cameras or the view. */
+  function onSetting(key, value) {
+    const terrain = current?.terrain;
+    try {
+      if (key === 'camera') rig.setMode(value);
+      else if (key === 'eyeHeight') rig.cameras.walk.eyeHeight = value;
+      else if (key === 'exaggeration') {
+        rescaleHeights(view.verticalScale, value);
+        if (terrain) {
+          terrain.setLodVerticalScale(value); // no mesh rebuild: the shader scales heights
+          makeWorld(current);
+        }
+      } else if (key === 'embedding' && terrain) {
+        terrain.resetMesh(value);
+        applyLodSettings(terrain, settings);
+        terrain.setStreamLayout(view.layout);
+        renderer.invalidate();
+      } else if (key === 'cellSize' && terrain) {
+        const k = value / terrain.spacingX;
+        if (!(k > 0) || !Number.isFinite(k)) throw new Error(`cell size ${value} m is not a positive number`);
+        terrain.setScale({ ...current.field, spacingX: terrain.spacingX * k, spacingY: terrain.spacingY * k });
+        rescaleGround(k);
+        makeWorld(current);
+        renderer.invalidate();
+        hud.setTerrain(current.field, terrain, current.loadMs);
+      } else if (terrain && !['wireframe', 'colorByLevel', 'freeze'].includes(key)) {
+        applyLodSettings(terrain, settings);
+      }
+      showStatus('');
+    } catch (error) {
+      showStatus(error.message, true);
+    }
+    syncView();
+    syncPanel();
+    requestRender();
+  }
+
+  function syncPanel() {
+    cameraMode.mode = rig.mode;
+    panel?.refresh();
+  }
+
+  async function screenshot(scale) {
+    const camera = rig.active;
+    const blob = await captureView(gl, scale, (width, height) => {
+      camera.update(width / height);
+      renderer.draw(camera, width, height, view);
+    });
+    const name = `hexlod-${(state.terrain?.name ?? 'view').replace(/\.[^.]*$/, '')}-${scale}x.png`;
+    download(blob, name);
+    requestRender();
+    return name;
+  }
+
+  const toggleHelp = () => { helpBox.hidden = !helpBox.hidden; };
+  const panel = createControlsPanel(document.getElementById('panel'), settings, {
+    camera: cameraMode,
+    onChange: onSetting,
+    actions: {
+      'screenshot 1× (P)': () => screenshot(1).catch((e) => showStatus(e.message, true)),
+      'screenshot 2×': () => screenshot(2).catch((e) => showStatus(e.message, true)),
+      'reset view (R)': () => { if (current) frameDefault(current); syncPanel(); requestRender(); },
+      'help (H)': toggleHelp,
+    },
+  });
+  syncView();
+  document.getElementById('help-close').onclick = toggleHelp;
 
   // Drop, file picker, ?src=, progress, RAW size dialog and error display (file_intake.js).
   const intake = createFileIntake({ core, state, show, showStatus });
 
   // For headless tests and benchmarks: drive the camera, ask for frames, read GL errors.
-  Object.assign(state, { camera, requestRender, glError: () => gl.getError() });
+  Object.assign(state, { rig, settings, requestRender, setSetting: (key, value) => { settings[key] = value; onSetting(key, value); },
+    glError: () => gl.getError(), screenshot, terrainObject: () => current?.terrain, flushUrl: () => urlWriter.flush() });
+  Object.defineProperty(state, 'camera', { get: () => rig.active, enumerable: true });
+  rig.attach(canvas);
   // For benchmarks: the same mesh drawn with the other index layout ('fans' | 'triangles').
   state.setLayout = (layout) => {
     view.layout = layout;
     current?.terrain.setStreamLayout(layout);
     requestRender();
   };
-  attachOrbitControls(canvas, camera, requestRender);
   window.addEventListener('keydown', (e) => {
-    if (e.key === 'l' || e.key === 'L') view.colorByLevel = !view.colorByLevel;
-    else if (e.key === 'o' || e.key === 'O') view.outline = !view.outline;
-    else return;
-    requestRender();
+    if (isTyping(e) || e.ctrlKey || e.metaKey || e.altKey) return;
+    const toggles = { l: 'colorByLevel', o: 'wireframe', f: 'freeze' };
+    const key = e.key.toLowerCase();
+    if (toggles[key]) state.setSetting(toggles[key], !settings[toggles[key]]);
+    else if (['1', '2', '3'].includes(key)) onSetting('camera', CAMERA_MODES[Number(key) - 1]);
+    else if (key === 'h' || key === '?') toggleHelp();
+    else if (key === 'escape') helpBox.hidden = true;
+    else if (key === 'p') screenshot(1).catch((error) => showStatus(error.message, true));
+    else if (key === 'r' && current) { frameDefault(current); syncPanel(); requestRender(); }
   });
   window.addEventListener('resize', requestRender);
 
+  // The cursor readout: the ground under the mouse, at most every 50 ms.
+  let lastPick = 0;
+  canvas.addEventListener('pointermove', (e) => {
+    if (!current || e.pointerType === 'touch' || e.timeStamp - lastPick < 50) return;
+    lastPick = e.timeStamp;
+    const rect = canvas.getBoundingClientRect();
+    state.cursor = pickGround(rig.active, e.clientX - rect.left, e.clientY - rect.top, rect.width, rect.height,
+      current.terrain, current.world, settings.exaggeration);
+    hud.setCursor(state.cursor);
+  });
+  // A double click orbits around the point under the pointer.
+  canvas.addEventListener('dblclick', (e) => {
+    if (!current) return;
+    const rect = canvas.getBoundingClientRect();
+    const pick = pickGround(rig.active, e.clientX - rect.left, e.clientY - rect.top, rect.width, rect.height,
+      current.terrain, current.world, settings.exaggeration);
+    if (!pick) return;
+    if (rig.mode !== 'orbit') rig.setMode('orbit');
+    rig.cameras.orbit.lookAround(pick.x, pick.height * settings.exaggeration, pick.z);
+    syncPanel();
+    requestRender();
+  });
+
+  handleContextLoss(canvas, {
+    onLost() {
+      contextLost = state.contextLost = true;
+      showStatus('The graphics context was lost; waiting for it to come back…', true);
+    },
+    onRestored() {
+      renderer.createGlObjects(); // the old GL objects died with the context
+      renderer.invalidate();
+      if (current) renderer.setShading(current.world.low, current.world.high, current.world.extentX, current.world.extentZ);
+      contextLost = state.contextLost = false;
+      state.contextRestores += 1;
+      showStatus('');
+      requestRender();
+    },
+  });
+
   // ?src=URL opens that file instead of the default terrain (which still loads if it fails).
-  const src = new URLSearchParams(location.search).get('src');
-  if (!(src && await intake.openUrl(src))) {
+  const src = urlState.src;
+  pendingSource = src;
+  const opened = src && await intake.openUrl(src);
+  pendingSource = null;
+  if (!opened) {
     const error = state.error;
     await intake.open(await fetchFiles(DEFAULT_TERRAIN));
     if (error) { state.error = error; showStatus(error, true); }
   }
   if (!current) throw new Error(`the default terrain did not load: ${state.error}`);
+  if (urlState.camera) {
+    applyCameraState(rig, urlState.camera);
+    if (rig.mode === 'walk') rig.active.settle();
+    syncPanel();
+  }
+  if (urlState.errors.length) {
+    state.error = urlState.errors.join('; ');
+    showStatus(`${state.error} (defaults used)`, true);
+  }
+  requestRender();
   state.status = 'ready';
 }
 

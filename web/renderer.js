@@ -91,6 +91,22 @@ export class TerrainRenderer {
   /** @param {WebGL2RenderingContext} gl */
   constructor(gl) {
     this.gl = gl;
+    this.createGlObjects();
+    this.heightRange = [0, 1];
+    this.extent = [0, 0];
+    // Low in the west-south-west, as on a northern afternoon: views from the south see lit
+    // faces, and the light grazes ridges from the side, so relief reads at a glance.
+    this.sunDirection = normalize([-0.8, 0.42, 0.3]);
+    this.lastUploadBytes = 0;
+    this.streamBytes = 0; // bytes of the whole stream (what a full upload would copy)
+  }
+
+  /**
+   * The program, buffers and vertex arrays. Called again after a lost context came back
+   * (web/context_loss.js): the old objects died with it, and the next upload copies everything.
+   */
+  createGlObjects() {
+    const gl = this.gl;
     this.program = link(gl, vertexSource, fragmentSource);
     this.uniforms = Object.fromEntries(UNIFORMS.map((name) => [name, gl.getUniformLocation(this.program, name)]));
     this.vertices = new MirroredBuffer(gl, gl.ARRAY_BUFFER);
@@ -105,11 +121,6 @@ export class TerrainRenderer {
     this.version = -1;      // stream version on the GPU; -1: nothing uploaded yet
     this.levelOffsets = [];
     this.outlineCount = 0;
-    this.heightRange = [0, 1];
-    this.extent = [0, 0];
-    this.sunDirection = normalize([-0.55, 0.55, -0.35]);
-    this.lastUploadBytes = 0;
-    this.streamBytes = 0; // bytes of the whole stream (what a full upload would copy)
   }
 
   makeVao(indexBuffer) {
@@ -202,7 +213,7 @@ export class TerrainRenderer {
     gl.uniform3fv(u.uSunDirection, this.sunDirection);
     gl.uniform2f(u.uHeightRange, this.heightRange[0], this.heightRange[1]);
     gl.uniform3fv(u.uSkyColor, SKY_COLOR);
-    gl.uniform1f(u.uFogDistance, camera.distance * 8);
+    gl.uniform1f(u.uFogDistance, camera.fogDistance); // cameras/clip_planes.js
     gl.uniform2f(u.uExtent, this.extent[0], this.extent[1]);
     gl.uniform4f(u.uLineColor, 0, 0, 0, 0);
     gl.uniform1f(u.uFrame, view.frame ?? 0);

@@ -70,20 +70,23 @@ const SKY_RGB = [158, 189, 224];
 
 /**
  * Colour statistics of a PNG screenshot: distinct quantised colours, luminance spread, and the
- * fraction of pixels that are the sky (clear) colour.
+ * fractions of pixels that are the sky (clear) colour, snow white, and warm ground or rock.
  */
 export function pixelStats(png) {
   const image = decode(png);
   const { data, channels } = image;
   const colours = new Set();
-  let sum = 0, sumSq = 0, n = 0, sky = 0;
+  let sum = 0, sumSq = 0, n = 0, sky = 0, snow = 0, ground = 0;
   for (let k = 0; k < data.length; k += channels * 7) {
     const r = data[k], g = data[k + 1], b = data[k + 2];
     colours.add(((r >> 3) << 10) | ((g >> 3) << 5) | (b >> 3));
     if (Math.abs(r - SKY_RGB[0]) + Math.abs(g - SKY_RGB[1]) + Math.abs(b - SKY_RGB[2]) < 12) sky += 1;
+    else if (r > 215 && g > 215 && b > 215) snow += 1;        // lit snow of the high peaks
+    else if (r >= g && g >= b && r - b > 12) ground += 1;      // warm rock and dry ground
     const y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
     sum += y; sumSq += y * y; n += 1;
   }
   const mean = sum / n;
-  return { colours: colours.size, luminanceStd: Math.sqrt(sumSq / n - mean * mean), skyFraction: sky / n };
+  return { colours: colours.size, luminanceStd: Math.sqrt(sumSq / n - mean * mean), skyFraction: sky / n,
+    snowFraction: snow / n, groundFraction: ground / n };
 }

@@ -27,6 +27,10 @@ test('the default view refines a real terrain until converged, not one flat colo
   const stats = pixelStats(png);
   assert.ok(stats.colours > 200, `only ${stats.colours} distinct colours: the terrain is not drawn`);
   assert.ok(stats.luminanceStd > 12, `luminance spread ${stats.luminanceStd.toFixed(1)}: a flat image`);
+  // The opening view shows the Himalaya: snow on the peaks, rock and ground, sky above them.
+  assert.ok(stats.snowFraction > 0.003, `${(100 * stats.snowFraction).toFixed(2)} % snow: no high peaks in view`);
+  assert.ok(stats.groundFraction > 0.08, `${(100 * stats.groundFraction).toFixed(1)} % ground colours`);
+  assert.ok(stats.skyFraction > 0.02 && stats.skyFraction < 0.5, `${(100 * stats.skyFraction).toFixed(1)} % sky`);
   assert.deepEqual(problems, []);
   await page.close();
 });

@@ -1,0 +1,87 @@
+// The control panel drives the core: a larger τ draws fewer triangles, a larger budget refines
+// further in the same frames, freeze LOD keeps the mesh while the camera moves, and the panel's
+// inputs reach the settings.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { startViewer, openPage, outDir } from './harness.js';
+
+let viewer, page, problems;
+before(async () => {
+  viewer = await startViewer();
+  ({ page, problems } = await openPage(viewer.browser, viewer.url, { width: 480, height: 300 }));
+  await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
+});
+after(async () => { await viewer?.close(); });
+
+async function frames(n) {
+  await page.evaluate(() => { window.hexlod.mark = window.hexlod.frames; });
+  await page.waitForFunction((k) => { window.hexlod.requestRender(); return window.hexlod.frames - window.hexlod.mark >= k; },
+    n, { timeout: 120000, polling: 30 });
+}
+const converged = () => page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; },
+  null, { timeout: 240000, polling: 100 });
+const set = (key, value) => page.evaluate(([k, v]) => window.hexlod.setSetting(k, v), [key, value]);
+const triangles = () => page.evaluate(() => window.hexlod.triangles);
+
+test('τ: a larger tolerance converges to fewer triangles, a smaller one to more', async () => {
+  await set('budgetMs', 50); // converge in few frames
+  await converged();
+  const atOne = await triangles();
+  await set('tau', 4);
+  await converged();
+  const atFour = await triangles();
+  await set('tau', 0.5);
+  await converged();
+  const atHalf = await triangles();
+  assert.ok(atFour < atOne && atOne < atHalf, `triangles at τ 4, 1, 0.5: ${atFour}, ${atOne}, ${atHalf}`);
+  await set('tau', 1);
+});
+
+test('budget: more operations or milliseconds per frame refine further in the same frames', async () => {
+  const after = async (key, value) => {
+    await set('budgetMs', 50);
+    await set(key, value);
+    await set('embedding', 'exact'); // a fresh base mesh
+    await frames(3);
+    return triangles();
+  };
+  const fewOps = await after('maxOperations', 20), manyOps = await after('maxOperations', 2000);
+  assert.ok(manyOps > fewOps, `20 then 2000 operations a frame: ${fewOps}, ${manyOps} triangles`);
+  await set('maxOperations', 0);
+  const short = await after('budgetMs', 0.5), long = await after('budgetMs', 40);
+  assert.ok(long > short, `0.5 then 40 ms a frame: ${short}, ${long} triangles`);
+  await set('budgetMs', 4);
+});
+
+test('freeze LOD keeps the mesh while the camera moves; thawing refines for the new view', async () => {
+  await set('budgetMs', 50);
+  await converged();
+  await set('freeze', true);
+  const frozen = await triangles();
+  await page.evaluate(() => { const c = window.hexlod.rig.cameras.orbit; c.yaw += 1.2; c.distance *= 0.4; });
+  await frames(4);
+  assert.equal(await triangles(), frozen, 'a frozen mesh keeps its triangles');
+  await page.screenshot({ path: `${outDir}/controls-frozen.png` });
+  await set('freeze', false);
+  await frames(4);
+  assert.notEqual(await triangles(), frozen, 'thawed, the mesh follows the camera');
+});
+
+test('the panel edits the settings; the HUD shows the figures', async () => {
+  await page.evaluate(() => window.hexlod.setSetting('tau', 1));
+  // A small viewport starts with the panel folded: unfold it, then type into τ's number box.
+  await page.click('#panel .lil-gui.lil-root > .lil-title');
+  const box = page.locator('.lil-gui .lil-controller', { hasText: 'error τ' }).locator('input').last();
+  await box.fill('2.5');
+  await box.press('Enter');
+  assert.equal(await page.evaluate(() => window.hexlod.settings.tau), 2.5);
+  await frames(2);
+  const hud = await page.evaluate(() => ({ text: document.getElementById('hud').textContent, values: window.hexlod.hud }));
+  for (const pattern of [/\d+ fps|idle/, /frame \d+\.\d ms/, /LOD \d+\.\d ms/, /[\d,]+ triangles/, /full, [\d,]+ semi/, /vertices/,
+    /splits, [\d,]+ merges/, /core \d+\.\d MB/, /B\/triangle/, /screen error \d+\.\d\d px/]) {
+    assert.match(hud.text, pattern);
+  }
+  assert.ok(hud.values.full > 0 && hud.values.semi > 0 && hud.values.bytesPerTriangle > 0);
+  await page.evaluate(() => window.hexlod.setSetting('tau', 1));
+  assert.deepEqual(problems, []);
+});

@@ -1,0 +1,134 @@
+// The three cameras and their input: one is active; switching keeps the eye and the view
+// direction. The mouse drags (orbit, pan, look), the wheel zooms, held keys move the fly and
+// walk cameras every frame (step(seconds)), touch goes to touch.js.
+import { OrbitCamera } from './orbit.js';
+import { FlyCamera } from './fly.js';
+import { WalkCamera } from './walk.js';
+import { attachTouchControls } from './touch.js';
+import { emptyWorld } from './clip_planes.js';
+
+export const CAMERA_MODES = ['orbit', 'fly', 'walk'];
+
+// Held keys and what they do: [forward, right, up].
+const MOVE_KEYS = {
+  KeyW: [1, 0, 0], ArrowUp: [1, 0, 0], KeyS: [-1, 0, 0], ArrowDown: [-1, 0, 0],
+  KeyD: [0, 1, 0], ArrowRight: [0, 1, 0], KeyA: [0, -1, 0], ArrowLeft: [0, -1, 0],
+  KeyE: [0, 0, 1], PageUp: [0, 0, 1], KeyQ: [0, 0, -1], PageDown: [0, 0, -1],
+};
+
+export class CameraRig {
+  /** @param {() => void} onChange asks for a frame */
+  constructor(onChange) {
+    this.cameras = { orbit: new OrbitCamera(), fly: new FlyCamera(), walk: new WalkCamera() };
+    this.active = this.cameras.orbit;
+    this.onChange = onChange;
+    this.held = new Set(); // codes of the movement keys held down
+    this.fast = false;
+    this.move = { forward: 0, right: 0, up: 0 };
+    this.setWorld(emptyWorld());
+  }
+
+  get mode() { return this.active.mode; }
+
+  /** The terrain's extent, heights and ground (see clip_planes.js emptyWorld). */
+  setWorld(world) {
+    this.world = world;
+    for (const camera of Object.values(this.cameras)) camera.world = world;
+  }
+
+  /** Switches the camera, keeping the eye and the view direction where it can. */
+  setMode(mode) {
+    if (!CAMERA_MODES.includes(mode)) throw new Error(`unknown camera '${mode}' (orbit, fly or walk)`);
+    const from = this.active, to = this.cameras[mode];
+    if (from === to) return;
+    from.update(from.aspect ?? 1);
+    if (mode === 'orbit') {
+      // Orbit around the ground point ahead, from where the eye is.
+      const ahead = this.groundAhead(from);
+      to.lookAround(ahead[0], ahead[1], ahead[2], from.position);
+    } else {
+      to.copyPose(from);
+    }
+    this.active = to;
+    this.changed();
+  }
+
+  /** Where the view direction meets the ground, or a point ahead at the current clearance. */
+  groundAhead(camera) {
+    const [ex, ey, ez] = camera.position;
+    const d = [camera.target[0] - ex, camera.target[1] - ey, camera.target[2] - ez];
+    const length = Math.hypot(...d);
+    const reach = Math.hypot(this.world.extentX, this.world.extentZ, this.world.high - this.world.low);
+    const step = Math.max(this.world.spacing, reach / 4000);
+    for (let t = step; t < reach * 2; t += step) {
+      const x = ex + (d[0] / length) * t, y = ey + (d[1] / length) * t, z = ez + (d[2] / length) * t;
+      if (y <= this.world.ground(x, z)) return [x, y, z];
+    }
+    return [ex + d[0], ey + d[1], ez + d[2]];
+  }
+
+  changed() {
+    this.onChange();
+  }
+
+  /** Moves the fly or walk camera for the held keys; true while something is held. */
+  step(seconds) {
+    if (this.held.size === 0 || this.active.mode === 'orbit') return false;
+    this.move.forward = this.move.right = this.move.up = 0;
+    for (const code of this.held) {
+      const [f, r, u] = MOVE_KEYS[code];
+      this.move.forward += f;
+      this.move.right += r;
+      this.move.up += u;
+    }
+    this.active.move(Math.min(seconds, 0.1), this.move, this.fast);
+    return true;
+  }
+
+  /** Mouse, wheel, keys and touch on `element` (keys on the window). */
+  attach(element) {
+    let drag = null;
+    element.addEventListener('pointerdown', (e) => {
+      if (e.pointerType === 'touch') return;
+      drag = { x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey };
+      try { element.setPointerCapture(e.pointerId); } catch { /* a synthetic or finished pointer */ }
+    });
+    element.addEventListener('pointermove', (e) => {
+      if (!drag || e.pointerType === 'touch') return;
+      const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+      drag.x = e.clientX;
+      drag.y = e.clientY;
+      if (this.active.mode === 'orbit') this.active.drag(dx, dy, drag.pan);
+      else this.active.look(dx, dy);
+      this.changed();
+    });
+    const end = () => { drag = null; };
+    element.addEventListener('pointerup', end);
+    element.addEventListener('pointercancel', end);
+    element.addEventListener('contextmenu', (e) => e.preventDefault());
+    element.addEventListener('wheel', (e) => {
+      e.preventDefault();
+      if (this.active.mode === 'orbit') this.active.zoom(Math.exp(e.deltaY * 0.001));
+      else this.active.move(0.05 * Math.sign(-e.deltaY), { forward: 1, right: 0, up: 0 }, e.shiftKey);
+      this.changed();
+    }, { passive: false });
+    window.addEventListener('keydown', (e) => {
+      this.fast = e.shiftKey;
+      if (!MOVE_KEYS[e.code] || isTyping(e)) return;
+      e.preventDefault();
+      this.held.add(e.code);
+      this.changed();
+    });
+    window.addEventListener('keyup', (e) => {
+      this.fast = e.shiftKey;
+      this.held.delete(e.code);
+    });
+    window.addEventListener('blur', () => this.held.clear());
+    attachTouchControls(element, this);
+  }
+}
+
+/** A key typed into a form field is not a camera key. */
+export function isTyping(e) {
+  return /^(INPUT|SELECT|TEXTAREA)$/.test(e.target?.tagName ?? '');
+}

@@ -1,0 +1,50 @@
+// Walk camera: first person at an eye height above the ground. The eye never goes below
+// max(drawn surface, full-resolution field) + eye height, also while the mesh refines: the
+// page calls settle() after every LOD update, when the drawn surface may have moved.
+import { FlyCamera } from './fly.js';
+
+const WALK_SPEED = 1.4; // metres per second, a person's pace
+const FAST = 40;        // shift: a fast vehicle
+
+export class WalkCamera extends FlyCamera {
+  constructor() {
+    super();
+    this.mode = 'walk';
+    this.eyeHeight = 2; // metres above the ground (drawn metres)
+  }
+
+  /** Walking speed; the field's spacing sets a floor so that a coarse grid can be crossed. */
+  speed(fast) {
+    return Math.max(WALK_SPEED, this.world.spacing * 0.05) * (fast ? FAST : 1);
+  }
+
+  /** Moves in the ground plane (looking up or down does not change the pace), then settles. */
+  move(seconds, move, fast) {
+    const step = this.speed(fast) * seconds;
+    const s = Math.sin(this.yaw), c = Math.cos(this.yaw);
+    this.position[0] += step * (move.forward * -s + move.right * c);
+    this.position[2] += step * (move.forward * -c - move.right * s);
+    // Stay on the field: walking off its edge would leave nothing under the feet.
+    this.position[0] = Math.min(Math.max(this.position[0], 0), this.world.extentX);
+    this.position[2] = Math.min(Math.max(this.position[2], 0), this.world.extentZ);
+    this.settle();
+  }
+
+  /** Puts the eye exactly eyeHeight above the floor under it (world.floor: field and drawn surface). */
+  settle() {
+    this.position[1] = this.world.floor(this.position[0], this.position[2]) + this.eyeHeight;
+  }
+
+  /** The floor is eyeHeight below by construction (the field may lie lower under a coarse mesh). */
+  clearance() {
+    return this.eyeHeight;
+  }
+
+  copyPose(other) {
+    super.copyPose(other);
+    this.pitch = Math.max(this.pitch, -0.6); // look ahead, not at the feet
+    this.position[0] = Math.min(Math.max(this.position[0], 0), this.world.extentX);
+    this.position[2] = Math.min(Math.max(this.position[2], 0), this.world.extentZ);
+    this.settle();
+  }
+}

@@ -1,0 +1,63 @@
+// The control panel (lil-gui): every setting of settings.js, the camera, screenshots and help.
+// The panel only edits the settings object and reports which key changed; the page applies it.
+import GUI from 'lil-gui';
+import { RANGES } from './settings.js';
+import { CAMERA_MODES } from './cameras/rig.js';
+
+/**
+ * @param {HTMLElement} container
+ * @param {object} settings the page's settings (edited in place)
+ * @param {{camera: {mode: string}, onChange: (key: string, value: any) => void,
+ *   actions: Record<string, () => void>}} hooks actions: buttons, label -> function
+ * @returns {{gui: GUI, refresh: () => void, setCellSizeRange: (metres: number) => void}}
+ */
+export function createControlsPanel(container, settings, { camera, onChange, actions }) {
+  const gui = new GUI({ container, title: 'Controls' });
+  const changed = (key) => (value) => onChange(key, value);
+  const slider = (folder, key) => {
+    const r = RANGES[key];
+    return folder.add(settings, key, r.min, r.max, r.step).name(r.label).onChange(changed(key));
+  };
+  const toggle = (folder, key, label) => folder.add(settings, key).name(label).onChange(changed(key));
+
+  gui.add(camera, 'mode', CAMERA_MODES).name('camera (1 2 3)').onChange(changed('camera'));
+
+  const lod = gui.addFolder('Level of detail');
+  slider(lod, 'tau');
+  slider(lod, 'budgetMs');
+  slider(lod, 'maxOperations');
+  slider(lod, 'maxTriangles');
+  toggle(lod, 'autoTau', 'auto τ (keeps the cap and budget)');
+  toggle(lod, 'freeze', 'freeze LOD (F)');
+  toggle(lod, 'geomorph', 'geomorphing');
+  toggle(lod, 'culling', 'frustum culling');
+  toggle(lod, 'backfaceCulling', 'back-face culling');
+
+  const view = gui.addFolder('View');
+  slider(view, 'exaggeration');
+  toggle(view, 'wireframe', 'wireframe: hexagons (O)');
+  toggle(view, 'colorByLevel', 'colour by level (L)');
+  slider(view, 'eyeHeight');
+
+  const mesh = gui.addFolder('Mesh').close();
+  mesh.add(settings, 'embedding', ['exact', 'shifted']).name('embedding').onChange(changed('embedding'));
+  const cellSize = mesh.add(settings, 'cellSize', 0.01, 1e6).name('cell size (m)').onFinishChange(changed('cellSize'));
+
+  for (const [label, action] of Object.entries(actions)) gui.add({ [label]: action }, label);
+
+  // Small screens: start folded, the view matters more than the panel.
+  if (window.matchMedia('(max-width: 800px), (max-height: 500px)').matches) gui.close();
+
+  return {
+    gui,
+    /** Shows values that changed elsewhere (keys, URL, a new terrain). */
+    refresh() {
+      for (const c of gui.controllersRecursive()) c.updateDisplay();
+    },
+    /** The cell size slider's range around a terrain's spacing. */
+    setCellSizeRange(metres) {
+      cellSize.min(metres / 100).max(metres * 100).step(metres / 1000);
+      cellSize.updateDisplay();
+    },
+  };
+}

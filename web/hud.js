@@ -1,0 +1,74 @@
+// The heads-up display: what the terrain is, how fast the frames go, what the LOD did, and
+// what lies under the pointer. Redrawn a few times a second, not every frame: the mesh
+// census and the achieved error are passes over the cells.
+const REFRESH_MS = 250;
+const FPS_WINDOW = 30; // frames averaged for fps
+
+const number = (n) => Math.round(n).toLocaleString('en');
+const metres = (m) => (Math.abs(m) >= 10000 ? `${(m / 1000).toFixed(2)} km` : `${m.toFixed(1)} m`);
+
+export class Hud {
+  constructor(element) {
+    this.element = element;
+    this.info = document.createElement('div');
+    this.figures = document.createElement('div');
+    this.cursor = document.createElement('div');
+    element.append(this.info, this.figures, this.cursor);
+    this.frameTimes = []; // rAF timestamps of the last frames
+    this.lastRefresh = -Infinity;
+    this.values = null;   // the figures last shown, for tests (window.hexlod.hud)
+  }
+
+  /** The terrain's description, once per load. */
+  setTerrain(field, terrain, loadMs) {
+    const spacing = field.spacingFromFile ? '' : ' (assumed: the file has none)';
+    this.info.textContent = [
+      `${field.source}  ${terrain.width} × ${terrain.height} ${field.sampleType}`,
+      `spacing ${terrain.spacingX.toFixed(1)} × ${terrain.spacingY.toFixed(1)} m${spacing}, ` +
+        `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m, loaded in ${loadMs.toFixed(0)} ms`,
+    ].join('\n');
+  }
+
+  /** A frame was drawn at rAF time `now` (ms). */
+  tick(now) {
+    this.frameTimes.push(now);
+    if (this.frameTimes.length > FPS_WINDOW) this.frameTimes.shift();
+  }
+
+  /**
+   * Shows the figures of the frame just drawn (at most every REFRESH_MS, unless `force`).
+   * @param {{terrain: object, lod: object, stats: object, timing: object, settings: object, camera: object}} f
+   */
+  update(f, now, force = false) {
+    if (!force && now - this.lastRefresh < REFRESH_MS) return;
+    this.lastRefresh = now;
+    const { terrain, lod, stats, timing, settings, camera } = f;
+    const kinds = terrain.cellKinds();
+    const error = terrain.achievedErrorPx();
+    const span = this.frameTimes.length > 1 ? this.frameTimes.at(-1) - this.frameTimes[0] : 0;
+    const fps = span > 0 && now - this.frameTimes.at(-1) < 1000 ? ((this.frameTimes.length - 1) * 1000) / span : 0;
+    const meshBytes = stats.bytes, coreBytes = meshBytes + terrain.sampleBytes;
+    this.values = { fps, frameMs: timing.frameMs ?? 0, updateMs: lod.updateMs, triangles: stats.triangles,
+      full: kinds.full, semi: kinds.semi, boundarySemi: kinds.boundarySemi, vertices: stats.vertices,
+      splits: lod.splits, merges: lod.merges, coreMB: coreBytes / 2 ** 20,
+      bytesPerTriangle: stats.triangles ? meshBytes / stats.triangles : 0, screenErrorPx: error, tau: lod.tau };
+    const v = this.values;
+    this.figures.textContent = [
+      `${camera.mode} camera   ${fps > 0 ? `${fps.toFixed(0)} fps` : 'idle'}   frame ${v.frameMs.toFixed(1)} ms   ` +
+        `LOD ${v.updateMs.toFixed(1)} ms${settings.freeze ? ' (frozen)' : lod.converged ? '' : ', refining…'}`,
+      `${number(v.triangles)} triangles   hexagons: ${number(v.full)} full, ${number(v.semi + v.boundarySemi)} semi ` +
+        `(${number(v.boundarySemi)} on the boundary)   ${number(v.vertices)} vertices`,
+      `last frame: ${number(v.splits)} splits, ${number(v.merges)} merges`,
+      `core ${v.coreMB.toFixed(1)} MB (field ${(terrain.sampleBytes / 2 ** 20).toFixed(1)} MB), ` +
+        `mesh ${v.bytesPerTriangle.toFixed(0)} B/triangle`,
+      `screen error ${error < 0 ? 'n/a' : `${error.toFixed(2)} px`} (τ ${v.tau.toFixed(2)} px)   ×${settings.exaggeration} vertical`,
+    ].join('\n');
+  }
+
+  /** The cursor readout: a picked ground point (picking.js) or null. */
+  setCursor(pick) {
+    this.cursor.textContent = pick
+      ? `cursor  x ${metres(pick.x)}  z ${metres(pick.z)}  height ${pick.height.toFixed(1)} m  slope ${pick.slopeDeg.toFixed(1)}°`
+      : 'cursor  —';
+  }
+}

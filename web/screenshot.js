@@ -1,0 +1,49 @@
+// Screenshots: the current view drawn again into an offscreen framebuffer at 1x or 2x the
+// canvas's size (the LOD stays the screen's), read back, and saved as a PNG through a link.
+
+/**
+ * Renders with `drawAt(width, height)` into a framebuffer of scale x the canvas size and
+ * returns the PNG as a Blob. Throws when the GPU cannot hold that size.
+ * @param {WebGL2RenderingContext} gl
+ */
+export async function captureView(gl, scale, drawAt) {
+  const width = gl.drawingBufferWidth * scale, height = gl.drawingBufferHeight * scale;
+  const limit = Math.min(gl.getParameter(gl.MAX_RENDERBUFFER_SIZE), gl.getParameter(gl.MAX_VIEWPORT_DIMS)[0]);
+  if (width > limit || height > limit) throw new Error(`a ${width} × ${height} screenshot is larger than this GPU allows (${limit})`);
+  const framebuffer = gl.createFramebuffer();
+  const color = gl.createRenderbuffer(), depth = gl.createRenderbuffer();
+  gl.bindRenderbuffer(gl.RENDERBUFFER, color);
+  gl.renderbufferStorage(gl.RENDERBUFFER, gl.RGBA8, width, height);
+  gl.bindRenderbuffer(gl.RENDERBUFFER, depth);
+  gl.renderbufferStorage(gl.RENDERBUFFER, gl.DEPTH_COMPONENT24, width, height);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+  gl.framebufferRenderbuffer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.RENDERBUFFER, color);
+  gl.framebufferRenderbuffer(gl.FRAMEBUFFER, gl.DEPTH_ATTACHMENT, gl.RENDERBUFFER, depth);
+  const pixels = new Uint8ClampedArray(width * height * 4);
+  try {
+    drawAt(width, height);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+  } finally {
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.deleteFramebuffer(framebuffer);
+    gl.deleteRenderbuffer(color);
+    gl.deleteRenderbuffer(depth);
+  }
+  // GL rows run bottom-up; an image's top-down.
+  const canvas = new OffscreenCanvas(width, height);
+  const image = new ImageData(width, height);
+  const row = width * 4;
+  for (let y = 0; y < height; ++y) image.data.set(pixels.subarray((height - 1 - y) * row, (height - y) * row), y * row);
+  canvas.getContext('2d').putImageData(image, 0, 0);
+  return canvas.convertToBlob({ type: 'image/png' });
+}
+
+/** Saves a Blob as a file through a temporary link. */
+export function download(blob, name) {
+  const url = URL.createObjectURL(blob);
+  const link = Object.assign(document.createElement('a'), { href: url, download: name });
+  document.body.append(link);
+  link.click();
+  link.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10000);
+}

@@ -1,0 +1,105 @@
+// The view in the address bar, so that a link shares it and a reload restores it exactly:
+//   tau, budget, exag          settings.js ranges
+//   cam=orbit,x,y,z,distance,yaw,pitch   or   cam=fly|walk,x,y,z,yaw,pitch   metres, radians
+//   src=URL                    the data source, when it came from a URL
+// Other parameters (layout, timing) are kept as they are. Every value is checked: a bad one
+// gets a message and its default.
+import { RANGES, checkSetting } from './settings.js';
+import { MIN_PITCH, MAX_PITCH } from './cameras/orbit.js';
+
+const WRITE_EVERY_MS = 300;
+const LIMIT = 1e9; // metres: past this a position is not a place on any terrain
+const URL_KEYS = Object.entries(RANGES).filter(([, r]) => r.url).map(([key, r]) => [key, r.url]);
+
+/**
+ * Reads the view from a query string.
+ * @returns {{settings: object, camera: object|null, src: string|null, errors: string[]}}
+ */
+export function parseUrlState(search) {
+  const params = new URLSearchParams(search);
+  const result = { settings: {}, camera: null, src: params.get('src'), errors: [] };
+  for (const [key, name] of URL_KEYS) {
+    if (!params.has(name)) continue;
+    const value = checkSetting(key, params.get(name));
+    if (value instanceof Error) result.errors.push(value.message);
+    else result.settings[key] = value;
+  }
+  if (params.has('cam')) {
+    const camera = parseCamera(params.get('cam'));
+    if (camera instanceof Error) result.errors.push(camera.message);
+    else result.camera = camera;
+  }
+  return result;
+}
+
+function parseCamera(text) {
+  const [mode, ...rest] = text.split(',');
+  const numbers = rest.map(Number);
+  const bad = (why) => new Error(`cam=${text}: ${why}; expected orbit,x,y,z,distance,yaw,pitch or fly|walk,x,y,z,yaw,pitch`);
+  if (!['orbit', 'fly', 'walk'].includes(mode)) return bad(`unknown camera '${mode}'`);
+  const count = mode === 'orbit' ? 6 : 5;
+  if (numbers.length !== count || numbers.some((n, k) => rest[k].trim() === '' || !Number.isFinite(n))) {
+    return bad(`${count} numbers needed`);
+  }
+  if (numbers.slice(0, 3).some((n) => Math.abs(n) > LIMIT)) return bad('a position beyond a million kilometres');
+  const [x, y, z] = numbers;
+  if (mode === 'orbit') {
+    const [, , , distance, yaw, pitch] = numbers;
+    if (!(distance > 0 && distance < LIMIT)) return bad('the distance must be positive');
+    if (pitch < MIN_PITCH || pitch > MAX_PITCH) return bad(`the pitch must be from ${MIN_PITCH} to ${MAX_PITCH}`);
+    return { mode, target: [x, y, z], distance, yaw, pitch };
+  }
+  const [, , , yaw, pitch] = numbers;
+  if (Math.abs(pitch) > 1.55) return bad('the pitch must be from -1.55 to 1.55');
+  return { mode, position: [x, y, z], yaw, pitch };
+}
+
+/** The camera as its `cam` parameter. */
+export function cameraParam(camera) {
+  const fixed = (v, digits) => Number(v.toFixed(digits));
+  const values = camera.mode === 'orbit'
+    ? [...camera.target, camera.distance].map((v) => fixed(v, 3)).concat([camera.yaw, camera.pitch].map((v) => fixed(v, 6)))
+    : [...camera.position].map((v) => fixed(v, 3)).concat([camera.yaw, camera.pitch].map((v) => fixed(v, 6)));
+  return [camera.mode, ...values].join(',');
+}
+
+/** Puts a parsed camera state on the rig's camera of that mode, and makes it active. */
+export function applyCameraState(rig, state) {
+  const camera = rig.cameras[state.mode];
+  if (state.mode === 'orbit') {
+    camera.target.set(state.target);
+    Object.assign(camera, { distance: state.distance, yaw: state.yaw, pitch: state.pitch });
+  } else {
+    camera.position.set(state.position);
+    Object.assign(camera, { yaw: state.yaw, pitch: state.pitch });
+  }
+  rig.active = camera;
+}
+
+/** Writes the view into the address bar with history.replaceState, at most every WRITE_EVERY_MS. */
+export class UrlWriter {
+  constructor() {
+    this.timer = null;
+    this.pending = null;
+  }
+
+  /** @param {{settings: object, camera: object, src: string|null}} view */
+  write(view) {
+    this.pending = view;
+    if (this.timer === null) this.timer = setTimeout(() => this.flush(), WRITE_EVERY_MS);
+  }
+
+  flush() {
+    clearTimeout(this.timer);
+    this.timer = null;
+    if (!this.pending) return;
+    const { settings, camera, src } = this.pending;
+    this.pending = null;
+    const params = new URLSearchParams(location.search);
+    for (const [key, name] of URL_KEYS) params.set(name, String(settings[key]));
+    params.set('cam', cameraParam(camera));
+    if (src) params.set('src', src); else params.delete('src');
+    const url = `${location.pathname}?${params.toString().replace(/%2C/g, ',')}${location.hash}`;
+    history.replaceState(null, '', url);
+  }
+}
