@@ -36,7 +36,9 @@ public:
     int32_t frames() const { return frames_; }
     bool enabled() const { return frames_ > 0; }
 
-    /// The frame counter: one tick per LOD update, i.e. per drawn frame.
+    /// The frame counter: one tick per LOD update, i.e. per drawn frame. Keys and the shader's
+    /// uniform are floats, exact to 2^24 frames (77 hours at 60 fps); past that, blends still
+    /// end (the weight clamps) but step less evenly.
     uint32_t frame() const { return frame_; }
     void advance() { ++frame_; }
     void resetClock() { frame_ = kFirstFrame; }
