@@ -8,28 +8,6 @@
 
 namespace hexlod {
 
-namespace {
-
-// The fan of one cell (see fan_stream.h) into `out`; returns its length (without restart).
-int32_t cellFan(const HexMesh& mesh, const Hexagon& h, uint32_t out[8]) {
-    const int32_t* v = h.vertex;
-    if (h.kind == CellKind::Full) {
-        for (int32_t slot = 0; slot <= 7; ++slot) out[slot] = uint32_t(v[slot]);
-        return 8;
-    }
-    if (h.kind == CellKind::BoundarySemi) {
-        out[0] = uint32_t(v[0]);
-        for (int32_t i = 0; i < 4; ++i) out[1 + i] = uint32_t(v[wrapSlot(h.firstVisible + i)]);
-        return 5;
-    }
-    int32_t slots[4];
-    mesh.semiFanSlots(h, slots); // the fixed rule for §7's "arbitrary corner"
-    for (int32_t i = 0; i < 4; ++i) out[i] = uint32_t(v[slots[i]]);
-    return 4;
-}
-
-} // namespace
-
 void FanStream::attach(HexMesh& mesh) {
     mesh_ = &mesh;
     mesh.setChangeLog(1, &changedCells_);
@@ -103,7 +81,7 @@ void FanStream::writeSlot(const HexMesh& mesh, int32_t c) {
     std::fill(slot, slot + slotSize(), kRestartIndex);
     if (!mesh.isLive(c)) return;
     uint32_t fan[8];
-    const int32_t n = cellFan(mesh, mesh.cell(c), fan);
+    const int32_t n = mesh.cellFan(mesh.cell(c), fan);
     if (layout_ == IndexLayout::Fans) {
         std::copy(fan, fan + n, slot);
         return;
@@ -228,7 +206,7 @@ void FanStream::buildLevelView(const HexMesh& mesh, bool outline) {
         for (int32_t c = mesh.firstOfLevel(level); c != kNone; c = mesh.nextInLevel(c)) {
             const Hexagon& h = mesh.cell(c);
             uint32_t fan[8];
-            const int32_t n = cellFan(mesh, h, fan);
+            const int32_t n = mesh.cellFan(h, fan);
             levelIndices_.insert(levelIndices_.end(), fan, fan + n);
             levelIndices_.push_back(kRestartIndex);
             if (!outline) continue;

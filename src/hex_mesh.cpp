@@ -200,26 +200,29 @@ size_t HexMesh::memoryBytes() const {
            (levelHead_.capacity() + levelTail_.capacity()) * sizeof(int32_t);
 }
 
+int32_t HexMesh::cellFan(const Hexagon& h, uint32_t out[8]) const {
+    const int32_t* v = h.vertex;
+    if (h.kind == CellKind::Full) {
+        for (int32_t slot = 0; slot <= 7; ++slot) out[slot] = uint32_t(v[slot]);
+        return 8;
+    }
+    if (h.kind == CellKind::BoundarySemi) { // §4.2: three-triangle half fan around the centre
+        out[0] = uint32_t(v[0]);
+        for (int32_t i = 0; i < 4; ++i) out[1 + i] = uint32_t(v[wrapSlot(h.firstVisible + i)]);
+        return 5;
+    }
+    int32_t slots[4];
+    semiFanSlots(h, slots); // §7: the fixed rule for the "arbitrary corner"
+    for (int32_t i = 0; i < 4; ++i) out[i] = uint32_t(v[slots[i]]);
+    return 4;
+}
+
 void HexMesh::appendTriangles(std::vector<uint32_t>& out) const {
     for (int32_t level = 0; level <= maxLevel_; ++level) {
         for (int32_t c = levelHead_[size_t(level)]; c != kNone; c = cells_[size_t(c)].next) {
-            const Hexagon& h = cells_[size_t(c)];
-            const int32_t* v = h.vertex;
-            if (h.kind == CellKind::Full) {
-                for (int32_t k = 1; k <= 6; ++k) out.insert(out.end(), {uint32_t(v[0]), uint32_t(v[k]), uint32_t(v[k + 1])});
-                continue;
-            }
-            const int32_t a = h.firstVisible, b = wrapSlot(a + 1), c2 = wrapSlot(a + 2), d = wrapSlot(a + 3);
-            if (h.kind == CellKind::BoundarySemi) { // §4.2: three-triangle half fan around the centre
-                out.insert(out.end(), {uint32_t(v[0]), uint32_t(v[a]), uint32_t(v[b]),
-                                       uint32_t(v[0]), uint32_t(v[b]), uint32_t(v[c2]),
-                                       uint32_t(v[0]), uint32_t(v[c2]), uint32_t(v[d])});
-            } else { // §7: two-triangle fan around the corner the fixed rule picks
-                int32_t q[4];
-                semiFanSlots(h, q);
-                out.insert(out.end(), {uint32_t(v[q[0]]), uint32_t(v[q[1]]), uint32_t(v[q[2]]),
-                                       uint32_t(v[q[0]]), uint32_t(v[q[2]]), uint32_t(v[q[3]])});
-            }
+            uint32_t fan[8];
+            const int32_t n = cellFan(cells_[size_t(c)], fan);
+            for (int32_t k = 1; k + 1 < n; ++k) out.insert(out.end(), {fan[0], fan[k], fan[k + 1]});
         }
     }
 }

@@ -174,6 +174,12 @@ public:
     /// semi-hexagons as the two-triangle fan from their first own corner (a fixed rule).
     void appendTriangles(std::vector<uint32_t>& indices) const;
 
+    /// The cell's triangle fan (§7) as vertex indices into `out`, returning its length: a full
+    /// hexagon's centre, six corners and first corner again (8); a boundary semi-hexagon's
+    /// centre and four corners (5); an interior semi-hexagon's four corners from the fixed-rule
+    /// corner (4). appendTriangles and the fan stream both expand this.
+    int32_t cellFan(const Hexagon& h, uint32_t out[8]) const;
+
     /// A semi-hexagon's two-triangle fan as its four own corner slots in fan order: a, a+1,
     /// a+2, a+3, or a+1, a+2, a+3, a when the fixed rule fans from the second corner
     /// (see semiFanFromSecondCorner).
