@@ -8,7 +8,7 @@ import {
   loadForCommand, FILE_OPTIONS, FILE_USAGE, parseFileOptions, extentOf, cameraFor, highestLevel, round,
 } from './cli_common.js';
 import { decodeFans, resolveDegenerate, clipToRectangle, writeObj } from './mesh_export.js';
-import { STREAM_VERTEX_WORDS } from '../web/core.js';
+import { RESTART_INDEX, STREAM_VERTEX_WORDS } from '../web/core.js';
 
 export const MESH_USAGE = `usage: hexlod mesh <heightfield> (--max-error M | --camera X,Y,Z --target X,Y,Z) [options]
   Refines the hexagon mesh until it converges (or for --budget-splits operations), prints a
@@ -121,7 +121,7 @@ function levelFigures(indices, levelOffsets) {
   for (let level = 0; level + 1 < levelOffsets.length; level++) {
     let cells = 0, triangles = 0, length = 0;
     for (let i = levelOffsets[level]; i < levelOffsets[level + 1]; i++) {
-      if (indices[i] === 0xffffffff) {
+      if (indices[i] === RESTART_INDEX) {
         cells += 1;
         triangles += Math.max(0, length - 2);
         length = 0;

@@ -6,8 +6,7 @@
 // triangle (a, b, c) is counter-clockwise seen from +y when (b - a) x (c - a) has a positive
 // y component, i.e. (b.z - a.z) * (c.x - a.x) - (b.x - a.x) * (c.z - a.z) > 0.
 import { openSync, writeSync, closeSync } from 'node:fs';
-
-const RESTART = 0xffffffff;
+import { RESTART_INDEX } from '../web/core.js';
 
 /** Twice the area of (a, b, c) in the x-z plane, positive when counter-clockwise seen from +y. */
 export function ccwArea2(ax, az, bx, bz, cx, cz) {
@@ -27,7 +26,7 @@ export function decodeFans(indices) {
   let length = 0;
   const fans = { full: 0, boundarySemi: 0, interiorSemi: 0, other: 0, total: 0 };
   for (let i = 0; i < indices.length; i++) {
-    if (indices[i] !== RESTART) {
+    if (indices[i] !== RESTART_INDEX) {
       length += 1;
       continue;
     }
@@ -42,7 +41,7 @@ export function decodeFans(indices) {
   const triangles = new Uint32Array(triangleCount * 3);
   let t = 0, start = 0;
   for (let i = 0; i <= indices.length; i++) {
-    if (i < indices.length && indices[i] !== RESTART) continue;
+    if (i < indices.length && indices[i] !== RESTART_INDEX) continue;
     for (let k = start + 1; k + 1 < i; k++) {
       triangles[t++] = indices[start];
       triangles[t++] = indices[k];

@@ -16,8 +16,6 @@ export const SAMPLE_TYPES = {
 
 /** Index layouts of the fan stream (HEXLOD_LAYOUT_*). */
 export const STREAM_LAYOUTS = { fans: 0, triangles: 1 };
-/** Indices per cell record in each layout. */
-export const STREAM_SLOT = { fans: 9, triangles: 18 };
 /**
  * A stream vertex (src/stream_vertex.h): position 3 x f32 at byte 0, normal 4 x snorm16 at 12,
  * morph start 3 x f32 at 20, morph key f32 at 32.
@@ -64,6 +62,22 @@ export class HexlodCore {
    */
   view(ArrayType, pointer, length) {
     return new ArrayType(this.buffer, pointer >>> 0, length);
+  }
+
+  /**
+   * Calls a core function that writes `length` values of ArrayType to an out-pointer:
+   * `call(pointer)` returns its result code (< 0: a CoreError "what: <core message>").
+   * Returns a copy of the values; the scratch memory is freed either way.
+   */
+  readOutput(ArrayType, length, what, call) {
+    const pointer = this.module._malloc(length * ArrayType.BYTES_PER_ELEMENT);
+    this.check(pointer === 0, `${what}: out of memory`);
+    try {
+      this.check(call(pointer) < 0, what);
+      return Array.from(this.view(ArrayType, pointer, length));
+    } finally {
+      this.module._free(pointer);
+    }
   }
 
   /** The last error message of the core. */
@@ -176,16 +190,9 @@ export class Terrain {
 
   /** Live cells by kind (hexlod_mesh_cell_kinds): {full, semi, boundarySemi}. */
   cellKinds() {
-    const m = this.m;
-    const out = m._malloc(3 * 4);
-    this.core.check(out === 0, 'cannot count cells: out of memory');
-    try {
-      this.core.check(m._hexlod_mesh_cell_kinds(this.handle, out) < 0, 'cannot count cells');
-      const [full, semi, boundarySemi] = this.core.view(Int32Array, out, 3);
-      return { full, semi, boundarySemi };
-    } finally {
-      m._free(out);
-    }
+    const [full, semi, boundarySemi] = this.core.readOutput(Int32Array, 3, 'cannot count cells',
+      (out) => this.m._hexlod_mesh_cell_kinds(this.handle, out));
+    return { full, semi, boundarySemi };
   }
 
   /**
@@ -208,6 +215,13 @@ export class Terrain {
   updateStream() {
     const version = this.m._hexlod_stream_update(this.handle);
     this.core.check(version < 0, 'cannot update the fan stream');
+    return version;
+  }
+
+  /** The stream's version (hexlod_stream_version): it moves whenever anything was written. */
+  streamVersion() {
+    const version = this.m._hexlod_stream_version(this.handle);
+    this.core.check(version < 0, 'no fan stream');
     return version;
   }
 
@@ -369,16 +383,9 @@ Object.assign(Terrain.prototype, {
    * whether its vertex was kept, new or freed.
    */
   measurePopping() {
-    const m = this.m;
-    const out = m._malloc(7 * 8);
-    this.core.check(out === 0, 'cannot measure popping: out of memory');
-    try {
-      this.core.check(m._hexlod_measure_popping(this.handle, out) < 0, 'cannot measure popping');
-      const [maxJumpPx, jumpsOverHalfPx, measured, x, y, depth, kind] = this.core.view(Float64Array, out, 7);
-      return { maxJumpPx, jumpsOverHalfPx, measured, at: { x, y, depth, kind: ['kept', 'new', 'freed'][kind] } };
-    } finally {
-      m._free(out);
-    }
+    const [maxJumpPx, jumpsOverHalfPx, measured, x, y, depth, kind] = this.core.readOutput(Float64Array, 7,
+      'cannot measure popping', (out) => this.m._hexlod_measure_popping(this.handle, out));
+    return { maxJumpPx, jumpsOverHalfPx, measured, at: { x, y, depth, kind: ['kept', 'new', 'freed'][kind] } };
   },
 
   /** One refinement step within the budget; returns the number of operations it made. */
@@ -420,16 +427,8 @@ Object.assign(Terrain.prototype, {
    * @returns {{max: number, p99: number, mean: number, uncovered: number}} metres, and samples
    */
   measureError(againstStored = false) {
-    const m = this.m;
-    const out = m._malloc(4 * 8);
-    this.core.check(out === 0, 'cannot measure the error: out of memory');
-    try {
-      const result = m._hexlod_mesh_measure_error(this.handle, againstStored ? 1 : 0, out);
-      this.core.check(result < 0, 'cannot measure the error');
-      const [max, p99, mean, uncovered] = this.core.view(Float64Array, out, 4);
-      return { max, p99, mean, uncovered };
-    } finally {
-      m._free(out);
-    }
+    const [max, p99, mean, uncovered] = this.core.readOutput(Float64Array, 4, 'cannot measure the error',
+      (out) => this.m._hexlod_mesh_measure_error(this.handle, againstStored ? 1 : 0, out));
+    return { max, p99, mean, uncovered };
   },
 });

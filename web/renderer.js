@@ -154,10 +154,11 @@ export class TerrainRenderer {
    * @param {'fans'|'triangles'} layout the stream's index layout
    */
   upload(terrain, layout) {
-    const stream = terrain.stream();
     const all = this.version < 0 || layout !== this.layout;
     let bytes = 0;
-    if (all || stream.version !== this.version) {
+    // The views and dirty ranges are fetched only when there is something to copy.
+    if (all || terrain.streamVersion() !== this.version) {
+      const stream = terrain.stream();
       bytes += this.vertices.update(stream.vertexBytes, stream.dirtyVertices, STREAM_VERTEX_BYTES, all);
       this.gl.bindVertexArray(null);
       bytes += this.indices.update(new Uint8Array(stream.indices.buffer, stream.indices.byteOffset, stream.indices.byteLength),
