@@ -14,6 +14,7 @@ const FILL = 0.92;            // the region fills this share of the half field o
 const SIGHT_STEPS = 256;      // samples along the line of sight checked for ground in the way
 const PITCH_STEP = 0.08;      // radians added while the eye is blocked
 const MAX_PITCH = 1.45;       // radians: close to straight down
+const LEANING = 0.08;         // a mean slope above which the surface is seen from downhill
 
 /**
  * The point of greatest local relief: a high point above a deep valley (on the default terrain
@@ -130,6 +131,22 @@ function eyeIsClear(terrain, world, scale, target, yaw, pitch, distance) {
 }
 
 /**
+ * The mean slope of the region's surface: the least-squares plane through its sampled points
+ * (a regular grid, so x and z are uncorrelated), as height gained per metre east and south.
+ */
+export function meanSlope(points) {
+  let sx = 0, sz = 0, sh = 0;
+  for (const [x, h, z] of points) { sx += x; sz += z; sh += h; }
+  const n = points.length, mx = sx / n, mz = sz / n, mh = sh / n;
+  let xh = 0, xx = 0, zh = 0, zz = 0;
+  for (const [x, h, z] of points) {
+    xh += (x - mx) * (h - mh); xx += (x - mx) ** 2;
+    zh += (z - mz) * (h - mh); zz += (z - mz) ** 2;
+  }
+  return { east: xx > 0 ? xh / xx : 0, south: zz > 0 ? zh / zz : 0 };
+}
+
+/**
  * Puts the orbit camera where a terrain opens: its region in view, the eye above the surface.
  * @param {{width: number, height: number, heightAt: (x: number, z: number) => number}} terrain
  * @param {{extentX: number, extentZ: number, ground: (x: number, z: number) => number}} world drawn metres
@@ -145,8 +162,12 @@ export function frameTerrain(terrain, world, orbit, scale, aspect) {
   // Broadside to a long strip (it runs across the screen); else from the south, a little west
   // (the lit side under the renderer's sun): a whole field nearly square to the screen, which it
   // then fills, a region within a larger field more obliquely.
+  // A surface that leans as a whole (a tilted plane) is seen from downhill, facing the camera,
+  // not edge-on from behind.
   const whole = sizeX === world.extentX && sizeZ === world.extentZ;
-  const yaw = sizeZ > STRIP_ASPECT * sizeX ? Math.PI / 2 : whole ? 0.15 : 0.4;
+  const slope = meanSlope(heights.points);
+  let yaw = sizeZ > STRIP_ASPECT * sizeX ? Math.PI / 2 : whole ? 0.15 : 0.4;
+  if (Math.hypot(slope.east, slope.south) > LEANING) yaw = Math.atan2(-slope.east, -slope.south);
   // Steeper over flat ground, where a low view shows little; lower where relief stands up.
   const relief = (heights.high - heights.low) / Math.max(Math.hypot(sizeX, sizeZ), 1e-9);
   const basePitch = relief > 0.05 ? 0.42 : 0.6;

@@ -169,9 +169,13 @@ export async function dropFiles(page, files) {
   }, payload);
 }
 
-/** Waits until the terrain named `name` is on screen and nothing is loading. */
-export const terrainShown = (page, name) => page.waitForFunction(
-  (n) => window.hexlod.terrain?.name === n && !window.hexlod.loading, name, { timeout: 90000 });
+/** Waits until the terrain named `name` is on screen and nothing is loading; fails with the page's error. */
+export async function terrainShown(page, name) {
+  await page.waitForFunction((n) => !window.hexlod.loading && (window.hexlod.terrain?.name === n || window.hexlod.error),
+    name, { timeout: 180000 });
+  const { shown, error } = await page.evaluate(() => ({ shown: window.hexlod.terrain?.name, error: window.hexlod.error }));
+  if (shown !== name) throw new Error(`${name} did not open: ${error}`);
+}
 
 /** Waits until the mesh has converged for the current camera. */
 export const converged = (page) => page.waitForFunction(() => window.hexlod.converged, null, { timeout: 240000 });

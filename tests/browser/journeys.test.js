@@ -6,6 +6,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
+import { decode } from 'fast-png';
 import { startViewer, openPage, outDir, projectDir, terrainCoverage, pageReady, dropFiles, terrainShown,
   converged, eyeClearance, nextFrame } from './harness.js';
 
@@ -42,7 +43,21 @@ function dropSets() {
     ['volcano_maungawhau.png', 'volcano_maungawhau.json'], ['grandcanyon_512.f32', 'grandcanyon_512.json']];
   const manifest = JSON.parse(readFileSync(`${FIXTURES}formats/manifest.json`, 'utf8'));
   for (const entry of manifest) if (!entry.options) sets.push(entry.files.map((name) => `formats/${name}`));
-  return sets.map((paths) => paths.map(read));
+  return [...sets.map((paths) => paths.map(read)), [everestHgt()]];
+}
+
+/**
+ * An SRTM tile (1201² big-endian int16 metres, spacing from the latitude in its name) around
+ * Everest, cut from the default terrain: SRTM has no small form to commit.
+ */
+function everestHgt() {
+  const png = decode(readFileSync(`${projectDir}public/terrain/globe_himalaya_2048.png`)); // 0..8752 m as 0..65535
+  const side = 1201, x0 = 847, y0 = 600;
+  const bytes = new Uint8Array(side * side * 2), view = new DataView(bytes.buffer);
+  for (let y = 0; y < side; y++) {
+    for (let x = 0; x < side; x++) view.setInt16(2 * (y * side + x), Math.round((png.data[(y0 + y) * 2048 + x0 + x] / 65535) * 8752), false);
+  }
+  return { name: 'N27E086.hgt', bytes };
 }
 
 test('the page opens on the default terrain over at least 75 % of a 1280×720 view; panel and HUD fold', async () => {
@@ -100,7 +115,7 @@ test('every format and real DEM dropped on the page opens framed and refines', a
     // The whole field in view, seen obliquely, beside the open panel: a 2:1 field fills a fifth.
     figures.push({ name: files[0].name, ...await assertSeen(page, `drop-${files[0].name}`, { minTriangles, minCoverage: 0.15 }) });
   }
-  assert.ok(figures.length >= 17, `${figures.length} files dropped`);
+  assert.ok(figures.length >= 18, `${figures.length} files dropped`);
   assert.deepEqual(problems, []);
   await page.close();
 });
@@ -135,7 +150,8 @@ test('a picked file and a ?src= file open framed; R brings the view back after m
   const src = `${viewer.fixturesUrl}formats/everest_i16_strips.tif`;
   const opened = await openPage(viewer.browser, `${viewer.url}?src=${encodeURIComponent(src)}`, VIEWPORT);
   await pageReady(opened.page);
-  assert.equal(await opened.page.evaluate(() => window.hexlod.terrain.name), 'everest_i16_strips.tif');
+  const { name, error } = await opened.page.evaluate(() => ({ name: window.hexlod.terrain.name, error: window.hexlod.error }));
+  assert.equal(name, 'everest_i16_strips.tif', `?src= opened ${name}: ${error}`);
   await assertSeen(opened.page, 'src-everest', { minTriangles: 3000 });
   assert.deepEqual(opened.problems, []);
   await opened.page.close();

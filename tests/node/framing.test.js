@@ -9,7 +9,7 @@ import { createNodeCore } from '../../bin/node_core.js';
 import { loadTerrain } from '../../web/terrain_source.js';
 import { createWorld } from '../../web/ground.js';
 import { OrbitCamera } from '../../web/cameras/orbit.js';
-import { frameTerrain, openingRegion, regionHeights } from '../../web/framing.js';
+import { frameTerrain, openingRegion, regionHeights, meanSlope } from '../../web/framing.js';
 
 const core = await createNodeCore();
 const fixtures = new URL('../fixtures/', import.meta.url);
@@ -59,23 +59,25 @@ function checkFraming(label, terrain, { exaggeration = 1, aspect = 16 / 9 } = {}
     assert.ok(y >= terrain.heightAt(x, z) * exaggeration, `${label}: ground blocks the view at ${t.toFixed(2)} of the way`);
   }
 
-  // The region's box (its ground corners, from its lowest to its highest drawn height) inside
-  // the view, in front of the near plane, and large on screen.
+  // The region's surface (sampled as the framing samples it: every point, corners included)
+  // inside the view, in front of the near plane, and large on screen.
   const region = openingRegion(terrain, extent.extentX, extent.extentZ);
-  const { low, high } = regionHeights(terrain, region, exaggeration);
+  const { points } = regionHeights(terrain, region, exaggeration);
   let reach = 0;
-  for (const x of [region.x0, region.x1]) {
-    for (const z of [region.z0, region.z1]) {
-      for (const y of [low, high]) {
-        const clip = vec4.transformMat4(vec4.create(), [x, y, z, 1], orbit.viewProjection);
-        assert.ok(clip[3] > orbit.near, `${label}: corner (${x}, ${y}, ${z}) in front of the near plane`);
-        const ndc = [clip[0] / clip[3], clip[1] / clip[3], clip[2] / clip[3]];
-        assert.ok(ndc.every((c) => Math.abs(c) <= 1), `${label}: corner (${x}, ${y}, ${z}) in view: ${ndc.map((c) => c.toFixed(3))}`);
-        reach = Math.max(reach, Math.abs(ndc[0]), Math.abs(ndc[1]));
-      }
-    }
+  for (const point of points) {
+    const clip = vec4.transformMat4(vec4.create(), [...point, 1], orbit.viewProjection);
+    assert.ok(clip[3] > orbit.near, `${label}: (${point}) in front of the near plane`);
+    const ndc = [clip[0] / clip[3], clip[1] / clip[3], clip[2] / clip[3]];
+    assert.ok(ndc.every((c) => Math.abs(c) <= 1), `${label}: (${point}) in view: ${ndc.map((c) => c.toFixed(3))}`);
+    reach = Math.max(reach, Math.abs(ndc[0]), Math.abs(ndc[1]));
   }
-  assert.ok(reach > 0.8, `${label}: the region fills the view (its box reaches ${reach.toFixed(2)} of the half-size)`);
+  assert.ok(reach > 0.85, `${label}: the region fills the view (it reaches ${reach.toFixed(2)} of the half-size)`);
+
+  // The surface faces the camera: its mean plane is seen at a good angle, not edge-on.
+  const { east, south } = meanSlope(points);
+  const normal = [-east, 1, -south], toEye = [eye[0] - orbit.target[0], eye[1] - orbit.target[1], eye[2] - orbit.target[2]];
+  const facing = (normal[0] * toEye[0] + normal[1] * toEye[1] + normal[2] * toEye[2]) / (Math.hypot(...normal) * Math.hypot(...toEye));
+  assert.ok(facing > 0.35, `${label}: the surface faces the eye (cosine ${facing.toFixed(2)})`);
   return { orbit, region };
 }
 
@@ -99,6 +101,8 @@ test('tiny, long and thin fields open framed', () => {
   const cases = [
     ['2x2', field(2, 2, 30, (i, j) => 100 + 10 * i + 5 * j)],
     ['2x2 flat', field(2, 2, 30, () => 0)],
+    ['2x2 leaning north', field(2, 2, 30, (i, j) => 100 + 20 * i + 10 * j)],
+    ['a plane leaning east', field(50, 40, 10, (i, j) => 8 * j)],
     ['2x300', field(2, 300, 30, hills(200, 600, 9))],
     ['300x2', field(300, 2, 30, hills(200, 600, 9))],
     ['4096x8 strip', field(4096, 8, 5, hills(1000, 1400, 150))],
