@@ -14,6 +14,8 @@ const FILL = 0.92;            // the region fills this share of the half field o
 const SIGHT_STEPS = 256;      // samples along the line of sight checked for ground in the way
 const PITCH_STEP = 0.08;      // radians added while the eye is blocked
 const MAX_PITCH = 1.45;       // radians: close to straight down
+const CENTRING_PASSES = 3;    // moves of the target that centre the region on screen
+const FULL_VIEW = { centreX: 0, centreY: 0, halfWidth: 1, halfHeight: 1 };
 const LEANING = 0.08;         // a mean slope above which the surface is seen from downhill
 
 /**
@@ -86,19 +88,25 @@ export function regionHeights(terrain, region, scale) {
   return { low, high, centre, points };
 }
 
+/** The camera's forward, right and up vectors for a yaw and pitch (orbit.js conventions). */
+function viewBasis(yaw, pitch) {
+  const cp = Math.cos(pitch), sp = Math.sin(pitch), sy = Math.sin(yaw), cy = Math.cos(yaw);
+  const forward = [-cp * sy, -sp, -cp * cy];
+  const right = [cy, 0, -sy];
+  const up = [right[1] * forward[2] - right[2] * forward[1], right[2] * forward[0] - right[0] * forward[2],
+    right[0] * forward[1] - right[1] * forward[0]];
+  return { forward, right, up };
+}
+
 /**
  * The orbit distance at which every point ([x, y, z] metres) lies inside the view, for a camera
  * looking at `target` from yaw and pitch (orbit.js conventions: yaw 0 looks north, from +z).
  * Closed form per point: its offsets across and up the view over its depth stay within the
  * half field of view.
  */
-export function fitDistance(points, target, yaw, pitch, fovY, aspect) {
-  const cp = Math.cos(pitch), sp = Math.sin(pitch), sy = Math.sin(yaw), cy = Math.cos(yaw);
-  const forward = [-cp * sy, -sp, -cp * cy];
-  const right = [cy, 0, -sy];
-  const up = [right[1] * forward[2] - right[2] * forward[1], right[2] * forward[0] - right[0] * forward[2],
-    right[0] * forward[1] - right[1] * forward[0]];
-  const tanY = Math.tan(0.5 * fovY) * FILL, tanX = tanY * aspect;
+export function fitDistance(points, target, yaw, pitch, fovY, aspect, free = FULL_VIEW) {
+  const { forward, right, up } = viewBasis(yaw, pitch);
+  const tanY = Math.tan(0.5 * fovY) * FILL * free.halfHeight, tanX = Math.tan(0.5 * fovY) * FILL * aspect * free.halfWidth;
   let distance = 0;
   for (const [x, y, z] of points) {
     const q0 = x - target[0], q1 = y - target[1], q2 = z - target[2];
@@ -108,6 +116,46 @@ export function fitDistance(points, target, yaw, pitch, fovY, aspect) {
     distance = Math.max(distance, across / tanX - along, upward / tanY - along);
   }
   return distance;
+}
+
+/**
+ * Fits the points into the view centred: the target moves across the view until the points'
+ * projected extent is centred on the screen (a field seen obliquely is not centred on its middle
+ * point) or on the part of it the page's bars leave free, then onto the first ground along the view ray, which leaves the view as it is.
+ * @returns {{target: number[], distance: number}}
+ */
+function centredView(terrain, world, scale, points, start, yaw, pitch, fovY, aspect, free) {
+  const { forward, right, up } = viewBasis(yaw, pitch);
+  const tanY = Math.tan(0.5 * fovY), tanX = tanY * aspect;
+  const target = start.slice();
+  let distance = 0;
+  for (let pass = 0; pass < CENTRING_PASSES; ++pass) {
+    distance = fitDistance(points, target, yaw, pitch, fovY, aspect, free);
+    let left = Infinity, rightmost = -Infinity, bottom = Infinity, top = -Infinity;
+    for (const [x, y, z] of points) {
+      const q0 = x - target[0], q1 = y - target[1], q2 = z - target[2];
+      const depth = distance + q0 * forward[0] + q1 * forward[1] + q2 * forward[2];
+      const sx = (q0 * right[0] + q2 * right[2]) / (depth * tanX);
+      const sy = (q0 * up[0] + q1 * up[1] + q2 * up[2]) / (depth * tanY);
+      left = Math.min(left, sx); rightmost = Math.max(rightmost, sx);
+      bottom = Math.min(bottom, sy); top = Math.max(top, sy);
+    }
+    // Offsets (screen units, -1..1) from the window's centre, back to metres at the target's depth.
+    const cx = (0.5 * (left + rightmost) - free.centreX) * tanX * distance;
+    const cy = (0.5 * (bottom + top) - free.centreY) * tanY * distance;
+    for (let k = 0; k < 3; ++k) target[k] += right[k] * cx + up[k] * cy;
+  }
+  distance = fitDistance(points, target, yaw, pitch, fovY, aspect, free);
+  // The same view, orbiting the ground point at the screen's centre rather than a point in the air.
+  const eye = [target[0] - forward[0] * distance, target[1] - forward[1] * distance, target[2] - forward[2] * distance];
+  const reach = 2 * distance;
+  for (let k = 1; k <= SIGHT_STEPS * 2; ++k) {
+    const t = (reach * k) / (SIGHT_STEPS * 2);
+    const x = eye[0] + forward[0] * t, y = eye[1] + forward[1] * t, z = eye[2] + forward[2] * t;
+    if (x < 0 || z < 0 || x > world.extentX || z > world.extentZ) continue;
+    if (y <= terrain.heightAt(x, z) * scale) return { target: [x, y, z], distance: t };
+  }
+  return { target, distance };
 }
 
 /**
@@ -153,8 +201,12 @@ export function meanSlope(points) {
  * @param {import('./cameras/orbit.js').OrbitCamera} orbit
  * @param {number} scale the vertical exaggeration
  * @param {number} aspect viewport width / height
+ * @param {{top: number, bottom: number}} [covered] shares of the view's height covered by the
+ *   page's bars at its top and bottom: the region is fitted between them
  */
-export function frameTerrain(terrain, world, orbit, scale, aspect) {
+export function frameTerrain(terrain, world, orbit, scale, aspect, covered = { top: 0, bottom: 0 }) {
+  // The part of the screen left free, in screen units (-1 bottom .. 1 top).
+  const free = { centreX: 0, centreY: covered.bottom - covered.top, halfWidth: 1, halfHeight: 1 - covered.top - covered.bottom };
   const region = openingRegion(terrain, world.extentX, world.extentZ);
   const heights = regionHeights(terrain, region, scale);
   const sizeX = region.x1 - region.x0, sizeZ = region.z1 - region.z0;
@@ -172,19 +224,23 @@ export function frameTerrain(terrain, world, orbit, scale, aspect) {
   const relief = (heights.high - heights.low) / Math.max(Math.hypot(sizeX, sizeZ), 1e-9);
   const basePitch = relief > 0.05 ? 0.42 : 0.6;
   let pitch = basePitch;
-  let distance = fitDistance(heights.points, target, yaw, pitch, orbit.fovY, aspect);
-  while (!eyeIsClear(terrain, world, scale, target, yaw, pitch, distance)) {
+  const fit = (at, pitchNow) => centredView(terrain, world, scale, heights.points, at, yaw, pitchNow, orbit.fovY, aspect, free);
+  let view = fit(target, pitch);
+  while (!eyeIsClear(terrain, world, scale, view.target, yaw, pitch, view.distance)) {
     if (pitch >= MAX_PITCH) {
       // Needles steeper than any view from above: orbit a point over the highest ground
       // instead, which nothing can hide.
       target[1] = heights.high;
       pitch = basePitch;
-      distance = fitDistance(heights.points, target, yaw, pitch, orbit.fovY, aspect);
+      const distance = fitDistance(heights.points, target, yaw, pitch, orbit.fovY, aspect, free);
+      view = { target, distance };
       break;
     }
     pitch = Math.min(MAX_PITCH, pitch + PITCH_STEP);
-    distance = fitDistance(heights.points, target, yaw, pitch, orbit.fovY, aspect);
+    view = fit(target, pitch);
   }
+  const distance = view.distance;
+  target.splice(0, 3, ...view.target);
   orbit.target[0] = target[0];
   orbit.target[1] = target[1];
   orbit.target[2] = target[2];

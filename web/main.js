@@ -176,8 +176,14 @@ async function main() {
   /** The opening view (framing.js): the field, or its region of most relief, in view from above. */
   function frameDefault(loaded) {
     const orbit = rig.cameras.orbit;
-    const aspect = Math.max(canvas.clientWidth, 1) / Math.max(canvas.clientHeight, 1);
-    frameTerrain(loaded.terrain, loaded.world, orbit, settings.exaggeration, aspect);
+    const width = Math.max(canvas.clientWidth, 1), height = Math.max(canvas.clientHeight, 1);
+    // The file bar along the top and the HUD along the bottom: the terrain opens between them.
+    const bar = document.getElementById('intake').getBoundingClientRect(), hudBox = document.getElementById('hud').getBoundingClientRect();
+    const covered = {
+      top: bar.height > 0 ? Math.min(bar.bottom / height, 0.3) : 0,
+      bottom: hudBox.height > 0 ? Math.min((height - hudBox.top) / height, 0.3) : 0,
+    };
+    frameTerrain(loaded.terrain, loaded.world, orbit, settings.exaggeration, width / height, covered);
     rig.active = orbit;
   }
 
