@@ -74,7 +74,11 @@ const escapeHtml = (text) => String(text).replace(/[&<>"]/g, (c) => ({ '&': '&am
 /** The one-line verdict of a flight. */
 export function flightLine(result) {
   if (result.updated) return `updated (${result.frames} frames, ${result.captures.length} captures)`;
-  if (result.problems.length === 0) return `ok (${result.frames} frames, ${result.captures.length} captures)`;
+  if (result.problems.length === 0) {
+    const deltas = result.captures.filter((c) => c.maxDelta !== undefined).map((c) => c.maxDelta);
+    const pixels = deltas.length ? `, largest pixel difference ${Math.max(...deltas)}` : '';
+    return `ok (${result.frames} frames, ${result.captures.length} captures${pixels})`;
+  }
   return `REGRESSION: ${result.problems.join('; ')}`;
 }
 
