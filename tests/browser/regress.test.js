@@ -1,0 +1,70 @@
+// Our own regression flights (tests/regress/flights) through `hexlod regress`: every flight flown
+// in headless Chromium gives the mesh hashes and figures of its Node replay and of the stored
+// references, and pixels within the tolerance. A changed reference is caught: a painted block
+// in an image shows up in the diff, a changed triangle count in the figures, exit code 1.
+// References are rewritten with: node bin/hexlod.js regress tests/regress/flights --update
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { execFile } from 'node:child_process';
+import { cpSync, existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { readPng, writePng } from '../../bin/regress_compare.js';
+
+const root = fileURLToPath(new URL('../../', import.meta.url));
+const flights = join(root, 'tests/regress/flights');
+const outDir = join(root, 'tests/out/regress');
+
+function hexlod(args) {
+  return new Promise((resolve) => {
+    execFile(process.execPath, [join(root, 'bin/hexlod.js'), ...args], { cwd: root, timeout: 600000, maxBuffer: 16 << 20 },
+      (error, stdout, stderr) => resolve({ code: error ? error.code : 0, stdout, stderr }));
+  });
+}
+
+test('every regression flight matches Node and its references, hashes exactly and pixels within the tolerance', async () => {
+  const names = readdirSync(flights).filter((f) => f.endsWith('.flight.json')).map((f) => f.replace('.flight.json', ''));
+  const { code, stdout, stderr } = await hexlod(['regress', flights, '--out', outDir]);
+  assert.equal(code, 0, `${stdout}\n${stderr}`);
+  for (const name of names) assert.match(stdout, new RegExp(`\\] ${name}: ok \\(21 frames`), `${name}\n${stdout}`);
+  assert.match(stdout, new RegExp(`${names.length} flights, 0 regressed`));
+  const report = readFileSync(join(outDir, 'report.html'), 'utf8');
+  assert.match(report, /all \d+ flights as the references/);
+  assert.ok(existsSync(join(outDir, 'grandcanyon_tau1/frame-0020-diff.png')));
+});
+
+test('a changed reference is caught: pixels in the diff image, figures by frame, exit code 1', async () => {
+  const refs = mkdtempSync(join(tmpdir(), 'hexlod-refs-'));
+  const out = join(refs, 'out');
+  try {
+    const name = 'volcano_down_tau4';
+    cpSync(join(flights, 'refs', name), join(refs, name), { recursive: true });
+    // A 40 x 20 magenta block in the reference of frame 20: 800 of 57,600 pixels (1.4 %).
+    const path = join(refs, name, 'frame-0020.png');
+    const image = readPng(readFileSync(path));
+    for (let y = 50; y < 70; y++) {
+      for (let x = 100; x < 140; x++) image.rgb.set([255, 0, 255], 3 * (y * image.width + x));
+    }
+    writePng(path, image);
+    const statsPath = join(refs, name, 'stats.json');
+    const doc = JSON.parse(readFileSync(statsPath, 'utf8'));
+    doc.stats[12].triangles += 6;
+    writeFileSync(statsPath, JSON.stringify(doc));
+
+    const { code, stdout } = await hexlod(['regress', join(flights, `${name}.flight.json`), '--refs', refs, '--out', out]);
+    assert.equal(code, 1, stdout);
+    assert.match(stdout, /REGRESSION: frame 12: triangles \d+, the reference has \d+/);
+    assert.match(stdout, /frame 20: 1\.389 % of pixels differ/);
+    assert.doesNotMatch(stdout, /frame 6:/); // the untouched capture still matches
+    const diff = readPng(readFileSync(join(out, name, 'frame-0020-diff.png')));
+    let red = 0;
+    for (let k = 0; k < diff.rgb.length; k += 3) if (diff.rgb[k] === 255 && diff.rgb[k + 1] === 0 && diff.rgb[k + 2] === 0) red += 1;
+    assert.equal(red, 800, 'the diff marks exactly the painted block');
+    const report = readFileSync(join(out, 'report.html'), 'utf8');
+    assert.match(report, /1 of 1 flights regressed/);
+    for (const file of ['frame-0020-ref.png', 'frame-0020.png', 'frame-0020-diff.png']) assert.ok(report.includes(`${name}/${file}`), file);
+  } finally {
+    rmSync(refs, { recursive: true, force: true });
+  }
+});
