@@ -111,6 +111,7 @@ test('a replay in Node gives the same mesh hashes every time, and the ones the p
   const core = await createNodeCore();
   const names = readdirSync(flights).filter((f) => f.endsWith('.flight.json') && !f.startsWith('himalaya'));
   assert.ok(names.length >= 6);
+  const finalTriangles = new Map();
   for (const name of names) {
     const flight = parseFlight(JSON.parse(readFileSync(join(flights, name), 'utf8')), name);
     const runs = [];
@@ -123,6 +124,14 @@ test('a replay in Node gives the same mesh hashes every time, and the ones the p
     const stored = JSON.parse(readFileSync(join(flights, 'refs', name.replace('.flight.json', ''), 'stats.json'), 'utf8')).stats;
     assert.deepEqual(runs[0], stored, `${name}: Node and the stored page references differ`);
     assert.ok(new Set(stored.map((s) => s.hash)).size > stored.length / 2, `${name}: the mesh should change along the flight`);
+    finalTriangles.set(name.replace('.flight.json', ''), stored.at(-1).triangles);
+  }
+  // The same path at a larger tolerance ends with fewer triangles.
+  for (const [name, triangles] of finalTriangles) {
+    if (name.endsWith('_tau1')) {
+      const coarser = finalTriangles.get(name.replace('_tau1', '_tau4'));
+      assert.ok(coarser < triangles, `${name}: ${triangles} triangles at tau 1, ${coarser} at tau 4`);
+    }
   }
 });
 

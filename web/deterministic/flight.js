@@ -213,15 +213,12 @@ export class FlightCamera {
     lod.tanHalfFovY = Math.tan(this.fovY / 2);
     // Near and far as the page's cameras choose them (cameras/clip_planes.js): far reaches the
     // farthest corner of the data's box, near is a fraction of the height above the ground.
-    const [x, y, z] = lod.eye;
+    const x = lod.eye[0], y = lod.eye[1], z = lod.eye[2];
     let far2 = 0;
-    for (const cx of [0, this.extentX]) {
-      for (const cz of [0, this.extentZ]) {
-        for (const cy of [this.low, this.high]) {
-          const d2 = (cx - x) * (cx - x) + (cy - y) * (cy - y) + (cz - z) * (cz - z);
-          if (d2 > far2) far2 = d2;
-        }
-      }
+    for (let corner = 0; corner < 8; corner++) {
+      const cx = corner & 1 ? this.extentX : 0, cz = corner & 2 ? this.extentZ : 0, cy = corner & 4 ? this.high : this.low;
+      const d2 = (cx - x) * (cx - x) + (cy - y) * (cy - y) + (cz - z) * (cz - z);
+      if (d2 > far2) far2 = d2;
     }
     const look = Math.sqrt(look2);
     const inside = x >= 0 && z >= 0 && x <= this.extentX && z <= this.extentZ;
