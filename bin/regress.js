@@ -199,11 +199,15 @@ export async function regress(args) {
       const job = jobs[i], run = runs[i];
       const started = performance.now();
       if (session) {
-        const page = await (await import('./regress_browser.js')).flyInPage(session, { id: i, ...job });
-        run.nodeMismatch = compareStats(run.stats, page.stats, 'Node');
-        run.pageProblems = page.problems;
-        run.stats = page.stats;
-        run.images = page.images;
+        try {
+          const page = await (await import('./regress_browser.js')).flyInPage(session, { id: i, ...job });
+          run.nodeMismatch = compareStats(run.stats, page.stats, 'Node');
+          run.pageProblems = page.problems;
+          run.stats = page.stats;
+          run.images = page.images;
+        } catch (error) {
+          run.pageProblems = [String(error.message).split('\n')[0]]; // this flight fails; the others still fly
+        }
       }
       const result = judge(job, run, options);
       results.push(result);

@@ -129,25 +129,32 @@ export async function flyInPage(session, { id, demPath, flightPath, flight, time
   try {
     await page.goto(`${session.url}?src=${encodeURIComponent(dem)}&flight=${encodeURIComponent(flightUrl)}`);
     await page.waitForFunction(() => window.hexlod && (window.hexlod.status === 'error' || window.hexlod.flight), null, { timeout: timeoutMs });
-    const start = await page.evaluate(async () => {
+    const start = await withTimeout(page.evaluate(async () => {
       try {
         return { ok: await window.hexlod.flight.ready };
       } catch (error) {
         return { error: window.hexlod.error ?? error.message };
       }
-    }).catch((error) => ({ error: error.message }));
+    }), timeoutMs, 'loading the terrain').catch((error) => ({ error: error.message }));
     if (start.error) throw new Error(`the page did not start the flight: ${start.error}`);
     const images = new Map();
     for (const frame of flight.captures) {
-      const { pixels } = await page.evaluate((n) => window.hexlod.flight.frame(n, { pixels: true }), frame);
+      const { pixels } = await withTimeout(page.evaluate((n) => window.hexlod.flight.frame(n, { pixels: true }), frame), timeoutMs, `frame ${frame}`);
       images.set(frame, toRgb(pixels));
     }
-    await page.evaluate((n) => window.hexlod.flight.frame(n), flight.frames - 1);
+    await withTimeout(page.evaluate((n) => window.hexlod.flight.frame(n), flight.frames - 1), timeoutMs, `frame ${flight.frames - 1}`);
     const stats = await page.evaluate(() => window.hexlod.flight.stats());
     return { stats, images, problems };
   } finally {
     await page.close();
   }
+}
+
+/** `promise`, or an error naming `what` after `ms` milliseconds (page.evaluate has no timeout of its own). */
+function withTimeout(promise, ms, what) {
+  let timer;
+  const timeout = new Promise((_, reject) => { timer = setTimeout(() => reject(new Error(`${what}: no answer from the page in ${ms / 1000} s`)), ms); });
+  return Promise.race([promise, timeout]).finally(() => clearTimeout(timer));
 }
 
 /** RGBA rows bottom first (readPixels) -> RGB rows top first. */
