@@ -68,3 +68,21 @@ test('a changed reference is caught: pixels in the diff image, figures by frame,
     rmSync(refs, { recursive: true, force: true });
   }
 });
+
+test('the canvas is viewport x dpr device pixels: 160 x 90 at dpr 2 flies as 320 x 180 at dpr 1, pixel for pixel', async () => {
+  const dir = mkdtempSync(join(tmpdir(), 'hexlod-dpr-'));
+  try {
+    const name = 'volcano_down_tau1';
+    const flight = JSON.parse(readFileSync(join(flights, `${name}.flight.json`), 'utf8'));
+    assert.deepEqual([flight.viewport, flight.dpr], [[320, 180], 1]);
+    Object.assign(flight, { viewport: [160, 90], dpr: 2, dem: join(flights, flight.dem) });
+    writeFileSync(join(dir, `${name}.flight.json`), JSON.stringify(flight));
+    // The references of the 320 x 180 flight at dpr 1.
+    const { code, stdout } = await hexlod(['regress', join(dir, `${name}.flight.json`), '--refs', join(flights, 'refs'),
+      '--out', join(dir, 'out'), '--threshold', '0', '--max-share', '0']);
+    assert.equal(code, 0, stdout);
+    assert.match(stdout, /ok \(21 frames, 2 captures, largest pixel difference 0\)/);
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
