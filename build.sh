@@ -4,6 +4,7 @@
 #   ./build.sh native   only the native part (CMake + Ninja, into build/native)
 #   ./build.sh wasm     only the WebAssembly module (Emscripten 3.1.6, into build/wasm)
 #   ./build.sh wasm-tests  the GoogleTest suite built to WebAssembly, run under Node (build/wasm-tests)
+#   ./build.sh site     the static production site in dist/ (needs the WebAssembly module)
 set -euo pipefail
 cd "$(dirname "$0")"
 target=${1:-all}
@@ -45,10 +46,18 @@ build_wasm() {
   echo "built build/wasm/hexlod_core.mjs and hexlod_core.wasm ($(stat -c %s build/wasm/hexlod_core.wasm) bytes)"
 }
 
+build_site() {
+  # Relative asset URLs (vite.config.js base './'): dist/ works from any static host, at its
+  # root or under a sub-path.
+  npx vite build --config vite.config.js --logLevel warn
+  echo "built the static site in dist/ ($(du -sh dist | cut -f1)): copy the folder to any static file server"
+}
+
 case "$target" in
   native) build_native ;;
   wasm) build_wasm ;;
+  site) build_site ;;
   wasm-tests) scripts/build_wasm_tests.sh ;;
-  all) build_native; build_wasm; scripts/build_wasm_tests.sh ;;
-  *) echo "usage: ./build.sh [native|wasm|wasm-tests|all]" >&2; exit 2 ;;
+  all) build_native; build_wasm; build_site; scripts/build_wasm_tests.sh ;;
+  *) echo "usage: ./build.sh [native|wasm|site|wasm-tests|all]" >&2; exit 2 ;;
 esac

@@ -8,6 +8,7 @@ const projectDir = fileURLToPath(new URL('.', import.meta.url));
 
 export default defineConfig({
   root: 'public',
+  base: './', // relative asset URLs: the built site works at a host's root or under any sub-path
   publicDir: false, // public/ is the root itself; assets are referenced from it directly
   server: { fs: { allow: [projectDir] }, host: '127.0.0.1' },
   build: { outDir: '../dist', emptyOutDir: true, target: 'es2022', assetsInlineLimit: 0 },

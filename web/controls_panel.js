@@ -22,18 +22,20 @@ export function createControlsPanel(container, settings, { camera, onChange, act
 
   gui.add(camera, 'mode', CAMERA_MODES).name('camera (1 2 3)').onChange(changed('camera'));
 
+  // The terrain has the view: only the controls used most are unfolded at first.
   const lod = gui.addFolder('Level of detail');
   slider(lod, 'tau');
   slider(lod, 'budgetMs');
-  slider(lod, 'maxOperations');
-  slider(lod, 'maxTriangles');
-  toggle(lod, 'autoTau', 'auto τ (keeps the cap and budget)');
   toggle(lod, 'freeze', 'freeze LOD (F)');
-  toggle(lod, 'geomorph', 'geomorphing');
-  toggle(lod, 'culling', 'frustum culling');
-  toggle(lod, 'backfaceCulling', 'back-face culling');
+  const more = lod.addFolder('budgets and culling').close();
+  slider(more, 'maxOperations');
+  slider(more, 'maxTriangles');
+  toggle(more, 'autoTau', 'auto τ (keeps the cap and budget)');
+  toggle(more, 'geomorph', 'geomorphing');
+  toggle(more, 'culling', 'frustum culling');
+  toggle(more, 'backfaceCulling', 'back-face culling');
 
-  const view = gui.addFolder('View');
+  const view = gui.addFolder('View').close();
   slider(view, 'exaggeration');
   toggle(view, 'wireframe', 'wireframe: hexagons (O)');
   toggle(view, 'colorByLevel', 'colour by level (L)');
@@ -43,7 +45,8 @@ export function createControlsPanel(container, settings, { camera, onChange, act
   mesh.add(settings, 'embedding', ['exact', 'shifted']).name('embedding').onChange(changed('embedding'));
   const cellSize = mesh.add(settings, 'cellSize', 0.01, 1e6).name('cell size (m)').onFinishChange(changed('cellSize'));
 
-  for (const [label, action] of Object.entries(actions)) gui.add({ [label]: action }, label);
+  const tools = gui.addFolder('Screenshot, reset, help').close();
+  for (const [label, action] of Object.entries(actions)) tools.add({ [label]: action }, label);
 
   // Small screens: start folded, the view matters more than the panel.
   if (window.matchMedia('(max-width: 800px), (max-height: 500px)').matches) gui.close();

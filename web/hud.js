@@ -11,12 +11,24 @@ const number = (n) => Math.round(n).toLocaleString('en');
 const metres = (m) => (Math.abs(m) >= 10000 ? `${(m / 1000).toFixed(2)} km` : `${m.toFixed(1)} m`);
 
 export class Hud {
-  constructor(element) {
+  /**
+   * @param {HTMLElement} element
+   * @param {boolean} collapsed start as one summary line (the full figures behind the toggle, or I)
+   */
+  constructor(element, collapsed) {
     this.element = element;
+    this.toggleButton = document.createElement('button');
+    this.toggleButton.type = 'button';
+    this.toggleButton.className = 'hud-toggle';
+    this.toggleButton.onclick = () => this.setCollapsed(!this.collapsed);
+    this.summary = document.createElement('div');
     this.info = document.createElement('div');
     this.figures = document.createElement('div');
     this.cursor = document.createElement('div');
-    element.append(this.info, this.figures, this.cursor);
+    this.summary.className = 'hud-summary';
+    this.info.className = this.figures.className = 'hud-more';
+    element.append(this.toggleButton, this.summary, this.info, this.figures, this.cursor);
+    this.setCollapsed(collapsed);
     this.frameTimes = []; // rAF timestamps of the last frames
     this.lastRefresh = -Infinity;
     this.lastErrorRefresh = -Infinity;
@@ -24,10 +36,20 @@ export class Hud {
     this.values = null;   // the figures last shown, for tests (window.hexlod.hud)
   }
 
+  /** Folds the HUD to one summary line, or unfolds every figure. */
+  setCollapsed(collapsed) {
+    this.collapsed = collapsed;
+    this.element.classList.toggle('collapsed', collapsed);
+    this.toggleButton.textContent = collapsed ? '▸' : '▾';
+    this.toggleButton.title = collapsed ? 'show every figure (I)' : 'fold to one line (I)';
+    this.toggleButton.setAttribute('aria-expanded', String(!collapsed));
+  }
+
   /** The terrain's description, once per load. */
   setTerrain(field, terrain, loadMs) {
     this.lastErrorRefresh = -Infinity; // the error of the old terrain means nothing now
     const spacing = field.spacingFromFile ? '' : ' (assumed: the file has none)';
+    this.terrainName = field.source;
     this.info.textContent = [
       `${field.source}  ${terrain.width} × ${terrain.height} ${field.sampleType}`,
       `spacing ${terrain.spacingX.toFixed(1)} × ${terrain.spacingY.toFixed(1)} m${spacing}, ` +
@@ -73,6 +95,8 @@ export class Hud {
         `mesh ${v.bytesPerTriangle.toFixed(0)} B/triangle`,
       `screen error ${error < 0 ? 'n/a' : `${error.toFixed(2)} px`} (τ ${v.tau.toFixed(2)} px)   ×${settings.exaggeration} vertical`,
     ].join('\n');
+    this.summary.textContent = `${this.terrainName ?? ''}   ${fps > 0 ? `${fps.toFixed(0)} fps` : 'idle'}   ` +
+      `${number(v.triangles)} triangles   error ${error < 0 ? 'n/a' : `${error.toFixed(2)} px`}`;
   }
 
   /** The cursor readout: a picked ground point (picking.js) or null. */

@@ -6,7 +6,7 @@ import { createFileIntake } from './file_intake.js';
 import { TerrainRenderer } from './renderer.js';
 import { CameraRig, CAMERA_MODES, isTyping } from './cameras/rig.js';
 import { createWorld } from './ground.js';
-import { reliefFocus } from './default_view.js';
+import { frameTerrain } from './framing.js';
 import { defaultSettings, applyLodSettings, MORPH_FRAMES } from './settings.js';
 import { createControlsPanel } from './controls_panel.js';
 import { Hud } from './hud.js';
@@ -16,9 +16,11 @@ import { captureView, download } from './screenshot.js';
 import { handleContextLoss } from './context_loss.js';
 import { deterministicMode } from './deterministic/mode.js';
 
+// The names are given, not taken from the URLs: a production build puts a content hash into
+// each asset's file name, and the loader pairs a height field with its sidecar by name.
 const DEFAULT_TERRAIN = [
-  new URL('../public/terrain/globe_himalaya_2048.png', import.meta.url).href,
-  new URL('../public/terrain/globe_himalaya_2048.json', import.meta.url).href,
+  { name: 'globe_himalaya_2048.png', url: new URL('../public/terrain/globe_himalaya_2048.png', import.meta.url).href },
+  { name: 'globe_himalaya_2048.json', url: new URL('../public/terrain/globe_himalaya_2048.json', import.meta.url).href },
 ];
 const params = new URLSearchParams(location.search);
 // The index layout: an indexed TRIANGLES list (the default: it drew in 0.61x the time of the
@@ -46,11 +48,11 @@ function showStatus(message, isError = false) {
   statusBox.classList.toggle('error', isError);
 }
 
-async function fetchFiles(urls) {
-  return Promise.all(urls.map(async (url) => {
+/** Fetches [{ name, url }] as the { name, bytes } files the loaders take. */
+async function fetchFiles(files) {
+  return Promise.all(files.map(async ({ name, url }) => {
     const response = await fetch(url);
     if (!response.ok) throw new Error(`cannot fetch ${url}: HTTP ${response.status}`);
-    const name = decodeURIComponent(new URL(url, location.href).pathname.split('/').pop());
     return { name, bytes: new Uint8Array(await response.arrayBuffer()) };
   }));
 }
@@ -73,8 +75,9 @@ async function main() {
   let lastFrameTime = 0;
   let lastFrameMs = 0; // CPU time of the previous frame, for the HUD
   const view = { colorByLevel: false, outline: false, frame: 0, morphFrames: MORPH_FRAMES, verticalScale: settings.exaggeration,
-    layout: LAYOUT };
-  const hud = new Hud(document.getElementById('hud'));
+    layout: LAYOUT, hideTerrain: false };
+  // The HUD opens as one summary line on every screen, so the terrain has the view (I unfolds it).
+  const hud = new Hud(document.getElementById('hud'), true);
   const rig = new CameraRig(requestRender);
   rig.cameras.walk.eyeHeight = settings.eyeHeight;
   const cameraMode = { mode: rig.mode }; // the panel's view of the rig
@@ -177,13 +180,11 @@ async function main() {
     renderer.setShading(extent.low, extent.high, extent.extentX, extent.extentZ);
   }
 
-  /** The opening view: the region of most relief, from the south. */
+  /** The opening view (framing.js): the field, or its region of most relief, in view from above. */
   function frameDefault(loaded) {
-    const { world, terrain } = loaded;
-    const focus = reliefFocus(terrain, world.extentX, world.extentZ);
     const orbit = rig.cameras.orbit;
-    orbit.frame(focus.x, focus.height * settings.exaggeration * 0.6, focus.z, focus.extent * 1.4, 0.4);
-    orbit.pitch = 0.3;
+    const aspect = Math.max(canvas.clientWidth, 1) / Math.max(canvas.clientHeight, 1);
+    frameTerrain(loaded.terrain, loaded.world, orbit, settings.exaggeration, aspect);
     rig.active = orbit;
   }
 
@@ -297,7 +298,7 @@ async function main() {
   const intake = createFileIntake({ core, state, show, showStatus });
 
   // For headless tests and benchmarks: drive the camera, ask for frames, read GL errors.
-  Object.assign(state, { rig, settings, requestRender, setSetting: (key, value) => { settings[key] = value; onSetting(key, value); },
+  Object.assign(state, { rig, settings, view, requestRender, setSetting: (key, value) => { settings[key] = value; onSetting(key, value); },
     glError: () => gl.getError(), screenshot, terrainObject: () => current?.terrain, flushUrl: () => urlWriter.flush() });
   Object.defineProperty(state, 'camera', { get: () => rig.active, enumerable: true });
   if (det) det.install(state, canvas, gl, requestRender); // the flight drives the camera
@@ -315,6 +316,7 @@ async function main() {
     if (toggles[key]) state.setSetting(toggles[key], !settings[toggles[key]]);
     else if (['1', '2', '3'].includes(key)) onSetting('camera', CAMERA_MODES[Number(key) - 1]);
     else if (key === 'h' || key === '?') toggleHelp();
+    else if (key === 'i') hud.setCollapsed(!hud.collapsed);
     else if (key === 'escape') helpBox.hidden = true;
     else if (key === 'p') screenshot(1).catch((error) => showStatus(error.message, true));
     else if (key === 'r' && current) { frameDefault(current); syncPanel(); requestRender(); }

@@ -197,14 +197,15 @@ export class TerrainRenderer {
   /**
    * Draws the terrain seen by a camera whose matrices are up to date.
    * @param {{colorByLevel?: boolean, outline?: boolean, frame?: number, morphFrames?: number,
-   *   verticalScale?: number}} view frame and morphFrames drive the geomorph blend
+   *   verticalScale?: number, hideTerrain?: boolean}} view frame and morphFrames drive the geomorph
+   *   blend; hideTerrain draws the background alone (tests compare the two to find the terrain's pixels)
    */
   draw(camera, width, height, view = {}) {
     const gl = this.gl;
     gl.viewport(0, 0, width, height);
     gl.clearColor(SKY_COLOR[0], SKY_COLOR[1], SKY_COLOR[2], 1);
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
-    if (this.indexCount === 0) return;
+    if (this.indexCount === 0 || view.hideTerrain) return;
     gl.enable(gl.DEPTH_TEST);
     gl.enable(gl.CULL_FACE);
     gl.useProgram(this.program);

@@ -25,6 +25,7 @@ const RELIEF_RATIO = 0.05; // height range / extent of a guessed spacing
 export async function loadTerrain(core, files, options = {}) {
   const start = performance.now();
   let terrain = null;
+  let profile = null; // a single row or column, decoded aside, then widened (see widenProfile)
   const main = files.find((f) => extensionOf(f?.name ?? '') !== 'json')?.name ?? '';
   try {
     const field = await loadHeightfield(files, {
@@ -34,18 +35,20 @@ export async function loadTerrain(core, files, options = {}) {
       onProgress: options.onProgress,
       allocate(sampleType, width, height) {
         try {
-          terrain = core.createTerrain(width, height, sampleType);
+          terrain = core.createTerrain(Math.max(width, 2), Math.max(height, 2), sampleType);
         } catch (error) {
-          // The core refuses for lack of memory, or for a size it cannot mesh (e.g. 1 x N).
           const mb = Math.round((width * height * BYTES[sampleType]) / 2 ** 20);
           const problem = /memory|address space/.test(error.message)
             ? `too big for memory: ${width}x${height} ${sampleType} samples need ${mb} MB` : error.message.replace(/^[^:]*: /, '');
           throw new HeightfieldError(main, problem);
         }
-        return terrain.samples();
+        if (width > 1 && height > 1) return terrain.samples();
+        profile = new (terrain.samples().constructor)(width * height);
+        return profile;
       },
-      reacquire: () => terrain.samples(),
+      reacquire: () => profile ?? terrain.samples(),
     });
+    if (profile) widenProfile(terrain, profile, field);
     terrain.setScale(options.spacing ? { ...field, spacingX: options.spacing.x, spacingY: options.spacing.y } : field);
     const missing = field.missing + terrain.prepare();
     if (options.guessSpacing && !field.spacingFromFile && !options.spacing) {
@@ -63,4 +66,22 @@ export async function loadTerrain(core, files, options = {}) {
     terrain?.destroy();
     throw error;
   }
+}
+
+/**
+ * A file of one row or one column (a profile) has no area to mesh: it is shown as a ribbon two
+ * samples wide, the profile repeated, as wide as one sample spacing along it.
+ */
+function widenProfile(terrain, profile, field) {
+  const samples = terrain.samples();
+  const oneRow = field.height === 1;
+  for (let k = 0; k < profile.length; ++k) {
+    if (oneRow) {
+      samples[k] = samples[terrain.width + k] = profile[k];
+    } else {
+      samples[2 * k] = samples[2 * k + 1] = profile[k];
+    }
+  }
+  if (oneRow) field.spacingY = field.spacingX;
+  else field.spacingX = field.spacingY;
 }

@@ -1,6 +1,7 @@
 // Shared set-up of the browser tests: a Vite server on a free localhost port and Debian's
 // Chromium driven by playwright-core (never a browser that a tool downloads).
 import { createServer } from 'vite';
+import { startStaticSite } from './static_site.js';
 import { chromium } from 'playwright-core';
 import { decode } from 'fast-png';
 import { mkdirSync } from 'node:fs';
@@ -26,8 +27,8 @@ async function freePort() {
   return port;
 }
 
-/** Starts the dev server and the browser; returns { url, browser, close() }. */
-export async function startViewer() {
+/** The Vite dev server on a free port; returns { url, close() }. */
+async function startDevServer() {
   const server = await createServer({
     configFile: `${projectDir}vite.config.js`,
     root: `${projectDir}public`,
@@ -36,6 +37,17 @@ export async function startViewer() {
   });
   await server.listen();
   const { port } = server.httpServer.address();
+  return { url: `http://127.0.0.1:${port}/`, fixturesUrl: `/@fs${projectDir}tests/fixtures/`, close: () => server.close() };
+}
+
+/**
+ * Starts the page and the browser; returns { url, fixturesUrl, browser, close() }.
+ * `site: 'dev'` (default) is the Vite dev server; `site: 'built'` serves the production build in
+ * dist/ (./build.sh site) from a plain static file server under the sub-path /hexlod/, as a
+ * static host would, with the test fixtures under /fixtures/.
+ */
+export async function startViewer({ site = 'dev' } = {}) {
+  const server = site === 'built' ? await startStaticSite() : await startDevServer();
   const browser = await chromium.launch({
     executablePath: process.env.CHROMIUM_PATH || '/usr/bin/chromium',
     headless: true,
@@ -43,7 +55,8 @@ export async function startViewer() {
   });
   mkdirSync(outDir, { recursive: true });
   return {
-    url: `http://127.0.0.1:${port}/`,
+    url: server.url,
+    fixturesUrl: server.fixturesUrl,
     browser,
     async close() {
       await browser.close();
@@ -89,4 +102,53 @@ export function pixelStats(png) {
   const mean = sum / n;
   return { colours: colours.size, luminanceStd: Math.sqrt(sumSq / n - mean * mean), skyFraction: sky / n,
     snowFraction: snow / n, groundFraction: ground / n };
+}
+
+/** Resolves once the page has drawn a frame asked for after this call. */
+export function nextFrame(page) {
+  return page.evaluate(() => new Promise((resolve) => {
+    const start = window.hexlod.frames;
+    window.hexlod.requestRender();
+    const poll = () => (window.hexlod.frames > start ? resolve() : requestAnimationFrame(poll));
+    poll();
+  }));
+}
+
+/**
+ * What a person sees of the terrain: the share of the window where the terrain shows (pixels
+ * that change when the terrain is not drawn, outside the page's boxes: HUD, panel, file bar,
+ * status line), and the distinct colours and luminance spread of those pixels. Independent of
+ * the sky's and the ground's colours.
+ * @returns {Promise<{coverage: number, colours: number, luminanceStd: number, skyOnly: boolean}>}
+ */
+export async function terrainCoverage(page) {
+  await nextFrame(page);
+  const shown = decode(await page.screenshot());
+  await page.evaluate(() => { window.hexlod.view.hideTerrain = true; });
+  await nextFrame(page);
+  const background = decode(await page.screenshot());
+  await page.evaluate(() => { window.hexlod.view.hideTerrain = false; });
+  await nextFrame(page);
+  const boxes = await page.evaluate(() => [...document.querySelectorAll('#hud, #intake, #panel .lil-root, #status, #help')]
+    .map((e) => e.getBoundingClientRect()).filter((r) => r.width > 0 && r.height > 0)
+    .map((r) => [r.left, r.top, r.right, r.bottom]));
+  const { width, height, channels } = shown;
+  const colours = new Set();
+  let terrain = 0, sum = 0, sumSq = 0;
+  for (let y = 0; y < height; ++y) {
+    for (let x = 0; x < width; ++x) {
+      if (boxes.some(([l, t, r, b]) => x >= l && x < r && y >= t && y < b)) continue;
+      const k = (y * width + x) * channels;
+      const a = shown.data, bg = background.data;
+      if (Math.abs(a[k] - bg[k]) + Math.abs(a[k + 1] - bg[k + 1]) + Math.abs(a[k + 2] - bg[k + 2]) <= 6) continue;
+      terrain += 1;
+      colours.add(((a[k] >> 3) << 10) | ((a[k + 1] >> 3) << 5) | (a[k + 2] >> 3));
+      const l = 0.2126 * a[k] + 0.7152 * a[k + 1] + 0.0722 * a[k + 2];
+      sum += l;
+      sumSq += l * l;
+    }
+  }
+  const mean = terrain ? sum / terrain : 0;
+  return { coverage: terrain / (width * height), colours: colours.size,
+    luminanceStd: terrain ? Math.sqrt(Math.max(sumSq / terrain - mean * mean, 0)) : 0, skyOnly: terrain === 0 };
 }

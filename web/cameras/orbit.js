@@ -23,17 +23,6 @@ export class OrbitCamera {
     this.world = emptyWorld();
   }
 
-  /**
-   * Looks at a point of interest (metres) from the direction `yaw`, low enough to see relief,
-   * far enough to see a region `extent` metres across.
-   */
-  frame(focusX, focusY, focusZ, extent, yaw = -0.25) {
-    vec3.set(this.target, focusX, focusY, focusZ);
-    this.distance = 0.3 * extent;
-    this.yaw = yaw;
-    this.pitch = 0.38;
-  }
-
   /** Orbits around a new target point from now on, the eye staying at `eye` (default: where it is). */
   lookAround(x, y, z, eye = null) {
     if (!eye) this.update(this.aspect ?? 1);
