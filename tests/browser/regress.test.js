@@ -8,9 +8,10 @@ import assert from 'node:assert/strict';
 import { execFile } from 'node:child_process';
 import { cpSync, existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { readPng, writePng } from '../../bin/regress_compare.js';
+import { startBrowser } from '../../bin/regress_browser.js';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
 const flights = join(root, 'tests/regress/flights');
@@ -84,5 +85,53 @@ test('the canvas is viewport x dpr device pixels: 160 x 90 at dpr 2 flies as 320
     assert.match(stdout, /ok \(21 frames, 2 captures, largest pixel difference 0\)/);
   } finally {
     rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test('the window API and URL parameters: ready, frame(n) in order, pixels, ops= and viewport= overrides, a bad flight named', async () => {
+  const session = await startBrowser();
+  try {
+    const dem = session.files.add('api', 'dem', join(root, 'tests/fixtures/volcano_maungawhau.png'));
+    const flight = session.files.add('api', 'flight', join(flights, 'volcano_down_tau1.flight.json'));
+    const page = await session.browser.newPage({ viewport: { width: 400, height: 300 } });
+    await page.goto(`${session.url}?src=${dem}&flight=${flight}&ops=3&viewport=200x100&dpr=1`);
+    await page.waitForFunction(() => window.hexlod?.flight, null, { timeout: 120000 });
+    const result = await page.evaluate(async () => {
+      const api = window.hexlod.flight;
+      const ready = await api.ready;
+      const first = await api.frame(2, { pixels: true });
+      const again = await api.frame(1); // drawn already: its figures at once
+      const late = await api.frame(0, { pixels: true }).then(() => 'resolved', (e) => e.message);
+      const outside = await api.frame(ready.frames).then(() => 'resolved', (e) => e.message);
+      const canvas = document.getElementById('view');
+      return { ready, stats: first.stats, size: [first.pixels.width, first.pixels.height], bytes: atob(first.pixels.base64).length,
+        again: again.stats.frame, late, outside, done: api.done, all: api.stats(), canvas: [canvas.width, canvas.height] };
+    });
+    assert.deepEqual([result.ready.width, result.ready.height, result.ready.frames], [200, 100, 21]);
+    assert.deepEqual(result.canvas, [200, 100]);
+    assert.deepEqual(result.size, [200, 100]);
+    assert.equal(result.bytes, 200 * 100 * 4);
+    assert.equal(result.stats.frame, 2);
+    assert.match(result.stats.hash, /^[0-9a-f]{16}$/);
+    assert.equal(result.again, 1);
+    assert.match(result.late, /frame 0 was drawn already/);
+    assert.match(result.outside, /frame 21 is not in the flight \(0 to 20\)/);
+    assert.equal(result.done, 3);
+    assert.deepEqual(result.all.map((s) => s.frame), [0, 1, 2]);
+    for (const s of result.all) assert.ok(s.operations <= 3, `ops=3 caps the operations per frame: ${s.operations}`);
+    await page.close();
+
+    // A flight with a bad key: the page stops with the message naming it.
+    const badPath = join(mkdtempSync(join(tmpdir(), 'hexlod-badflight-')), 'bad.flight.json');
+    writeFileSync(badPath, JSON.stringify({ keyframes: [{ time: 0, position: [0, 1, 0], target: [1, 0, 1], fov: 500 }] }));
+    const bad = session.files.add('bad', 'flight', badPath);
+    const badPage = await session.browser.newPage();
+    await badPage.goto(`${session.url}?src=${dem}&flight=${bad}`);
+    await badPage.waitForFunction(() => window.hexlod?.status === 'error', null, { timeout: 60000 });
+    assert.match(await badPage.evaluate(() => window.hexlod.error), /bad\.flight\.json: "keyframes"\[0\]\.fov must be a number from 1 to 170/);
+    await badPage.close();
+    rmSync(dirname(badPath), { recursive: true, force: true });
+  } finally {
+    await session.close();
   }
 });
