@@ -245,7 +245,11 @@ export class FlightRecord {
     this.fields = Object.fromEntries(RECORD_FIELDS.map((f) => [f, new Int32Array(frames)]));
   }
 
-  /** Records the next frame, after its LOD update (`operations` is what updateLod returned). */
+  /**
+   * Records the next frame, after its LOD update (`operations` is what updateLod returned). It
+   * calls the C ABI (src/hexlod.h) directly: core.js's meshStats and meshHash build objects and
+   * strings, and this runs every frame.
+   */
   record(terrain, operations) {
     const f = this.done, m = terrain.m, h = terrain.handle, x = this.fields;
     x.triangles[f] = m._hexlod_mesh_triangle_count(h);
