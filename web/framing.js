@@ -2,15 +2,15 @@
 // a large field the region of greatest relief, fitted into the view from above its surface, at
 // any base height, size, aspect, spacing and exaggeration.
 //
-// The region's box (its ground extent and the heights inside it, exaggerated) is fitted into the
-// frustum by distance, in closed form over its eight corners; the pitch then rises until the
-// eye is clear of the ground under it and nothing stands between the eye and the target.
+// The region's surface, sampled on a grid (heights exaggerated), is fitted into the frustum by
+// distance, in closed form per point; the pitch then rises until the eye is clear of the ground
+// under it and nothing stands between the eye and the target.
 const FOCUS_GRID = 96;        // coarse samples per side of the relief search
 const FOCUS_WINDOW = 4;       // half-width, in coarse samples, of the neighbourhood whose relief counts
 const LARGE_FIELD = 1500;     // samples on the longer side above which a region, not the whole field, opens
 const STRIP_ASPECT = 4;       // a field this many times longer than wide is seen broadside
 const HEIGHT_GRID = 48;       // samples per side of the region's height range
-const FILL = 0.92;            // the box fills this share of the half field of view
+const FILL = 0.92;            // the region fills this share of the half field of view
 const SIGHT_STEPS = 256;      // samples along the line of sight checked for ground in the way
 const PITCH_STEP = 0.08;      // radians added while the eye is blocked
 const MAX_PITCH = 1.45;       // radians: close to straight down
@@ -65,10 +65,12 @@ export function openingRegion(terrain, extentX, extentZ) {
 }
 
 /**
- * Lowest and highest drawn height (metres times `scale`) over a region, and the height at its centre.
+ * Lowest and highest drawn height (metres times `scale`) over a region, the height at its centre,
+ * and the surface points sampled ([x, drawn height, z], a HEIGHT_GRID² grid over the region).
  */
 export function regionHeights(terrain, region, scale) {
   let low = Infinity, high = -Infinity;
+  const points = [];
   for (let i = 0; i < HEIGHT_GRID; ++i) {
     for (let j = 0; j < HEIGHT_GRID; ++j) {
       const x = region.x0 + ((region.x1 - region.x0) * j) / (HEIGHT_GRID - 1);
@@ -76,17 +78,20 @@ export function regionHeights(terrain, region, scale) {
       const h = terrain.heightAt(x, z) * scale;
       low = Math.min(low, h);
       high = Math.max(high, h);
+      points.push([x, h, z]);
     }
   }
   const centre = terrain.heightAt(0.5 * (region.x0 + region.x1), 0.5 * (region.z0 + region.z1)) * scale;
-  return { low, high, centre };
+  return { low, high, centre, points };
 }
 
 /**
- * The orbit distance at which the box's eight corners all lie inside the view, for a camera
+ * The orbit distance at which every point ([x, y, z] metres) lies inside the view, for a camera
  * looking at `target` from yaw and pitch (orbit.js conventions: yaw 0 looks north, from +z).
+ * Closed form per point: its offsets across and up the view over its depth stay within the
+ * half field of view.
  */
-export function fitDistance(box, target, yaw, pitch, fovY, aspect) {
+export function fitDistance(points, target, yaw, pitch, fovY, aspect) {
   const cp = Math.cos(pitch), sp = Math.sin(pitch), sy = Math.sin(yaw), cy = Math.cos(yaw);
   const forward = [-cp * sy, -sp, -cp * cy];
   const right = [cy, 0, -sy];
@@ -94,16 +99,12 @@ export function fitDistance(box, target, yaw, pitch, fovY, aspect) {
     right[0] * forward[1] - right[1] * forward[0]];
   const tanY = Math.tan(0.5 * fovY) * FILL, tanX = tanY * aspect;
   let distance = 0;
-  for (const x of [box.x0, box.x1]) {
-    for (const y of [box.low, box.high]) {
-      for (const z of [box.z0, box.z1]) {
-        const q = [x - target[0], y - target[1], z - target[2]];
-        const along = q[0] * forward[0] + q[1] * forward[1] + q[2] * forward[2];
-        const across = Math.abs(q[0] * right[0] + q[2] * right[2]);
-        const upward = Math.abs(q[0] * up[0] + q[1] * up[1] + q[2] * up[2]);
-        distance = Math.max(distance, across / tanX - along, upward / tanY - along);
-      }
-    }
+  for (const [x, y, z] of points) {
+    const q0 = x - target[0], q1 = y - target[1], q2 = z - target[2];
+    const along = q0 * forward[0] + q1 * forward[1] + q2 * forward[2];
+    const across = Math.abs(q0 * right[0] + q2 * right[2]);
+    const upward = Math.abs(q0 * up[0] + q1 * up[1] + q2 * up[2]);
+    distance = Math.max(distance, across / tanX - along, upward / tanY - along);
   }
   return distance;
 }
@@ -139,28 +140,29 @@ function eyeIsClear(terrain, world, scale, target, yaw, pitch, distance) {
 export function frameTerrain(terrain, world, orbit, scale, aspect) {
   const region = openingRegion(terrain, world.extentX, world.extentZ);
   const heights = regionHeights(terrain, region, scale);
-  const box = { ...region, low: heights.low, high: heights.high };
   const sizeX = region.x1 - region.x0, sizeZ = region.z1 - region.z0;
   const target = [0.5 * (region.x0 + region.x1), heights.centre, 0.5 * (region.z0 + region.z1)];
-  // Broadside to a long strip (it runs across the screen); else from the south-south-west, the
-  // lit side under the renderer's sun.
-  const yaw = sizeZ > STRIP_ASPECT * sizeX ? Math.PI / 2 : 0.4;
+  // Broadside to a long strip (it runs across the screen); else from the south, a little west
+  // (the lit side under the renderer's sun): a whole field nearly square to the screen, which it
+  // then fills, a region within a larger field more obliquely.
+  const whole = sizeX === world.extentX && sizeZ === world.extentZ;
+  const yaw = sizeZ > STRIP_ASPECT * sizeX ? Math.PI / 2 : whole ? 0.15 : 0.4;
   // Steeper over flat ground, where a low view shows little; lower where relief stands up.
   const relief = (heights.high - heights.low) / Math.max(Math.hypot(sizeX, sizeZ), 1e-9);
   const basePitch = relief > 0.05 ? 0.42 : 0.6;
   let pitch = basePitch;
-  let distance = fitDistance(box, target, yaw, pitch, orbit.fovY, aspect);
+  let distance = fitDistance(heights.points, target, yaw, pitch, orbit.fovY, aspect);
   while (!eyeIsClear(terrain, world, scale, target, yaw, pitch, distance)) {
     if (pitch >= MAX_PITCH) {
       // Needles steeper than any view from above: orbit a point over the highest ground
       // instead, which nothing can hide.
       target[1] = heights.high;
       pitch = basePitch;
-      distance = fitDistance(box, target, yaw, pitch, orbit.fovY, aspect);
+      distance = fitDistance(heights.points, target, yaw, pitch, orbit.fovY, aspect);
       break;
     }
     pitch = Math.min(MAX_PITCH, pitch + PITCH_STEP);
-    distance = fitDistance(box, target, yaw, pitch, orbit.fovY, aspect);
+    distance = fitDistance(heights.points, target, yaw, pitch, orbit.fovY, aspect);
   }
   orbit.target[0] = target[0];
   orbit.target[1] = target[1];

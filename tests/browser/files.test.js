@@ -4,7 +4,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { startViewer, openPage, outDir, projectDir } from './harness.js';
+import { startViewer, openPage, outDir, projectDir, dropFiles } from './harness.js';
 
 const FIXTURES = `${projectDir}tests/fixtures/formats/`;
 let viewer;
@@ -13,17 +13,7 @@ after(async () => { await viewer?.close(); });
 
 const ready = (page) => page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
 
-/** Drops files on the page the way a browser does: a drop event carrying a DataTransfer. */
-async function drop(page, files) {
-  const payload = files.map(({ name, bytes }) => ({ name, data: Buffer.from(bytes).toString('base64') }));
-  await page.evaluate((list) => {
-    const transfer = new DataTransfer();
-    for (const { name, data } of list) {
-      transfer.items.add(new File([Uint8Array.from(atob(data), (c) => c.charCodeAt(0))], name));
-    }
-    window.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
-  }, payload);
-}
+const drop = dropFiles;
 const fixture = (name) => ({ name, bytes: readFileSync(FIXTURES + name) });
 const settled = (page) => page.waitForFunction(() => !window.hexlod.loading, null, { timeout: 60000 });
 const terrainName = (page, name) => page.waitForFunction((n) => window.hexlod.terrain?.name === n && !window.hexlod.loading, name, { timeout: 60000 });

@@ -152,3 +152,36 @@ export async function terrainCoverage(page) {
   return { coverage: terrain / (width * height), colours: colours.size,
     luminanceStd: terrain ? Math.sqrt(Math.max(sumSq / terrain - mean * mean, 0)) : 0, skyOnly: terrain === 0 };
 }
+
+/** Waits for the page's first terrain (or its error). */
+export const pageReady = (page) =>
+  page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 180000 });
+
+/** Drops files on the page the way a browser does: a drop event carrying a DataTransfer. */
+export async function dropFiles(page, files) {
+  const payload = files.map(({ name, bytes }) => ({ name, data: Buffer.from(bytes).toString('base64') }));
+  await page.evaluate((list) => {
+    const transfer = new DataTransfer();
+    for (const { name, data } of list) {
+      transfer.items.add(new File([Uint8Array.from(atob(data), (c) => c.charCodeAt(0))], name));
+    }
+    window.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
+  }, payload);
+}
+
+/** Waits until the terrain named `name` is on screen and nothing is loading. */
+export const terrainShown = (page, name) => page.waitForFunction(
+  (n) => window.hexlod.terrain?.name === n && !window.hexlod.loading, name, { timeout: 90000 });
+
+/** Waits until the mesh has converged for the current camera. */
+export const converged = (page) => page.waitForFunction(() => window.hexlod.converged, null, { timeout: 240000 });
+
+/**
+ * The camera as a person would judge it: the eye's height above the highest samples around it
+ * (negative: inside the ground), when it is over the field, else null.
+ */
+export const eyeClearance = (page) => page.evaluate(() => {
+  const { rig } = window.hexlod, eye = rig.active.position, world = rig.world;
+  const over = eye[0] >= 0 && eye[2] >= 0 && eye[0] <= world.extentX && eye[2] <= world.extentZ;
+  return over ? eye[1] - world.ground(eye[0], eye[2]) : null;
+});

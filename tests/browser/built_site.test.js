@@ -1,0 +1,60 @@
+// The production build (dist/, ./build.sh site) served by a plain static file server under a
+// sub-path (/hexlod/), as a static host would: the default terrain opens and shows, a dropped
+// file and a ?src= file open framed, R resets the view. Judged by pixels and geometry.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { startViewer, openPage, outDir, projectDir, terrainCoverage, pageReady, dropFiles, terrainShown,
+  converged, eyeClearance, nextFrame } from './harness.js';
+
+const FIXTURES = `${projectDir}tests/fixtures/`;
+const read = (name) => ({ name, bytes: readFileSync(FIXTURES + name) });
+let site;
+before(async () => { site = await startViewer({ site: 'built' }); });
+after(async () => { await site?.close(); });
+
+/** The terrain on screen over `minCoverage` of the view, shaded, the eye above it. */
+async function assertShown(page, label, minCoverage) {
+  const seen = await terrainCoverage(page);
+  await page.screenshot({ path: `${outDir}/built-${label}.png` });
+  assert.ok(seen.coverage >= minCoverage && seen.colours >= 30, `${label}: terrain over ${(100 * seen.coverage).toFixed(1)} % (${JSON.stringify(seen)})`);
+  const clearance = await eyeClearance(page); // null: the eye is off the field
+  assert.ok(clearance === null || clearance > 0, `${label}: the eye is ${clearance} m above the ground`);
+}
+
+test('the built site under /hexlod/ opens the default terrain; a drop, R and ?src= work', async () => {
+  assert.match(site.url, /\/hexlod\/$/);
+  const { page, problems } = await openPage(site.browser, site.url, { width: 960, height: 540 });
+  await pageReady(page);
+  const state = await page.evaluate(() => ({ status: window.hexlod.status, error: window.hexlod.error, terrain: window.hexlod.terrain }));
+  assert.equal(state.status, 'ready', state.error);
+  assert.equal(state.error, null);
+  assert.deepEqual([state.terrain.name, state.terrain.width, state.terrain.height], ['globe_himalaya_2048.png', 2048, 2048]);
+  await page.waitForFunction(() => window.hexlod.triangles > 10000, null, { timeout: 120000 });
+  await assertShown(page, 'default', 0.6);
+
+  await dropFiles(page, [read('volcano_maungawhau.png'), read('volcano_maungawhau.json')]);
+  await terrainShown(page, 'volcano_maungawhau.png');
+  await converged(page);
+  assert.ok(await page.evaluate(() => window.hexlod.triangles) > 3000, 'the dropped volcano refines');
+  await assertShown(page, 'drop-volcano', 0.15);
+  await page.evaluate(() => { window.hexlod.rig.cameras.orbit.target[2] -= 5000; });
+  await nextFrame(page);
+  await page.keyboard.press('r');
+  await assertShown(page, 'reset-volcano', 0.15);
+  assert.deepEqual(problems, []);
+  await page.close();
+
+  // ?src= also asks for NAME.json beside the file; a static host answers 404 when there is none.
+  const opened = await openPage(site.browser, 'about:blank', { width: 960, height: 540 });
+  const missing = [];
+  opened.page.on('response', (response) => { if (response.status() >= 400) missing.push(new URL(response.url()).pathname); });
+  await opened.page.goto(`${site.url}?src=${encodeURIComponent('/fixtures/formats/canyon_u16_tiled_deflate.tif')}`);
+  await pageReady(opened.page);
+  assert.equal(await opened.page.evaluate(() => window.hexlod.terrain.name), 'canyon_u16_tiled_deflate.tif');
+  await converged(opened.page);
+  await assertShown(opened.page, 'src-canyon', 0.15);
+  assert.deepEqual(missing, ['/fixtures/formats/canyon_u16_tiled_deflate.json'], 'only the optional sidecar is missing');
+  assert.deepEqual(opened.problems.filter((p) => !/status of 404/.test(p)), []);
+  await opened.page.close();
+});
