@@ -3,23 +3,26 @@
 //   hexlod info <file> [--json]   size, spacing, height range and load time of a height field
 //   hexlod mesh <file> ...        refine (max error or camera), write OBJ and JSON (mesh_command.js)
 //   hexlod bench <file> ...       a scripted flight, and @mapbox/martini on the same data (bench_flight.js)
+//   hexlod regress <file> <flight> ...  flights in headless Chromium and Node against references (regress.js)
 import { createNodeCore } from './node_core.js';
 import { UsageError, readInputs, parseOptions, FILE_OPTIONS, FILE_USAGE, parseFileOptions, loadFiles } from './cli_common.js';
 import { mesh, MESH_USAGE } from './mesh_command.js';
 import { bench, BENCH_USAGE } from './bench_flight.js';
+import { regress, REGRESS_USAGE } from './regress.js';
 
 const INFO_USAGE = `usage: hexlod info <heightfield> [--json] [--width N --height N] [--encoding E]
   A height field: PNG (16/8-bit grayscale, Terrain-RGB, Terrarium), GeoTIFF (.tif), SRTM .hgt,
   ESRI .asc, PGM (P5), RAW/R16 (.r16, .raw), or .f32; a .json sidecar with the same name beside
   it is read too (required for .f32).
 ${FILE_USAGE}`;
-const USAGE = [INFO_USAGE, MESH_USAGE, BENCH_USAGE].join('\n\n');
+const USAGE = [INFO_USAGE, MESH_USAGE, BENCH_USAGE, REGRESS_USAGE].join('\n\n');
 // The one line a usage mistake ends with, per command.
 const SHORT_USAGE = {
   info: 'usage: hexlod info <heightfield> [--json] [--width N --height N] [--encoding E]',
   mesh: 'see hexlod mesh --help',
   bench: 'see hexlod bench --help',
-  '': 'usage: hexlod info|mesh|bench <heightfield> [options]; see hexlod --help',
+  regress: 'see hexlod regress --help',
+  '': 'usage: hexlod info|mesh|bench|regress <heightfield> [options]; see hexlod --help',
 };
 
 async function info(args) {
@@ -58,7 +61,7 @@ async function info(args) {
   ].join('\n'));
 }
 
-const commands = { info, mesh, bench };
+const commands = { info, mesh, bench, regress };
 let current = '';
 
 async function main(argv) {
@@ -69,8 +72,8 @@ async function main(argv) {
   }
   if (!Object.hasOwn(commands, command)) throw new UsageError(`unknown command '${command}'`);
   current = command;
-  await commands[command](rest);
-  return 0;
+  const code = await commands[command](rest); // regress returns 1 when a flight regressed
+  return typeof code === 'number' ? code : 0;
 }
 
 // A reader that stops early (hexlod bench --verbose | head) is not an error.

@@ -14,6 +14,7 @@ import { pickGround } from './picking.js';
 import { parseUrlState, applyCameraState, UrlWriter } from './url_state.js';
 import { captureView, download } from './screenshot.js';
 import { handleContextLoss } from './context_loss.js';
+import { deterministicMode } from './deterministic/mode.js';
 
 // The names are given, not taken from the URLs: a production build puts a content hash into
 // each asset's file name, and the loader pairs a height field with its sidecar by name.
@@ -31,6 +32,8 @@ const LAYOUT = params.get('layout') === 'fans' ? 'fans' : 'triangles';
 const TIMING = params.get('timing') === '1';
 const timingPixel = new Uint8Array(4);
 const FRAME_LOG = 4096; // frames kept in window.hexlod.frameLog while recording
+// ?flight=URL: the deterministic mode of regression tests (web/deterministic/mode.js, README).
+const det = deterministicMode(params);
 
 const canvas = document.getElementById('view');
 const statusBox = document.getElementById('status');
@@ -62,6 +65,7 @@ async function main() {
   const settings = defaultSettings();
   const urlState = parseUrlState(location.search);
   Object.assign(settings, urlState.settings);
+  if (det) Object.assign(settings, (await det.load(), det.settings)); // the flight's settings win
   const urlWriter = new UrlWriter();
   let source = null;         // the data's URL, while the terrain on screen came from one
   let pendingSource = null;  // the URL being opened
@@ -88,18 +92,19 @@ async function main() {
   function render(now) {
     frameRequested = false;
     if (contextLost) return;
+    if (det && !det.beginFrame()) return; // deterministic: only the frames asked for
     const frameStart = performance.now();
     const seconds = now - lastFrameTime < 200 ? (now - lastFrameTime) / 1000 : 1 / 60;
     lastFrameTime = now;
     const moving = rig.step(seconds);
     const dpr = window.devicePixelRatio || 1;
-    const width = Math.max(1, Math.round(canvas.clientWidth * dpr));
-    const height = Math.max(1, Math.round(canvas.clientHeight * dpr));
+    const width = det ? det.width : Math.max(1, Math.round(canvas.clientWidth * dpr));
+    const height = det ? det.height : Math.max(1, Math.round(canvas.clientHeight * dpr));
     if (canvas.width !== width || canvas.height !== height) {
       canvas.width = width;
       canvas.height = height;
     }
-    const camera = rig.active;
+    const camera = det ? det.camera : rig.active;
     camera.update(width / height);
     let lodMs = 0, streamMs = 0, uploadMs = 0;
     if (current) {
@@ -107,9 +112,10 @@ async function main() {
       // Frozen: the mesh stays as it is while the camera moves (to look at it from outside).
       const { terrain } = current;
       if (!settings.freeze) {
-        terrain.setLodCamera({ eye: camera.position, target: camera.target, fovY: camera.fovY, aspect: camera.aspect,
-          viewportHeight: height, near: camera.near, far: camera.far });
-        terrain.updateLod();
+        terrain.setLodCamera(det ? det.lodCamera : { eye: camera.position, target: camera.target, fovY: camera.fovY,
+          aspect: camera.aspect, viewportHeight: height, near: camera.near, far: camera.far });
+        const operations = terrain.updateLod();
+        if (det) det.afterLod(terrain, operations);
       }
       const lod = terrain.lodStats();
       lodMs = settings.freeze ? 0 : lod.updateMs;
@@ -151,8 +157,9 @@ async function main() {
       state.frameLog.push({ time: now, lodMs, streamMs, uploadMs, drawMs, cpuMs: performance.now() - frameStart });
     }
     state.frames += 1;
+    if (det) det.endFrame();
     if (moving) requestRender();
-    if (current) urlWriter.write({ settings, camera, src: source });
+    if (current && !det) urlWriter.write({ settings, camera, src: source });
   }
 
   function requestRender() {
@@ -204,6 +211,7 @@ async function main() {
       minHeight: terrain.minHeight, maxHeight: terrain.maxHeight };
     hud.setTerrain(field, terrain, loaded.loadMs);
     syncPanel();
+    det?.setTerrain(terrain);
     requestRender();
   }
 
@@ -299,7 +307,8 @@ async function main() {
   Object.assign(state, { rig, settings, view, requestRender, setSetting: (key, value) => { settings[key] = value; onSetting(key, value); },
     glError: () => gl.getError(), screenshot, terrainObject: () => current?.terrain, flushUrl: () => urlWriter.flush() });
   Object.defineProperty(state, 'camera', { get: () => rig.active, enumerable: true });
-  rig.attach(canvas);
+  if (det) det.install(state, canvas, gl, requestRender); // the flight drives the camera
+  else rig.attach(canvas);
   // For benchmarks: the same mesh drawn with the other index layout ('fans' | 'triangles').
   state.setLayout = (layout) => {
     view.layout = layout;
@@ -364,13 +373,14 @@ async function main() {
   pendingSource = src;
   const opened = src && await intake.openUrl(src);
   pendingSource = null;
+  if (!opened && det && src) throw new Error(state.error); // a flight is meaningless over another terrain
   if (!opened) {
     const error = state.error;
     await intake.open(await fetchFiles(DEFAULT_TERRAIN));
     if (error) { state.error = error; showStatus(error, true); }
   }
   if (!current) throw new Error(`the default terrain did not load: ${state.error}`);
-  if (urlState.camera) {
+  if (urlState.camera && !det) {
     applyCameraState(rig, urlState.camera);
     if (rig.mode === 'walk') rig.active.settle();
     syncPanel();
@@ -387,5 +397,6 @@ main().catch((error) => {
   state.status = 'error';
   state.error = error.message;
   showStatus(error.message, true);
+  det?.fail(error.message);
   console.error(error);
 });
