@@ -33,6 +33,9 @@ async function startDevServer() {
     configFile: `${projectDir}vite.config.js`,
     root: `${projectDir}public`,
     server: { port: await freePort(), strictPort: true, host: '127.0.0.1' },
+    // Its own dependency cache: another Vite server on this checkout's node_modules (the
+    // viewer, a benchmark) re-optimising the shared one mid-test breaks lazy imports.
+    cacheDir: `${outDir}/vite-cache`,
     logLevel: 'error',
   });
   await server.listen();
