@@ -223,6 +223,13 @@ async function main() {
     rig.cameras.walk.position[1] *= k;
   }
 
+  /** Lifts the active camera out of the ground after the ground's heights changed. */
+  function keepCamerasAboveGround() {
+    const camera = rig.active, margin = current.world.spacing * 0.05;
+    if (camera.mode === 'walk') camera.settle();
+    else camera.keepAboveGround(camera.mode === 'orbit' ? Math.max(margin, 0.01 * camera.distance) : margin);
+  }
+
   /** Scales the cameras' ground positions when the cell size changes by `k`. */
   function rescaleGround(k) {
     for (const p of [rig.cameras.orbit.target, rig.cameras.fly.position, rig.cameras.walk.position]) {
@@ -243,6 +250,7 @@ async function main() {
         if (terrain) {
           terrain.setLodVerticalScale(value); // no mesh rebuild: the shader scales heights
           makeWorld(current);
+          keepCamerasAboveGround(); // taller hills may now stand where the eye is
         }
       } else if (key === 'embedding' && terrain) {
         terrain.resetMesh(value);
@@ -255,6 +263,7 @@ async function main() {
         terrain.setScale({ ...current.field, spacingX: terrain.spacingX * k, spacingY: terrain.spacingY * k });
         rescaleGround(k);
         makeWorld(current);
+        keepCamerasAboveGround();
         renderer.invalidate();
         hud.setTerrain(current.field, terrain, current.loadMs);
       } else if (terrain && !['wireframe', 'colorByLevel', 'freeze'].includes(key)) {

@@ -45,6 +45,18 @@ export class OrbitCamera {
     finishMatrices(this, aspect, this.world, this.distance, clearanceOf(this.position, this.world));
   }
 
+  /**
+   * Raises the eye (a steeper pitch around the same target) until it is `clearance` metres
+   * above the ground under it; for a world whose heights just changed (a new exaggeration).
+   */
+  keepAboveGround(clearance) {
+    this.update(this.aspect ?? 1);
+    while (this.pitch < MAX_PITCH && clearanceOf(this.position, this.world) < clearance) {
+      this.pitch = Math.min(MAX_PITCH, this.pitch + 0.02);
+      this.update(this.aspect ?? 1);
+    }
+  }
+
   /** Drag by (dx, dy) pixels: orbit, or pan the target in the ground plane. */
   drag(dx, dy, pan) {
     if (pan) {
