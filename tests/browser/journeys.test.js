@@ -47,15 +47,24 @@ function dropSets() {
 }
 
 /**
- * An SRTM tile (1201² big-endian int16 metres, spacing from the latitude in its name) around
- * Everest, cut from the default terrain: SRTM has no small form to commit.
+ * An SRTM tile (1201² big-endian int16 metres, 3" spacing from the latitude in its name) of
+ * Everest: the default terrain's 120 x 120 samples around its highest point, resampled
+ * bilinearly to 3" (SRTM has no small form to commit).
  */
 function everestHgt() {
   const png = decode(readFileSync(`${projectDir}public/terrain/globe_himalaya_2048.png`)); // 0..8752 m as 0..65535
-  const side = 1201, x0 = 847, y0 = 600;
+  const at = (x, y) => (png.data[y * 2048 + x] / 65535) * 8752;
+  let peak = 0;
+  for (let k = 1; k < png.data.length; ++k) if (png.data[k] > png.data[peak]) peak = k;
+  const side = 1201, across = 120, x0 = (peak % 2048) - across / 2, y0 = Math.floor(peak / 2048) - across / 2;
   const bytes = new Uint8Array(side * side * 2), view = new DataView(bytes.buffer);
   for (let y = 0; y < side; y++) {
-    for (let x = 0; x < side; x++) view.setInt16(2 * (y * side + x), Math.round((png.data[(y0 + y) * 2048 + x0 + x] / 65535) * 8752), false);
+    for (let x = 0; x < side; x++) {
+      const fx = x0 + (x * across) / (side - 1), fy = y0 + (y * across) / (side - 1);
+      const ix = Math.min(Math.floor(fx), 2046), iy = Math.min(Math.floor(fy), 2046), tx = fx - ix, ty = fy - iy;
+      const h = (at(ix, iy) * (1 - tx) + at(ix + 1, iy) * tx) * (1 - ty) + (at(ix, iy + 1) * (1 - tx) + at(ix + 1, iy + 1) * tx) * ty;
+      view.setInt16(2 * (y * side + x), Math.round(h), false);
+    }
   }
   return { name: 'N27E086.hgt', bytes };
 }
