@@ -31,6 +31,10 @@ size_t Refiner::memoryBytes() const {
            pending_.capacity() * sizeof(PendingMerge) + pyramid_.memoryBytes();
 }
 
+size_t Refiner::liveMemoryBytes() const {
+    return size_t(mesh_ ? mesh_->liveCells() : 0) * sizeof(Cached) + pending_.size() * sizeof(PendingMerge) + pyramid_.memoryBytes();
+}
+
 void Refiner::noteChanges() {
     if (cache_.size() < size_t(mesh_->cellCapacity())) cache_.resize(size_t(mesh_->cellCapacity())); // grows geometrically
     for (int32_t c : changes_) cache_[size_t(c)].valid = 0;
@@ -47,11 +51,12 @@ const CellError& Refiner::cachedError(int32_t c, uint8_t bit, CellError& slot, c
 }
 
 bool Refiner::fails(const CellShape& shape, const CellError& e) const {
-    if (settings_.viewIndependent) return e.error > settings_.maxError;
+    if (settings_.viewIndependent) return ++tested_, e.error > settings_.maxError;
     return fails(footprintOf(*field_, mesh_->embedding(), shape), e);
 }
 
 bool Refiner::fails(const Footprint& f, const CellError& e, const SlopeBox* slopes) const {
+    ++tested_;
     if (settings_.viewIndependent) return e.error > settings_.maxError;
     glm::dvec3 center;
     double radius;
@@ -253,6 +258,7 @@ bool Refiner::walkLevels(int32_t lastLevel, int32_t direction, Step&& step) {
 UpdateStats Refiner::update() {
     start_ = std::chrono::steady_clock::now();
     operations_ = 0;
+    tested_ = 0;
     visitsAtStart_ = visits_;
     const OperationCounts before = mesh_->counts();
     bool converged = false;
@@ -290,6 +296,7 @@ UpdateStats Refiner::update() {
     last_.operations = operations_;
     last_.splits = int32_t(mesh_->counts().splits - before.splits);
     last_.merges = int32_t(mesh_->counts().merges - before.merges);
+    last_.cellsTested = tested_;
     last_.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
     last_.converged = converged;
     adaptTau();

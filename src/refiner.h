@@ -40,6 +40,7 @@ struct RefinerSettings {
 struct UpdateStats {
     int32_t operations = 0; // refiner steps: splits, joins and merges it performed
     int32_t splits = 0, merges = 0; // mesh splits and merges, forced ones included
+    int32_t cellsTested = 0; // criteria evaluations (§5) this update: a cell's own, parent or half bound against the view
     double milliseconds = 0.0;
     bool converged = false;
 };
@@ -70,6 +71,8 @@ public:
     /// Merges waiting for their vertices to fade out.
     int32_t pendingMerges() const { return int32_t(pending_.size()); }
     size_t memoryBytes() const;
+    /// Of memoryBytes(), what the live cells and pending merges use (pools counted by use, not capacity).
+    size_t liveMemoryBytes() const;
     /// The achieved screen error (refiner_achieved_error.cpp): the largest projected error in
     /// pixels over the live cells in view whose bound is cached; -1 in view-independent mode.
     double achievedErrorPixels() const;
@@ -136,6 +139,7 @@ private:
     uint32_t visits_ = 0, visitsAtStart_ = 0;
     static constexpr uint32_t kMinVisits = 256;
     UpdateStats last_;
+    mutable int32_t tested_ = 0; // criteria evaluations this update
     static constexpr int32_t kMaxCyclesPerUpdate = 256;
 };
 
