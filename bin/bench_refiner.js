@@ -21,7 +21,8 @@ import { loadForCommand } from './cli_common.js';
 import { flightPath, heightsInMetres } from './bench_flight.js';
 
 const root = fileURLToPath(new URL('../', import.meta.url));
-const NATIVE_BENCH = join(root, 'build/native/hexlod_bench');
+// HEXLOD_BENCH: another build of the benchmark (e.g. a copy of the one before a change).
+const NATIVE_BENCH = process.env.HEXLOD_BENCH || join(root, 'build/native/hexlod_bench');
 
 const args = process.argv.slice(2);
 const fields = [];
