@@ -144,6 +144,11 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
         refiner.setView(view);
         for (int32_t n = 0; n < 1000 && !refiner.update().converged; ++n) {
         }
+        if (std::getenv("HEXLOD_DEBUG")) {
+            hexlod::MinMaxPyramid p;
+            p.build(field);
+            std::printf("start: %lld triangles, error %.3f px\n", (long long)mesh.triangleCount(), drawnMeshErrorPx(mesh, field, p, view, refiner.settings()));
+        }
     }
     refiner.settings().budgetMs = budgetMs;
     refiner.settings().maxOperations = budgetOps;
