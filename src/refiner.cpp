@@ -103,7 +103,7 @@ void Refiner::rebaseOdometers() {
     turn_ = 0.0;
 }
 
-void Refiner::noteChanges() {
+void Refiner::noteChanges(bool collect) {
     const size_t capacity = size_t(mesh_->cellCapacity());
     if (cache_.size() < capacity) { // grows geometrically with the pool
         cache_.resize(capacity);
@@ -114,16 +114,24 @@ void Refiner::noteChanges() {
         cache_[size_t(c)].valid = 0;
         records_[size_t(c)].rho = -1.0f;
         state_[size_t(c)] &= uint8_t(kPending | kCancel); // a pending merge is checked by stillFrees
-        fresh_.push_back(c);
+        if (collect) fresh_.push_back(c);
     }
     changes_.clear();
 }
 
-// Tests the cells the last operations created or changed (they are due).
+// Tests the cells the last operations created or changed (they are due), and the blocked
+// merge candidates next to them: what blocked a merge (a ring cell that could not be broken)
+// is a neighbour, and changes with the operation that unblocks it.
 void Refiner::retestChanged() {
     for (size_t k = 0; k < fresh_.size(); ++k) {
         const int32_t c = fresh_[k];
-        if (mesh_->isLive(c) && records_[size_t(c)].rho < 0.0f) testCell(c);
+        if (!mesh_->isLive(c)) continue;
+        if (records_[size_t(c)].rho < 0.0f) testCell(c);
+        for (int32_t o : mesh_->cell(c).opposite) {
+            if (o == kNone) continue;
+            const int32_t n = hexIdx(o);
+            if ((state_[size_t(n)] & kBlocked) && mesh_->isLive(n) && mesh_->canMerge(n)) testCell(n);
+        }
     }
     fresh_.clear();
 }
@@ -137,13 +145,11 @@ const CellError& Refiner::cachedError(int32_t c, uint8_t bit, CellError& slot, c
     return slot;
 }
 
-const Refiner::Cached& Refiner::ownBound(int32_t c) {
+const Refiner::Cached& Refiner::ownBound(int32_t c, const Footprint& footprint) {
     Cached& cached = cache_[size_t(c)];
     if (!(cached.valid & 1)) {
-        const CellShape shape = shapeOfCell(*mesh_, c);
-        cached.own = computeCellError(*field_, mesh_->embedding(), pyramid_, shape);
-        cached.ownFootprint = footprintOf(*field_, mesh_->embedding(), shape);
-        cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), cached.ownFootprint);
+        cached.own = computeCellError(*field_, mesh_->embedding(), pyramid_, shapeOfCell(*mesh_, c));
+        cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), footprint);
         cached.valid |= 1;
     }
     return cached;
@@ -321,8 +327,7 @@ Refiner::Verdict Refiner::mergeVerdict(int32_t c, double& dist) {
         outer.step = mesh_->cellStep(n);
         double halfDist;
         const Verdict half = judge(footprintOf(*field_, mesh_->embedding(), outer),
-                                   cachedError(n, uint8_t(4 << outerHalf), cache_[size_t(n)].half[outerHalf], outer), nullptr, true,
-                                   halfDist);
+                                   computeCellError(*field_, mesh_->embedding(), pyramid_, outer), nullptr, true, halfDist);
         if (!half.pass) {
             dist = halfDist;
             return half;
@@ -337,9 +342,10 @@ Refiner::Verdict Refiner::mergeVerdict(int32_t c, double& dist) {
 
 // Tests a cell's own bound and, for a merge candidate, its merge; sets its record and state.
 void Refiner::testCell(int32_t c) {
-    const Cached& cached = ownBound(c);
+    const Footprint footprint = footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c));
+    const Cached& cached = ownBound(c, footprint);
     double dist;
-    const Verdict own = judge(cached.ownFootprint, cached.own, &cached.ownSlopes, false, dist);
+    const Verdict own = judge(footprint, cached.own, &cached.ownSlopes, false, dist);
     uint8_t& state = state_[size_t(c)];
     state &= uint8_t(kPending | kCancel);
     if (!own.pass && canRefine(c)) {
@@ -443,8 +449,7 @@ bool Refiner::mergeNow(int32_t c) {
     if (keep && sameShape(shapeOfCell(*mesh_, c), keptShape)) {
         Cached& cached = cache_[size_t(c)];
         cached.own = kept;
-        cached.ownFootprint = footprintOf(*field_, mesh_->embedding(), keptShape);
-        cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), cached.ownFootprint);
+        cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), footprintOf(*field_, mesh_->embedding(), keptShape));
         cached.valid = 1;
     }
     return true;
@@ -531,7 +536,7 @@ void Refiner::restart() {
     for (const PendingMerge& merge : pending_) callOff(merge);
     pending_.clear();
     sweepCursor_ = 0;
-    noteChanges();
+    noteChanges(false);
     fresh_.clear();
     heap_.clear();
     mergeList_.clear();
@@ -635,8 +640,7 @@ UpdateStats Refiner::update() {
     visitsAtStart_ = visits_;
     const OperationCounts before = mesh_->counts();
     bool converged = false;
-    noteChanges();
-    fresh_.clear(); // changed outside an operation of ours: their records are due
+    noteChanges(false); // changed outside an operation of ours: their records are due
     checkSettings();
     rebaseOdometers();
     heap_.clear();

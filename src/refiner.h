@@ -87,14 +87,15 @@ public:
     double achievedErrorPixels() const;
 
 private:
-    // §5.1: refinement data cached per cell record: its own, its parent's (what a merge
-    // makes) and, for a joined hexagon, its two halves' (what a break makes).
+    // §5.1: refinement data cached per cell record (48 bytes): its own and its parent's (what
+    // a merge makes). The footprint is recomputed from the lattice when tested (cheap; tests
+    // are rare with margins), the halves of a joined hexagon (what a break makes) when a
+    // neighbour's merge is tested.
     struct Cached {
         CellError own;
-        Footprint ownFootprint; // kept with `own`: every test of the cell uses it
         SlopeBox ownSlopes;
-        CellError parent, half[2];
-        uint8_t valid = 0; // bits: 1 own, 2 parent, 4 first half, 8 second half
+        CellError parent;
+        uint8_t valid = 0; // bits: 1 own, 2 parent
     };
     // When a cell is next due, in the camera's odometers (travel_, turn_): due once
     // (travel_ - t0) + (turn_ - a0) * (dist + travel_ - t0) >= rho. t0, a0 rounded down,
@@ -133,8 +134,8 @@ private:
 
     Verdict judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin, double& distOut) const;
     const CellError& cachedError(int32_t cell, uint8_t bit, CellError& slot, const CellShape& shape);
-    const Cached& ownBound(int32_t cell);
-    void noteChanges();
+    const Cached& ownBound(int32_t cell, const Footprint& footprint);
+    void noteChanges(bool collect = true); // collect: queue the changed cells for retestChanged
     void retestChanged();
     void testCell(int32_t cell);
     Verdict mergeVerdict(int32_t cell, double& dist);
