@@ -14,6 +14,9 @@ namespace hexlod {
 namespace {
 
 constexpr double kForever = 1e30; // a margin no camera uses up (a verdict that does not depend on the view)
+// How far the far plane may come closer before every cell is due (cells far away are often
+// near the far plane: a loose factor would leave their merge tests without margins).
+constexpr double kFarShrink = 15.0 / 16.0;
 
 float roundedDown(double x) {
     float f = float(x);
@@ -25,6 +28,21 @@ float roundedUp(double x) {
     float f = float(x);
     if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
     return f;
+}
+
+// The largest margin in (0, cap] found to hold by bisection (the test is monotone: a
+// verdict that holds within m holds within anything less), 0 when none. Six evaluations at most.
+template <typename Holds>
+double largestMargin(double cap, Holds&& holds) {
+    if (!(cap > 0.0)) return 0.0;
+    if (cap < kForever && holds(cap)) return cap;
+    double lo = 0.0, hi = std::min(cap, 1e12);
+    for (int32_t k = 0; k < 5; ++k) {
+        const double m = 0.5 * (lo + hi);
+        if (holds(m)) lo = m;
+        else hi = m;
+    }
+    return lo;
 }
 
 bool sameShape(const CellShape& a, const CellShape& b) {
@@ -56,8 +74,8 @@ void Refiner::setView(const View& view) {
     }
     const bool sameShapeOfView = haveView_ && view.tanHalfX == view_.tanHalfX && view.tanHalfY == view_.tanHalfY &&
                                  view.pixelsPerTangent == view_.pixelsPerTangent;
-    // Margins of failing merge tests assume near <= 2 nearRef_ and far >= farRef_ / 2 (judge()).
-    const bool planesMoved = view.nearPlane > 2.0 * nearRef_ || view.farPlane < 0.5 * farRef_;
+    // Margins of failing merge tests assume near <= 2 nearRef_ and far >= kFarShrink * farRef_ (judge()).
+    const bool planesMoved = view.nearPlane > 2.0 * nearRef_ || view.farPlane < kFarShrink * farRef_;
     view_ = view;
     haveView_ = true;
     if (!sameShapeOfView || planesMoved) invalidateAll();
@@ -165,8 +183,9 @@ const Refiner::Cached& Refiner::ownBound(int32_t c, const Footprint& footprint) 
 //    r + m around the centre, at depth >= z - r - m and with the up vector turned by up to
 //    m / dist, stays within tau (projectedErrorPixels' corner argument, plus the turn's share);
 //  - failing (asked for with failMargin, for merge tests): a margin that keeps the sphere
-//    inside the side planes, not back-facing, and a lower bound of the projected error (at the
-//    centre's screen tangent) above tau, with near <= 2 nearRef_ and far >= farRef_ / 2.
+//    inside the side planes and the far plane, not back-facing, and a lower bound of the
+//    projected error (at the centre's screen tangent, the nearest depth at most
+//    max(z - r + m, 2 nearRef_)) above tau, given near <= 2 nearRef_ and far >= kFarShrink farRef_.
 // Without a margin known, 0: the cell is due at the next update.
 Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin,
                                 double& distOut) const {
@@ -248,13 +267,7 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
             const double turn = dist > 0.0 ? m / dist : kForever;
             return view_.pixelsPerTangent * error * (std::sqrt(g) + turn * std::sqrt(1.0 + tMax2)) / zLow;
         };
-        double m = 0.5 * (z - radius) * (1.0 - v.pixels / t);
-        for (int32_t k = 0; k < 4 && m > 0.0; ++k, m *= 0.25)
-            if (upper(m) <= t) {
-                v.margin = m;
-                return v;
-            }
-        v.margin = 0.0;
+        v.margin = largestMargin((z - radius) * (1.0 - v.pixels / t), [&](double m) { return upper(m) <= t; });
         return v;
     }
     if (!failMargin) return v;
@@ -264,21 +277,19 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
     const double pcx = ux - tcx * uz, pcy = uy - tcy * uz;
     const double pc = std::sqrt(pcx * pcx + pcy * pcy);
     auto lower = [&](double m) {
-        if (z - radius - m < 2.0 * nearRef_ || z + radius + m > 0.5 * farRef_) return 0.0;
+        // The centre stays in front of the near plane (its screen tangent is then in the box
+        // the bound maximises over), and the sphere short of the far plane when culling.
+        if (z - m < 2.0 * nearRef_ || (settings_.culling && z - radius + m > kFarShrink * farRef_)) return 0.0;
         const double dt = m * std::sqrt((1.0 + std::abs(tcx)) * (1.0 + std::abs(tcx)) + (1.0 + std::abs(tcy)) * (1.0 + std::abs(tcy))) / (z - m);
         const double tc = std::sqrt(tcx * tcx + tcy * tcy) + dt;
         const double turn = dist > 0.0 ? m / dist : kForever;
         const double g = pc - std::abs(uz) * dt - turn * std::sqrt(1.0 + tc * tc);
-        return g > 0.0 ? view_.pixelsPerTangent * error * g / (z - radius + m) : 0.0;
+        return g > 0.0 ? view_.pixelsPerTangent * error * g / std::max(z - radius + m, 2.0 * nearRef_) : 0.0;
     };
     const double atCenter = view_.pixelsPerTangent * error * pc / std::max(z - radius, view_.nearPlane);
-    double m = std::min({0.5 * (z - radius) * (atCenter / t - 1.0), inside, front});
-    for (int32_t k = 0; k < 4 && m > 0.0; ++k, m *= 0.25)
-        if (lower(m) > t) {
-            v.margin = m;
-            return v;
-        }
-    v.margin = 0.0;
+    // Strictly inside the side planes and in front: a margin just below those slacks.
+    const double cap = std::min({(z - radius) * (atCenter / t - 1.0), 0.999 * inside, 0.999 * front});
+    v.margin = largestMargin(cap, [&](double m) { return lower(m) > t; });
     return v;
 }
 
