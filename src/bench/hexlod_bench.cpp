@@ -229,6 +229,10 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
                     percentile(screenError, 0.5), percentile(screenError, 0.95), percentile(screenError, 1.0),
                     100.0 * double(within) / double(screenError.size()));
     }
+    if (verbose)
+        std::printf("  bytes at the end: mesh %zu (vertex pool %zu; %d of %d cells, %d of %d vertices live), refiner %zu, stream %zu; %lld triangles\n",
+                    mesh.memoryBytes(), mesh.vertexPoolBytes(), mesh.liveCells(), mesh.cellCapacity(), mesh.liveVertices(),
+                    mesh.vertexCapacity(), refiner.memoryBytes(), stream.memoryBytes(), (long long)mesh.triangleCount());
     std::printf("  bytes per drawn triangle (mesh + refiner + stream): live p50 %.1f max %.1f; at capacity p50 %.1f max %.1f\n",
                 percentile(liveBytes, 0.5), percentile(liveBytes, 1.0), percentile(capacityBytes, 0.5), percentile(capacityBytes, 1.0));
     return 0;
