@@ -1,8 +1,8 @@
 #!/usr/bin/env node
 // Figures of the refinement loop under a moving camera (issue 12), printed, never asserted:
 // for each height field, the flights of `hexlod bench` (seed 1, 300 m above the ground, 300
-// frames, 1920x1080, fov 60 deg) at 5, 50 and 500 m a frame and the default length (80 % of
-// the shorter side), replayed natively by build/native/hexlod_bench --flight from the mesh
+// frames, 1920x1080, fov 60 deg) at 5, 50 and 500 m a frame (fewer frames when the field is
+// too small for 300) and the default length (80 % of the shorter side), replayed natively by build/native/hexlod_bench --flight from the mesh
 // converged for the first camera:
 //   - without a budget: cells tested per frame and the update time of frames that converge,
 //     in ms per million drawn triangles (p95);
@@ -17,7 +17,7 @@ import { spawnSync } from 'node:child_process';
 import { tmpdir, cpus } from 'node:os';
 import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { loadForCommand } from './cli_common.js';
+import { loadForCommand, extentOf } from './cli_common.js';
 import { flightPath, heightsInMetres } from './bench_flight.js';
 
 const root = fileURLToPath(new URL('../', import.meta.url));
@@ -67,7 +67,10 @@ for (const file of fields) {
     console.log('| --- | --- | --- | --- | --- | --- | --- | --- | --- |');
     // Wall-clock figures on a shared machine: see the thread CPU column.
     for (const step of steps) {
-      const path = flightPath(terrain, { frames, seed: 1, altitude: 300, step });
+      // A flight is at most 80 % of the shorter side long: fewer frames when the step needs it.
+      const { xMax, zMax } = extentOf(terrain);
+      const count = step > 0 ? Math.max(2, Math.min(frames, Math.floor((0.8 * Math.min(xMax, zMax)) / step) + 1)) : frames;
+      const path = flightPath(terrain, { frames: count, seed: 1, altitude: 300, step });
       const camerasPath = join(dir, 'cameras.txt');
       writeFileSync(camerasPath, path.cameras.map(({ eye, target }) => [...eye, ...target].join(' ')).join('\n') + '\n');
       const free = runNative(fieldPath, terrain, camerasPath, ['--budget-ms', '0', '--budget-ops', '0']);
@@ -79,7 +82,8 @@ for (const file of fields) {
       const err = grab(budgeted, /screen error of the drawn mesh after the update: p50 (\S+) p95 (\S+) max (\S+) px; within tau in (\S+) %/);
       const tris = grab(budgeted, /triangles min (\S+) p50 (\S+) max (\S+)/);
       const bytes = grab(budgeted, /live p50 (\S+) max (\S+); at capacity p50 (\S+) max (\S+)/);
-      const name = step > 0 ? `${step} m/frame` : `default (${Math.round(path.step)} m/frame)`;
+      const name = (step > 0 ? `${Math.round(path.step)} m/frame` : `default (${Math.round(path.step)} m/frame)`) +
+        (count < frames ? ` (${count} frames)` : '');
       console.log(`| ${name} | ${testedFree[0]} / ${testedFree[1]} | ${conv[0]} of ${conv[1]} | ${conv[3].toFixed(2)} / ${cpu[1].toFixed(2)} | ${testedBudget[0]} | ` +
         `${err[3].toFixed(1)} % | ${err[0].toFixed(2)} / ${err[1].toFixed(2)} / ${err[2].toFixed(2)} | ${tris[1]} | ${bytes[0].toFixed(1)} / ${bytes[2].toFixed(1)} |`);
     }

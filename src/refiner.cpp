@@ -397,12 +397,12 @@ void Refiner::testCell(int32_t c) {
     setRecord(c, margin, dist);
 }
 
-bool Refiner::outOfBudget() {
-    if (settings_.maxOperations > 0 && operations_ >= settings_.maxOperations) return true;
+bool Refiner::outOfBudget(double share) {
+    if (settings_.maxOperations > 0 && operations_ >= std::max(1, int32_t(double(settings_.maxOperations) * share))) return true;
     // Reading the clock costs more than testing a cell: look at it every 32 visits.
     if (settings_.budgetMs > 0.0 && (visits_ & 31) == 0) {
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
-        if (ms >= settings_.budgetMs) return true;
+        if (ms >= settings_.budgetMs * share) return true;
     }
     return false;
 }
@@ -589,10 +589,11 @@ bool Refiner::sweep() {
 }
 
 // Refines the failing cells, largest projected error first (as ROAM's split queue does),
-// testing what each operation made. False when the budget stopped it.
+// testing what each operation made. False when kRefineShare of the budget is spent: merges
+// get the rest, or a fast camera would only ever add triangles.
 bool Refiner::drain() {
     while (!heap_.empty()) {
-        if (progressed() && outOfBudget()) return false;
+        if (progressed() && outOfBudget(kRefineShare)) return false;
         std::pop_heap(heap_.begin(), heap_.end(), lowerPriority);
         const int32_t c = heap_.back().cell;
         const float pixels = heap_.back().pixels;
@@ -665,7 +666,8 @@ UpdateStats Refiner::update() {
     for (int32_t round = 0; round < kMaxCyclesPerUpdate; ++round) {
         advancePendingMerges();
         retestChanged();
-        if (!drain() || !coarsen()) break;
+        const bool drained = drain(); // stops at kRefineShare of the budget: merges get the rest
+        if (!coarsen() || !drained) break;
         retestChanged();
         if (heap_.empty() && mergeList_.empty()) {
             converged = swept;

@@ -150,7 +150,7 @@ private:
     void advancePendingMerges();     // completes faded merges, calls off the stale ones
     void callOff(const PendingMerge& merge);
     bool stillFrees(const PendingMerge& merge);
-    bool outOfBudget();
+    bool outOfBudget(double share = 1.0); // share: of the time and operation budgets
     bool sweep();
     bool drain();
     bool coarsen();
@@ -196,6 +196,7 @@ private:
     UpdateStats last_;
     mutable int32_t tested_ = 0; // criteria evaluations this update
     static constexpr int32_t kMaxCyclesPerUpdate = 64;
+    static constexpr double kRefineShare = 0.8;
 };
 
 } // namespace hexlod
