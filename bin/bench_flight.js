@@ -136,7 +136,7 @@ function refineToConvergence(terrain) {
 }
 
 /** Heights of the field in metres as the core holds them (missing samples: the lowest). */
-function heightsInMetres(terrain, field) {
+export function heightsInMetres(terrain, field) {
   const raw = terrain.samples();
   const heights = new Float32Array(raw.length);
   const nodata = field.nodata;

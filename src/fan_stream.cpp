@@ -233,4 +233,9 @@ size_t FanStream::memoryBytes() const {
            (levelIndices_.capacity() + outline_.capacity()) * sizeof(uint32_t) + levelOffsets_.capacity() * sizeof(int32_t);
 }
 
+size_t FanStream::liveMemoryBytes() const {
+    if (!mesh_) return 0;
+    return size_t(mesh_->liveCells()) * size_t(slotSize()) * sizeof(uint32_t) + size_t(mesh_->liveVertices()) * sizeof(glm::i64vec3);
+}
+
 } // namespace hexlod

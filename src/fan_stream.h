@@ -79,6 +79,9 @@ public:
     const std::vector<uint32_t>& outline() const { return outline_; }
 
     size_t memoryBytes() const;
+    /// Of memoryBytes(), what the mesh's live cells and vertices need: their index slots and
+    /// normal sums (scratch lists and the diagnostic level view not counted).
+    size_t liveMemoryBytes() const;
 
 private:
     // Dirty blocks of 32 vertices (1.1 KB) or cells (1.1 KB of fan indices). Runs of dirty

@@ -200,6 +200,12 @@ size_t HexMesh::memoryBytes() const {
            (levelHead_.capacity() + levelTail_.capacity()) * sizeof(int32_t);
 }
 
+size_t HexMesh::liveMemoryBytes() const {
+    return size_t(liveCells_) * sizeof(Hexagon) +
+           size_t(liveVertices_) * (sizeof(LatticePoint) + sizeof(StreamVertex) + sizeof(Parents) + 1) +
+           (levelHead_.size() + levelTail_.size()) * sizeof(int32_t);
+}
+
 int32_t HexMesh::cellFan(const Hexagon& h, uint32_t out[8]) const {
     const int32_t* v = h.vertex;
     if (h.kind == CellKind::Full) {

@@ -162,6 +162,8 @@ public:
     /// Bytes held by the mesh structures (pools at capacity, lists, free lists), the vertex
     /// pool's render data (StreamVertex) included.
     size_t memoryBytes() const;
+    /// Of memoryBytes(), what live cells and vertices use (pools counted by use, not capacity).
+    size_t liveMemoryBytes() const;
     /// Of memoryBytes(), the StreamVertex pool (what the renderer uploads).
     size_t vertexPoolBytes() const { return vertices_.capacity() * sizeof(StreamVertex); }
     /// The domain outline: lattice segments of the base mesh's boundary edges.

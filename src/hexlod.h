@@ -226,14 +226,15 @@ int32_t hexlod_lod_pending_merges(const hexlod_terrain* terrain);
  * freed one. The first call only records the frame. Returns 0 or -1. */
 int32_t hexlod_measure_popping(hexlod_terrain* terrain, double* out);
 
-/* One refinement step (§6): refine in ascending level order, then coarsen in descending level
- * order, until converged or out of budget; resumes where the last update stopped. The mesh is
+/* One refinement step (§6): re-test the cells whose margin the camera used up, refine the
+ * failing ones (largest projected error first), then coarsen in descending level order,
+ * until converged or out of budget; resumes where the last update stopped. The mesh is
  * consistent after every operation. Returns the number of operations done (splits, joins,
  * merges and breaks that the refiner asked for; forced splits count too), or -1. */
 int32_t hexlod_lod_update(hexlod_terrain* terrain);
 
-/* 1 when the last update visited every cell without changing anything and no merge is
- * waiting for a fade-out (converged). */
+/* 1 when the last update tested every cell that was due, every failing test was resolved,
+ * nothing is left to merge and no merge is waiting for a fade-out (converged). */
 int32_t hexlod_lod_converged(const hexlod_terrain* terrain);
 
 /* Figures of the last update: splits, merges, milliseconds spent, and the current tau (which

@@ -374,7 +374,9 @@ int32_t hexlod_lod_update(hexlod_terrain* terrain) {
 
 int32_t hexlod_lod_converged(const hexlod_terrain* terrain) {
     HEXLOD_NEED_MESH(-1);
-    return terrain->refiner.lastUpdate().converged ? 1 : 0;
+    // The refiner's convergence does not wait for fades (issue 12); the page must keep
+    // updating until the faded merges are done, so this also asks for none pending.
+    return terrain->refiner.lastUpdate().converged && terrain->refiner.pendingMerges() == 0 ? 1 : 0;
 }
 
 int32_t hexlod_lod_last_splits(const hexlod_terrain* terrain) {

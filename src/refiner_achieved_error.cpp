@@ -19,7 +19,7 @@ double Refiner::achievedErrorPixels() const {
         if (!mesh_->isLive(c) || !(cached.valid & 1)) continue;
         glm::dvec3 center;
         double radius;
-        boundingSphere(cached.ownFootprint, cached.own, settings_.verticalScale, center, radius);
+        boundingSphere(footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c)), cached.own, settings_.verticalScale, center, radius);
         // Cells that cannot be seen do not count: outside the (unwidened) frustum, or back-facing.
         if (settings_.culling && outsideFrustum(view_, center, radius)) continue;
         if (settings_.backfaceCulling && backFacing(view_, center, radius, cached.ownSlopes, settings_.verticalScale))

@@ -4,6 +4,7 @@
 //   hexlod_bench FILE.f32 WIDTH HEIGHT [SPACING_X_M SPACING_Y_M]
 //   hexlod_bench FILE.f32 WIDTH HEIGHT SPACING_X_M SPACING_Y_M --flight CAMERAS.txt
 //                [--tau PX] [--budget-ms MS] [--budget-ops N] [--viewport WxH] [--tan-half-fov T]
+//                [--morph-frames N] [--start-converged] [--measure-error] [--no-backface] [--verbose]
 //
 // Without --flight: for both lattice embeddings (paper §4.7), the time to refine uniformly to
 // the finest level, the triangles and bytes per triangle of the mesh structures, the time to
@@ -11,6 +12,10 @@
 // With --flight: replays a camera path (one line per frame: eye x y z, target x y z, metres)
 // through the refiner (exact embedding) and the fan stream, as `hexlod bench` does in
 // WebAssembly, and prints the per-frame update figures, for the WASM/native ratio.
+// --start-converged refines for the first camera without a budget before the flight starts (as
+// `hexlod bench` does). --measure-error bounds, after each frame's update, the largest screen
+// error of the drawn mesh: the §5 bound of every live cell recomputed from the samples
+// (independent of the refiner's caches), culled cells left out; frames within tau count.
 #include <algorithm>
 #include <array>
 #include <memory>
@@ -19,6 +24,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
+
+#include <time.h>
 
 #include <glm/geometric.hpp>
 
@@ -29,6 +36,7 @@
 #include "heightfield.h"
 #include "hex_mesh.h"
 #include "hex_mesh_refine.h"
+#include "min_max_pyramid.h"
 #include "refiner.h"
 
 namespace {
@@ -57,10 +65,42 @@ std::unique_ptr<hexlod::Heightfield> loadRawField(const char* path, int32_t widt
     return field;
 }
 
+// CPU time of this thread in milliseconds: on a shared machine, time slices lost to other
+// processes do not count (wall-clock figures there vary tenfold for the same work).
+double threadCpuMs() {
+    timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
 double percentile(std::vector<double> values, double p) {
     if (values.empty()) return 0.0;
     std::sort(values.begin(), values.end());
     return values[std::min(values.size() - 1, size_t(p * double(values.size() - 1) + 0.5))];
+}
+
+// The largest screen error (pixels) of the drawn mesh for a view: the conservative bound of
+// view_criteria.h over every live cell, recomputed from the samples; cells outside the frustum
+// or back-facing (as the settings cull them) do not count.
+double drawnMeshErrorPx(const hexlod::HexMesh& mesh, const hexlod::Heightfield& field, const hexlod::MinMaxPyramid& pyramid,
+                        const hexlod::View& view, const hexlod::RefinerSettings& s) {
+    double worst = 0.0;
+    for (int32_t c = 0; c < mesh.cellCapacity(); ++c) {
+        if (!mesh.isLive(c)) continue;
+        const hexlod::CellShape shape = hexlod::shapeOfCell(mesh, c);
+        const hexlod::CellError e = hexlod::computeCellError(field, mesh.embedding(), pyramid, shape);
+        const hexlod::Footprint f = hexlod::footprintOf(field, mesh.embedding(), shape);
+        glm::dvec3 center;
+        double radius;
+        hexlod::boundingSphere(f, e, s.verticalScale, center, radius);
+        if (s.culling && hexlod::outsideFrustum(view, center, radius)) continue;
+        const double px = hexlod::projectedErrorPixels(view, center, radius, double(e.error) * s.verticalScale);
+        if (px <= worst) continue;
+        if (s.backfaceCulling && hexlod::backFacing(view, center, radius, hexlod::slopesUnder(field, mesh.embedding(), f), s.verticalScale))
+            continue;
+        worst = px;
+    }
+    return worst;
 }
 
 // Replays a camera path; prints p50 / p95 of update and stream times and the mesh figures.
@@ -68,8 +108,17 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
     const char* path = nullptr;
     double tau = 1.0, budgetMs = 0.0, tanHalfFov = 0.57735026918962573, width = 1920, height = 1080;
     int32_t budgetOps = 0, morphFrames = 0;
+    bool startConverged = false, measureError = false, backface = true, verbose = false;
     for (int k = 6; k < argc; ++k) {
         const std::string flag = argv[k];
+        if (flag == "--verbose") {
+            verbose = true;
+            continue;
+        }
+        if (flag == "--start-converged" || flag == "--measure-error" || flag == "--no-backface") {
+            (flag == "--start-converged" ? startConverged : flag == "--measure-error" ? measureError : backface) = flag != "--no-backface";
+            continue;
+        }
         const char* value = k + 1 < argc ? argv[k + 1] : nullptr;
         if (!value) return fail("missing value after ", argv[k]);
         ++k;
@@ -97,24 +146,44 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
     hexlod::Refiner refiner;
     refiner.attach(mesh, field);
     refiner.settings().tau = tau;
+    refiner.settings().backfaceCulling = backface;
+    auto viewOf = [&](const std::array<double, 6>& cam, hexlod::View& view) {
+        const glm::dvec3 eye(cam[0], cam[1], cam[2]), target(cam[3], cam[4], cam[5]);
+        const double distance = glm::length(target - eye);
+        return hexlod::makeView(eye, target, {0, 1, 0}, tanHalfFov, width / height, height, std::max(0.5, distance * 1e-4), distance * 1e3, view);
+    };
+    if (startConverged) {
+        hexlod::View view;
+        if (!viewOf(cameras[0], view)) return fail("degenerate camera in ", path);
+        refiner.setView(view);
+        for (int32_t n = 0; n < 1000 && !refiner.update().converged; ++n) {
+        }
+        if (verbose) {
+            hexlod::MinMaxPyramid p;
+            p.build(field);
+            std::printf("start: %lld triangles, error %.3f px\n", (long long)mesh.triangleCount(), drawnMeshErrorPx(mesh, field, p, view, refiner.settings()));
+        }
+    }
     refiner.settings().budgetMs = budgetMs;
     refiner.settings().maxOperations = budgetOps;
+    hexlod::MinMaxPyramid pyramid;
+    if (measureError) pyramid.build(field);
     hexlod::Geomorph morph;
     morph.setFrames(morphFrames);
     refiner.setGeomorph(&morph);
     hexlod::FanStream stream;
     stream.attach(mesh);
     hexlod::PoppingMeter popping;
-    std::vector<double> updateMs, streamMs, triangles, splits, merges, jumps;
+    std::vector<double> updateMs, streamMs, triangles, splits, merges, jumps, tested, convergedMsPerMillion, screenError,
+        liveBytes, capacityBytes, convergedCpuMsPerMillion;
     for (const auto& cam : cameras) {
         hexlod::View view;
-        const glm::dvec3 eye(cam[0], cam[1], cam[2]), target(cam[3], cam[4], cam[5]);
-        const double distance = glm::length(target - eye);
-        if (!hexlod::makeView(eye, target, {0, 1, 0}, tanHalfFov, width / height, height, std::max(0.5, distance * 1e-4), distance * 1e3, view))
-            return fail("degenerate camera in ", path);
+        if (!viewOf(cam, view)) return fail("degenerate camera in ", path);
         refiner.setView(view);
         refiner.markChanged();
+        const double cpuStart = threadCpuMs();
         const hexlod::UpdateStats stats = refiner.update();
+        const double cpuMs = threadCpuMs() - cpuStart;
         const auto start = std::chrono::steady_clock::now();
         stream.sync(mesh, morph);
         streamMs.push_back(msSince(start));
@@ -123,6 +192,17 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
         triangles.push_back(double(mesh.triangleCount()));
         splits.push_back(stats.splits);
         merges.push_back(stats.merges);
+        tested.push_back(stats.cellsTested);
+        if (verbose)
+            std::printf("frame %zu: %.3f ms, %d tested, %d ops, %d splits, %d merges, %lld triangles, converged %d\n", updateMs.size(),
+                        stats.milliseconds, stats.cellsTested, stats.operations, stats.splits, stats.merges,
+                        (long long)mesh.triangleCount(), int(stats.converged));
+        const double mtri = double(mesh.triangleCount()) / 1e6;
+        if (stats.converged) convergedMsPerMillion.push_back(stats.milliseconds / mtri);
+        if (stats.converged) convergedCpuMsPerMillion.push_back(cpuMs / mtri);
+        if (measureError) screenError.push_back(drawnMeshErrorPx(mesh, field, pyramid, view, refiner.settings()));
+        liveBytes.push_back(double(mesh.liveMemoryBytes() + refiner.liveMemoryBytes() + stream.liveMemoryBytes()) / mtri / 1e6);
+        capacityBytes.push_back(double(mesh.memoryBytes() + refiner.memoryBytes() + stream.memoryBytes()) / mtri / 1e6);
     }
     const double p95 = percentile(updateMs, 0.95), tri50 = percentile(triangles, 0.5);
     std::printf("native flight: %zu frames, tau %.2f px, budget %.1f ms / %d ops, geomorph %d frames\n", cameras.size(), tau,
@@ -135,6 +215,26 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
     std::printf("  popping: largest vertex jump %.3f px, p99 of frames %.3f px\n", percentile(jumps, 1.0), percentile(jumps, 0.99));
     std::printf("  p95 update per million triangles: %.3f ms; mesh + refiner + stream %.1f B/triangle\n", p95 / (tri50 / 1e6),
                 double(mesh.memoryBytes() + refiner.memoryBytes() + stream.memoryBytes()) / double(mesh.triangleCount()));
+    std::printf("  cells tested per frame p50 %.0f p95 %.0f max %.0f\n", percentile(tested, 0.5), percentile(tested, 0.95),
+                percentile(tested, 1.0));
+    std::printf("  converged after the update in %zu of %zu frames; their update ms per million triangles p50 %.3f p95 %.3f\n",
+                convergedMsPerMillion.size(), cameras.size(), percentile(convergedMsPerMillion, 0.5),
+                percentile(convergedMsPerMillion, 0.95));
+    std::printf("  the same in thread CPU time: p50 %.3f p95 %.3f\n", percentile(convergedCpuMsPerMillion, 0.5),
+                percentile(convergedCpuMsPerMillion, 0.95));
+    if (measureError) {
+        size_t within = 0;
+        for (double px : screenError) within += px <= tau * (1.0 + 1e-9) ? 1 : 0;
+        std::printf("  screen error of the drawn mesh after the update: p50 %.3f p95 %.3f max %.3f px; within tau in %.1f %% of frames\n",
+                    percentile(screenError, 0.5), percentile(screenError, 0.95), percentile(screenError, 1.0),
+                    100.0 * double(within) / double(screenError.size()));
+    }
+    if (verbose)
+        std::printf("  bytes at the end: mesh %zu (vertex pool %zu; %d of %d cells, %d of %d vertices live), refiner %zu, stream %zu; %lld triangles\n",
+                    mesh.memoryBytes(), mesh.vertexPoolBytes(), mesh.liveCells(), mesh.cellCapacity(), mesh.liveVertices(),
+                    mesh.vertexCapacity(), refiner.memoryBytes(), stream.memoryBytes(), (long long)mesh.triangleCount());
+    std::printf("  bytes per drawn triangle (mesh + refiner + stream): live p50 %.1f max %.1f; at capacity p50 %.1f max %.1f\n",
+                percentile(liveBytes, 0.5), percentile(liveBytes, 1.0), percentile(capacityBytes, 0.5), percentile(capacityBytes, 1.0));
     return 0;
 }
 

@@ -362,3 +362,67 @@ TEST(Refiner, TheTriangleCapStopsSplittingAndAutoTauRaisesTau) {
     EXPECT_LE(capped.triangleCount(), uncapped / 4 + 64);
     ASSERT_EQ(capped.checkInvariants(), nullptr);
 }
+
+// Issue 12: a cell is re-tested only when the camera has used up its margin. The margins are
+// bounds: under a camera that moves and turns a little every frame, every converged update
+// leaves every sample in view within tau (checked by brute force, with back-face culling off
+// and on), while most cells are not re-tested.
+TEST(Refiner, DeferredReTestsKeepEverySampleWithinTauUnderAMovingTurningCamera) {
+    for (bool backface : {false, true}) {
+        auto full = test::loadFixture(test::kGrandCanyon);
+        // Cropped when back-face culling is on, so that the ray casting of visibleOnly stays quick.
+        auto field = backface ? test::cropFixture(test::kGrandCanyon, 150, 150, 160, 140) : std::move(full);
+        ASSERT_NE(field, nullptr);
+        Lod lod(*field, Embedding::Exact);
+        Refiner& refiner = lod.refiner;
+        refiner.settings().backfaceCulling = backface;
+        Camera cam = lowOblique(*field, 10.0 * field->scale().spacingX);
+        const glm::dvec3 ahead = glm::normalize(cam.target - cam.eye);
+        const glm::dvec3 side = glm::normalize(glm::cross(ahead, glm::dvec3(0, 1, 0)));
+        const double step = 0.4 * field->scale().spacingX; // metres a frame
+        int64_t tested = 0, live = 0;
+        int32_t checks = 0;
+        for (int32_t frame = 0; frame < 40; ++frame) {
+            cam.eye += step * ahead + 0.3 * step * side;
+            cam.target += step * ahead + (frame % 2 ? 3.0 : -2.0) * step * side; // the view turns a little, back and forth
+            refiner.setView(viewOf(cam));
+            const UpdateStats stats = refiner.update();
+            ASSERT_TRUE(stats.converged) << "frame " << frame;
+            if (frame > 0) tested += stats.cellsTested, live += lod.mesh.liveCells();
+            if (frame % 13 != 12) continue;
+            ASSERT_EQ(lod.mesh.checkInvariants(), nullptr);
+            const BoundCheck check = checkTauBound(lod.mesh, *field, cam, 1.0, backface);
+            std::printf("deferred re-tests (back-face culling %d) frame %d: %lld samples, worst %.3f px, %lld triangles\n", int(backface),
+                        frame, (long long)check.samplesInView, check.worstPixels, (long long)lod.mesh.triangleCount());
+            EXPECT_GT(check.samplesInView, 0);
+            EXPECT_EQ(check.uncovered, 0);
+            EXPECT_LE(check.worstPixels, 1.0 + 1e-6) << "frame " << frame;
+            ++checks;
+        }
+        EXPECT_EQ(checks, 3);
+        std::printf("deferred re-tests: %lld criteria evaluations for %lld live cells over the frames\n", (long long)tested, (long long)live);
+        EXPECT_LT(tested * 2, live) << "most cells should wait for their margin";
+    }
+}
+
+// Issue 12: with an operation budget, the mesh after every update is the same on every run.
+TEST(Refiner, AnOperationBudgetGivesTheSameMeshEveryRun) {
+    auto field = test::loadFixture(test::kGrandCanyon);
+    auto run = [&] {
+        Lod lod(*field, Embedding::Exact);
+        lod.refiner.settings().maxOperations = 40;
+        Camera cam = lowOblique(*field, 600.0);
+        uint64_t hash = 0;
+        for (int32_t frame = 0; frame < 60; ++frame) {
+            cam.eye.x += 150.0;
+            cam.target.x += 120.0;
+            lod.refiner.setView(viewOf(cam));
+            lod.refiner.update();
+            hash = hash * 1099511628211ull ^ lod.mesh.hash();
+        }
+        return hash;
+    };
+    const uint64_t first = run();
+    EXPECT_EQ(first, run());
+    std::printf("agree: ops-budget-flight-grandcanyon %016llx\n", (unsigned long long)first);
+}
