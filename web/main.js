@@ -7,7 +7,7 @@ import { TerrainRenderer } from './renderer.js';
 import { CameraRig, CAMERA_MODES, isTyping } from './cameras/rig.js';
 import { createWorld } from './ground.js';
 import { reliefFocus } from './default_view.js';
-import { defaultSettings, applyLodSettings, MORPH_FRAMES } from './settings.js';
+import { defaultSettings, applyLodSettings, MORPH_FRAMES, SHADING_MODES } from './settings.js';
 import { createControlsPanel } from './controls_panel.js';
 import { Hud } from './hud.js';
 import { pickGround } from './picking.js';
@@ -29,6 +29,8 @@ const LAYOUT = params.get('layout') === 'fans' ? 'fans' : 'triangles';
 const TIMING = params.get('timing') === '1';
 const timingPixel = new Uint8Array(4);
 const FRAME_LOG = 4096; // frames kept in window.hexlod.frameLog while recording
+// Settings that change only the shading (issue 14), never the core's mesh.
+const SHADING_KEYS = ['shading', 'normals', 'shadows', 'occlusion', 'sunAzimuth', 'sunElevation'];
 
 const canvas = document.getElementById('view');
 const statusBox = document.getElementById('status');
@@ -60,6 +62,7 @@ async function main() {
   const settings = defaultSettings();
   const urlState = parseUrlState(location.search);
   Object.assign(settings, urlState.settings);
+  if (SHADING_MODES.includes(params.get('shading'))) settings.shading = params.get('shading'); // issue 14
   const urlWriter = new UrlWriter();
   let source = null;         // the data's URL, while the terrain on screen came from one
   let pendingSource = null;  // the URL being opened
@@ -80,6 +83,15 @@ async function main() {
     view.outline = settings.wireframe;
     view.morphFrames = settings.geomorph ? MORPH_FRAMES : 0;
     view.verticalScale = settings.exaggeration;
+    syncShading();
+  }
+
+  // Shading (issue 14): the mode, the normals' source, shadows, occlusion and the sun.
+  function syncShading() {
+    Object.assign(view, { shading: settings.shading, normals: settings.normals, shadows: settings.shadows,
+      occlusion: settings.occlusion });
+    renderer.setSun(settings.sunAzimuth, settings.sunElevation);
+    state.shadingTimes = renderer.fieldTextures.times;
   }
 
   function render(now) {
@@ -168,6 +180,9 @@ async function main() {
     loaded.world = createWorld(terrain, extent, () => settings.exaggeration, () => 0.5 * rig.cameras.walk.eyeHeight);
     rig.setWorld(loaded.world);
     renderer.setShading(extent.low, extent.high, extent.extentX, extent.extentZ);
+    if (renderer.fieldTextures.terrain !== terrain || renderer.fieldTextures.spacing !== terrain.spacingX) {
+      renderer.setField(terrain, loaded.field); // issue 14: normals, shadows, occlusion from the field
+    }
   }
 
   /** The opening view: the region of most relief, from the south. */
@@ -242,7 +257,7 @@ async function main() {
         makeWorld(current);
         renderer.invalidate();
         hud.setTerrain(current.field, terrain, current.loadMs);
-      } else if (terrain && !['wireframe', 'colorByLevel', 'freeze'].includes(key)) {
+      } else if (terrain && !['wireframe', 'colorByLevel', 'freeze', ...SHADING_KEYS].includes(key)) {
         applyLodSettings(terrain, settings);
       }
       showStatus('');
