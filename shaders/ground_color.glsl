@@ -37,16 +37,17 @@ vec3 naturalGround(float height, float steep, float noise) {
         return mix(vec3(0.05, 0.16, 0.2), vec3(0.01, 0.03, 0.09), depth);
     }
     float n = noise - 0.5;
-    vec3 lowland = vec3(0.13, 0.22, 0.08);
-    vec3 upland = vec3(0.26, 0.28, 0.14);
-    vec3 soil = vec3(0.3, 0.22, 0.14);
+    vec3 lowland = vec3(0.14, 0.19, 0.08);
+    vec3 upland = vec3(0.25, 0.24, 0.14);
+    vec3 soil = vec3(0.32, 0.27, 0.2);
     float tree = clamp((height - 0.35 * uTreeLine) / (0.65 * uTreeLine) + 0.4 * n, 0.0, 1.0);
     vec3 color = mix(lowland, upland, smoothstep(0.0, 0.6, tree));
-    color = mix(color, soil, smoothstep(0.6, 1.0, tree + 0.5 * n));
+    // Bare soil: above the tree line, and in patches (noise) and on moderate slopes below it.
+    color = mix(color, soil, smoothstep(0.25, 0.75, tree + 1.2 * n + 1.5 * steep));
     // Sedimentary bands: the rock's hue follows the height, broken up by the noise.
     float band = 0.5 + 0.5 * sin(height / 55.0 + 6.0 * n);
     vec3 rock = mix(vec3(0.3, 0.27, 0.25), vec3(0.44, 0.24, 0.14), band * 0.8);
-    color = mix(color, rock, smoothstep(0.18, 0.4, steep + 0.15 * n));
+    color = mix(color, rock, smoothstep(0.1, 0.25, steep + 0.15 * n));
     float snow = smoothstep(-250.0, 250.0, height - uSnowLine + 400.0 * n) * (1.0 - smoothstep(0.3, 0.5, steep + 0.2 * n));
     return mix(color, vec3(0.9, 0.92, 0.96), snow);
 }

@@ -16,6 +16,10 @@ uniform vec3 uSunIrradiance; // the sun's light above the atmosphere
 uniform float uSunAirMass;   // relative air mass of the sun's path at sea level (1 at the zenith)
 
 const float PI = 3.14159265;
+// Hoffman & Preetham scale the in-scattered light by a free factor; single scattering alone
+// leaves the sky too dark next to sunlit ground (multiple scattering and the ground's light
+// are missing).
+const float INSCATTER_GAIN = 2.5;
 
 float phaseRayleigh(float cosTheta) {
     return 3.0 / (16.0 * PI) * (1.0 + cosTheta * cosTheta);
@@ -56,5 +60,5 @@ void scatter(float depthR, float depthM, float cosTheta, vec3 sunlight, out vec3
     vec3 tau = tauR + tauM;
     extinction = exp(-tau);
     vec3 ratio = (tauR * phaseRayleigh(cosTheta) + tauM * phaseMie(cosTheta)) / max(tau, vec3(1e-12));
-    inscatter = ratio * sunlight * (1.0 - extinction);
+    inscatter = INSCATTER_GAIN * ratio * sunlight * (1.0 - extinction);
 }

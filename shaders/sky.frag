@@ -1,7 +1,7 @@
 #version 300 es
 // The sky behind the terrain from the same scattering model as the terrain (Hoffman &
 // Preetham 2002, paper §7): the in-scattered light of the whole air column along the view
-// ray, the sun's disc, and below the horizon (past the field) the haze over a dark ground.
+// ray and the sun's disc.
 precision highp float;
 
 in vec3 vFar;
@@ -22,14 +22,14 @@ void main() {
     float depthM = uScaleHeight.y * exp(-eye / uScaleHeight.y) * mass;
     float cosTheta = dot(dir, uSunDirection);
     vec3 extinction, inscatter;
-    // The air is lit by sunlight of a height above the eye: most scattering happens there.
-    scatter(depthR, depthM, cosTheta, sunlightAt(eye + 2000.0), extinction, inscatter);
-    vec3 sunlight = sunlightAt(eye);
-    // The sun's disc, about half a degree across.
-    float disc = smoothstep(0.99996, 0.99999, cosTheta);
-    vec3 background = sunlight * disc * 40.0;
-    // Below the horizon: a dark ground in sunlight, seen through the haze.
-    float below = smoothstep(0.0, -0.03, dir.y);
-    background = mix(background, vec3(0.03, 0.035, 0.04) * sunlight * max(uSunDirection.y, 0.0), below);
+    // Where the light is scattered: rays towards the horizon run through low, dense air (on the
+    // curved Earth they pass below the eye), rays upwards through the air around the eye. The
+    // sunlight there is reddened accordingly when the sun is low.
+    float mu = sqrt(max(dir.y, 0.0));
+    scatter(depthR, depthM, cosTheta, sunlightAt(mix(0.5 * eye, eye + 1000.0, mu)), extinction, inscatter);
+    // The sun's disc, about half a degree across, above the horizon. Below the horizon (past
+    // the field) only the haze: from high up, space is black.
+    float disc = smoothstep(0.99996, 0.99999, cosTheta) * smoothstep(-0.01, 0.0, dir.y);
+    vec3 background = sunlightAt(eye) * disc * 40.0;
     outColor = vec4(toneMap(background * extinction + inscatter), 1.0);
 }

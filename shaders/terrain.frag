@@ -62,30 +62,36 @@ void main() {
         return;
     }
     vec2 xz = vWorld.xz;
-    vec3 n = uNormalSource == 0 ? fieldNormal(xz, uVerticalScale) : normalize(vNormal);
+    // The field's normal and height at this pixel; the mesh's (paper §7) when asked for.
+    vec3 field = fieldSample(xz);
+    bool fromField = uNormalSource == 0;
+    vec3 n = fromField ? fieldNormal(field, uVerticalScale) : normalize(vNormal);
+    float height = fromField ? field.z : vHeight;
     float sunLit = uShadows > 0.5 ? sunVisibility(xz) : 1.0;
     float ao = uOcclusionOn > 0.5 ? ambientOcclusion(xz) : 1.0;
     float diffuse = max(dot(n, uSunDirection), 0.0) * sunLit;
     float skyShare = ao * (0.5 + 0.5 * n.y);
 
     if (uMode == MODE_HILLSHADE) {
+        // Grey proportional to the light, as GIS hillshades are (no tone curve).
         float shade = 0.8 * diffuse + 0.2 * skyShare;
-        outColor = vec4(vec3(pow(shade, 1.0 / 2.2)), 1.0);
+        outColor = vec4(vec3(shade), 1.0);
         return;
     }
     if (uMode == MODE_HYPSOMETRIC || uMode == MODE_SLOPE) {
         vec3 trueNormal = normalize(vec3(n.x, n.y * uVerticalScale, n.z));
-        vec3 ramp = uMode == MODE_HYPSOMETRIC ? hypsometric(vHeight) : slopeRamp(degrees(acos(clamp(trueNormal.y, 0.0, 1.0))));
+        vec3 ramp = uMode == MODE_HYPSOMETRIC ? hypsometric(height) : slopeRamp(degrees(acos(clamp(trueNormal.y, 0.0, 1.0))));
         ramp = mix(ramp, uTint, uTintAmount);
-        vec3 lit = ramp * (0.45 + 0.55 * (0.75 * diffuse + 0.25 * skyShare) / 0.85);
-        outColor = vec4(pow(lit, vec3(1.0 / 2.2)), 1.0);
+        // The ramps are display colours: shaded by the light, no tone curve.
+        vec3 lit = ramp * min(1.0, 0.5 + 0.5 * (0.75 * diffuse + 0.25 * skyShare) / 0.6);
+        outColor = vec4(lit, 1.0);
         return;
     }
 
     float noise = groundNoise(xz);
-    vec3 albedo = mix(naturalGround(vHeight, 1.0 - n.y, noise), uTint, uTintAmount);
+    vec3 albedo = mix(naturalGround(height, 1.0 - n.y, noise), uTint, uTintAmount);
     vec3 radiance;
-    if (vHeight < 0.0) {
+    if (height < 0.0) {
         // Water: level, lit by the sky, with the sun's glint.
         vec3 view = normalize(uCameraPosition - vWorld);
         vec3 h = normalize(view + uSunDirection);

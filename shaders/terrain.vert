@@ -43,13 +43,14 @@ void main() {
     vWorld = p;
 
     vec3 ray = p - uCameraPosition;
-    float s = length(ray);
+    // The air is not exaggerated: optical depths follow the ray in true metres.
+    float s = length(vec3(ray.x, ray.y / uVerticalScale, ray.z));
     float eye = uCameraPosition.y / uVerticalScale;
     float depthR = airPath(eye, vHeight, s, uScaleHeight.x);
     float depthM = airPath(eye, vHeight, s, uScaleHeight.y);
     vSunlight = sunlightAt(vHeight);
     // The air along the ray is lit by sunlight of its mean height.
-    scatter(depthR, depthM, dot(ray / max(s, 1e-6), uSunDirection), sunlightAt(0.5 * (eye + vHeight)),
+    scatter(depthR, depthM, dot(normalize(ray), uSunDirection), sunlightAt(0.5 * (eye + vHeight)),
         vExtinction, vInscatter);
     gl_Position = uViewProjection * vec4(p, 1.0);
 }

@@ -92,6 +92,7 @@ async function main() {
       occlusion: settings.occlusion });
     renderer.setSun(settings.sunAzimuth, settings.sunElevation);
     state.shadingTimes = renderer.fieldTextures.times;
+    state.fieldTextures = renderer.fieldTextures; // for tests: the normal texture's tiles
   }
 
   function render(now) {

@@ -50,24 +50,24 @@ export function downsampleField(field, maxSide) {
 
 /**
  * Tiles of the field's height gradient (dh/dx, dh/dz, metres per metre, central differences
- * of the full-resolution samples), for a normal texture array of at most maxTile texels a side:
+ * of the full-resolution samples) and height (metres), for a texture array (RGBA: gx, gz, h, 1) of at most maxTile texels a side:
  * tile (tx, tz) holds columns [tx*(tileX-1), tx*(tileX-1)+tileX-1] and likewise rows, so
  * neighbouring tiles share their
  * edge texels and bilinear filtering never needs the next tile. Samples past the field repeat
  * its edge. `stride` > 1 keeps every stride-th sample (for fields larger than the texture
  * budget); the gradient is still taken over the neighbouring full-resolution samples.
  * @returns {{tileX: number, tileZ: number, tilesX: number, tilesZ: number, stride: number, texelX: number, texelZ: number,
- *   fill(tx: number, tz: number, out: Float32Array): Float32Array}} fill writes one tile as RG pairs
+ *   fill(tx: number, tz: number, out: Float32Array): Float32Array}} fill writes one tile, 4 floats a texel
  */
 export function gradientTiles(field, maxTile, stride = 1) {
-  const { width, height, raw, scale, spacingX, spacingZ } = field;
+  const { width, height, raw, scale, offset, spacingX, spacingZ } = field;
   const columns = Math.floor((width - 1) / stride) + 1, rows = Math.floor((height - 1) / stride) + 1;
   const tileX = Math.min(maxTile, columns), tileZ = Math.min(maxTile, rows);
   const tilesX = Math.max(1, Math.ceil((columns - 1) / (tileX - 1))), tilesZ = Math.max(1, Math.ceil((rows - 1) / (tileZ - 1)));
   return {
     tileX, tileZ, tilesX, tilesZ, stride, columns, rows,
     texelX: spacingX * stride, texelZ: spacingZ * stride,
-    fill(tx, tz, out = new Float32Array(2 * tileX * tileZ)) {
+    fill(tx, tz, out = new Float32Array(4 * tileX * tileZ)) {
       for (let a = 0; a < tileZ; ++a) {
         const i = Math.min(rows - 1, tz * (tileZ - 1) + a) * stride;
         const north = Math.max(0, i - 1) * width, south = Math.min(height - 1, i + 1) * width, row = i * width;
@@ -75,9 +75,11 @@ export function gradientTiles(field, maxTile, stride = 1) {
         for (let b = 0; b < tileX; ++b) {
           const j = Math.min(columns - 1, tx * (tileX - 1) + b) * stride;
           const west = Math.max(0, j - 1), east = Math.min(width - 1, j + 1);
-          const o = 2 * (a * tileX + b);
+          const o = 4 * (a * tileX + b);
           out[o] = ((raw[row + east] - raw[row + west]) * scale) / ((east - west) * spacingX);
           out[o + 1] = ((raw[south + j] - raw[north + j]) * scale) / dz;
+          out[o + 2] = raw[row + j] * scale + offset;
+          out[o + 3] = 1;
         }
       }
       return out;
@@ -86,19 +88,21 @@ export function gradientTiles(field, maxTile, stride = 1) {
 }
 
 /**
- * The next mip level of an image of RG pairs: each texel the mean of the 2 x 2 it covers (the
- * last row or column of an odd size repeats). Float textures cannot generateMipmap in WebGL2.
- * @returns {Float32Array} of max(1, w >> 1) x max(1, h >> 1) pairs, written into `out` when given
+ * The next mip level of an image of `channels` floats a texel: each texel the mean of the 2 x 2
+ * it covers (the last row or column of an odd size repeats). Float textures cannot
+ * generateMipmap in WebGL2.
+ * @returns {Float32Array} of max(1, w >> 1) x max(1, h >> 1) texels, written into `out` when given
  */
-export function halveRG(src, w, h, out) {
+export function halveImage(src, w, h, channels, out) {
   const w2 = Math.max(1, w >> 1), h2 = Math.max(1, h >> 1);
-  const dst = out ?? new Float32Array(2 * w2 * h2);
+  const dst = out ?? new Float32Array(channels * w2 * h2);
   for (let i = 0; i < h2; ++i) {
     const r0 = Math.min(h - 1, 2 * i) * w, r1 = Math.min(h - 1, 2 * i + 1) * w;
     for (let j = 0; j < w2; ++j) {
       const c0 = Math.min(w - 1, 2 * j), c1 = Math.min(w - 1, 2 * j + 1);
-      for (let ch = 0; ch < 2; ++ch) {
-        dst[2 * (i * w2 + j) + ch] = 0.25 * (src[2 * (r0 + c0) + ch] + src[2 * (r0 + c1) + ch] + src[2 * (r1 + c0) + ch] + src[2 * (r1 + c1) + ch]);
+      for (let ch = 0; ch < channels; ++ch) {
+        const n = channels;
+        dst[n * (i * w2 + j) + ch] = 0.25 * (src[n * (r0 + c0) + ch] + src[n * (r0 + c1) + ch] + src[n * (r1 + c0) + ch] + src[n * (r1 + c1) + ch]);
       }
     }
   }

@@ -1,12 +1,12 @@
 // The GPU side of web/shading/field_shading.js: the textures the terrain's fragment stage
 // reads by ground position (shaders/field_textures.glsl), made from the full-resolution field
 // when the next frame needs them, and again only when what they depend on changes:
-//   gradients   once per field (normals; the exaggeration is applied in the shader)
+//   gradients   once per field: normals (the exaggeration is applied in the shader) and heights
 //   occlusion   per field and exaggeration
 //   sun         per field, exaggeration and sun direction
 // The normal texture is an array of tiles no larger than MAX_TEXTURE_SIZE a side (many GPUs
 // stop at 16384, one short of a 16385² field). ?normaltile=N forces smaller tiles (tests).
-import { fieldOf, downsampleField, gradientTiles, halveRG, sunVisibility, ambientOcclusion } from './field_shading.js';
+import { fieldOf, downsampleField, gradientTiles, halveImage, sunVisibility, ambientOcclusion } from './field_shading.js';
 
 export const TEXTURE_UNIT_GRADIENTS = 0;
 export const TEXTURE_UNIT_SUN = 1;
@@ -15,8 +15,8 @@ export const TEXTURE_UNIT_OCCLUSION = 2;
 export const OCCLUSION_MAX_SIDE = 512;
 /** Largest side of the sun-visibility texture. */
 export const SUN_MAX_SIDE = 2048;
-/** Texels of the normal texture at most (RG16F, 4 bytes each: 128 MB); larger fields keep every n-th sample. */
-export const GRADIENT_MAX_TEXELS = 1 << 25;
+/** Texels of the field texture at most (RGBA16F, 8 bytes each: 128 MB); larger fields keep every n-th sample. */
+export const GRADIENT_MAX_TEXELS = 1 << 24;
 
 function forcedTileSize() {
   const value = Number(new URLSearchParams(globalThis.location?.search ?? '').get('normaltile'));
@@ -81,17 +81,17 @@ export class FieldTextures {
     gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_GRADIENTS);
     gl.bindTexture(gl.TEXTURE_2D_ARRAY, texture);
     const levels = 1 + Math.floor(Math.log2(Math.max(tiles.tileX, tiles.tileZ)));
-    gl.texStorage3D(gl.TEXTURE_2D_ARRAY, levels, gl.RG16F, tiles.tileX, tiles.tileZ, layers);
-    const scratch = new Float32Array(2 * tiles.tileX * tiles.tileZ);
+    gl.texStorage3D(gl.TEXTURE_2D_ARRAY, levels, gl.RGBA16F, tiles.tileX, tiles.tileZ, layers);
+    const scratch = new Float32Array(4 * tiles.tileX * tiles.tileZ);
     const halves = [new Float32Array(scratch.length / 2), new Float32Array(scratch.length / 2)];
     for (let tz = 0; tz < tiles.tilesZ; ++tz) {
       for (let tx = 0; tx < tiles.tilesX; ++tx) {
-        // Level 0 from the field, then each level the mean of the one above (RG16F cannot generateMipmap).
+        // Level 0 from the field, then each level the mean of the one above (RGBA16F cannot generateMipmap).
         let image = tiles.fill(tx, tz, scratch), w = tiles.tileX, h = tiles.tileZ;
         for (let level = 0; level < levels; ++level) {
-          gl.texSubImage3D(gl.TEXTURE_2D_ARRAY, level, 0, 0, tz * tiles.tilesX + tx, w, h, 1, gl.RG, gl.FLOAT, image);
+          gl.texSubImage3D(gl.TEXTURE_2D_ARRAY, level, 0, 0, tz * tiles.tilesX + tx, w, h, 1, gl.RGBA, gl.FLOAT, image);
           if (level + 1 < levels) {
-            image = halveRG(image, w, h, halves[level % 2]);
+            image = halveImage(image, w, h, 4, halves[level % 2]);
             w = Math.max(1, w >> 1);
             h = Math.max(1, h >> 1);
           }
