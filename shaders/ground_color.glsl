@@ -20,11 +20,12 @@ float valueNoise(vec2 p) {
     return mix(mix(a, b, u.x), mix(c, d, u.x), u.y);
 }
 
-// Three octaves, the finest about a sample across; `xz` in metres. Large positions lose
-// precision in float, so they are wrapped at a period far above any feature.
+// Two octaves, the finer a quarter of a sample across (detail below the field's resolution);
+// `xz` in metres. Large positions lose precision in float, so they are wrapped at a period far
+// above any feature.
 float groundNoise(vec2 xz) {
     vec2 p = mod(xz / uNoiseScale, 4096.0);
-    return 0.5 * valueNoise(p * 0.25) + 0.3 * valueNoise(p) + 0.2 * valueNoise(p * 4.0);
+    return 0.6 * valueNoise(p * 0.3) + 0.4 * valueNoise(p * 4.0);
 }
 
 // Natural colours: water over the sea floor below sea level, vegetation and soil low, rock
@@ -46,10 +47,10 @@ vec3 naturalGround(float height, float steep, float noise) {
     color = mix(color, soil, smoothstep(0.25, 0.75, tree + 1.2 * n + 1.5 * steep));
     // Sedimentary bands: the rock's hue follows the height, broken up by the noise.
     float band = 0.5 + 0.5 * sin(height / 55.0 + 6.0 * n);
-    vec3 rock = mix(vec3(0.3, 0.27, 0.25), vec3(0.44, 0.24, 0.14), band * 0.8);
+    vec3 rock = mix(vec3(0.3, 0.27, 0.25), vec3(0.48, 0.22, 0.12), band * 0.85);
     color = mix(color, rock, smoothstep(0.1, 0.25, steep + 0.15 * n));
     float snow = smoothstep(-250.0, 250.0, height - uSnowLine + 400.0 * n) * (1.0 - smoothstep(0.3, 0.5, steep + 0.2 * n));
-    return mix(color, vec3(0.9, 0.92, 0.96), snow);
+    return mix(color, vec3(0.95, 0.96, 0.98), snow);
 }
 
 // A classic hypsometric tint: sea blues, then green lowland to brown, grey and white peaks,

@@ -19,7 +19,7 @@ const float PI = 3.14159265;
 // Hoffman & Preetham scale the in-scattered light by a free factor; single scattering alone
 // leaves the sky too dark next to sunlit ground (multiple scattering and the ground's light
 // are missing).
-const float INSCATTER_GAIN = 2.5;
+const float INSCATTER_GAIN = 2.0;
 
 float phaseRayleigh(float cosTheta) {
     return 3.0 / (16.0 * PI) * (1.0 + cosTheta * cosTheta);

@@ -90,3 +90,21 @@ export function pixelStats(png) {
   return { colours: colours.size, luminanceStd: Math.sqrt(sumSq / n - mean * mean), skyFraction: sky / n,
     snowFraction: snow / n, groundFraction: ground / n };
 }
+
+/**
+ * The fraction of a PNG screenshot that is sky drawn by the scattering model (issue 14): in each
+ * column, the run of blue pixels (blue above red and green) from the top edge down to the first
+ * pixel that is not. Blue-grey shadows and haze on the terrain below do not count.
+ */
+export function skyFromTop(png) {
+  const { width, height, data, channels } = decode(png);
+  let sky = 0;
+  for (let x = 0; x < width; ++x) {
+    for (let y = 0; y < height; ++y) {
+      const k = (y * width + x) * channels;
+      if (!(data[k + 2] > data[k] + 10 && data[k + 2] >= data[k + 1])) break;
+      sky += 1;
+    }
+  }
+  return sky / (width * height);
+}

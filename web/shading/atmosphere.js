@@ -10,10 +10,13 @@ export const BETA_MIE = [5e-6, 5.2e-6, 5.5e-6];
 /** Scale heights of the air (Rayleigh) and the haze (Mie), metres. */
 export const SCALE_HEIGHTS = [8000, 1200];
 export const MIE_G = 0.76;
-/** The sun above the atmosphere, in the renderer's radiance units (a warm white). */
-export const SUN_IRRADIANCE = [1.0, 0.97, 0.93];
+/**
+ * The sun above the atmosphere, in the renderer's radiance units, white-balanced as the eye
+ * is: the noon sun at sea level, after a zenith path through the air, is white (1, 1, 1).
+ */
+export const SUN_IRRADIANCE = [0, 1, 2].map((c) => Math.exp(BETA_RAYLEIGH[c] * SCALE_HEIGHTS[0] + BETA_MIE[c] * SCALE_HEIGHTS[1]));
 /** Exposure of the tone curve 1 - exp(-k L). */
-export const EXPOSURE = 2.4;
+export const EXPOSURE = 3.0;
 
 /** Relative air mass towards an elevation of sin(e) = mu (Kasten & Young 1989). */
 export function airMass(mu) {
@@ -46,7 +49,7 @@ export class Atmosphere {
       const depth = BETA_RAYLEIGH[c] * SCALE_HEIGHTS[0] + BETA_MIE[c] * SCALE_HEIGHTS[1];
       const sunlight = SUN_IRRADIANCE[c] * Math.exp(-depth * this.sunAirMass * 0.5);
       const scattered = 1 - Math.exp(-(BETA_RAYLEIGH[c] * SCALE_HEIGHTS[0] * 2.5 + BETA_MIE[c] * SCALE_HEIGHTS[1]));
-      this.skyLight[c] = 0.55 * sunlight * scattered * (0.25 + 0.75 * Math.sqrt(sinE));
+      this.skyLight[c] = 0.45 * sunlight * scattered * (0.25 + 0.75 * Math.sqrt(sinE));
     }
   }
 }
