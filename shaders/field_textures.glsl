@@ -22,6 +22,8 @@ uniform vec4 uOcclusionMap;     // uv = xz * .xy + .zw
 // coarse mip.
 vec3 fieldSample(vec2 xz) {
     vec2 texel = xz / uGradientTexel;
+    // One tile (any field up to MAX_TEXTURE_SIZE a side): no seams, implicit derivatives.
+    if (uGradientTiles.x * uGradientTiles.y == 1.0) return texture(uGradients, vec3((texel + 0.5) / uGradientTile, 0.0)).rgb;
     vec2 tile = clamp(floor(texel / uGradientStep), vec2(0.0), uGradientTiles - 1.0);
     vec2 uv = (texel - tile * uGradientStep + 0.5) / uGradientTile;
     vec2 dx = dFdx(texel) / uGradientTile, dy = dFdy(texel) / uGradientTile;
