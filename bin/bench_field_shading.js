@@ -32,7 +32,7 @@ const keep = (name, ms) => { best[name] = Math.min(best[name] ?? Infinity, ms); 
 for (let r = 0; r < repeat; ++r) {
   const tiles = gradientTiles(field, 16384);
   const out = new Float32Array(2 * tiles.tileX * tiles.tileZ);
-  keep('gradients (4096² RG, one tile)', time(() => tiles.fill(0, 0, out))[0]);
+  keep('gradients and heights (4096² RGBA, one tile)', time(() => tiles.fill(0, 0, out))[0]);
   const [dsSun, sunGrid] = time(() => downsampleField(field, SUN_MAX_SIDE));
   keep(`downsample to ${sunGrid.width}² (sun)`, dsSun);
   keep(`sun shadow sweep on ${sunGrid.width}²`, time(() => sunVisibility(sunGrid, sun, 2))[0]);

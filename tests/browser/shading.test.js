@@ -21,7 +21,7 @@ const VIEWS = {
   himalaya_sunrise: `?${COMMON}&sunaz=105&sunel=4&cam=orbit,1477858.625,8159.95,1117360.375,98996.587,0.4,0.3`,
   grand_canyon_rim: `?src=${encodeURIComponent(fixture('grandcanyon_512.png'))}&${COMMON}&sunaz=230&sunel=35`
     + '&cam=orbit,15000,3600,17000,9000,2.6,0.18',
-  earth_from_high: `?src=${encodeURIComponent(fixture('shading/etopo5_global_540x270.png'))}&tau=1&budget=40&exag=40&sunaz=180&sunel=55`
+  earth_from_high: `?src=${encodeURIComponent(fixture('shading/etopo5_global_540x270.png'))}&tau=1&budget=40&exag=2&sunaz=180&sunel=55`
     + '&cam=orbit,19976000,0,9978000,26000000,0,1.55',
 };
 
@@ -34,7 +34,7 @@ async function openView(query) {
   const { page, problems } = await openPage(viewer.browser, `${viewer.url}${query}`, SIZE);
   await page.addStyleTag({ content: '#hud, #side, #drop-hint, #status { display: none !important; }' });
   await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
-  assert.equal(await page.evaluate(() => window.hexlod.status), 'ready');
+  assert.deepEqual(await page.evaluate(() => [window.hexlod.status, window.hexlod.error]), ['ready', null]);
   await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; }, null,
     { timeout: 300000, polling: 200 });
   return { page, problems, shot: (name) => shoot(page, name) };
