@@ -1,49 +1,104 @@
 #version 300 es
-// Terrain fragment shader: procedural ground colour from height and slope, lit by one sun
-// and a sky ambient term, faded into the sky colour with distance.
+// Terrain fragment stage (paper §7): normals from the full-resolution field (or the mesh's,
+// averaged from the adjacent triangles), procedural ground colour from height, slope and
+// per-pixel noise, the sun with terrain shadows, sky light modulated by the 8-bit ambient
+// occlusion, the atmosphere's extinction and in-scattering from the vertex stage, and tone
+// mapping. Analysis modes: hypsometric tint, slope classes, hillshade; "plain" is the former
+// Lambert shading with the mesh's normals (a baseline for frame times).
 precision highp float;
+precision highp sampler2DArray;
 
 in vec3 vNormal;
+in vec3 vWorld;
 in float vHeight;
-in float vDistance;
-in vec2 vGround;              // x, z in metres
+in vec3 vExtinction;
+in vec3 vInscatter;
+in vec3 vSunlight;
 
-uniform vec3 uSunDirection;   // unit vector towards the sun
-uniform vec2 uHeightRange;    // lowest and highest drawn height, metres
-uniform vec3 uSkyColor;
-uniform float uFogDistance;   // metres at which the terrain is about 63% sky
+uniform vec3 uCameraPosition;
+uniform float uVerticalScale;
+uniform vec3 uSkyLight;       // the sky's irradiance of level ground (web/shading/atmosphere.js)
 uniform vec3 uTint;           // colour-by-level view: the level's colour
 uniform float uTintAmount;    // 0 = ground colours, 1 = level colour only
-uniform vec2 uExtent;         // the field's rectangle, metres (x, z); the mesh may reach past it
 uniform vec4 uLineColor;      // alpha > 0: draw flat lines (the hexagon outlines) in this colour
+uniform int uMode;            // SHADING_MODES in web/renderer.js
+uniform int uNormalSource;    // 0: the field's gradients, 1: the mesh's normals
+uniform float uShadows;       // 1: the sun casts shadows
+uniform float uOcclusionOn;   // 1: ambient occlusion modulates the sky light
+
+#include "scattering.glsl"
+#include "field_textures.glsl"
+#include "ground_color.glsl"
+#include "tonemap.glsl"
+
+const int MODE_NATURAL = 0;
+const int MODE_HYPSOMETRIC = 1;
+const int MODE_SLOPE = 2;
+const int MODE_HILLSHADE = 3;
+const int MODE_PLAIN = 4;
 
 out vec4 outColor;
 
-vec3 groundColor(float t, float slope) {
-    vec3 low = vec3(0.23, 0.36, 0.17);    // vegetation
-    vec3 mid = vec3(0.45, 0.38, 0.27);    // dry ground
-    vec3 rock = vec3(0.42, 0.40, 0.38);
-    vec3 snow = vec3(0.93, 0.94, 0.97);
-    vec3 color = mix(low, mid, smoothstep(0.03, 0.3, t));
-    color = mix(color, rock, smoothstep(0.3, 0.65, slope));
-    return mix(color, snow, smoothstep(0.64, 0.76, t) * (1.0 - smoothstep(0.55, 0.85, slope)));
+// The former look: a height/slope ramp, a Lambert sun and a hemisphere sky, no textures.
+vec3 plainShading(vec3 n) {
+    float t = clamp((vHeight - uHeightRange.x) / max(uHeightRange.y - uHeightRange.x, 1e-3), 0.0, 1.0);
+    float slope = 2.5 * (1.0 - n.y);
+    vec3 color = mix(vec3(0.23, 0.36, 0.17), vec3(0.45, 0.38, 0.27), smoothstep(0.03, 0.3, t));
+    color = mix(color, vec3(0.42, 0.40, 0.38), smoothstep(0.3, 0.65, slope));
+    color = mix(color, vec3(0.93, 0.94, 0.97), smoothstep(0.64, 0.76, t) * (1.0 - smoothstep(0.55, 0.85, slope)));
+    color = mix(color, uTint, uTintAmount);
+    float sun = max(dot(n, uSunDirection), 0.0);
+    vec3 lit = color * (vec3(1.0, 0.96, 0.88) * sun * 1.1 + vec3(0.62, 0.74, 0.88) * (0.5 + 0.5 * n.y) * 0.35);
+    return pow(lit, vec3(1.0 / 2.2));
 }
 
 void main() {
-    // The lattice extends past the field on the east, west and south: hide what lies outside.
-    if (vGround.x < 0.0 || vGround.y < 0.0 || vGround.x > uExtent.x || vGround.y > uExtent.y) discard;
     if (uLineColor.a > 0.0) {
         outColor = uLineColor;
         return;
     }
-    vec3 n = normalize(vNormal);
-    float t = clamp((vHeight - uHeightRange.x) / max(uHeightRange.y - uHeightRange.x, 1e-3), 0.0, 1.0);
-    float slope = 1.0 - n.y;
-    vec3 albedo = mix(groundColor(t, slope * 2.5), uTint, uTintAmount);
-    float sun = max(dot(n, uSunDirection), 0.0);
-    float sky = 0.5 + 0.5 * n.y;
-    vec3 lit = albedo * (vec3(1.0, 0.96, 0.88) * sun * 1.1 + uSkyColor * sky * 0.35);
-    float fog = 1.0 - exp(-vDistance / uFogDistance);
-    vec3 color = mix(lit, uSkyColor, fog);
-    outColor = vec4(pow(color, vec3(1.0 / 2.2)), 1.0);
+    if (uMode == MODE_PLAIN) {
+        outColor = vec4(plainShading(normalize(vNormal)), 1.0);
+        return;
+    }
+    vec2 xz = vWorld.xz;
+    // The field's normal and height at this pixel; the mesh's (paper §7) when asked for.
+    vec3 field = fieldSample(xz);
+    bool fromField = uNormalSource == 0;
+    vec3 n = fromField ? fieldNormal(field, uVerticalScale) : normalize(vNormal);
+    float height = fromField ? field.z : vHeight;
+    float sunLit = uShadows > 0.5 ? sunVisibility(xz) : 1.0;
+    float ao = uOcclusionOn > 0.5 ? ambientOcclusion(xz) : 1.0;
+    float diffuse = max(dot(n, uSunDirection), 0.0) * sunLit;
+    float skyShare = ao * (0.5 + 0.5 * n.y);
+
+    if (uMode == MODE_HILLSHADE) {
+        // Grey proportional to the light, as GIS hillshades are (no tone curve).
+        float shade = 0.8 * diffuse + 0.2 * skyShare;
+        outColor = vec4(vec3(shade), 1.0);
+        return;
+    }
+    if (uMode == MODE_HYPSOMETRIC || uMode == MODE_SLOPE) {
+        vec3 trueNormal = normalize(vec3(n.x, n.y * uVerticalScale, n.z));
+        vec3 ramp = uMode == MODE_HYPSOMETRIC ? hypsometric(height) : slopeRamp(degrees(acos(clamp(trueNormal.y, 0.0, 1.0))));
+        ramp = mix(ramp, uTint, uTintAmount);
+        // The ramps are display colours: shaded by the light, no tone curve.
+        vec3 lit = ramp * min(1.0, 0.5 + 0.5 * (0.75 * diffuse + 0.25 * skyShare) / 0.6);
+        outColor = vec4(lit, 1.0);
+        return;
+    }
+
+    float noise = groundNoise(xz);
+    vec3 albedo = mix(naturalGround(height, 1.0 - n.y, noise), uTint, uTintAmount);
+    vec3 radiance;
+    if (height < 0.0) {
+        // Water: level, lit by the sky, with the sun's glint.
+        vec3 view = normalize(uCameraPosition - vWorld);
+        vec3 h = normalize(view + uSunDirection);
+        float glint = pow(max(h.y, 0.0), 400.0) * 6.0 * sunLit;
+        radiance = albedo * (vSunlight * max(uSunDirection.y, 0.0) * sunLit + uSkyLight) + vSunlight * glint;
+    } else {
+        radiance = albedo * (vSunlight * diffuse + uSkyLight * skyShare);
+    }
+    outColor = vec4(toneMap(radiance * vExtinction + vInscatter), 1.0);
 }

@@ -1,6 +1,6 @@
 #version 300 es
-// Terrain vertex shader: positions in metres (x east, y up, z south), normals from the core,
-// and the geomorph blend of paper §7 (src/geomorph.h has the same formula for the core).
+// Terrain vertex stage: the geomorph blend of paper §7 (src/geomorph.h has the same formula for
+// the core), the overhang clamped to the field, and the atmospheric scattering of §7 per vertex.
 precision highp float;
 
 layout(location = 0) in vec3 aPosition;  // ATTRIB_POSITION in web/renderer.js: true position, unscaled height
@@ -9,15 +9,20 @@ layout(location = 2) in vec3 aMorphFrom; // ATTRIB_MORPH_FROM: the coarser surfa
 layout(location = 3) in float aMorphKey; // ATTRIB_MORPH_KEY: 0 at rest, f+1 blending in, -(f+1) out, since frame f
 
 uniform mat4 uViewProjection;
-uniform vec3 uCameraPosition;
+uniform vec3 uCameraPosition;  // drawn metres
 uniform float uFrame;          // the core's blend clock (hexlod_lod_frame)
 uniform float uMorphFrames;    // frames a blend takes; 0: no geomorphing
 uniform float uVerticalScale;  // height exaggeration
+uniform vec2 uExtent;          // the field's rectangle, metres (x, z)
 
-out vec3 vNormal;
-out float vHeight;   // metres (exaggerated), for the ground colour
-out float vDistance; // metres from the camera, for aerial perspective
-out vec2 vGround;    // x, z in metres, to hide what lies outside the field
+#include "scattering.glsl"
+
+out vec3 vNormal;     // the mesh's normal (paper §7), drawn space
+out vec3 vWorld;      // drawn metres: x, exaggerated height, z
+out float vHeight;    // true height, metres, for the ground colour
+out vec3 vExtinction; // Fex from the vertex to the eye
+out vec3 vInscatter;  // Lin along that ray
+out vec3 vSunlight;   // the sun's light at the vertex (dimmed by the air above it)
 
 void main() {
     float w = 1.0;
@@ -26,11 +31,26 @@ void main() {
         w = aMorphKey > 0.0 ? t : 1.0 - t;
     }
     vec3 p = aMorphFrom + (aPosition - aMorphFrom) * w;
+    // The lattice reaches past the field on the east, west and south (docs/DESIGN.md). Moving
+    // those vertices onto the field's edge, where the core's clamped lookups already put
+    // their heights, folds the overhang onto the border: cells wholly outside become
+    // zero-area and draw nothing, cells across the edge end at it. No fragment is discarded.
+    p.xz = clamp(p.xz, vec2(0.0), uExtent);
+    vHeight = p.y;
     p.y *= uVerticalScale;
     // Scaling heights by s scales normals by the inverse transpose: (nx, ny / s, nz).
     vNormal = vec3(aNormal.x, aNormal.y / uVerticalScale, aNormal.z);
-    vHeight = p.y;
-    vDistance = length(p - uCameraPosition);
-    vGround = p.xz;
+    vWorld = p;
+
+    vec3 ray = p - uCameraPosition;
+    // The air is not exaggerated: optical depths follow the ray in true metres.
+    float s = length(vec3(ray.x, ray.y / uVerticalScale, ray.z));
+    float eye = uCameraPosition.y / uVerticalScale;
+    float depthR = airPath(eye, vHeight, s, uScaleHeight.x);
+    float depthM = airPath(eye, vHeight, s, uScaleHeight.y);
+    vSunlight = sunlightAt(vHeight);
+    // The air along the ray is lit by sunlight of its mean height.
+    scatter(depthR, depthM, dot(normalize(ray), uSunDirection), sunlightAt(0.5 * (eye + vHeight)),
+        vExtinction, vInscatter);
     gl_Position = uViewProjection * vec4(p, 1.0);
 }

@@ -1,7 +1,7 @@
 // The control panel (lil-gui): every setting of settings.js, the camera, screenshots and help.
 // The panel only edits the settings object and reports which key changed; the page applies it.
 import GUI from 'lil-gui';
-import { RANGES } from './settings.js';
+import { RANGES, SHADING_MODES, NORMAL_SOURCES } from './settings.js';
 import { CAMERA_MODES } from './cameras/rig.js';
 
 /**
@@ -40,6 +40,14 @@ export function createControlsPanel(container, settings, { camera, onChange, act
   toggle(view, 'wireframe', 'wireframe: hexagons (O)');
   toggle(view, 'colorByLevel', 'colour by level (L)');
   slider(view, 'eyeHeight');
+
+  const shading = gui.addFolder('Shading');
+  shading.add(settings, 'shading', SHADING_MODES).name('mode').onChange(changed('shading'));
+  slider(shading, 'sunAzimuth');
+  slider(shading, 'sunElevation');
+  toggle(shading, 'shadows', 'sun shadows');
+  toggle(shading, 'occlusion', 'ambient occlusion');
+  shading.add(settings, 'normals', NORMAL_SOURCES).name('normals').onChange(changed('normals'));
 
   const mesh = gui.addFolder('Mesh').close();
   mesh.add(settings, 'embedding', ['exact', 'shifted']).name('embedding').onChange(changed('embedding'));

@@ -7,7 +7,7 @@ import { TerrainRenderer } from './renderer.js';
 import { CameraRig, CAMERA_MODES, isTyping } from './cameras/rig.js';
 import { createWorld } from './ground.js';
 import { frameTerrain } from './framing.js';
-import { defaultSettings, applyLodSettings, MORPH_FRAMES } from './settings.js';
+import { defaultSettings, applyLodSettings, MORPH_FRAMES, SHADING_MODES } from './settings.js';
 import { createControlsPanel } from './controls_panel.js';
 import { Hud } from './hud.js';
 import { pickGround } from './picking.js';
@@ -34,6 +34,8 @@ const timingPixel = new Uint8Array(4);
 const FRAME_LOG = 4096; // frames kept in window.hexlod.frameLog while recording
 // ?flight=URL: the deterministic mode of regression tests (web/deterministic/mode.js, README).
 const det = deterministicMode(params);
+// Settings that change only the shading (issue 14), never the core's mesh.
+const SHADING_KEYS = ['shading', 'normals', 'shadows', 'occlusion', 'sunAzimuth', 'sunElevation'];
 
 const canvas = document.getElementById('view');
 const statusBox = document.getElementById('status');
@@ -65,6 +67,7 @@ async function main() {
   const settings = defaultSettings();
   const urlState = parseUrlState(location.search);
   Object.assign(settings, urlState.settings);
+  if (SHADING_MODES.includes(params.get('shading'))) settings.shading = params.get('shading'); // issue 14
   if (det) Object.assign(settings, (await det.load(), det.settings)); // the flight's settings win
   const urlWriter = new UrlWriter();
   let source = null;         // the data's URL, while the terrain on screen came from one
@@ -87,6 +90,16 @@ async function main() {
     view.outline = settings.wireframe;
     view.morphFrames = settings.geomorph ? MORPH_FRAMES : 0;
     view.verticalScale = settings.exaggeration;
+    syncShading();
+  }
+
+  // Shading (issue 14): the mode, the normals' source, shadows, occlusion and the sun.
+  function syncShading() {
+    Object.assign(view, { shading: settings.shading, normals: settings.normals, shadows: settings.shadows,
+      occlusion: settings.occlusion });
+    renderer.setSun(settings.sunAzimuth, settings.sunElevation);
+    state.shadingTimes = renderer.fieldTextures.times;
+    state.fieldTextures = renderer.fieldTextures; // for tests: the normal texture's tiles
   }
 
   function render(now) {
@@ -178,6 +191,9 @@ async function main() {
     loaded.world = createWorld(terrain, extent, () => settings.exaggeration, () => 0.5 * rig.cameras.walk.eyeHeight);
     rig.setWorld(loaded.world);
     renderer.setShading(extent.low, extent.high, extent.extentX, extent.extentZ);
+    if (renderer.fieldTextures.terrain !== terrain || renderer.fieldTextures.spacing !== terrain.spacingX) {
+      renderer.setField(terrain, loaded.field); // issue 14: normals, shadows, occlusion from the field
+    }
   }
 
   /** The opening view (framing.js): the field, or its region of most relief, in view from above. */
@@ -266,7 +282,7 @@ async function main() {
         keepCamerasAboveGround();
         renderer.invalidate();
         hud.setTerrain(current.field, terrain, current.loadMs);
-      } else if (terrain && !['wireframe', 'colorByLevel', 'freeze'].includes(key)) {
+      } else if (terrain && !['wireframe', 'colorByLevel', 'freeze', ...SHADING_KEYS].includes(key)) {
         applyLodSettings(terrain, settings);
       }
       showStatus('');

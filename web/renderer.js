@@ -6,18 +6,42 @@
 // and only the ranges the core marked dirty are copied, straight from WASM memory. One
 // drawElements call draws every cell: TRIANGLE_FAN with primitive restart (the paper's layout),
 // or TRIANGLES when the stream is in the list layout.
-import vertexSource from '../shaders/terrain.vert?raw';
-import fragmentSource from '../shaders/terrain.frag?raw';
+//
+// Shading (paper §7) is composed from shaders/ by `#include "file"` lines: scattering.glsl
+// (the atmosphere, per vertex and for the sky), field_textures.glsl (normals, sun shadow and
+// ambient occlusion from the full-resolution field, web/shading/field_textures.js), ground_color.glsl
+// and tonemap.glsl. The sky is a second, full-screen pass drawn behind the terrain.
+import terrainVertex from '../shaders/terrain.vert?raw';
+import terrainFragment from '../shaders/terrain.frag?raw';
+import skyVertex from '../shaders/sky.vert?raw';
+import skyFragment from '../shaders/sky.frag?raw';
+import scatteringGlsl from '../shaders/scattering.glsl?raw';
+import fieldTexturesGlsl from '../shaders/field_textures.glsl?raw';
+import groundColorGlsl from '../shaders/ground_color.glsl?raw';
+import tonemapGlsl from '../shaders/tonemap.glsl?raw';
 import { STREAM_VERTEX_BYTES } from './core.js';
+import { resolveIncludes } from './shading/includes.js';
+import { Atmosphere, BETA_RAYLEIGH, BETA_MIE, SCALE_HEIGHTS, MIE_G, SUN_IRRADIANCE, EXPOSURE } from './shading/atmosphere.js';
+import { FieldTextures, TEXTURE_UNIT_GRADIENTS, TEXTURE_UNIT_SUN, TEXTURE_UNIT_OCCLUSION } from './shading/field_textures.js';
 
 export const ATTRIB_POSITION = 0;
 export const ATTRIB_NORMAL = 1;
 export const ATTRIB_MORPH_FROM = 2;
 export const ATTRIB_MORPH_KEY = 3;
-const SKY_COLOR = [0.62, 0.74, 0.88];
+export const ATTRIB_SKY_CORNER = 0;
+/** Shading modes (uMode in shaders/terrain.frag). */
+export const SHADING_MODES = { natural: 0, hypsometric: 1, slope: 2, hillshade: 3, plain: 4 };
+const SHADER_FILES = { 'scattering.glsl': scatteringGlsl, 'field_textures.glsl': fieldTexturesGlsl,
+  'ground_color.glsl': groundColorGlsl, 'tonemap.glsl': tonemapGlsl };
+const SKY_COLOR = [0.62, 0.74, 0.88]; // the clear colour of the plain mode (no sky pass)
 const OUTLINE_COLOR = [0.08, 0.09, 0.12, 0.55];
-const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeightRange', 'uSkyColor',
-  'uFogDistance', 'uTint', 'uTintAmount', 'uExtent', 'uLineColor', 'uFrame', 'uMorphFrames', 'uVerticalScale'];
+const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeightRange', 'uTint', 'uTintAmount',
+  'uExtent', 'uLineColor', 'uFrame', 'uMorphFrames', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie', 'uScaleHeight',
+  'uMieG', 'uSunIrradiance', 'uSunAirMass', 'uSkyLight', 'uExposure', 'uMode', 'uNormalSource', 'uShadows',
+  'uOcclusionOn', 'uSnowLine', 'uTreeLine', 'uNoiseScale', 'uGradients', 'uGradientTexel', 'uGradientStep',
+  'uGradientTile', 'uGradientTiles', 'uSunVisibility', 'uSunVisibilityMap', 'uOcclusion', 'uOcclusionMap'];
+const SKY_UNIFORMS = ['uInverseViewProjection', 'uCameraPosition', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie',
+  'uScaleHeight', 'uMieG', 'uSunDirection', 'uSunIrradiance', 'uSunAirMass', 'uExposure'];
 
 function compile(gl, type, source) {
   const shader = gl.createShader(type);
@@ -31,8 +55,8 @@ function compile(gl, type, source) {
 
 function link(gl, vertex, fragment) {
   const program = gl.createProgram();
-  gl.attachShader(program, compile(gl, gl.VERTEX_SHADER, vertex));
-  gl.attachShader(program, compile(gl, gl.FRAGMENT_SHADER, fragment));
+  gl.attachShader(program, compile(gl, gl.VERTEX_SHADER, resolveIncludes(vertex, SHADER_FILES)));
+  gl.attachShader(program, compile(gl, gl.FRAGMENT_SHADER, resolveIncludes(fragment, SHADER_FILES)));
   gl.linkProgram(program);
   if (!gl.getProgramParameter(program, gl.LINK_STATUS) && !gl.isContextLost()) {
     throw new Error(`shader link failed: ${gl.getProgramInfoLog(program)}`);
@@ -94,9 +118,8 @@ export class TerrainRenderer {
     this.createGlObjects();
     this.heightRange = [0, 1];
     this.extent = [0, 0];
-    // Low in the west-south-west, as on a northern afternoon: views from the south see lit
-    // faces, and the light grazes ridges from the side, so relief reads at a glance.
-    this.sunDirection = normalize([-0.8, 0.42, 0.3]);
+    this.atmosphere = new Atmosphere();
+    this.sunDirection = this.atmosphere.sunDirection;
     this.lastUploadBytes = 0;
     this.streamBytes = 0; // bytes of the whole stream (what a full upload would copy)
   }
@@ -107,8 +130,22 @@ export class TerrainRenderer {
    */
   createGlObjects() {
     const gl = this.gl;
-    this.program = link(gl, vertexSource, fragmentSource);
+    this.program = link(gl, terrainVertex, terrainFragment);
     this.uniforms = Object.fromEntries(UNIFORMS.map((name) => [name, gl.getUniformLocation(this.program, name)]));
+    this.skyProgram = link(gl, skyVertex, skyFragment);
+    this.skyUniforms = Object.fromEntries(SKY_UNIFORMS.map((name) => [name, gl.getUniformLocation(this.skyProgram, name)]));
+    this.skyVao = gl.createVertexArray();
+    gl.bindVertexArray(this.skyVao);
+    this.skyBuffer = gl.createBuffer();
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.skyBuffer);
+    gl.bufferData(gl.ARRAY_BUFFER, new Float32Array([-1, -1, 3, -1, -1, 3]), gl.STATIC_DRAW); // one triangle over the screen
+    gl.enableVertexAttribArray(ATTRIB_SKY_CORNER);
+    gl.vertexAttribPointer(ATTRIB_SKY_CORNER, 2, gl.FLOAT, false, 0, 0);
+    gl.bindVertexArray(null);
+    this.inverseViewProjection = new Float32Array(16);
+    // Textures from the field: made again from the field (kept by setField) after a lost context.
+    this.fieldTextures?.forgetGl();
+    this.fieldTextures = this.fieldTextures ?? new FieldTextures(gl);
     this.vertices = new MirroredBuffer(gl, gl.ARRAY_BUFFER);
     this.indices = new MirroredBuffer(gl, gl.ELEMENT_ARRAY_BUFFER);
     this.levelBuffer = gl.createBuffer();
@@ -195,6 +232,20 @@ export class TerrainRenderer {
   }
 
   /**
+   * The field the shading reads (normals, shadows, ambient occlusion; web/shading/field_textures.js).
+   * Textures are made when the next frame needs them, and again only when what they depend on changes.
+   * @param {import('./core.js').Terrain} terrain @param {{heightScale: number, heightOffset: number}} field
+   */
+  setField(terrain, field) {
+    this.fieldTextures.setField(terrain, field);
+  }
+
+  /** The sun: compass azimuth (0 north, 90 east) and elevation, degrees. */
+  setSun(azimuthDeg, elevationDeg) {
+    this.atmosphere.setSun(azimuthDeg, elevationDeg);
+  }
+
+  /**
    * Draws the terrain seen by a camera whose matrices are up to date.
    * @param {{colorByLevel?: boolean, outline?: boolean, frame?: number, morphFrames?: number,
    *   verticalScale?: number, hideTerrain?: boolean}} view frame and morphFrames drive the geomorph
@@ -202,25 +253,80 @@ export class TerrainRenderer {
    */
   draw(camera, width, height, view = {}) {
     const gl = this.gl;
+    const mode = SHADING_MODES[view.shading ?? 'natural'] ?? 0;
+    const verticalScale = view.verticalScale ?? 1;
     gl.viewport(0, 0, width, height);
     gl.clearColor(SKY_COLOR[0], SKY_COLOR[1], SKY_COLOR[2], 1);
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
-    if (this.indexCount === 0 || view.hideTerrain) return;
     gl.enable(gl.DEPTH_TEST);
+    gl.depthFunc(gl.LEQUAL);
+    if (this.indexCount > 0 && !view.hideTerrain) this.drawTerrain(camera, view, mode, verticalScale);
+    // The sky where no terrain was drawn: after the terrain, so the depth test skips covered pixels.
+    if (mode !== SHADING_MODES.plain) this.drawSky(camera, verticalScale);
+    gl.bindVertexArray(null);
+  }
+
+  /** Uniforms the terrain and the sky share: the atmosphere and the tone curve. */
+  setAtmosphereUniforms(u) {
+    const gl = this.gl, a = this.atmosphere;
+    gl.uniform3fv(u.uBetaRayleigh, BETA_RAYLEIGH);
+    gl.uniform3fv(u.uBetaMie, BETA_MIE);
+    gl.uniform2fv(u.uScaleHeight, SCALE_HEIGHTS);
+    gl.uniform1f(u.uMieG, MIE_G);
+    gl.uniform3fv(u.uSunDirection, a.sunDirection);
+    gl.uniform3fv(u.uSunIrradiance, SUN_IRRADIANCE);
+    gl.uniform1f(u.uSunAirMass, a.sunAirMass);
+    gl.uniform1f(u.uExposure, EXPOSURE);
+  }
+
+  drawSky(camera, verticalScale) {
+    const gl = this.gl, u = this.skyUniforms;
+    gl.useProgram(this.skyProgram);
+    invert4(this.inverseViewProjection, camera.viewProjection);
+    gl.uniformMatrix4fv(u.uInverseViewProjection, false, this.inverseViewProjection);
+    gl.uniform3fv(u.uCameraPosition, camera.position);
+    gl.uniform1f(u.uVerticalScale, verticalScale);
+    this.setAtmosphereUniforms(u);
+    gl.depthMask(false);
+    gl.bindVertexArray(this.skyVao);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    gl.depthMask(true);
+  }
+
+  drawTerrain(camera, view, mode, verticalScale) {
+    const gl = this.gl;
+    const plain = mode === SHADING_MODES.plain;
+    // Field textures follow the exaggeration and the sun (shadows); the plain mode needs none.
+    if (!plain) this.fieldTextures.prepare(verticalScale, this.atmosphere.sunDirection);
     gl.enable(gl.CULL_FACE);
     gl.useProgram(this.program);
     const u = this.uniforms;
     gl.uniformMatrix4fv(u.uViewProjection, false, camera.viewProjection);
     gl.uniform3fv(u.uCameraPosition, camera.position);
-    gl.uniform3fv(u.uSunDirection, this.sunDirection);
-    gl.uniform2f(u.uHeightRange, this.heightRange[0], this.heightRange[1]);
-    gl.uniform3fv(u.uSkyColor, SKY_COLOR);
-    gl.uniform1f(u.uFogDistance, camera.fogDistance); // cameras/clip_planes.js
+    const low = this.heightRange[0] / verticalScale, high = this.heightRange[1] / verticalScale;
+    gl.uniform2f(u.uHeightRange, low, high);
+    // Snow on the upper part of real mountains only (never on a hill of a few hundred metres);
+    // trees give way to bare soil below it.
+    const snowLine = high > 3000 ? Math.max(3000, low + 0.65 * (high - low)) : 1e9;
+    gl.uniform1f(u.uSnowLine, snowLine);
+    gl.uniform1f(u.uTreeLine, Math.min(3500, snowLine - 1000));
+    gl.uniform1f(u.uNoiseScale, this.fieldTextures.spacing ?? 1);
     gl.uniform2f(u.uExtent, this.extent[0], this.extent[1]);
     gl.uniform4f(u.uLineColor, 0, 0, 0, 0);
     gl.uniform1f(u.uFrame, view.frame ?? 0);
     gl.uniform1f(u.uMorphFrames, view.morphFrames ?? 0);
-    gl.uniform1f(u.uVerticalScale, view.verticalScale ?? 1);
+    gl.uniform1f(u.uVerticalScale, verticalScale);
+    this.setAtmosphereUniforms(u);
+    gl.uniform3fv(u.uSkyLight, this.atmosphere.skyLight);
+    gl.uniform1i(u.uMode, mode);
+    const ready = !plain && this.fieldTextures.ready;
+    gl.uniform1i(u.uNormalSource, view.normals === 'mesh' || !ready ? 1 : 0);
+    gl.uniform1f(u.uShadows, view.shadows === false || !ready ? 0 : 1);
+    gl.uniform1f(u.uOcclusionOn, view.occlusion === false || !ready ? 0 : 1);
+    gl.uniform1i(u.uGradients, TEXTURE_UNIT_GRADIENTS);
+    gl.uniform1i(u.uSunVisibility, TEXTURE_UNIT_SUN);
+    gl.uniform1i(u.uOcclusion, TEXTURE_UNIT_OCCLUSION);
+    this.fieldTextures.setUniforms(u);
     // Push the surface back a little so the outlines on it are not lost in the depth test.
     gl.enable(gl.POLYGON_OFFSET_FILL);
     gl.polygonOffset(1, 1);
@@ -249,13 +355,35 @@ export class TerrainRenderer {
       gl.drawElements(gl.LINES, this.outlineCount, gl.UNSIGNED_INT, 0);
       gl.disable(gl.BLEND);
     }
-    gl.bindVertexArray(null);
   }
 }
 
-function normalize(v) {
-  const l = Math.hypot(...v);
-  return v.map((x) => x / l);
+/** out = the inverse of the 4x4 column-major matrix m (no allocation). */
+function invert4(out, m) {
+  const a00 = m[0], a01 = m[1], a02 = m[2], a03 = m[3], a10 = m[4], a11 = m[5], a12 = m[6], a13 = m[7];
+  const a20 = m[8], a21 = m[9], a22 = m[10], a23 = m[11], a30 = m[12], a31 = m[13], a32 = m[14], a33 = m[15];
+  const b00 = a00 * a11 - a01 * a10, b01 = a00 * a12 - a02 * a10, b02 = a00 * a13 - a03 * a10;
+  const b03 = a01 * a12 - a02 * a11, b04 = a01 * a13 - a03 * a11, b05 = a02 * a13 - a03 * a12;
+  const b06 = a20 * a31 - a21 * a30, b07 = a20 * a32 - a22 * a30, b08 = a20 * a33 - a23 * a30;
+  const b09 = a21 * a32 - a22 * a31, b10 = a21 * a33 - a23 * a31, b11 = a22 * a33 - a23 * a32;
+  const det = 1 / (b00 * b11 - b01 * b10 + b02 * b09 + b03 * b08 - b04 * b07 + b05 * b06);
+  out[0] = (a11 * b11 - a12 * b10 + a13 * b09) * det;
+  out[1] = (a02 * b10 - a01 * b11 - a03 * b09) * det;
+  out[2] = (a31 * b05 - a32 * b04 + a33 * b03) * det;
+  out[3] = (a22 * b04 - a21 * b05 - a23 * b03) * det;
+  out[4] = (a12 * b08 - a10 * b11 - a13 * b07) * det;
+  out[5] = (a00 * b11 - a02 * b08 + a03 * b07) * det;
+  out[6] = (a32 * b02 - a30 * b05 - a33 * b01) * det;
+  out[7] = (a20 * b05 - a22 * b02 + a23 * b01) * det;
+  out[8] = (a10 * b10 - a11 * b08 + a13 * b06) * det;
+  out[9] = (a01 * b08 - a00 * b10 - a03 * b06) * det;
+  out[10] = (a30 * b04 - a31 * b02 + a33 * b00) * det;
+  out[11] = (a21 * b02 - a20 * b04 - a23 * b00) * det;
+  out[12] = (a11 * b07 - a10 * b09 - a12 * b06) * det;
+  out[13] = (a00 * b09 - a01 * b07 + a02 * b06) * det;
+  out[14] = (a31 * b01 - a30 * b03 - a32 * b00) * det;
+  out[15] = (a20 * b03 - a21 * b01 + a22 * b00) * det;
+  return out;
 }
 
 export { SKY_COLOR, levelColor };

@@ -9,7 +9,17 @@ export const RANGES = {
   maxTriangles: { min: 0, max: 4000000, step: 1000, value: 0, label: 'triangle cap (0: none)' },
   exaggeration: { min: 0.1, max: 20, step: 0.1, value: 2, label: 'vertical exaggeration', url: 'exag' },
   eyeHeight: { min: 0.1, max: 2000, step: 0.1, value: 2, label: 'walk eye height (m)' },
+  // The sun (issue 14): compass azimuth (0 north, 90 east) and elevation above the horizon.
+  // Afternoon in the west-south-west by default: views from the south see lit faces, and the
+  // light grazes ridges from the side, so relief reads at a glance.
+  sunAzimuth: { min: 0, max: 360, step: 1, value: 250, label: 'sun azimuth (°)', url: 'sunaz' },
+  sunElevation: { min: 0, max: 90, step: 0.5, value: 25, label: 'sun elevation (°)', url: 'sunel' },
 };
+
+/** Shading modes of the terrain (web/renderer.js SHADING_MODES), the first the default. */
+export const SHADING_MODES = ['natural', 'hypsometric', 'slope', 'hillshade', 'plain'];
+/** Where per-pixel normals come from: the full-resolution field (default) or the mesh (paper §7). */
+export const NORMAL_SOURCES = ['field', 'mesh'];
 
 /** Frames a geomorph blend takes (paper §7) when geomorphing is on. */
 export const MORPH_FRAMES = 8;
@@ -27,6 +37,10 @@ export function defaultSettings() {
     backfaceCulling: true,
     embedding: 'exact',
     cellSize: 0,        // metres between samples; 0 until a terrain is loaded
+    shading: SHADING_MODES[0],
+    normals: NORMAL_SOURCES[0],
+    shadows: true,      // the sun's terrain shadows
+    occlusion: true,    // ambient occlusion of the sky light
   });
 }
 

@@ -192,3 +192,20 @@ export const eyeClearance = (page) => page.evaluate(() => {
   const over = eye[0] >= 0 && eye[2] >= 0 && eye[0] <= world.extentX && eye[2] <= world.extentZ;
   return over ? eye[1] - world.ground(eye[0], eye[2]) : null;
 });
+/**
+ * The fraction of a PNG screenshot that is sky drawn by the scattering model (issue 14): in each
+ * column, the run of blue pixels (blue above red and green) from the top edge down to the first
+ * pixel that is not. Blue-grey shadows and haze on the terrain below do not count.
+ */
+export function skyFromTop(png) {
+  const { width, height, data, channels } = decode(png);
+  let sky = 0;
+  for (let x = 0; x < width; ++x) {
+    for (let y = 0; y < height; ++y) {
+      const k = (y * width + x) * channels;
+      if (!(data[k + 2] > data[k] + 10 && data[k + 2] >= data[k + 1])) break;
+      sky += 1;
+    }
+  }
+  return sky / (width * height);
+}

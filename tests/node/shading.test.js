@@ -1,0 +1,121 @@
+// The field shading of issue 14 (web/shading/field_shading.js) against brute force: the sun's
+// shadow sweep and the ambient-occlusion horizons on random fields, the gradient tiles
+// against one big tile, the mip reduction, and the obvious cases (flat ground).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { fieldOf, downsampleField, gradientTiles, halveImage, sunVisibility, ambientOcclusion } from '../../web/shading/field_shading.js';
+
+/** A rough random field (seeded), heights in metres. */
+function randomField(width, height, seed = 7, relief = 200) {
+  let s = seed;
+  const next = () => ((s = (s * 1103515245 + 12345) >>> 0) / 2 ** 32);
+  const heights = new Float32Array(width * height);
+  for (let k = 0; k < heights.length; ++k) heights[k] = relief * next();
+  return heights;
+}
+
+test('flat ground is fully lit and sees the whole sky', () => {
+  const grid = downsampleField(fieldOf(new Float32Array(40 * 30).fill(123), 40, 30, 10, 10), 1024);
+  assert.ok(sunVisibility(grid, [0.6, 0.3, -0.74], 2).every((v) => v === 255));
+  assert.ok(ambientOcclusion(grid, 2).every((v) => v === 255));
+});
+
+test('the shadow sweep equals a brute-force march towards a sun on an axis', () => {
+  const width = 37, height = 23, spacing = 30, scale = 1.5;
+  const heights = randomField(width, height);
+  const grid = downsampleField(fieldOf(heights, width, height, spacing, spacing), 1024);
+  const e = (12 * Math.PI) / 180;
+  const tanE = Math.tan(e);
+  const soft = (spacing * tanE) / 2;
+  for (const [sx, sz] of [[1, 0], [-1, 0], [0, 1], [0, -1]]) {
+    const sun = [Math.cos(e) * sx, Math.sin(e), Math.cos(e) * sz];
+    const out = sunVisibility(grid, sun, scale);
+    for (let i = 0; i < height; ++i) {
+      for (let j = 0; j < width; ++j) {
+        let top = -Infinity;
+        for (let n = 1; ; ++n) {
+          const qi = i + sz * n, qj = j + sx * n;
+          if (qi < 0 || qi >= height || qj < 0 || qj >= width) break;
+          top = Math.max(top, heights[qi * width + qj] * scale - n * spacing * tanE);
+        }
+        const depth = top - heights[i * width + j] * scale;
+        const expected = depth <= 0 ? 255 : depth >= soft ? 0 : Math.round(255 * (1 - depth / soft));
+        assert.ok(Math.abs(out[i * width + j] - expected) <= 1, `sun (${sx}, ${sz}) sample ${i},${j}: ${out[i * width + j]} vs ${expected}`);
+      }
+    }
+  }
+});
+
+test('a wall casts a shadow as long as its height over the tangent of the sun elevation', () => {
+  const width = 200, height = 3, spacing = 10;
+  const heights = new Float32Array(width * height);
+  for (let i = 0; i < height; ++i) heights[i * width + 20] = 100; // a wall at x = 200 m
+  const e = (30 * Math.PI) / 180;
+  const out = sunVisibility(downsampleField(fieldOf(heights, width, height, spacing, spacing), 1024), [-Math.cos(e), Math.sin(e), 0], 1);
+  const length = 100 / Math.tan(e); // 173 m east of the wall
+  for (let j = 21; j < width; ++j) {
+    const x = (j - 20) * spacing;
+    if (x < length - spacing) assert.equal(out[width + j], 0, `${x} m behind the wall is in shadow`);
+    if (x > length + spacing) assert.equal(out[width + j], 255, `${x} m behind the wall is lit`);
+  }
+});
+
+test('ambient occlusion equals brute-force horizons in eight directions', () => {
+  const width = 29, height = 19, sx = 25, sz = 35, scale = 2;
+  const heights = randomField(width, height, 3, 300);
+  const out = ambientOcclusion(downsampleField(fieldOf(heights, width, height, sx, sz), 1024), scale);
+  const directions = [[1, 0], [-1, 0], [0, 1], [0, -1], [1, 1], [-1, -1], [1, -1], [-1, 1]];
+  for (let i = 0; i < height; ++i) {
+    for (let j = 0; j < width; ++j) {
+      let sum = 0;
+      for (const [dj, di] of directions) {
+        let best = 0; // tan of the horizon's elevation, at least level
+        for (let n = 1; ; ++n) {
+          const qi = i - di * n, qj = j - dj * n; // looking back along the direction of travel
+          if (qi < 0 || qi >= height || qj < 0 || qj >= width) break;
+          const run = n * Math.hypot(dj * sx, di * sz);
+          best = Math.max(best, ((heights[qi * width + qj] - heights[i * width + j]) * scale) / run);
+        }
+        sum += 1 / (1 + best * best);
+      }
+      const expected = Math.round((255 * sum) / 8);
+      assert.ok(Math.abs(out[i * width + j] - expected) <= 1, `sample ${i},${j}: ${out[i * width + j]} vs ${expected}`);
+    }
+  }
+});
+
+test('gradient tiles share their edges and agree with one big tile', () => {
+  const width = 70, height = 45;
+  const field = fieldOf(randomField(width, height), width, height, 20, 30);
+  const whole = gradientTiles(field, 4096);
+  assert.deepEqual([whole.tilesX, whole.tilesZ, whole.tileX, whole.tileZ], [1, 1, 70, 45]);
+  const big = whole.fill(0, 0);
+  const tiled = gradientTiles(field, 16);
+  assert.deepEqual([tiled.tilesX, tiled.tilesZ], [Math.ceil(69 / 15), Math.ceil(44 / 15)]);
+  for (let tz = 0; tz < tiled.tilesZ; ++tz) {
+    for (let tx = 0; tx < tiled.tilesX; ++tx) {
+      const tile = tiled.fill(tx, tz);
+      for (let a = 0; a < 16; ++a) {
+        for (let b = 0; b < 16; ++b) {
+          const i = tz * 15 + a, j = tx * 15 + b;
+          if (i >= height || j >= width) continue;
+          for (let c = 0; c < 4; ++c) assert.equal(tile[4 * (a * 16 + b) + c], big[4 * (i * width + j) + c]);
+        }
+      }
+    }
+  }
+  // A plane rising 0.5 m per metre east and 0.25 m per metre south has that gradient everywhere.
+  const plane = new Float32Array(width * height);
+  for (let i = 0; i < height; ++i) for (let j = 0; j < width; ++j) plane[i * width + j] = 0.5 * 20 * j + 0.25 * 30 * i;
+  const g = gradientTiles(fieldOf(plane, width, height, 20, 30), 4096).fill(0, 0);
+  for (let k = 0; k < g.length; k += 4) assert.ok(Math.abs(g[k] - 0.5) < 1e-4 && Math.abs(g[k + 1] - 0.25) < 1e-4);
+  assert.equal(g[4 * (3 * width + 5) + 2], plane[3 * width + 5], 'the height of sample (3, 5)');
+});
+
+test('a mip level is the mean of the texels it covers', () => {
+  const src = Float32Array.from({ length: 2 * 5 * 3 }, (_, k) => k);
+  const half = halveImage(src, 5, 3, 2);
+  assert.equal(half.length, 2 * 2 * 1);
+  assert.equal(half[0], (0 + 2 + 10 + 12) / 4);
+  assert.equal(half[3], (5 + 7 + 15 + 17) / 4); // texel (0, 1), channel 1
+});
