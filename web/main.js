@@ -99,7 +99,9 @@ async function main() {
       occlusion: settings.occlusion });
     renderer.setSun(settings.sunAzimuth, settings.sunElevation);
     state.shadingTimes = renderer.fieldTextures.times;
-    state.fieldTextures = renderer.fieldTextures; // for tests: the normal texture's tiles
+    // For tests: the normal texture's tiles. Not enumerable: it holds the terrain and through it
+    // the WASM heap, which a test's evaluate(() => window.hexlod) would try to copy whole.
+    Object.defineProperty(state, 'fieldTextures', { value: renderer.fieldTextures, enumerable: false, configurable: true });
   }
 
   function render(now) {
