@@ -23,7 +23,7 @@ after(async () => { await viewer?.close(); });
  * `minTriangles`, over at least `minCoverage` of the window, in many colours, the eye above
  * the ground. Saves the screenshot as tests/out/journey-<label>.png.
  */
-async function assertSeen(page, label, { minCoverage = 0.2, minTriangles = 3000 } = {}) {
+async function assertSeen(page, label, { minCoverage = 0.15, minTriangles = 3000 } = {}) {
   await converged(page);
   const triangles = await page.evaluate(() => window.hexlod.triangles);
   assert.ok(triangles >= minTriangles, `${label}: ${triangles} triangles after convergence (at least ${minTriangles})`);
@@ -122,8 +122,9 @@ test('every format and real DEM dropped on the page opens framed and refines', a
     // "A few thousand" triangles; a small field seen whole needs fewer at τ = 1 (the whole Earth
     // at 14 km a sample, 240 x 120, converges to about 1,500): a 25th of its samples.
     const minTriangles = Math.min(3000, Math.round((width * height) / 25));
-    // The whole field in view, seen obliquely, beside the open panel: a 2:1 field fills a fifth.
-    figures.push({ name: files[0].name, ...await assertSeen(page, `drop-${files[0].name}`, { minTriangles, minCoverage: 0.15 }) });
+    // The whole field in view, seen obliquely, beside the open panel; its far side fades into
+    // the haze (counted only where it differs from the sky): a 2:1 field fills an eighth.
+    figures.push({ name: files[0].name, ...await assertSeen(page, `drop-${files[0].name}`, { minTriangles, minCoverage: 0.12 }) });
   }
   assert.ok(figures.length >= 18, `${figures.length} files dropped`);
   assert.deepEqual(problems, []);
@@ -206,14 +207,14 @@ test('odd fields open framed: under the sea, above 4000 m, flat, a spike, 2×2, 
   // triangle count is what τ = 1 asks: a flat field needs its base mesh only.
   const cases = [
     // [name, width, height, spacing m, heights m, least coverage, least triangles]
-    ['seafloor', 160, 120, 500, wave(-7500, -3200, 11), 0.2, 3000],
-    ['plateau', 160, 120, 90, wave(4200, 5600, 11), 0.2, 3000],
-    ['flat', 64, 64, 30, () => 1200, 0.2, 2],
+    ['seafloor', 160, 120, 500, wave(-7500, -3200, 11), 0.15, 3000],
+    ['plateau', 160, 120, 90, wave(4200, 5600, 11), 0.15, 3000],
+    ['flat', 64, 64, 30, () => 1200, 0.15, 2],
     ['spike', 101, 101, 10, (i, j) => (i === 50 && j === 50 ? 900 : 100), 0.02, 100],
     ['tiny', 2, 2, 30, (i, j) => 100 + 20 * i + 10 * j, 0.08, 2],
     ['profile', 1, 600, 10, (i) => 300 + 80 * Math.sin(i / 40), 0.01, 100],
     ['strip', 2000, 6, 5, (i, j) => 50 + 30 * Math.sin(j / 60), 0.01, 100],
-    ['lidar', 400, 300, 0.5, wave(380, 420, 19), 0.2, 3000],
+    ['lidar', 400, 300, 0.5, wave(380, 420, 19), 0.15, 3000],
   ];
   for (const [name, width, height, spacing, heightOf, minCoverage, minTriangles] of cases) {
     const files = madeField(name, width, height, spacing, heightOf);

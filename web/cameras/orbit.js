@@ -46,13 +46,19 @@ export class OrbitCamera {
   }
 
   /**
-   * Raises the eye (a steeper pitch around the same target) until it is `clearance` metres
-   * above the ground under it; for a world whose heights just changed (a new exaggeration).
+   * Raises the eye (a steeper pitch around the same target, then a longer distance) until it
+   * is `clearance` metres above the ground under it; for a world whose heights just changed
+   * (a new exaggeration or cell size).
    */
   keepAboveGround(clearance) {
     this.update(this.aspect ?? 1);
     while (this.pitch < MAX_PITCH && clearanceOf(this.position, this.world) < clearance) {
       this.pitch = Math.min(MAX_PITCH, this.pitch + 0.02);
+      this.update(this.aspect ?? 1);
+    }
+    // Straight above the target and still in a hill beside it: back away from the target.
+    for (let k = 0; k < 100 && clearanceOf(this.position, this.world) < clearance; ++k) {
+      this.distance *= 1.25;
       this.update(this.aspect ?? 1);
     }
   }
