@@ -41,7 +41,7 @@ export function createControlsPanel(container, settings, { camera, onChange, act
   toggle(view, 'colorByLevel', 'colour by level (L)');
   slider(view, 'eyeHeight');
 
-  const shading = gui.addFolder('Shading');
+  const shading = gui.addFolder('Shading').close(); // folded, as View: the terrain has the view
   shading.add(settings, 'shading', SHADING_MODES).name('mode').onChange(changed('shading'));
   slider(shading, 'sunAzimuth');
   slider(shading, 'sunElevation');
