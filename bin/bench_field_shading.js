@@ -4,17 +4,20 @@
 // 8-bit ambient occlusion (downsampled to 512², paper §7's low-resolution texture), as the page
 // computes them (same code, Node's V8 instead of the browser's). The 4096² field is the
 // Himalaya 2048² field upsampled bilinearly (no 4k² DEM in the shared data set).
-//   node bin/bench_field_shading.js [path/to/globe_himalaya_2048.f32] [--repeat 3]
+//   node bin/bench_field_shading.js [--repeat 3]
 import { readFileSync } from 'node:fs';
+import { loadHeightfield } from '../web/loaders/index.js';
 import { fieldOf, downsampleField, gradientTiles, sunVisibility, ambientOcclusion } from '../web/shading/field_shading.js';
 import { OCCLUSION_MAX_SIDE, SUN_MAX_SIDE } from '../web/shading/field_textures.js';
 
 const args = process.argv.slice(2);
-const path = args.find((a) => !a.startsWith('--') && !/^\d+$/.test(a)) ?? '../shared/data/dem/globe_himalaya_2048.f32';
 const repeat = Number(args[args.indexOf('--repeat') + 1] || 3);
 const N = 2048, M = 4096;
-const bytes = readFileSync(path);
-const small = new Float32Array(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + N * N * 4));
+// The project's own default terrain (16-bit PNG and its sidecar), in metres.
+const terrainDir = new URL('../public/terrain/', import.meta.url);
+const read = (name) => ({ name, bytes: new Uint8Array(readFileSync(new URL(name, terrainDir))) });
+const himalaya = await loadHeightfield([read('globe_himalaya_2048.png'), read('globe_himalaya_2048.json')]);
+const small = Float32Array.from(himalaya.samples, (raw) => raw * himalaya.heightScale + himalaya.heightOffset);
 const big = new Float32Array(M * M);
 for (let i = 0; i < M; ++i) {
   const y = (i * (N - 1)) / (M - 1), i0 = Math.min(N - 2, Math.floor(y)), fy = y - i0;

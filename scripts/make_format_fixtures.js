@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // Writes the format fixtures of tests/fixtures/formats/ from the real DEMs of the shared data
 // folder (run once by a developer; the tests read only the committed output):
-//   node scripts/make_format_fixtures.js [/path/to/shared/data/dem]
+//   node scripts/make_format_fixtures.js /path/to/dem/
 // Each crop is written as <crop>.f32 (the original float32 heights, the reference the
 // tests compare against) and in the formats listed in manifest.json, with the quantisation
 // each format implies. The writers here are independent of web/loaders: a fixture that a
@@ -10,7 +10,11 @@ import { readFileSync, writeFileSync, mkdirSync } from 'node:fs';
 import { encode as encodePng } from 'fast-png';
 import { zlibSync } from 'fflate';
 
-const demDir = process.argv[2] ?? new URL('../../shared/data/dem/', import.meta.url).pathname;
+if (!process.argv[2]) {
+  console.error('usage: node scripts/make_format_fixtures.js /path/to/dem/ (the source DEMs are not in the project)');
+  process.exit(2);
+}
+const demDir = process.argv[2].endsWith('/') ? process.argv[2] : `${process.argv[2]}/`;
 const outDir = new URL('../tests/fixtures/formats/', import.meta.url).pathname;
 mkdirSync(outDir, { recursive: true });
 

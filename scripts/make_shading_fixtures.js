@@ -1,10 +1,14 @@
 // Makes tests/fixtures/shading/etopo5_global_540x270.{png,json}, the small Earth of the shading
 // tests (issue 14), from the shared ETOPO5 field: 4 x 4 block means, 16-bit PNG + sidecar.
-// Usage: node scripts/make_shading_fixtures.js [path/to/etopo5_global_2160x1080.f32]
+// Usage: node scripts/make_shading_fixtures.js path/to/etopo5_global_2160x1080.f32
 import { readFileSync, writeFileSync } from 'node:fs';
 import { encode } from 'fast-png';
 const W = 2160, H = 1080, K = 4, w = W / K, h = H / K;
-const buf = readFileSync(process.argv[2] ?? '../shared/data/dem/etopo5_global_2160x1080.f32');
+if (!process.argv[2]) {
+  console.error('usage: node scripts/make_shading_fixtures.js path/to/etopo5_global_2160x1080.f32 (the source is not in the project)');
+  process.exit(2);
+}
+const buf = readFileSync(process.argv[2]);
 const src = new Float32Array(buf.buffer.slice(buf.byteOffset, buf.byteOffset + W * H * 4));
 const out = new Float64Array(w * h);
 for (let i = 0; i < h; ++i) for (let j = 0; j < w; ++j) {
@@ -16,7 +20,7 @@ min = Math.floor(min); max = Math.ceil(max);
 const data = new Uint16Array(w * h);
 for (let k = 0; k < out.length; ++k) data[k] = Math.round(((out[k] - min) / (max - min)) * 65535);
 writeFileSync('tests/fixtures/shading/etopo5_global_540x270.png', encode({ width: w, height: h, data, depth: 16, channels: 1 }));
-const meta = JSON.parse(readFileSync((process.argv[2] ?? '../shared/data/dem/etopo5_global_2160x1080.f32').replace(/\.f32$/, '.json'), 'utf8'));
+const meta = JSON.parse(readFileSync(process.argv[2].replace(/\.f32$/, '.json'), 'utf8'));
 writeFileSync('tests/fixtures/shading/etopo5_global_540x270.json', JSON.stringify({
   width: w, height: h, min, max, units: 'm', cell_size_m: 18520 * K, cell_size_deg: 40 / 60,
   crs: meta.crs, license: meta.license, real_measured: true,
