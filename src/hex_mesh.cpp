@@ -10,6 +10,7 @@
 // the centre's edge k), slot k+4 side, slot k+5 long (on the parent's edge k). Along a domain
 // boundary edge R_k becomes a boundary semi-hexagon around the edge's midpoint (§4.2).
 #include "hex_mesh.h"
+#include "pool_growth.h"
 
 #include <algorithm>
 #include <cstring>
@@ -38,7 +39,8 @@ int32_t HexMesh::allocateCell() {
         freeCell_ = cells_[size_t(c)].next;
     } else {
         c = int32_t(cells_.size());
-        cells_.emplace_back(); // grows by doubling: no allocation per operation on average
+        reserveForPool(cells_, cells_.size() + 1);
+        cells_.emplace_back();
     }
     Hexagon& h = cells_[size_t(c)];
     std::fill(std::begin(h.vertex), std::end(h.vertex), kNone);
@@ -70,7 +72,10 @@ int32_t HexMesh::allocateVertex(LatticePoint p, int32_t parentA, int32_t parentB
         freeVertices_.pop_back();
     } else {
         v = int32_t(vertexLattice_.size());
-        vertexLattice_.emplace_back(); // all grow by doubling: no allocation per operation on average
+        const size_t size = vertexLattice_.size() + 1;
+        reserveForPool(vertexLattice_, size), reserveForPool(vertices_, size);
+        reserveForPool(vertexParents_, size), reserveForPool(vertexLive_, size);
+        vertexLattice_.emplace_back();
         vertices_.emplace_back();
         vertexParents_.emplace_back();
         vertexLive_.emplace_back();

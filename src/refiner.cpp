@@ -2,6 +2,7 @@
 // Dachsbacher, Greiner, VMV 2005), §6, with the criteria of §5 (view_criteria.h) and the
 // cached refinement data of §5.1. See refiner.h for the order of work and the margins.
 #include "refiner.h"
+#include "pool_growth.h"
 
 #include <algorithm>
 #include <cmath>
@@ -123,7 +124,8 @@ void Refiner::rebaseOdometers() {
 
 void Refiner::noteChanges(bool collect) {
     const size_t capacity = size_t(mesh_->cellCapacity());
-    if (cache_.size() < capacity) { // grows geometrically with the pool
+    if (cache_.size() < capacity) { // grows with the pool
+        reserveForPool(cache_, capacity), reserveForPool(records_, capacity), reserveForPool(state_, capacity);
         cache_.resize(capacity);
         records_.resize(capacity);
         state_.resize(capacity, 0);

@@ -263,3 +263,19 @@ TEST(HexMesh, RandomOperationSequencesKeepEveryInvariantAfterEveryOperation) {
     EXPECT_GE(total, 100000);
     EXPECT_GT(applied, total / 3); // most tiny domains cannot split at all
 }
+
+// Issue 12 counts memory at allocated capacity: the pools grow by an eighth, not by doubling.
+TEST(HexMesh, PoolsGrowByAnEighthSoLittleOfTheirMemoryIsUnused) {
+    auto field = test::loadFixture(test::kJacksboro);
+    ASSERT_NE(field, nullptr);
+    HexMesh mesh;
+    mesh.reset(*field, Embedding::Exact);
+    // Once the pools are past their first steps of 1024 records (13k to 57k cells here).
+    for (int32_t round = 1; round <= 5; ++round) {
+        refineUniformly(mesh, 1);
+        if (round < 4) continue;
+        const double ratio = double(mesh.memoryBytes()) / double(mesh.liveMemoryBytes());
+        EXPECT_LE(ratio, 1.13) << "round " << round << ": " << mesh.liveCells() << " cells";
+        EXPECT_GE(ratio, 1.0) << "round " << round;
+    }
+}
