@@ -1,5 +1,6 @@
 // The fan stream of paper §7, kept incrementally; see fan_stream.h for the layouts.
 #include "fan_stream.h"
+#include "pool_growth.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,9 +33,34 @@ void FanStream::setLayout(IndexLayout layout) {
     if (mesh_) rewriteAll(*mesh_);
 }
 
+void FanStream::setNormals(bool on) {
+    if (on == normals_) return;
+    normals_ = on;
+    if (!on) {
+        // The point of turning them off: give the memory back (shrink_to_fit does nothing in
+        // libstdc++ without exceptions).
+        std::vector<glm::i64vec3>().swap(normalSum_);
+        return;
+    }
+    if (mesh_) rebuildNormals(*mesh_);
+}
+
+// Sums the face normals of every slot as it stands (what the renderer draws now); the next
+// sync then moves the sums with the changes, as it always does.
+void FanStream::rebuildNormals(HexMesh& mesh) {
+    reserveForPool(normalSum_, size_t(mesh.vertexCapacity()));
+    normalSum_.assign(size_t(mesh.vertexCapacity()), glm::i64vec3(0));
+    if (vertexPending_.size() < normalSum_.size()) vertexPending_.resize(normalSum_.size(), 0);
+    const size_t slots = indices_.size() / size_t(slotSize());
+    for (size_t c = 0; c < slots; ++c) accumulate(mesh, indices_.data() + c * size_t(slotSize()), +1);
+    finishNormals(mesh);
+    touchedVertices_.clear();
+    ++version_;
+}
+
 void FanStream::rewriteAll(HexMesh& mesh) {
     indices_.assign(size_t(mesh.cellCapacity()) * size_t(slotSize()), kRestartIndex);
-    normalSum_.assign(size_t(mesh.vertexCapacity()), glm::i64vec3(0));
+    if (normals_) normalSum_.assign(size_t(mesh.vertexCapacity()), glm::i64vec3(0));
     changedCells_.clear();
     for (int32_t c = 0; c < mesh.cellCapacity(); ++c) changedCells_.push_back(c);
     vertexLog_.clear();
@@ -63,16 +89,16 @@ void FanStream::markVertex(int32_t v) {
 // Adds (sign +1) or removes (-1) the face normals of a slot's triangles to their vertices.
 void FanStream::accumulate(const HexMesh& mesh, const uint32_t* slot, int64_t sign) {
     forEachTriangle(slot, [&](uint32_t a, uint32_t b, uint32_t c) {
-        const glm::dvec3 pa(mesh.vertexPosition(int32_t(a))), pb(mesh.vertexPosition(int32_t(b))),
-            pc(mesh.vertexPosition(int32_t(c)));
-        // Counter-clockwise seen from +y: the face normal points up. Its length is twice the
-        // area, so larger faces weigh more.
-        const glm::dvec3 n = glm::cross(pb - pa, pc - pa) * normalScale_;
-        const glm::i64vec3 fixed(std::llround(n.x), std::llround(n.y), std::llround(n.z));
-        for (uint32_t v : {a, b, c}) {
-            normalSum_[v] += fixed * sign;
-            markVertex(int32_t(v));
+        if (normals_) {
+            const glm::dvec3 pa(mesh.vertexPosition(int32_t(a))), pb(mesh.vertexPosition(int32_t(b))),
+                pc(mesh.vertexPosition(int32_t(c)));
+            // Counter-clockwise seen from +y: the face normal points up. Its length is twice the
+            // area, so larger faces weigh more.
+            const glm::dvec3 n = glm::cross(pb - pa, pc - pa) * normalScale_;
+            const glm::i64vec3 fixed(std::llround(n.x), std::llround(n.y), std::llround(n.z));
+            for (uint32_t v : {a, b, c}) normalSum_[v] += fixed * sign;
         }
+        for (uint32_t v : {a, b, c}) markVertex(int32_t(v)); // the upload needs them either way
     });
 }
 
@@ -96,10 +122,22 @@ void FanStream::writeSlot(const HexMesh& mesh, int32_t c) {
 void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
     // The pools may have grown: new slots start empty, new vertices with zero sums.
     const size_t cells = size_t(mesh.cellCapacity()), vertices = size_t(mesh.vertexCapacity());
-    if (indices_.size() < cells * size_t(slotSize())) indices_.resize(cells * size_t(slotSize()), kRestartIndex);
-    if (normalSum_.size() < vertices) normalSum_.resize(vertices, glm::i64vec3(0));
-    if (cellPending_.size() < cells) cellPending_.resize(cells, 0);
-    if (vertexPending_.size() < vertices) vertexPending_.resize(vertices, 0);
+    if (indices_.size() < cells * size_t(slotSize())) {
+        reserveForPool(indices_, cells * size_t(slotSize()));
+        indices_.resize(cells * size_t(slotSize()), kRestartIndex);
+    }
+    if (normals_ && normalSum_.size() < vertices) {
+        reserveForPool(normalSum_, vertices);
+        normalSum_.resize(vertices, glm::i64vec3(0));
+    }
+    if (vertexPending_.size() < vertices) {
+        reserveForPool(vertexPending_, vertices);
+        vertexPending_.resize(vertices, 0);
+    }
+    if (cellPending_.size() < cells) {
+        reserveForPool(cellPending_, cells);
+        cellPending_.resize(cells, 0);
+    }
 
     bool wrote = false;
     for (int32_t c : changedCells_) {
@@ -133,7 +171,7 @@ void FanStream::finishNormals(HexMesh& mesh) {
     for (int32_t v : touchedVertices_) {
         vertexPending_[size_t(v)] = 0;
         dirtyVertices_.mark(v);
-        if (!mesh.isVertexLive(v)) continue; // its sum is back to exactly zero
+        if (!normals_ || !mesh.isVertexLive(v)) continue; // a freed vertex's sum is back to exactly zero
         const glm::dvec3 n(normalSum_[size_t(v)]);
         const double length = glm::length(n);
         int16_t* out = mesh.streamVertex(v).normal;
@@ -200,7 +238,7 @@ void FanStream::buildLevelView(const HexMesh& mesh, bool outline) {
     levelIndices_.clear();
     levelOffsets_.clear();
     outline_.clear();
-    if (!outline) outline_.shrink_to_fit(); // its memory only while it is shown
+    if (!outline) std::vector<uint32_t>().swap(outline_); // its memory only while it is shown (not shrink_to_fit: see setNormals)
     for (int32_t level = 0; level <= mesh.maxLevel(); ++level) {
         levelOffsets_.push_back(int32_t(levelIndices_.size()));
         for (int32_t c = mesh.firstOfLevel(level); c != kNone; c = mesh.nextInLevel(c)) {
@@ -235,7 +273,8 @@ size_t FanStream::memoryBytes() const {
 
 size_t FanStream::liveMemoryBytes() const {
     if (!mesh_) return 0;
-    return size_t(mesh_->liveCells()) * size_t(slotSize()) * sizeof(uint32_t) + size_t(mesh_->liveVertices()) * sizeof(glm::i64vec3);
+    return size_t(mesh_->liveCells()) * size_t(slotSize()) * sizeof(uint32_t) +
+           (normals_ ? size_t(mesh_->liveVertices()) * sizeof(glm::i64vec3) : 0);
 }
 
 } // namespace hexlod

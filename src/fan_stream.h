@@ -53,6 +53,12 @@ public:
     /// Switches the layout; everything is rewritten.
     void setLayout(IndexLayout layout);
     IndexLayout layout() const { return layout_; }
+    /// Whether the stream keeps the mesh's vertex normals (§7), on by default. Off, it keeps no
+    /// normal sums (24 bytes a vertex) and does no normal arithmetic, and the normals in the
+    /// vertex pool are stale; turned on, every normal is rebuilt exactly and marked dirty. The
+    /// viewer turns them off while it lights the terrain from the field's own normals.
+    void setNormals(bool on);
+    bool normals() const { return normals_; }
     int32_t slotSize() const { return layout_ == IndexLayout::Fans ? kFanSlot : kTriangleSlot; }
 
     /// Applies what the mesh did since the last sync: rewrites the changed cells' slots and
@@ -97,6 +103,7 @@ private:
     void accumulate(const HexMesh& mesh, const uint32_t* slot, int64_t sign);
     void markVertex(int32_t v);
     void finishNormals(HexMesh& mesh);
+    void rebuildNormals(HexMesh& mesh);
     struct DirtySet {
         std::vector<uint8_t> marked; // per block
         std::vector<int32_t> list;   // the marked blocks, in marking order
@@ -107,6 +114,7 @@ private:
     };
 
     IndexLayout layout_ = IndexLayout::Fans;
+    bool normals_ = true;
     HexMesh* mesh_ = nullptr;
     std::vector<uint32_t> indices_;
     std::vector<glm::i64vec3> normalSum_; // per vertex, fixed point (see normalScale_)

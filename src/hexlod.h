@@ -134,6 +134,10 @@ int32_t hexlod_mesh_check(const hexlod_terrain* terrain);
 int32_t hexlod_stream_update(hexlod_terrain* terrain);
 /* Chooses the index layout (everything is rewritten). Returns 0 or -1. */
 int32_t hexlod_stream_set_layout(hexlod_terrain* terrain, int32_t layout);
+/* Whether the stream keeps the vertex normals (on: 1, the default; off: 0). Off, the normals in
+ * the vertex pool are stale and the stream keeps no normal sums (24 bytes a vertex); turned
+ * on, every normal is rebuilt exactly and the vertices are marked written. Returns 0 or -1. */
+int32_t hexlod_stream_set_normals(hexlod_terrain* terrain, int32_t on);
 int32_t hexlod_stream_version(const hexlod_terrain* terrain);
 /* The vertex pool (see above) and its slot count; the index array and its length. */
 const void* hexlod_stream_vertices(const hexlod_terrain* terrain);

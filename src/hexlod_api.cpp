@@ -188,6 +188,13 @@ int32_t hexlod_stream_set_layout(hexlod_terrain* terrain, int32_t layout) {
     return 0;
 }
 
+int32_t hexlod_stream_set_normals(hexlod_terrain* terrain, int32_t on) {
+    HEXLOD_NEED_MESH(-1);
+    if (on != 0 && on != 1) return fail("stream normals are on (1) or off (0)", -1);
+    terrain->stream.setNormals(on == 1);
+    return 0;
+}
+
 int32_t hexlod_stream_version(const hexlod_terrain* terrain) {
     HEXLOD_NEED_MESH(-1);
     return int32_t(terrain->stream.version() & 0x7FFFFFFF);

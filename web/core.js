@@ -233,6 +233,17 @@ export class Terrain {
   }
 
   /**
+   * Whether the stream keeps the mesh's vertex normals (paper §7): the viewer needs them only
+   * for mesh normals, the plain mode, and until the field's own normals are ready. Off saves
+   * 24 bytes a vertex and the normal arithmetic; turning them on rebuilds them all.
+   */
+  setStreamNormals(on) {
+    if (on === this.streamNormals) return;
+    this.core.check(this.m._hexlod_stream_set_normals(this.handle, on ? 1 : 0) < 0, 'cannot switch the stream normals');
+    this.streamNormals = on;
+  }
+
+  /**
    * Views on the fan stream, valid until the next core call (src/hexlod.h, "The fan stream"):
    * the vertex pool as bytes (STREAM_VERTEX_BYTES a slot) and as floats (STREAM_VERTEX_WORDS a
    * slot; the position comes first), the index array, and the ranges written since the last

@@ -294,6 +294,16 @@ export class TerrainRenderer {
     gl.depthMask(true);
   }
 
+  /**
+   * Whether drawing `view` reads the mesh's vertex normals (paper §7): the plain mode, the mesh
+   * as the normals' source, and any mode until the field's textures are ready. The page keeps
+   * the core's stream normals on only then (issue 12: 24 bytes a vertex).
+   */
+  usesMeshNormals(view) {
+    const plain = (SHADING_MODES[view.shading ?? 'natural'] ?? 0) === SHADING_MODES.plain;
+    return plain || view.normals === 'mesh' || !this.fieldTextures.ready;
+  }
+
   drawTerrain(camera, view, mode, verticalScale) {
     const gl = this.gl;
     const plain = mode === SHADING_MODES.plain;

@@ -108,11 +108,15 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
     const char* path = nullptr;
     double tau = 1.0, budgetMs = 0.0, tanHalfFov = 0.57735026918962573, width = 1920, height = 1080;
     int32_t budgetOps = 0, morphFrames = 0;
-    bool startConverged = false, measureError = false, backface = true, verbose = false;
+    bool startConverged = false, measureError = false, backface = true, verbose = false, normals = true;
     for (int k = 6; k < argc; ++k) {
         const std::string flag = argv[k];
         if (flag == "--verbose") {
             verbose = true;
+            continue;
+        }
+        if (flag == "--no-normals") { // as the viewer runs while it lights from the field's normals
+            normals = false;
             continue;
         }
         if (flag == "--start-converged" || flag == "--measure-error" || flag == "--no-backface") {
@@ -172,6 +176,7 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
     morph.setFrames(morphFrames);
     refiner.setGeomorph(&morph);
     hexlod::FanStream stream;
+    stream.setNormals(normals);
     stream.attach(mesh);
     hexlod::PoppingMeter popping;
     std::vector<double> updateMs, streamMs, triangles, splits, merges, jumps, tested, convergedMsPerMillion, screenError,

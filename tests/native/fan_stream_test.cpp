@@ -266,4 +266,68 @@ TEST(FanStream, OutlineHasEveryCellEdgeOnceAndOnlyWhenAskedFor) {
                 shared += mesh.cell(c).opposite[slot - 1] != kNone;
             }
     EXPECT_EQ(int64_t(edges.size()), cellEdges - shared / 2);
+    const size_t shown = stream.memoryBytes(), outlineBytes = outline.capacity() * sizeof(uint32_t);
+    stream.buildLevelView(mesh, false);
+    EXPECT_LE(stream.memoryBytes() + outlineBytes, shown) << "the outline's memory is given back when it is hidden";
+}
+
+TEST(FanStream, NormalsTurnedOffAndOnAgainEqualNormalsKeptAllAlongBitForBit) {
+    auto field = test::loadFixture(test::kJacksboro);
+    ASSERT_NE(field, nullptr);
+    HexMesh kept, toggled; // the same operations on both; one stream drops its normals for a while
+    for (HexMesh* mesh : {&kept, &toggled}) {
+        mesh->reset(*field, Embedding::Exact);
+        refineUniformly(*mesh, 2);
+    }
+    FanStream keptStream, toggledStream;
+    keptStream.attach(kept);
+    toggledStream.attach(toggled);
+    Geomorph morph;
+    std::mt19937 randomKept(5), randomToggled(5);
+    for (int32_t round = 0; round < 12; ++round) {
+        if (round == 2) {
+            const size_t withNormals = toggledStream.memoryBytes();
+            toggledStream.setNormals(false);
+            EXPECT_LE(toggledStream.memoryBytes() + size_t(toggled.vertexCapacity()) * 24, withNormals)
+                << "off, the stream keeps no normal sums";
+        }
+        if (round == 9) toggledStream.setNormals(true);
+        randomOperations(kept, randomKept, 150);
+        randomOperations(toggled, randomToggled, 150);
+        keptStream.sync(kept, morph);
+        toggledStream.sync(toggled, morph);
+        ASSERT_EQ(toggledStream.indices(), keptStream.indices()) << "round " << round;
+        if (!toggledStream.normals()) continue;
+        for (int32_t v = 0; v < kept.vertexCapacity(); ++v) {
+            if (!kept.isVertexLive(v)) continue;
+            ASSERT_EQ(std::memcmp(kept.streamVertex(v).normal, toggled.streamVertex(v).normal, sizeof(int16_t) * 4), 0)
+                << "vertex " << v << " round " << round;
+        }
+    }
+}
+
+TEST(FanStream, WithoutNormalsTheDirtyRangesStillCarryEveryPositionAndIndex) {
+    VolcanoStream volcano;
+    HexMesh& mesh = volcano.mesh;
+    FanStream& stream = volcano.stream;
+    stream.setNormals(false);
+    Geomorph morph;
+    morph.setFrames(4);
+    RendererCopy gpu;
+    gpu.upload(stream, mesh);
+    std::mt19937 random(8);
+    for (int32_t round = 0; round < 15; ++round) {
+        randomOperations(mesh, random, 100);
+        morph.advance();
+        stream.sync(mesh, morph);
+        gpu.upload(stream, mesh);
+        ASSERT_EQ(gpu.indices, stream.indices()) << "round " << round;
+        for (int32_t v = 0; v < mesh.vertexCapacity(); ++v) {
+            if (!mesh.isVertexLive(v)) continue;
+            const StreamVertex &got = gpu.vertices[size_t(v)], &want = mesh.streamVertex(v);
+            ASSERT_EQ(std::memcmp(&got.position, &want.position, sizeof want.position), 0) << "vertex " << v;
+            ASSERT_EQ(std::memcmp(&got.morphFrom, &want.morphFrom, sizeof want.morphFrom), 0) << "vertex " << v;
+            ASSERT_EQ(got.morphKey, want.morphKey) << "vertex " << v;
+        }
+    }
 }
