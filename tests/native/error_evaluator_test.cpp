@@ -490,9 +490,9 @@ TEST(ErrorEvaluator, InvalidInputIsReportedAndNothingIsEvaluated) {
     EXPECT_EQ(bad.uncovered, 0);
 }
 
-TEST(ErrorEvaluator, LargeFieldTiming) {
-    // Not an assertion on time: prints how long a 2048^2 field takes with ~2 million and
-    // ~8 million triangles (the figures quoted in reviews come from here).
+// The evaluator's time on a large field is a benchmark figure (hexlod_bench's full-refinement
+// line), not a test; this checks what it computes on a mesh of millions of triangles.
+TEST(ErrorEvaluator, ALargeFieldIsEvaluatedWholeAndHasNoErrorAtFullResolution) {
     const int32_t n = 2048;
     auto field = Heightfield::create(n, n, SampleType::F32, nullptr);
     ASSERT_NE(field, nullptr);
@@ -508,15 +508,11 @@ TEST(ErrorEvaluator, LargeFieldTiming) {
     ASSERT_EQ(field->prepare(), nullptr);
     for (int32_t step : {2, 1}) {
         const TestMesh mesh = gridMesh(*field, step);
-        const auto start = std::chrono::steady_clock::now();
         const ErrorStats stats = evaluate(*field, mesh);
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        std::printf("[ timing ] %d x %d samples, %zu triangles: %.1f ms (max %.3f m, p99 %.3f m, mean %.4f m)\n", n, n,
-                    mesh.indices.size() / 3, ms, stats.maxError, stats.p99Error, stats.meanError);
-        EXPECT_EQ(stats.uncovered, 0);
-        EXPECT_EQ(stats.evaluated, int64_t(n) * n);
-        if (step == 1) {
-            EXPECT_EQ(stats.maxError, 0.0);
-        }
+        EXPECT_EQ(stats.uncovered, 0) << "step " << step;
+        EXPECT_EQ(stats.evaluated, int64_t(n) * n) << "step " << step;
+        // Every other sample skipped: the ripple of 20 m amplitude shows as error.
+        if (step == 2) EXPECT_GT(stats.maxError, 1.0);
+        if (step == 1) EXPECT_EQ(stats.maxError, 0.0);
     }
 }

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <cmath>
 #include <cstdio>
 
@@ -242,6 +244,9 @@ TEST(Refiner, TheTauBoundHoldsWithVerticalExaggeration) {
     refiner.setView(viewOf(cam));
     converge(refiner);
     const BoundCheck check = checkTauBound(mesh, *field, cam, scale);
+    // The exaggerated camera must see the canyon, or the bound holds vacuously.
+    EXPECT_GT(check.samplesInView, 10000);
+    EXPECT_EQ(check.uncovered, 0);
     EXPECT_LE(check.worstPixels, 1.0 + 1e-6);
 }
 
@@ -321,21 +326,32 @@ TEST(Refiner, AnOperationBudgetIsRespectedAndStillConverges) {
 
 TEST(Refiner, ScriptedFlightWithAnOperationBudgetIsDeterministic) {
     auto field = test::loadFixture(test::kJacksboro);
-    Lod lod(*field, Embedding::Shifted);
-    HexMesh& mesh = lod.mesh;
-    Refiner& refiner = lod.refiner;
-    refiner.settings().maxOperations = 120;
-    refiner.settings().tau = 2.0;
-    Camera cam = lowOblique(*field, 400.0);
-    for (int32_t frame = 0; frame < 40; ++frame) {
-        cam.eye.x += 300.0;
-        cam.target.x += 300.0;
-        refiner.setView(viewOf(cam));
-        refiner.markChanged();
-        refiner.update();
-    }
-    std::printf("agree: flight-jacksboro %016llx %lld\n", (unsigned long long)mesh.hash(), (long long)mesh.triangleCount());
-    ASSERT_EQ(mesh.checkInvariants(), nullptr);
+    // The same flight twice, each on a mesh and refiner of its own: the same mesh after every
+    // frame. (native_wasm_agreement.test.js compares the printed hash with the WASM build's.)
+    auto fly = [&](std::vector<uint64_t>& hashes) {
+        Lod lod(*field, Embedding::Shifted);
+        Refiner& refiner = lod.refiner;
+        refiner.settings().maxOperations = 120;
+        refiner.settings().tau = 2.0;
+        Camera cam = lowOblique(*field, 400.0);
+        int32_t operations = 0;
+        for (int32_t frame = 0; frame < 40; ++frame) {
+            cam.eye.x += 300.0;
+            cam.target.x += 300.0;
+            refiner.setView(viewOf(cam));
+            operations += refiner.update().operations;
+            hashes.push_back(lod.mesh.hash());
+        }
+        EXPECT_GT(operations, 200) << "the flight refines and coarsens";
+        EXPECT_EQ(lod.mesh.checkInvariants(), nullptr);
+        return lod.mesh.triangleCount();
+    };
+    std::vector<uint64_t> first, second;
+    const int64_t triangles = fly(first);
+    EXPECT_EQ(fly(second), triangles);
+    EXPECT_EQ(first, second) << "a budget in operations, not time, makes every frame's mesh the same";
+    EXPECT_GT(std::set<uint64_t>(first.begin(), first.end()).size(), size_t(20)) << "the mesh follows the camera";
+    std::printf("agree: flight-jacksboro %016llx %lld\n", (unsigned long long)first.back(), (long long)triangles);
 }
 
 TEST(Refiner, TheTriangleCapStopsSplittingAndAutoTauRaisesTau) {
