@@ -10,7 +10,10 @@
 //     after each update (p50, p95, max; a bound recomputed from the samples for every live
 //     cell) and the share of frames within tau, and the bytes per drawn triangle.
 //
-//   node bin/bench_refiner.js [FIELD ...] [--frames N] [--steps 5,50,500,0] [--budget-ms MS]
+// The stream keeps no vertex normals, as in the viewer, which lights the terrain from the
+// field's own normals (--normals on: the stream keeps them, as builds before issue 12's did).
+//
+//   node bin/bench_refiner.js [FIELD ...] [--frames N] [--steps 5,50,500,0] [--budget-ms MS] [--normals on|off]
 // FIELD defaults to public/terrain/globe_himalaya_2048.png and tests/fixtures/grandcanyon_512.png.
 import { writeFileSync, existsSync, mkdtempSync, rmSync } from 'node:fs';
 import { spawnSync } from 'node:child_process';
@@ -26,11 +29,19 @@ const NATIVE_BENCH = process.env.HEXLOD_BENCH || join(root, 'build/native/hexlod
 
 const args = process.argv.slice(2);
 const fields = [];
-let frames = 300, steps = [5, 50, 500, 0], budgetMs = 4;
+let frames = 300, steps = [5, 50, 500, 0], budgetMs = 4, normals = false;
 for (let k = 0; k < args.length; k++) {
   if (args[k] === '--frames') frames = Number(args[++k]);
   else if (args[k] === '--steps') steps = args[++k].split(',').map(Number);
   else if (args[k] === '--budget-ms') budgetMs = Number(args[++k]);
+  else if (args[k] === '--normals') {
+    const value = args[++k];
+    if (value !== 'on' && value !== 'off') {
+      console.error(`--normals must be on or off, got '${value}'`);
+      process.exit(2);
+    }
+    normals = value === 'on';
+  }
   else fields.push(args[k]);
 }
 if (fields.length === 0) fields.push(join(root, 'public/terrain/globe_himalaya_2048.png'), join(root, 'tests/fixtures/grandcanyon_512.png'));
@@ -47,12 +58,12 @@ const grab = (text, re) => {
 function runNative(fieldPath, terrain, camerasPath, extra) {
   const run = spawnSync(NATIVE_BENCH, [fieldPath, String(terrain.width), String(terrain.height), String(terrain.spacingX),
     String(terrain.spacingY), '--flight', camerasPath, '--tau', '1', '--viewport', '1920x1080',
-    '--tan-half-fov', String(Math.tan(Math.PI / 6)), '--start-converged', ...extra], { encoding: 'utf8', maxBuffer: 1 << 26 });
+    '--tan-half-fov', String(Math.tan(Math.PI / 6)), '--start-converged', ...(normals ? [] : ['--no-normals']), ...extra], { encoding: 'utf8', maxBuffer: 1 << 26 });
   if (run.status !== 0) throw new Error(`hexlod_bench failed: ${run.stderr}`);
   return run.stdout;
 }
 
-console.log(`bench_refiner: ${frames} frames a flight, tau 1 px, 1920x1080, fov 60 deg, native build; ${cpus().length} cores (${cpus()[0]?.model ?? '?'})`);
+console.log(`bench_refiner: ${frames} frames a flight, tau 1 px, 1920x1080, fov 60 deg, stream normals ${normals ? 'on' : 'off'}, native build; ${cpus().length} cores (${cpus()[0]?.model ?? '?'})`);
 for (const file of fields) {
   const { terrain, field } = await loadForCommand(file, null, {});
   const heights = heightsInMetres(terrain, field);
