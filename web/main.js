@@ -136,6 +136,7 @@ async function main() {
       lodMs = settings.freeze ? 0 : lod.updateMs;
       const streamStart = performance.now();
       terrain.setStreamNormals(renderer.usesMeshNormals(view));
+      state.streamNormals = terrain.streamNormals;
       const version = terrain.updateStream();
       current.world.version += 1; // the drawn surface may have moved: the walk floor is asked anew
       if (camera.mode === 'walk') {

@@ -173,6 +173,8 @@ test('analysis modes, mesh normals and a tiled normal texture', async () => {
   const query = `?${COMMON}&cam=orbit,1477858.625,8159.95,1117360.375,98996.587,0.4,0.3`;
   const single = await openView(query);
   const natural = await single.shot('natural');
+  // Lit from the field's normals, the core keeps none of its own (issue 12: 24 B a vertex).
+  assert.equal(await single.page.evaluate(() => window.hexlod.streamNormals), false, 'no mesh normals while unused');
   const modes = {};
   for (const mode of ['hillshade', 'hypsometric', 'slope', 'plain']) {
     await single.page.evaluate((m) => window.hexlod.setSetting('shading', m), mode);
@@ -180,6 +182,7 @@ test('analysis modes, mesh normals and a tiled normal texture', async () => {
   }
   await single.page.evaluate(() => { window.hexlod.setSetting('shading', 'natural'); window.hexlod.setSetting('normals', 'mesh'); });
   const meshNormals = await single.shot('mesh_normals');
+  assert.equal(await single.page.evaluate(() => window.hexlod.streamNormals), true, 'mesh normals rebuilt when drawn');
   assert.deepEqual(single.problems, []);
   await single.page.close();
 
