@@ -50,6 +50,12 @@ TEST(Api, RoundTripOfARealFieldThroughTheAbi) {
     EXPECT_EQ(hexlod_lod_set_morph_frames(t, -1), -1);
     EXPECT_EQ(hexlod_lod_set_morph_frames(t, 1001), -1);
     EXPECT_GT(hexlod_mesh_memory_bytes(t), 0.0);
+    EXPECT_EQ(hexlod_stream_set_normals(t, 2), -1);
+    EXPECT_NE(std::string(hexlod_last_error()).find("on (1) or off (0)"), std::string::npos);
+    const double withNormals = hexlod_mesh_memory_bytes(t);
+    ASSERT_EQ(hexlod_stream_set_normals(t, 0), 0);
+    EXPECT_LT(hexlod_mesh_memory_bytes(t), withNormals) << "off, the stream gives its normal sums back";
+    ASSERT_EQ(hexlod_stream_set_normals(t, 1), 0);
 
     // A new cell size rebuilds the mesh: every position and every cached bound changes.
     ASSERT_EQ(hexlod_lod_set_max_error(t, 20.0), 0);
