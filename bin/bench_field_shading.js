@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Time of the field shading of issue 14 (web/shading/field_shading.js) on a 4096² field: the
+// Time of the field shading of issue 14 (web/render/shading/field_shading.js) on a 4096² field: the
 // normal texture's gradients, the sun's shadow sweep (on the field downsampled to 2048²) and the
 // 8-bit ambient occlusion (downsampled to 512², paper §7's low-resolution texture), as the page
 // computes them (same code, Node's V8 instead of the browser's). The 4096² field is the
@@ -7,8 +7,8 @@
 //   node bin/bench_field_shading.js [--repeat 3]
 import { readFileSync } from 'node:fs';
 import { loadHeightfield } from '../web/loaders/index.js';
-import { fieldOf, downsampleField, gradientTiles, sunVisibility, ambientOcclusion } from '../web/shading/field_shading.js';
-import { OCCLUSION_MAX_SIDE, SUN_MAX_SIDE } from '../web/shading/field_textures.js';
+import { fieldOf, downsampleField, gradientTiles, sunVisibility, ambientOcclusion } from '../web/render/shading/field_shading.js';
+import { OCCLUSION_MAX_SIDE, SUN_MAX_SIDE } from '../web/render/shading/field_textures.js';
 
 const args = process.argv.slice(2);
 const repeat = Number(args[args.indexOf('--repeat') + 1] || 3);

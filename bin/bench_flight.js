@@ -14,7 +14,7 @@ import {
 import { decodeFans } from './mesh_export.js';
 import { STREAM_VERTEX_BYTES, STREAM_VERTEX_WORDS } from '../web/core.js';
 import { gridMeshError, padToPowerOfTwoPlusOne } from './rtin_error.js';
-import { seededRandom } from '../web/seeded_random.js';
+import { seededRandom } from '../web/app/seeded_random.js';
 
 export const BENCH_USAGE = `usage: hexlod bench <heightfield> [options]
   Prints figures, asserts nothing: a scripted low-altitude flight across the field (per frame

@@ -4,7 +4,7 @@
 import { readFileSync, existsSync, statSync } from 'node:fs';
 import { basename, extname, join, dirname } from 'node:path';
 import { createNodeCore } from './node_core.js';
-import { loadTerrain } from '../web/terrain_source.js';
+import { loadTerrain } from '../web/loaders/terrain_source.js';
 
 /** A mistake in the command line (exit code 2); its message is one line. */
 export class UsageError extends Error {}

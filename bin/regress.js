@@ -1,4 +1,4 @@
-// hexlod regress: scripted flights (web/deterministic/flight.js) over height fields, flown in
+// hexlod regress: scripted flights (web/app/deterministic/flight.js) over height fields, flown in
 // headless Chromium in the page's deterministic mode and replayed in Node on the same WASM core;
 // compared with stored references: per-frame mesh hashes and figures exactly (and the page with
 // Node), screenshots with a tolerance. Writes new images, diffs, figures, a text summary and an
@@ -7,8 +7,8 @@ import { existsSync, readFileSync, readdirSync, statSync, mkdirSync, writeFileSy
 import { basename, dirname, extname, join, relative, resolve } from 'node:path';
 import { UsageError, parseOptions, parseNumber, readInputs } from './cli_common.js';
 import { createNodeCore } from './node_core.js';
-import { loadTerrain } from '../web/terrain_source.js';
-import { parseFlight, replayFlight, FlightError } from '../web/deterministic/flight.js';
+import { loadTerrain } from '../web/loaders/terrain_source.js';
+import { parseFlight, replayFlight, FlightError } from '../web/app/deterministic/flight.js';
 import { compareStats, compareImages, readPng, writePng, htmlReport, flightLine } from './regress_compare.js';
 
 export const DEFAULT_THRESHOLD = 8;    // channel difference (of 255) above which a pixel differs

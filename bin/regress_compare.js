@@ -3,7 +3,7 @@
 // summary and an HTML report with reference, new and diff side by side.
 import { writeFileSync } from 'node:fs';
 import { encode, decode } from 'fast-png';
-import { RECORD_FIELDS } from '../web/deterministic/flight.js';
+import { RECORD_FIELDS } from '../web/app/deterministic/flight.js';
 
 /**
  * The first difference between two lists of frame figures, as one line, or null.

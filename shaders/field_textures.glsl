@@ -1,4 +1,4 @@
-// What the shading reads from the full-resolution field (web/shading/field_shading.js), by
+// What the shading reads from the full-resolution field (web/render/shading/field_shading.js), by
 // ground position, whatever the mesh's level of detail:
 //   uGradients     dh/dx, dh/dz (true metres per metre) and the height (true metres) of every
 //                  sample, so normals and ground colours do not change with the mesh; a texture array whose

@@ -3,7 +3,7 @@
 // terrain so only uncovered pixels run the sky's fragment stage.
 precision highp float;
 
-layout(location = 0) in vec2 aCorner; // ATTRIB_SKY_CORNER in web/renderer.js: clip-space x, y
+layout(location = 0) in vec2 aCorner; // ATTRIB_SKY_CORNER in web/render/renderer.js: clip-space x, y
 
 uniform mat4 uInverseViewProjection;
 

@@ -17,11 +17,11 @@ in vec3 vSunlight;
 
 uniform vec3 uCameraPosition;
 uniform float uVerticalScale;
-uniform vec3 uSkyLight;       // the sky's irradiance of level ground (web/shading/atmosphere.js)
+uniform vec3 uSkyLight;       // the sky's irradiance of level ground (web/render/shading/atmosphere.js)
 uniform vec3 uTint;           // colour-by-level view: the level's colour
 uniform float uTintAmount;    // 0 = ground colours, 1 = level colour only
 uniform vec4 uLineColor;      // alpha > 0: draw flat lines (the hexagon outlines) in this colour
-uniform int uMode;            // SHADING_MODES in web/renderer.js
+uniform int uMode;            // SHADING_MODES in web/render/renderer.js
 uniform int uNormalSource;    // 0: the field's gradients, 1: the mesh's normals
 uniform float uShadows;       // 1: the sun casts shadows
 uniform float uOcclusionOn;   // 1: ambient occlusion modulates the sky light

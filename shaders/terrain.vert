@@ -3,7 +3,7 @@
 // the core), the overhang clamped to the field, and the atmospheric scattering of §7 per vertex.
 precision highp float;
 
-layout(location = 0) in vec3 aPosition;  // ATTRIB_POSITION in web/renderer.js: true position, unscaled height
+layout(location = 0) in vec3 aPosition;  // ATTRIB_POSITION in web/render/renderer.js: true position, unscaled height
 layout(location = 1) in vec3 aNormal;    // ATTRIB_NORMAL: snorm16, averaged from the adjacent triangles
 layout(location = 2) in vec3 aMorphFrom; // ATTRIB_MORPH_FROM: the coarser surface where the blend starts
 layout(location = 3) in float aMorphKey; // ATTRIB_MORPH_KEY: 0 at rest, f+1 blending in, -(f+1) out, since frame f

@@ -81,7 +81,7 @@ export async function openPage(browser, url, viewport = { width: 960, height: 60
   return { page, problems };
 }
 
-/** The renderer's clear colour (web/renderer.js SKY_COLOR) as 8-bit RGB. */
+/** The renderer's clear colour (web/render/renderer.js SKY_COLOR) as 8-bit RGB. */
 const SKY_RGB = [158, 189, 224];
 
 /**

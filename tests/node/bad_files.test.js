@@ -14,9 +14,9 @@ import { isMainThread, parentPort, workerData } from 'node:worker_threads';
 import { runWatchedWorker } from './watched_worker.js';
 import { zlibSync } from 'fflate';
 import { loadHeightfield, HeightfieldError } from '../../web/loaders/index.js';
-import { loadTerrain } from '../../web/terrain_source.js';
+import { loadTerrain } from '../../web/loaders/terrain_source.js';
 import { createNodeCore } from '../../bin/node_core.js';
-import { seededRandom } from '../../web/seeded_random.js';
+import { seededRandom } from '../../web/app/seeded_random.js';
 
 const ROOT = new URL('../../', import.meta.url);
 const DIR = 'tests/fixtures/formats/';

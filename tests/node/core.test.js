@@ -4,7 +4,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { createNodeCore } from '../../bin/node_core.js';
-import { loadTerrain } from '../../web/terrain_source.js';
+import { loadTerrain } from '../../web/loaders/terrain_source.js';
 
 const fixtures = new URL('../fixtures/', import.meta.url);
 const read = (name) => ({ name, bytes: new Uint8Array(readFileSync(new URL(name, fixtures))) });

@@ -1,4 +1,4 @@
-// Every terrain opens framed (web/framing.js): its region in view, the eye above the surface
+// Every terrain opens framed (web/cameras/framing.js): its region in view, the eye above the surface
 // with nothing between it and the target, at any base height, size, aspect, spacing and
 // exaggeration. Fields are made in the WASM core (the page's own) and through the loaders.
 import { test } from 'node:test';
@@ -6,10 +6,10 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { vec4 } from 'gl-matrix';
 import { createNodeCore } from '../../bin/node_core.js';
-import { loadTerrain } from '../../web/terrain_source.js';
-import { createWorld } from '../../web/ground.js';
+import { loadTerrain } from '../../web/loaders/terrain_source.js';
+import { createWorld } from '../../web/cameras/ground.js';
 import { OrbitCamera } from '../../web/cameras/orbit.js';
-import { frameTerrain, openingRegion, regionHeights, meanSlope } from '../../web/framing.js';
+import { frameTerrain, openingRegion, regionHeights, meanSlope } from '../../web/cameras/framing.js';
 
 const core = await createNodeCore();
 const fixtures = new URL('../fixtures/', import.meta.url);

@@ -14,7 +14,7 @@ import { runWatchedWorker } from './watched_worker.js';
 import { decode as fastPngDecode, encode as fastPngEncode } from 'fast-png';
 import { zlibSync } from 'fflate';
 import { loadHeightfield, decodePng, HeightfieldError } from '../../web/loaders/index.js';
-import { seededRandom } from '../../web/seeded_random.js';
+import { seededRandom } from '../../web/app/seeded_random.js';
 
 const ROOT = new URL('../../', import.meta.url);
 const FIXTURES = ['volcano_maungawhau', 'jacksboro_fault', 'grandcanyon_512'];

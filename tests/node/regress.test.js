@@ -11,8 +11,8 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { createNodeCore } from '../../bin/node_core.js';
 import { readInputs } from '../../bin/cli_common.js';
-import { loadTerrain } from '../../web/terrain_source.js';
-import { parseFlight, FlightCamera, FlightError, replayFlight } from '../../web/deterministic/flight.js';
+import { loadTerrain } from '../../web/loaders/terrain_source.js';
+import { parseFlight, FlightCamera, FlightError, replayFlight } from '../../web/app/deterministic/flight.js';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
 const flights = join(root, 'tests/regress/flights');

@@ -1,9 +1,9 @@
-// The field shading of issue 14 (web/shading/field_shading.js) against brute force: the sun's
+// The field shading of issue 14 (web/render/shading/field_shading.js) against brute force: the sun's
 // shadow sweep and the ambient-occlusion horizons on random fields, the gradient tiles
 // against one big tile, the mip reduction, and the obvious cases (flat ground).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { fieldOf, downsampleField, gradientTiles, halveImage, sunVisibility, ambientOcclusion } from '../../web/shading/field_shading.js';
+import { fieldOf, downsampleField, gradientTiles, halveImage, sunVisibility, ambientOcclusion } from '../../web/render/shading/field_shading.js';
 
 /** A rough random field (seeded), heights in metres. */
 function randomField(width, height, seed = 7, relief = 200) {

@@ -9,7 +9,7 @@ const MAX_DEPTH_RATIO = 1e6;
 /**
  * The world the cameras move in (drawn metres: heights times the exaggeration). `ground(x, z)`
  * is the full-resolution field's height around a point, `floor(x, z)` the highest of it and the
- * surface drawn now (web/ground.js), `spacing` the smallest sample spacing.
+ * surface drawn now (web/cameras/ground.js), `spacing` the smallest sample spacing.
  */
 export function emptyWorld() {
   return { extentX: 1000, extentZ: 1000, low: 0, high: 100, spacing: 1, ground: () => 0, floor: () => 0 };

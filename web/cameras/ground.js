@@ -3,12 +3,12 @@
 //     the point, which bounds any triangulation of the samples there (bilinear would not).
 //   floor(x, z): the walk camera's: also the surface as drawn now, geomorph blends included
 //     (Terrain.drawnHeightAt), which may lie above the field where the mesh is coarse.
-import { emptyWorld } from './cameras/clip_planes.js';
+import { emptyWorld } from './clip_planes.js';
 
 const MAX_SAMPLES_ACROSS = 8; // bounds the work of a wide reach
 
 /**
- * @param {import('./core.js').Terrain} terrain
+ * @param {import('../core.js').Terrain} terrain
  * @param {{extentX: number, extentZ: number, low: number, high: number}} extent drawn metres
  * @param {() => number} verticalScale the current exaggeration
  * @param {() => number} reach metres around the point that must stay above ground (the near plane)

@@ -9,18 +9,18 @@
 //
 // Shading (paper §7) is composed from shaders/ by `#include "file"` lines: scattering.glsl
 // (the atmosphere, per vertex and for the sky), field_textures.glsl (normals, sun shadow and
-// ambient occlusion from the full-resolution field, web/shading/field_textures.js), ground_color.glsl
+// ambient occlusion from the full-resolution field, web/render/shading/field_textures.js), ground_color.glsl
 // and tonemap.glsl. The sky is a second, full-screen pass drawn behind the terrain.
-import terrainVertex from '../shaders/terrain.vert?raw';
-import terrainFragment from '../shaders/terrain.frag?raw';
-import skyVertex from '../shaders/sky.vert?raw';
-import skyFragment from '../shaders/sky.frag?raw';
-import scatteringGlsl from '../shaders/scattering.glsl?raw';
-import fieldTexturesGlsl from '../shaders/field_textures.glsl?raw';
-import groundColorGlsl from '../shaders/ground_color.glsl?raw';
-import tonemapGlsl from '../shaders/tonemap.glsl?raw';
+import terrainVertex from '../../shaders/terrain.vert?raw';
+import terrainFragment from '../../shaders/terrain.frag?raw';
+import skyVertex from '../../shaders/sky.vert?raw';
+import skyFragment from '../../shaders/sky.frag?raw';
+import scatteringGlsl from '../../shaders/scattering.glsl?raw';
+import fieldTexturesGlsl from '../../shaders/field_textures.glsl?raw';
+import groundColorGlsl from '../../shaders/ground_color.glsl?raw';
+import tonemapGlsl from '../../shaders/tonemap.glsl?raw';
 import { mat4 } from 'gl-matrix';
-import { STREAM_VERTEX_BYTES } from './core.js';
+import { STREAM_VERTEX_BYTES } from '../core.js';
 import { resolveIncludes } from './shading/includes.js';
 import { Atmosphere, BETA_RAYLEIGH, BETA_MIE, SCALE_HEIGHTS, MIE_G, SUN_IRRADIANCE, EXPOSURE } from './shading/atmosphere.js';
 import { FieldTextures, TEXTURE_UNIT_GRADIENTS, TEXTURE_UNIT_SUN, TEXTURE_UNIT_OCCLUSION } from './shading/field_textures.js';
@@ -127,7 +127,7 @@ export class TerrainRenderer {
 
   /**
    * The program, buffers and vertex arrays. Called again after a lost context came back
-   * (web/context_loss.js): the old objects died with it, and the next upload copies everything.
+   * (web/app/context_loss.js): the old objects died with it, and the next upload copies everything.
    */
   createGlObjects() {
     const gl = this.gl;
@@ -188,7 +188,7 @@ export class TerrainRenderer {
   /**
    * Brings the GPU copy of the terrain's stream up to date, uploading only what changed since
    * the last call, and only when the version moved. Returns the bytes uploaded.
-   * @param {import('./core.js').Terrain} terrain after updateLod and updateStream
+   * @param {import('../core.js').Terrain} terrain after updateLod and updateStream
    * @param {'fans'|'triangles'} layout the stream's index layout
    */
   upload(terrain, layout) {
@@ -233,9 +233,9 @@ export class TerrainRenderer {
   }
 
   /**
-   * The field the shading reads (normals, shadows, ambient occlusion; web/shading/field_textures.js).
+   * The field the shading reads (normals, shadows, ambient occlusion; web/render/shading/field_textures.js).
    * Textures are made when the next frame needs them, and again only when what they depend on changes.
-   * @param {import('./core.js').Terrain} terrain @param {{heightScale: number, heightOffset: number}} field
+   * @param {import('../core.js').Terrain} terrain @param {{heightScale: number, heightOffset: number}} field
    */
   setField(terrain, field) {
     this.fieldTextures.setField(terrain, field);

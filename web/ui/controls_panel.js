@@ -1,8 +1,8 @@
 // The control panel (lil-gui): every setting of settings.js, the camera, screenshots and help.
 // The panel only edits the settings object and reports which key changed; the page applies it.
 import GUI from 'lil-gui';
-import { RANGES, SHADING_MODES, NORMAL_SOURCES } from './settings.js';
-import { CAMERA_MODES } from './cameras/rig.js';
+import { RANGES, SHADING_MODES, NORMAL_SOURCES } from '../app/settings.js';
+import { CAMERA_MODES } from '../cameras/rig.js';
 
 /**
  * @param {HTMLElement} container

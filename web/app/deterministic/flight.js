@@ -1,4 +1,4 @@
-// Scripted flights of the deterministic mode, shared by the page (web/deterministic/mode.js) and
+// Scripted flights of the deterministic mode, shared by the page (web/app/deterministic/mode.js) and
 // Node (`hexlod regress`, bin/regress.js), so that both give the core the same camera, the same
 // settings and the same sequence of calls, and so the same mesh hashes, frame by frame.
 //
@@ -121,7 +121,7 @@ export function parseFlight(json, name = 'flight') {
 }
 
 /**
- * The viewer settings (web/settings.js) of a flight: the page's defaults, the flight's values,
+ * The viewer settings (web/app/settings.js) of a flight: the page's defaults, the flight's values,
  * an operation budget and no time budget, no triangle cap and no auto tau (both depend on time).
  */
 export function flightSettings(flight) {
@@ -284,7 +284,7 @@ export class FlightRecord {
 /**
  * One frame of a flight in the core, in the order the page's frame loop calls it: the camera,
  * one budgeted LOD update, the fan stream (and the renderer's acknowledgement of its upload).
- * Node replays call this; the page makes the same calls from its frame loop (web/main.js).
+ * Node replays call this; the page makes the same calls from its frame loop (web/app/main.js).
  */
 export function replayFrame(terrain, camera, record, frame) {
   terrain.setLodCamera(camera.at(frame));

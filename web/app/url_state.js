@@ -5,7 +5,7 @@
 // Other parameters (layout, timing) are kept as they are. Every value is checked: a bad one
 // gets a message and its default.
 import { RANGES, checkSetting } from './settings.js';
-import { MIN_PITCH, MAX_PITCH } from './cameras/orbit.js';
+import { MIN_PITCH, MAX_PITCH } from '../cameras/orbit.js';
 
 const WRITE_EVERY_MS = 300;
 const LIMIT = 1e9; // metres: past this a position is not a place on any terrain

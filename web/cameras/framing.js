@@ -198,7 +198,7 @@ export function meanSlope(points) {
  * Puts the orbit camera where a terrain opens: its region in view, the eye above the surface.
  * @param {{width: number, height: number, heightAt: (x: number, z: number) => number}} terrain
  * @param {{extentX: number, extentZ: number, ground: (x: number, z: number) => number}} world drawn metres
- * @param {import('./cameras/orbit.js').OrbitCamera} orbit
+ * @param {import('./orbit.js').OrbitCamera} orbit
  * @param {number} scale the vertical exaggeration
  * @param {number} aspect viewport width / height
  * @param {{top: number, bottom: number}} [covered] shares of the view's height covered by the

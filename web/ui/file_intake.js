@@ -2,14 +2,14 @@
 // progress bar for loads slower than a blink, asks for the size of a RAW file that does not
 // say it, and shows a bad file's message while the current terrain, camera and settings stay.
 // The page (main.js) hands in `show` (switch to a loaded terrain) and gets `open`/`openUrl`.
-import { loadTerrain } from './terrain_source.js';
-import { ACCEPT_EXTENSIONS, ACCEPTED } from './loaders/index.js';
-import { extensionOf, baseNameOf } from './loaders/common.js';
+import { loadTerrain } from '../loaders/terrain_source.js';
+import { ACCEPT_EXTENSIONS, ACCEPTED } from '../loaders/index.js';
+import { extensionOf, baseNameOf } from '../loaders/common.js';
 
 const PROGRESS_AFTER_MS = 100; // slower than a blink: show the bar
 
 /**
- * @param {{ core: import('./core.js').HexlodCore, state: object, show: (loaded: object) => void,
+ * @param {{ core: import('../core.js').HexlodCore, state: object, show: (loaded: object) => void,
  *   showStatus: (message: string, isError?: boolean) => void }} page
  * @returns {{ open: (files: Array<{name: string, bytes: Uint8Array}>, options?: object) => Promise<boolean>,
  *   openUrl: (url: string) => Promise<boolean> }}

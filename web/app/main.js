@@ -1,16 +1,16 @@
 // The viewer page: loads the core and the default terrain, runs the frame loop (cameras, LOD
 // update, fan stream, upload, draw), and wires the panel, HUD, URL state, screenshots and
 // context loss to it. State for headless tests is published on window.hexlod.
-import { createCore } from './core.js';
-import { createFileIntake } from './file_intake.js';
-import { TerrainRenderer } from './renderer.js';
-import { CameraRig, CAMERA_MODES, isTyping } from './cameras/rig.js';
-import { createWorld } from './ground.js';
-import { frameTerrain } from './framing.js';
+import { createCore } from '../core.js';
+import { createFileIntake } from '../ui/file_intake.js';
+import { TerrainRenderer } from '../render/renderer.js';
+import { CameraRig, CAMERA_MODES, isTyping } from '../cameras/rig.js';
+import { createWorld } from '../cameras/ground.js';
+import { frameTerrain } from '../cameras/framing.js';
 import { defaultSettings, applyLodSettings, MORPH_FRAMES, SHADING_MODES } from './settings.js';
-import { createControlsPanel } from './controls_panel.js';
-import { Hud } from './hud.js';
-import { pickGround } from './picking.js';
+import { createControlsPanel } from '../ui/controls_panel.js';
+import { Hud } from '../ui/hud.js';
+import { pickGround } from '../cameras/picking.js';
 import { parseUrlState, applyCameraState, UrlWriter } from './url_state.js';
 import { captureView, download } from './screenshot.js';
 import { handleContextLoss } from './context_loss.js';
@@ -19,8 +19,8 @@ import { deterministicMode } from './deterministic/mode.js';
 // The names are given, not taken from the URLs: a production build puts a content hash into
 // each asset's file name, and the loader pairs a height field with its sidecar by name.
 const DEFAULT_TERRAIN = [
-  { name: 'globe_himalaya_2048.png', url: new URL('../public/terrain/globe_himalaya_2048.png', import.meta.url).href },
-  { name: 'globe_himalaya_2048.json', url: new URL('../public/terrain/globe_himalaya_2048.json', import.meta.url).href },
+  { name: 'globe_himalaya_2048.png', url: new URL('../../public/terrain/globe_himalaya_2048.png', import.meta.url).href },
+  { name: 'globe_himalaya_2048.json', url: new URL('../../public/terrain/globe_himalaya_2048.json', import.meta.url).href },
 ];
 const params = new URLSearchParams(location.search);
 // The index layout: an indexed TRIANGLES list (the default: it drew in 0.61x the time of the
@@ -32,7 +32,7 @@ const LAYOUT = params.get('layout') === 'fans' ? 'fans' : 'triangles';
 const TIMING = params.get('timing') === '1';
 const timingPixel = new Uint8Array(4);
 const FRAME_LOG = 4096; // frames kept in window.hexlod.frameLog while recording
-// ?flight=URL: the deterministic mode of regression tests (web/deterministic/mode.js, README).
+// ?flight=URL: the deterministic mode of regression tests (web/app/deterministic/mode.js, README).
 const det = deterministicMode(params);
 // Settings that change only the shading (issue 14), never the core's mesh.
 const SHADING_KEYS = ['shading', 'normals', 'shadows', 'occlusion', 'sunAzimuth', 'sunElevation'];

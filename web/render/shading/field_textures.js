@@ -1,4 +1,4 @@
-// The GPU side of web/shading/field_shading.js: the textures the terrain's fragment stage
+// The GPU side of web/render/shading/field_shading.js: the textures the terrain's fragment stage
 // reads by ground position (shaders/field_textures.glsl), made from the full-resolution field
 // when the next frame needs them, and again only when what they depend on changes:
 //   gradients   once per field: normals (the exaggeration is applied in the shader) and heights

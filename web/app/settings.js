@@ -16,7 +16,7 @@ export const RANGES = {
   sunElevation: { min: 0, max: 90, step: 0.5, value: 25, label: 'sun elevation (°)', url: 'sunel' },
 };
 
-/** Shading modes of the terrain (web/renderer.js SHADING_MODES), the first the default. */
+/** Shading modes of the terrain (web/render/renderer.js SHADING_MODES), the first the default. */
 export const SHADING_MODES = ['natural', 'hypsometric', 'slope', 'hillshade', 'plain'];
 /** Where per-pixel normals come from: the full-resolution field (default) or the mesh (paper §7). */
 export const NORMAL_SOURCES = ['field', 'mesh'];

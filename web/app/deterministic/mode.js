@@ -175,7 +175,7 @@ export class DeterministicMode {
     }));
   }
 
-  // --- Hooks of the frame loop (web/main.js) ----------------------------------------------
+  // --- Hooks of the frame loop (web/app/main.js) ----------------------------------------------
 
   /** True when the next frame of the flight should be drawn now; poses the camera for it. */
   beginFrame() {
