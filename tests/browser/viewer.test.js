@@ -37,3 +37,22 @@ test('the default view refines a real terrain until converged, not one flat colo
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('a person\'s page (no automation) publishes no test API and still draws the terrain', async () => {
+  const page = await viewer.browser.newPage({ viewport: { width: 640, height: 400 } });
+  const problems = [];
+  page.on('pageerror', (error) => problems.push(error.message));
+  // As a browser that no automation tool drives reports itself.
+  await page.addInitScript(() => Object.defineProperty(Navigator.prototype, 'webdriver', { get: () => false }));
+  await page.goto(viewer.url);
+  // The HUD's summary line counts the triangles drawn, as a person reads it.
+  await page.waitForFunction(() => {
+    const m = /([\d,]+) triangles/.exec(document.getElementById('hud')?.textContent ?? '');
+    return m && Number(m[1].replaceAll(',', '')) > 10000;
+  }, null, { timeout: 120000 });
+  assert.equal(await page.evaluate(() => typeof window.hexlod), 'undefined', 'window.hexlod is for tests only');
+  const stats = pixelStats(await page.screenshot({ path: `${outDir}/viewer-person.png` }));
+  assert.ok(stats.colours > 200 && stats.luminanceStd > 12, `the terrain is drawn: ${JSON.stringify(stats)}`);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

@@ -1,10 +1,10 @@
-// The viewer page: loads the core and the default terrain, runs the frame loop (cameras, LOD
-// update, fan stream, upload, draw), and wires the panel, HUD, URL state, screenshots and
-// context loss to it. State for headless tests is published on window.hexlod.
+// The viewer page: loads the core and the default terrain, and wires the frame pipeline
+// (frame_pipeline.js), the settings, the panel, HUD, keys, URL state, screenshots and context
+// loss together. In test mode (test_api.js) its state is published on window.hexlod.
 import { createCore } from '../core.js';
 import { createFileIntake } from '../ui/file_intake.js';
 import { TerrainRenderer } from '../render/renderer.js';
-import { CameraRig, CAMERA_MODES, isTyping } from '../cameras/rig.js';
+import { CameraRig } from '../cameras/rig.js';
 import { createWorld } from '../cameras/ground.js';
 import { frameTerrain } from '../cameras/framing.js';
 import { defaultSettings, applyLodSettings, MORPH_FRAMES, SHADING_MODES } from './settings.js';
@@ -15,6 +15,9 @@ import { parseUrlState, applyCameraState, UrlWriter } from './url_state.js';
 import { captureView, download } from './screenshot.js';
 import { handleContextLoss } from './context_loss.js';
 import { deterministicMode } from './deterministic/mode.js';
+import { FramePipeline } from './frame_pipeline.js';
+import { isTestMode, installTestApi } from './test_api.js';
+import { installKeys } from './keys.js';
 
 // The names are given, not taken from the URLs: a production build puts a content hash into
 // each asset's file name, and the loader pairs a height field with its sidecar by name.
@@ -30,8 +33,6 @@ const LAYOUT = params.get('layout') === 'fans' ? 'fans' : 'triangles';
 // ?timing=1 waits for the GPU after drawing (a one-pixel readPixels: gl.finish does not wait in
 // Chromium) so that frame figures include it; for benchmarks only, since it stalls the pipeline.
 const TIMING = params.get('timing') === '1';
-const timingPixel = new Uint8Array(4);
-const FRAME_LOG = 4096; // frames kept in window.hexlod.frameLog while recording
 // ?flight=URL: the deterministic mode of regression tests (web/app/deterministic/mode.js, README).
 const det = deterministicMode(params);
 // Settings that change only the shading (issue 14), never the core's mesh.
@@ -41,9 +42,10 @@ const canvas = document.getElementById('view');
 const statusBox = document.getElementById('status');
 const helpBox = document.getElementById('help');
 
-/** What headless tests read: 'loading' | 'ready' | 'error', and figures of the current view. */
-const state = (window.hexlod = { status: 'loading', frames: 0, error: null, terrain: null, triangles: 0,
-  contextLost: false, contextRestores: 0, recordFrames: false, frameLog: [], cursor: null });
+/** The page's state: 'loading' | 'ready' | 'error', and figures of the current view (window.hexlod in test mode). */
+const state = { status: 'loading', frames: 0, error: null, terrain: null, triangles: 0,
+  contextLost: false, contextRestores: 0, recordFrames: false, frameLog: [], cursor: null };
+if (isTestMode(params) || det) window.hexlod = state; // published at once: tests wait for the status
 
 function showStatus(message, isError = false) {
   statusBox.textContent = message;
@@ -70,13 +72,11 @@ async function main() {
   if (SHADING_MODES.includes(params.get('shading'))) settings.shading = params.get('shading'); // issue 14
   if (det) Object.assign(settings, (await det.load(), det.settings)); // the flight's settings win
   const urlWriter = new UrlWriter();
+  let pipeline = null; // made below, once the cameras and the HUD exist
+  const requestRender = () => pipeline.request();
   let source = null;         // the data's URL, while the terrain on screen came from one
   let pendingSource = null;  // the URL being opened
   let current = null;        // { terrain, field, loadMs, world, streamVersion, blendsEnd }
-  let frameRequested = false;
-  let contextLost = false;
-  let lastFrameTime = 0;
-  let lastFrameMs = 0; // CPU time of the previous frame, for the HUD
   const view = { colorByLevel: false, outline: false, frame: 0, morphFrames: MORPH_FRAMES, verticalScale: settings.exaggeration,
     layout: LAYOUT, hideTerrain: false };
   // The HUD opens as one summary line on every screen, so the terrain has the view (I unfolds it).
@@ -104,87 +104,8 @@ async function main() {
     Object.defineProperty(state, 'fieldTextures', { value: renderer.fieldTextures, enumerable: false, configurable: true });
   }
 
-  function render(now) {
-    frameRequested = false;
-    if (contextLost) return;
-    if (det && !det.beginFrame()) return; // deterministic: only the frames asked for
-    const frameStart = performance.now();
-    const seconds = now - lastFrameTime < 200 ? (now - lastFrameTime) / 1000 : 1 / 60;
-    lastFrameTime = now;
-    const moving = rig.step(seconds);
-    const dpr = window.devicePixelRatio || 1;
-    const width = det ? det.width : Math.max(1, Math.round(canvas.clientWidth * dpr));
-    const height = det ? det.height : Math.max(1, Math.round(canvas.clientHeight * dpr));
-    if (canvas.width !== width || canvas.height !== height) {
-      canvas.width = width;
-      canvas.height = height;
-    }
-    const camera = det ? det.camera : rig.active;
-    camera.update(width / height);
-    let lodMs = 0, streamMs = 0, uploadMs = 0;
-    if (current) {
-      // §6: one budgeted refinement step per frame for the current camera, then the fans.
-      // Frozen: the mesh stays as it is while the camera moves (to look at it from outside).
-      const { terrain } = current;
-      if (!settings.freeze) {
-        terrain.setLodCamera(det ? det.lodCamera : { eye: camera.position, target: camera.target, fovY: camera.fovY,
-          aspect: camera.aspect, viewportHeight: height, near: camera.near, far: camera.far });
-        const operations = terrain.updateLod();
-        if (det) det.afterLod(terrain, operations);
-      }
-      const lod = terrain.lodStats();
-      lodMs = settings.freeze ? 0 : lod.updateMs;
-      const streamStart = performance.now();
-      terrain.setStreamNormals(renderer.usesMeshNormals(view));
-      state.streamNormals = terrain.streamNormals;
-      const version = terrain.updateStream();
-      current.world.version += 1; // the drawn surface may have moved: the walk floor is asked anew
-      if (camera.mode === 'walk') {
-        camera.settle(); // stand on the surface as it is drawn in this frame
-        camera.update(width / height);
-      }
-      const uploadStart = performance.now();
-      streamMs = uploadStart - streamStart;
-      if (version !== current.streamVersion) current.blendsEnd = lod.frame + MORPH_FRAMES; // new blends run
-      current.streamVersion = version;
-      state.uploadBytes = renderer.upload(terrain, view.layout);
-      state.streamBytes = renderer.streamBytes;
-      if (view.colorByLevel || view.outline) renderer.setLevelView(terrain.levelView(view.outline));
-      uploadMs = performance.now() - uploadStart;
-      view.frame = lod.frame;
-      const stats = terrain.meshStats();
-      state.triangles = stats.triangles;
-      state.mesh = stats;
-      state.converged = lod.converged;
-      state.lod = lod;
-      state.timing = { updateMs: lod.updateMs, streamMs, uploadMs, frameMs: lastFrameMs };
-      if (!settings.freeze && (!lod.converged || lod.frame < current.blendsEnd)) requestRender();
-      hud.tick(now);
-      hud.update({ terrain, lod, stats, timing: state.timing, settings, camera }, now);
-      state.hud = hud.values;
-      state.eye = Array.from(camera.position);
-    }
-    const drawStart = performance.now();
-    renderer.draw(camera, width, height, view);
-    if (TIMING) gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, timingPixel); // waits for the draw
-    const drawMs = performance.now() - drawStart;
-    lastFrameMs = performance.now() - frameStart;
-    if (state.timing) Object.assign(state.timing, { drawMs, frameMs: performance.now() - frameStart });
-    if (state.recordFrames && state.frameLog.length < FRAME_LOG) {
-      state.frameLog.push({ time: now, lodMs, streamMs, uploadMs, drawMs, cpuMs: performance.now() - frameStart });
-    }
-    state.frames += 1;
-    if (det) det.endFrame();
-    if (moving) requestRender();
-    if (current && !det) urlWriter.write({ settings, camera, src: source });
-  }
-
-  function requestRender() {
-    if (!frameRequested) {
-      frameRequested = true;
-      requestAnimationFrame(render);
-    }
-  }
+  pipeline = new FramePipeline({ gl, canvas, renderer, rig, settings, view, hud, state, det, timing: TIMING, urlWriter,
+    source: () => source });
 
   /** Heights and extent of the world in drawn metres, for the cameras (ground.js). */
   function makeWorld(loaded) {
@@ -221,7 +142,7 @@ async function main() {
     applyLodSettings(terrain, settings);
     terrain.setStreamLayout(view.layout);
     current?.terrain.destroy();
-    current = loaded;
+    current = pipeline.current = loaded;
     makeWorld(loaded);
     frameDefault(loaded);
     renderer.invalidate();
@@ -322,7 +243,7 @@ async function main() {
     actions: {
       'screenshot 1× (P)': () => screenshot(1).catch((e) => showStatus(e.message, true)),
       'screenshot 2×': () => screenshot(2).catch((e) => showStatus(e.message, true)),
-      'reset view (R)': () => { if (current) frameDefault(current); syncPanel(); requestRender(); },
+      'reset view (R)': () => resetView(),
       'help (H)': toggleHelp,
     },
   });
@@ -332,30 +253,18 @@ async function main() {
   // Drop, file picker, ?src=, progress, RAW size dialog and error display (file_intake.js).
   const intake = createFileIntake({ core, state, show, showStatus });
 
-  // For headless tests and benchmarks: drive the camera, ask for frames, read GL errors.
-  Object.assign(state, { rig, settings, view, requestRender, setSetting: (key, value) => { settings[key] = value; onSetting(key, value); },
-    glError: () => gl.getError(), screenshot, terrainObject: () => current?.terrain, flushUrl: () => urlWriter.flush() });
-  Object.defineProperty(state, 'camera', { get: () => rig.active, enumerable: true });
+  const setSetting = (key, value) => { settings[key] = value; onSetting(key, value); };
+  const resetView = () => { if (current) frameDefault(current); syncPanel(); requestRender(); };
+  if (window.hexlod === state) {
+    installTestApi(state, { gl, rig, settings, view, requestRender, setSetting, screenshot, urlWriter,
+      terrain: () => current?.terrain,
+      setLayout: (layout) => { view.layout = layout; current?.terrain.setStreamLayout(layout); requestRender(); } });
+  }
   if (det) det.install(state, canvas, gl, requestRender); // the flight drives the camera
   else rig.attach(canvas);
-  // For benchmarks: the same mesh drawn with the other index layout ('fans' | 'triangles').
-  state.setLayout = (layout) => {
-    view.layout = layout;
-    current?.terrain.setStreamLayout(layout);
-    requestRender();
-  };
-  window.addEventListener('keydown', (e) => {
-    if (isTyping(e) || e.ctrlKey || e.metaKey || e.altKey) return;
-    const toggles = { l: 'colorByLevel', o: 'wireframe', f: 'freeze' };
-    const key = e.key.toLowerCase();
-    if (toggles[key]) state.setSetting(toggles[key], !settings[toggles[key]]);
-    else if (['1', '2', '3'].includes(key)) onSetting('camera', CAMERA_MODES[Number(key) - 1]);
-    else if (key === 'h' || key === '?') toggleHelp();
-    else if (key === 'i') hud.setCollapsed(!hud.collapsed);
-    else if (key === 'escape') helpBox.hidden = true;
-    else if (key === 'p') screenshot(1).catch((error) => showStatus(error.message, true));
-    else if (key === 'r' && current) { frameDefault(current); syncPanel(); requestRender(); }
-  });
+  installKeys({ settings, setSetting, setCamera: (mode) => onSetting('camera', mode), toggleHelp,
+    closeHelp: () => { helpBox.hidden = true; }, toggleHud: () => hud.setCollapsed(!hud.collapsed),
+    screenshot: () => screenshot(1).catch((error) => showStatus(error.message, true)), resetView: () => current && resetView() });
   window.addEventListener('resize', requestRender);
 
   // The cursor readout: the ground under the mouse, at most every 50 ms.
@@ -383,14 +292,14 @@ async function main() {
 
   handleContextLoss(canvas, {
     onLost() {
-      contextLost = state.contextLost = true;
+      pipeline.contextLost = state.contextLost = true;
       showStatus('The graphics context was lost; waiting for it to come back…', true);
     },
     onRestored() {
       renderer.createGlObjects(); // the old GL objects died with the context
       renderer.invalidate();
       if (current) renderer.setShading(current.world.low, current.world.high, current.world.extentX, current.world.extentZ);
-      contextLost = state.contextLost = false;
+      pipeline.contextLost = state.contextLost = false;
       state.contextRestores += 1;
       showStatus('');
       requestRender();

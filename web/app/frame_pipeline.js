@@ -1,0 +1,140 @@
+// The frame pipeline: camera → core frame (paper §6: one budgeted refinement step, then the
+// fan stream of §7) → upload → draw, once per requested animation frame. Everything it hands
+// on from frame to frame lives in objects made once here, so a frame makes no garbage of its
+// own (the figures the HUD and tests read are updated in place).
+import { MORPH_FRAMES } from './settings.js';
+
+const FRAME_LOG = 4096; // frames kept in state.frameLog while recording
+
+export class FramePipeline {
+  /**
+   * @param {object} parts  gl, canvas, renderer, rig (the cameras), settings, view (what the
+   *   renderer draws), hud, state (the published figures), det (the deterministic mode or null),
+   *   timing (wait for the GPU after drawing), urlWriter, source() (the data's URL to share)
+   */
+  constructor({ gl, canvas, renderer, rig, settings, view, hud, state, det, timing, urlWriter, source }) {
+    Object.assign(this, { gl, canvas, renderer, rig, settings, view, hud, state, det, timing, urlWriter, source });
+    this.current = null; // { terrain, field, loadMs, world, streamVersion, blendsEnd }
+    this.contextLost = false;
+    this.frameRequested = false;
+    this.lastFrameTime = 0;
+    this.lastFrameMs = 0; // CPU time of the previous frame, for the HUD
+    this.timingPixel = new Uint8Array(4);
+    // Made once, filled every frame.
+    this.lodCamera = { eye: null, target: null, fovY: 0, aspect: 1, viewportHeight: 1, near: 0, far: 0 };
+    this.timingFigures = { updateMs: 0, streamMs: 0, uploadMs: 0, drawMs: 0, frameMs: 0 };
+    this.hudFrame = { terrain: null, lod: null, stats: null, timing: this.timingFigures, settings, camera: null };
+    this.eye = [0, 0, 0];
+    this.render = this.render.bind(this);
+  }
+
+  /** Asks for a frame (at most one is pending). */
+  request() {
+    if (this.frameRequested) return;
+    this.frameRequested = true;
+    requestAnimationFrame(this.render);
+  }
+
+  /** One frame at `now` (ms, from requestAnimationFrame). */
+  render(now) {
+    this.frameRequested = false;
+    if (this.contextLost) return;
+    const { det, canvas, rig, state } = this;
+    if (det && !det.beginFrame()) return; // deterministic: only the frames asked for
+    const frameStart = performance.now();
+    const seconds = now - this.lastFrameTime < 200 ? (now - this.lastFrameTime) / 1000 : 1 / 60;
+    this.lastFrameTime = now;
+    const moving = rig.step(seconds);
+    const dpr = window.devicePixelRatio || 1;
+    const width = det ? det.width : Math.max(1, Math.round(canvas.clientWidth * dpr));
+    const height = det ? det.height : Math.max(1, Math.round(canvas.clientHeight * dpr));
+    if (canvas.width !== width || canvas.height !== height) {
+      canvas.width = width;
+      canvas.height = height;
+    }
+    const camera = det ? det.camera : rig.active;
+    camera.update(width / height);
+    const timing = this.timingFigures;
+    timing.updateMs = timing.streamMs = timing.uploadMs = 0;
+    if (this.current) this.updateTerrain(camera, width, height, now);
+    const drawStart = performance.now();
+    this.renderer.draw(camera, width, height, this.view);
+    if (this.timing) this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.UNSIGNED_BYTE, this.timingPixel); // waits for the draw
+    timing.drawMs = performance.now() - drawStart;
+    this.lastFrameMs = timing.frameMs = performance.now() - frameStart;
+    if (state.recordFrames && state.frameLog.length < FRAME_LOG) { // tests and benchmarks only
+      state.frameLog.push({ time: now, lodMs: timing.updateMs, streamMs: timing.streamMs, uploadMs: timing.uploadMs,
+        drawMs: timing.drawMs, cpuMs: performance.now() - frameStart });
+    }
+    state.frames += 1;
+    if (det) det.endFrame();
+    if (moving) this.request();
+    if (this.current && !det) this.urlWriter.write({ settings: this.settings, camera, src: this.source() });
+  }
+
+  // The core's part of a frame and its upload (the frame figures go to the HUD and state).
+  updateTerrain(camera, width, height, now) {
+    const { det, settings, view, renderer, state } = this;
+    const current = this.current, { terrain } = current;
+    // §6: one budgeted refinement step per frame for the current camera, then the fans.
+    // Frozen: the mesh stays as it is while the camera moves (to look at it from outside).
+    if (!settings.freeze) {
+      terrain.setLodCamera(det ? det.lodCamera : this.lodCameraOf(camera, height));
+      const operations = terrain.updateLod();
+      if (det) det.afterLod(terrain, operations);
+    }
+    const lod = terrain.lodStats();
+    const streamStart = performance.now();
+    terrain.setStreamNormals(renderer.usesMeshNormals(view));
+    state.streamNormals = terrain.streamNormals;
+    const version = terrain.updateStream();
+    current.world.version += 1; // the drawn surface may have moved: the walk floor is asked anew
+    if (camera.mode === 'walk') {
+      camera.settle(); // stand on the surface as it is drawn in this frame
+      camera.update(width / height);
+    }
+    const uploadStart = performance.now();
+    if (version !== current.streamVersion) current.blendsEnd = lod.frame + MORPH_FRAMES; // new blends run
+    current.streamVersion = version;
+    state.uploadBytes = renderer.upload(terrain, view.layout);
+    state.streamBytes = renderer.streamBytes;
+    if (view.colorByLevel || view.outline) renderer.setLevelView(terrain.levelView(view.outline));
+    const timing = this.timingFigures;
+    timing.updateMs = settings.freeze ? 0 : lod.updateMs;
+    timing.streamMs = uploadStart - streamStart;
+    timing.uploadMs = performance.now() - uploadStart;
+    timing.frameMs = this.lastFrameMs;
+    view.frame = lod.frame;
+    const stats = terrain.meshStats();
+    state.triangles = stats.triangles;
+    state.mesh = stats;
+    state.converged = lod.converged;
+    state.lod = lod;
+    state.timing = timing;
+    if (!settings.freeze && (!lod.converged || lod.frame < current.blendsEnd)) this.request();
+    const hud = this.hud, figures = this.hudFrame;
+    figures.terrain = terrain;
+    figures.lod = lod;
+    figures.stats = stats;
+    figures.camera = camera;
+    hud.tick(now);
+    hud.update(figures, now);
+    state.hud = hud.values;
+    const eye = this.eye;
+    eye[0] = camera.position[0], eye[1] = camera.position[1], eye[2] = camera.position[2];
+    state.eye = eye;
+  }
+
+  // The camera as the core takes it, in the object made once.
+  lodCameraOf(camera, height) {
+    const c = this.lodCamera;
+    c.eye = camera.position;
+    c.target = camera.target;
+    c.fovY = camera.fovY;
+    c.aspect = camera.aspect;
+    c.viewportHeight = height;
+    c.near = camera.near;
+    c.far = camera.far;
+    return c;
+  }
+}

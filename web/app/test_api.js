@@ -1,0 +1,23 @@
+// The page's API for headless tests, benchmarks and regression flights, on window.hexlod. It is
+// installed only in test mode: when a browser automation tool drives the page
+// (navigator.webdriver, as Playwright, Puppeteer and WebDriver set it) or with ?test=1. A person's
+// page publishes nothing.
+
+/** True when the page publishes window.hexlod. */
+export function isTestMode(params) {
+  return navigator.webdriver === true || params.get('test') === '1';
+}
+
+/**
+ * Publishes `state` (status, error, terrain, frames, triangles, mesh, lod, timing, hud, eye,
+ * cursor, ... kept up to date by the page) as window.hexlod, with the handles tests use to drive
+ * the page: the camera rig, the settings and the view, setSetting(key, value) as the panel sets
+ * one, requestRender(), glError(), screenshot(scale), terrainObject() (the core's Terrain),
+ * flushUrl() and setLayout('fans' | 'triangles') (the same mesh drawn with the other index layout).
+ */
+export function installTestApi(state, { gl, rig, settings, view, requestRender, setSetting, screenshot, terrain, urlWriter, setLayout }) {
+  Object.assign(state, { rig, settings, view, requestRender, setSetting, screenshot, setLayout,
+    glError: () => gl.getError(), terrainObject: terrain, flushUrl: () => urlWriter.flush() });
+  Object.defineProperty(state, 'camera', { get: () => rig.active, enumerable: true });
+  window.hexlod = state;
+}
