@@ -9,21 +9,15 @@
 // the lockfile (`./hexlod.sh view` serves with it), and run programmatically it starts in about
 // a second. The height fields and flights are served by a small middleware from wherever they
 // are on disk, under /__regress/.
-import { existsSync, readFileSync, statSync } from 'node:fs';
+import { existsSync, readFileSync } from 'node:fs';
 import { basename, dirname, extname, join } from 'node:path';
 import { createHash } from 'node:crypto';
 import { tmpdir } from 'node:os';
 import { fileURLToPath } from 'node:url';
-import { createServer as createNetServer } from 'node:net';
+import { DEFAULT_CHROMIUM, freePort, launchChromium } from './chromium.js';
 
 export const projectDir = fileURLToPath(new URL('..', import.meta.url));
-export const DEFAULT_CHROMIUM = '/usr/bin/chromium';
-const CHROMIUM_FLAGS = [
-  '--no-sandbox', // CI runs as root
-  '--disable-gpu', '--enable-unsafe-swiftshader', // WebGL2 on the CPU: the same pixels on every run
-  '--disable-quic', '--no-first-run', '--disable-background-networking',
-  '--disable-component-update', '--disable-sync',
-];
+export { DEFAULT_CHROMIUM };
 
 /** Files the middleware may serve: /__regress/<id>/<kind>/<name> -> absolute path. */
 class FileTable {
@@ -59,45 +53,33 @@ class FileTable {
   }
 }
 
-/** A free TCP port on localhost (Vite takes port 0 as "the default port"). */
-async function freePort() {
-  const probe = createNetServer();
-  await new Promise((resolve) => probe.listen(0, '127.0.0.1', resolve));
-  const { port } = probe.address();
-  await new Promise((resolve) => probe.close(resolve));
-  return port;
-}
-
 /**
  * Starts the dev server and Chromium. Throws one-line errors for a missing Chromium.
  * @returns {Promise<{files: FileTable, url: string, browser: object, close: () => Promise<void>}>}
  */
 export async function startBrowser({ chromium: chromiumPath = process.env.CHROMIUM_PATH || DEFAULT_CHROMIUM } = {}) {
-  if (!existsSync(chromiumPath) || !statSync(chromiumPath).isFile()) {
-    throw new Error(`no Chromium at ${chromiumPath}: install Debian's (apt-get install chromium) or give --chromium PATH`);
-  }
-  const [{ createServer }, { chromium }] = await Promise.all([import('vite'), import('playwright-core')]);
+  const browser = await launchChromium(chromiumPath); // first: a missing Chromium is the likelier mistake
+  const { createServer } = await import('vite');
   const files = new FileTable();
-  const server = await createServer({
-    configFile: join(projectDir, 'vite.config.js'),
-    root: join(projectDir, 'public'),
-    // A cache of its own per checkout, so parallel runs elsewhere never share a half-written one.
-    cacheDir: join(tmpdir(), `hexlod-regress-vite-${createHash('sha1').update(projectDir).digest('hex').slice(0, 12)}`),
-    // Pre-bundle the npm imports up front: a dependency discovered mid-run makes Vite reload the page.
-    optimizeDeps: { include: ['gl-matrix', 'lil-gui', 'fflate', 'geotiff'] },
-    server: { port: await freePort(), strictPort: true, host: '127.0.0.1', hmr: false, watch: null },
-    logLevel: 'error',
-    plugins: [{ name: 'hexlod-regress-files', configureServer: (s) => { s.middlewares.use('/__regress', files.middleware()); } }],
-  });
-  await server.listen();
-  const { port } = server.httpServer.address();
-  let browser;
+  let server;
   try {
-    browser = await chromium.launch({ executablePath: chromiumPath, headless: true, args: CHROMIUM_FLAGS });
+    server = await createServer({
+      configFile: join(projectDir, 'vite.config.js'),
+      root: join(projectDir, 'public'),
+      // A cache of its own per checkout, so parallel runs elsewhere never share a half-written one.
+      cacheDir: join(tmpdir(), `hexlod-regress-vite-${createHash('sha1').update(projectDir).digest('hex').slice(0, 12)}`),
+      // Pre-bundle the npm imports up front: a dependency discovered mid-run makes Vite reload the page.
+      optimizeDeps: { include: ['gl-matrix', 'lil-gui', 'fflate', 'geotiff'] },
+      server: { port: await freePort(), strictPort: true, host: '127.0.0.1', hmr: false, watch: null },
+      logLevel: 'error',
+      plugins: [{ name: 'hexlod-regress-files', configureServer: (s) => { s.middlewares.use('/__regress', files.middleware()); } }],
+    });
+    await server.listen();
   } catch (error) {
-    await server.close();
-    throw new Error(`Chromium at ${chromiumPath} did not start: ${String(error.message).split('\n')[0]}`);
+    await browser.close();
+    throw error;
   }
+  const { port } = server.httpServer.address();
   return {
     files,
     url: `http://127.0.0.1:${port}/`,

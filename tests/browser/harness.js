@@ -2,30 +2,13 @@
 // Chromium driven by playwright-core (never a browser that a tool downloads).
 import { createServer } from 'vite';
 import { startStaticSite } from './static_site.js';
-import { chromium } from 'playwright-core';
 import { decode } from 'fast-png';
 import { mkdirSync } from 'node:fs';
-import { createServer as createNetServer } from 'node:net';
+import { freePort, launchChromium } from '../../bin/chromium.js';
 import { fileURLToPath } from 'node:url';
 
 export const projectDir = fileURLToPath(new URL('../..', import.meta.url));
 export const outDir = `${projectDir}tests/out`;
-
-const CHROMIUM_FLAGS = [
-  '--no-sandbox', // CI runs as root
-  '--disable-gpu', '--enable-unsafe-swiftshader', // WebGL2 on the CPU: no GPU here
-  '--disable-quic', '--no-first-run', '--disable-background-networking',
-  '--disable-component-update', '--disable-sync', // the machine has no network but the registries
-];
-
-/** A free TCP port on localhost (Vite treats port 0 as "use the default"). */
-async function freePort() {
-  const probe = createNetServer();
-  await new Promise((resolve) => probe.listen(0, '127.0.0.1', resolve));
-  const { port } = probe.address();
-  await new Promise((resolve) => probe.close(resolve));
-  return port;
-}
 
 /** The Vite dev server on a free port; returns { url, close() }. */
 async function startDevServer() {
@@ -51,11 +34,7 @@ async function startDevServer() {
  */
 export async function startViewer({ site = 'dev' } = {}) {
   const server = site === 'built' ? await startStaticSite() : await startDevServer();
-  const browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM_PATH || '/usr/bin/chromium',
-    headless: true,
-    args: CHROMIUM_FLAGS,
-  });
+  const browser = await launchChromium();
   mkdirSync(outDir, { recursive: true });
   return {
     url: server.url,

@@ -10,7 +10,7 @@
 // pixel (8-bit levels) over all frames, the median over frames of each frame's largest change,
 // the 99.9th and 99.99th percentiles of all per-pixel changes, the pixels per frame that change
 // by more than 16 levels, and the mean change per pixel and frame.
-//   node bin/bench_lighting_pop.js [--frames 40] [--size 480x270]
+//   node bench/lighting_pop.js [--frames 40] [--size 480x270]
 import { decode } from 'fast-png';
 import { startViewer, openPage } from '../tests/browser/harness.js';
 

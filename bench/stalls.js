@@ -8,13 +8,13 @@
 // given at a small and a normal viewport.
 // With --timing the page waits for the GPU after drawing (?timing=1, gl.finish), so that the
 // drawing's share includes SwiftShader's rasterisation.
-//   node bin/bench_stalls.js [--seconds 12] [--sizes 480x300,960x600] [--timing]
+//   node bench/stalls.js [--seconds 12] [--sizes 480x300,960x600] [--timing]
 import { startViewer, openPage } from '../tests/browser/harness.js';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => { const k = args.indexOf(`--${name}`); return k >= 0 ? args[k + 1] : fallback; };
 if (args.includes('--help')) {
-  console.log('usage: node bin/bench_stalls.js [--seconds 12] [--sizes 480x300,960x600] [--timing]');
+  console.log('usage: node bench/stalls.js [--seconds 12] [--sizes 480x300,960x600] [--timing]');
   process.exit(0);
 }
 const seconds = Number(option('seconds', '12'));

@@ -13,15 +13,15 @@
 // The stream keeps no vertex normals, as in the viewer, which lights the terrain from the
 // field's own normals (--normals on: the stream keeps them, as builds before issue 12's did).
 //
-//   node bin/bench_refiner.js [FIELD ...] [--frames N] [--steps 5,50,500,0] [--budget-ms MS] [--normals on|off]
+//   node bench/refiner.js [FIELD ...] [--frames N] [--steps 5,50,500,0] [--budget-ms MS] [--normals on|off]
 // FIELD defaults to public/terrain/globe_himalaya_2048.png and tests/fixtures/grandcanyon_512.png.
 import { writeFileSync, existsSync, mkdtempSync, rmSync } from 'node:fs';
 import { spawnSync } from 'node:child_process';
 import { tmpdir, cpus } from 'node:os';
 import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { loadForCommand, extentOf } from './cli_common.js';
-import { flightPath, heightsInMetres } from './bench_flight.js';
+import { loadForCommand, extentOf } from '../bin/cli_common.js';
+import { flightPath, heightsInMetres } from './flight.js';
 
 const root = fileURLToPath(new URL('../', import.meta.url));
 // HEXLOD_BENCH: another build of the benchmark (e.g. a copy of the one before a change).

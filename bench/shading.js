@@ -6,7 +6,7 @@
 // still and converged; the modes alternate frame by frame so that both see the same load.
 // Also prints the core's share (LOD update and fan stream) of the same frames.
 // --modes lists more modes to compare (web/app/settings.js SHADING_MODES); the ratio is of the first two.
-//   node bin/bench_shading.js [--frames 20] [--size 640x360] [--modes natural,plain,hillshade]
+//   node bench/shading.js [--frames 20] [--size 640x360] [--modes natural,plain,hillshade]
 import { startViewer, openPage } from '../tests/browser/harness.js';
 
 const args = process.argv.slice(2);

@@ -9,7 +9,7 @@
 import { parseArgs } from 'node:util';
 import { startViewer, openPage } from '../tests/browser/harness.js';
 
-const USAGE = `usage: node bin/bench_page.js [--viewport WxH] [--frames N] [--draws N]
+const USAGE = `usage: node bench/page.js [--viewport WxH] [--frames N] [--draws N]
   --viewport WxH  page size in CSS pixels (default 1280x720)
   --frames N      frames of the scripted flight (default 90)
   --draws N       timed draws per layout and round, three rounds (default 10)`;

@@ -4,7 +4,7 @@
 // 8-bit ambient occlusion (downsampled to 512², paper §7's low-resolution texture), as the page
 // computes them (same code, Node's V8 instead of the browser's). The 4096² field is the
 // Himalaya 2048² field upsampled bilinearly (no 4k² DEM in the shared data set).
-//   node bin/bench_field_shading.js [--repeat 3]
+//   node bench/field_shading.js [--repeat 3]
 import { readFileSync } from 'node:fs';
 import { loadHeightfield } from '../web/loaders/index.js';
 import { fieldOf, downsampleField, gradientTiles, sunVisibility, ambientOcclusion } from '../web/render/shading/field_shading.js';

@@ -4,7 +4,7 @@
 //   2. a 16385 x 16385 16-bit field, made by tiling and mirroring the same Himalaya, written
 //      as a RAW .r16 file, opened with ?src=, then flown for a few frames: load time and peak
 //      memory (RSS of every Chromium process, sampled; the page's WASM memory).
-// Usage: node bin/bench_page_load.js [--skip-large] [--runs N]
+// Usage: node bench/page_load.js [--skip-large] [--runs N]
 import { mkdirSync, openSync, writeSync, writeFileSync, closeSync, readFileSync, rmSync } from 'node:fs';
 import { execFileSync } from 'node:child_process';
 import { decode } from 'fast-png';

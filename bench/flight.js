@@ -10,8 +10,8 @@ import {
   UsageError, parseOptions, parseNumber, parseViewport, parseCellSize, parseEmbedding, loadForCommand,
   FILE_OPTIONS, FILE_USAGE, parseFileOptions,
   extentOf, cameraFor, quantile, round,
-} from './cli_common.js';
-import { decodeFans } from './mesh_export.js';
+} from '../bin/cli_common.js';
+import { decodeFans } from '../bin/mesh_export.js';
 import { STREAM_VERTEX_BYTES, STREAM_VERTEX_WORDS } from '../web/core.js';
 import { gridMeshError, padToPowerOfTwoPlusOne } from './rtin_error.js';
 import { seededRandom } from '../web/app/seeded_random.js';
@@ -190,7 +190,9 @@ function martiniTrianglesOverField({ vertices, triangles }, width, height) {
  * parameter and its measured error differ, and not monotonically).
  */
 async function martiniFigures(heights, width, height, target) {
-  const { default: Martini } = await import('@mapbox/martini');
+  // A development dependency: an installation without it (npm ci --omit=dev) skips the comparison.
+  const Martini = await import('@mapbox/martini').then((m) => m.default, () => null);
+  if (!Martini) return { missing: '@mapbox/martini is not installed (npm install --include=dev)' };
   let start = performance.now();
   const padded = padToPowerOfTwoPlusOne(heights, width, height);
   const padMs = performance.now() - start;
@@ -517,15 +519,18 @@ export async function bench(args) {
     `${warm.triangles} triangles${warm.converged ? '' : ', NOT converged'}): ${ms(warm.ms)} (first run ${ms(cold.ms)})`);
   print(`max error  ours at ${settings.maxError} m: ${oursTriangles} triangles (${oursOverField} over the field), ` +
     `measured max ${round(oursError.max, 3)} m, p99 ${round(oursError.p99, 3)} m; from heights in ${ms(oursMs)}`);
-  print(`martini   ${martini.gridSize}^2 grid (padding ${ms(martini.padMs)}); maxError ${round(martini.maxErrorParameter, 4)} ` +
-    `gives measured max ${round(martini.error.max, 3)} m <= ours, p99 ${round(martini.error.p99, 3)} m: ` +
-    `${martini.triangles} triangles (${martini.trianglesOverField} over the field)`);
-  print(`  ratio   triangles ours / martini ${round(oursTriangles / martini.triangles, 3)} ` +
-    `(over the field ${round(oursOverField / martini.trianglesOverField, 3)})`);
-  print(`  time    new Martini + createTile + getMesh ${ms(martini.firstMeshMs)} (first run ${ms(martini.firstMeshColdMs)}); ` +
-    `getMesh again at 2x error ${ms(martini.rebuildAtDoubleErrorMs)}, at half ${ms(martini.rebuildAtHalfErrorMs)}`);
-  print(`  ratio   our first converged frame / martini first mesh ${round(warm.ms / martini.firstMeshMs, 3)}; ` +
-    `our max-error mesh / martini first mesh ${round(oursMs / martini.firstMeshMs, 3)}`);
+  if (martini.missing) print(`martini   NOT COMPARED: ${martini.missing}`);
+  else {
+    print(`martini   ${martini.gridSize}^2 grid (padding ${ms(martini.padMs)}); maxError ${round(martini.maxErrorParameter, 4)} ` +
+      `gives measured max ${round(martini.error.max, 3)} m <= ours, p99 ${round(martini.error.p99, 3)} m: ` +
+      `${martini.triangles} triangles (${martini.trianglesOverField} over the field)`);
+    print(`  ratio   triangles ours / martini ${round(oursTriangles / martini.triangles, 3)} ` +
+      `(over the field ${round(oursOverField / martini.trianglesOverField, 3)})`);
+    print(`  time    new Martini + createTile + getMesh ${ms(martini.firstMeshMs)} (first run ${ms(martini.firstMeshColdMs)}); ` +
+      `getMesh again at 2x error ${ms(martini.rebuildAtDoubleErrorMs)}, at half ${ms(martini.rebuildAtHalfErrorMs)}`);
+    print(`  ratio   our first converged frame / martini first mesh ${round(warm.ms / martini.firstMeshMs, 3)}; ` +
+      `our max-error mesh / martini first mesh ${round(oursMs / martini.firstMeshMs, 3)}`);
+  }
   if (native.missing) {
     print(`native    NATIVE FLIGHT NOT MEASURED: ${native.missing}; WASM/native ratio unavailable`);
   } else {
@@ -547,10 +552,10 @@ export async function bench(args) {
       maxError: ours,
       martini,
       ratios: {
-        trianglesOursOverMartini: oursTriangles / martini.triangles,
-        trianglesOverFieldOursOverMartini: oursOverField / martini.trianglesOverField,
-        firstConvergedFrameOverMartiniFirstMesh: warm.ms / martini.firstMeshMs,
-        maxErrorMeshOverMartiniFirstMesh: oursMs / martini.firstMeshMs,
+        trianglesOursOverMartini: martini.missing ? null : oursTriangles / martini.triangles,
+        trianglesOverFieldOursOverMartini: martini.missing ? null : oursOverField / martini.trianglesOverField,
+        firstConvergedFrameOverMartiniFirstMesh: martini.missing ? null : warm.ms / martini.firstMeshMs,
+        maxErrorMeshOverMartiniFirstMesh: martini.missing ? null : oursMs / martini.firstMeshMs,
         wasmOverNativeUpdateP50: native.missing ? null : native.ratios.updateP50,
         wasmOverNativeUpdateP95: native.missing ? null : native.ratios.updateP95,
         wasmOverNativeStreamP50: native.missing ? null : native.ratios.streamP50,
