@@ -9,7 +9,10 @@ set -euo pipefail
 cd "$(dirname "$0")"
 target=${1:-all}
 
-core_sources=(src/*.cpp) # the core is every .cpp directly in src/, as in CMakeLists.txt
+shopt -s nullglob
+# The core: every .cpp in src/ and its section folders, as in CMakeLists.txt (src/bench/ is the
+# benchmark's main, not core).
+core_sources=(src/*.cpp src/{field,mesh,lod,stream,diagnostics,api}/*.cpp)
 
 build_native() {
   # Compiler flags of the native build live in CMakeLists.txt, each with its reason.
@@ -21,9 +24,9 @@ build_wasm() {
   mkdir -p build/wasm/include
   # emcc must see GLM but not the rest of /usr/include (glibc headers break the wasm libc).
   ln -sfn /usr/include/glm build/wasm/include/glm
-  # Every function of the C ABI (src/hexlod.h) is exported, plus malloc/free for JS buffers.
+  # Every function of the C ABI (src/api/hexlod.h) is exported, plus malloc/free for JS buffers.
   local exports
-  exports=$(grep -oE '\bhexlod_[a-z0-9_]+\(' src/hexlod.h | tr -d '(' | sort -u | sed 's/^/_/' | paste -sd, -)
+  exports=$(grep -oE '\bhexlod_[a-z0-9_]+\(' src/api/hexlod.h | tr -d '(' | sort -u | sed 's/^/_/' | paste -sd, -)
   local flags=(
     -std=c++17                      # the core is written in C++17
     -O3                             # the per-frame LOD update runs here: optimise for speed
@@ -31,6 +34,7 @@ build_wasm() {
     -fno-exceptions                 # errors go by return value; smaller and faster code
     -Wall -Wextra                   # the same warnings as the native build
     -Ibuild/wasm/include            # GLM only (see the link above)
+    -Isrc                           # the core names its headers from src/ (field/, mesh/, lod/, ...)
     -sMODULARIZE -sEXPORT_ES6       # an ES module factory, imported by the page, workers and Node
     -sEXPORT_NAME=createHexlodCore  # the factory's name
     -sENVIRONMENT=web,worker        # with node too, 3.1.6 emits __dirname into an ES module; Node passes wasmBinary instead

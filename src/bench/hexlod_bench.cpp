@@ -29,15 +29,15 @@
 
 #include <glm/geometric.hpp>
 
-#include "error_evaluator.h"
-#include "fan_stream.h"
-#include "geomorph.h"
-#include "popping_meter.h"
-#include "heightfield.h"
-#include "hex_mesh.h"
-#include "hex_mesh_refine.h"
-#include "min_max_pyramid.h"
-#include "refiner.h"
+#include "diagnostics/error_evaluator.h"
+#include "stream/fan_stream.h"
+#include "stream/geomorph.h"
+#include "diagnostics/popping_meter.h"
+#include "field/heightfield.h"
+#include "mesh/hex_mesh.h"
+#include "mesh/hex_mesh_refine.h"
+#include "field/min_max_pyramid.h"
+#include "lod/refiner.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "hexlod.h"
+#include "api/hexlod.h"
 
 #include <gtest/gtest.h>
 

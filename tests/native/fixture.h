@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "heightfield.h"
+#include "field/heightfield.h"
 
 namespace hexlod::test {
 

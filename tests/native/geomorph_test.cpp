@@ -1,7 +1,7 @@
 // Geomorphing (paper §7): new vertices start on their parent edge and blend to their place in
 // n frames; a merge frees only vertices that have faded out; blends finish; the whole thing is
 // deterministic under the frame clock; and it cuts the popping the meter measures.
-#include "geomorph.h"
+#include "stream/geomorph.h"
 
 #include <gtest/gtest.h>
 
@@ -10,10 +10,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "fan_stream.h"
+#include "stream/fan_stream.h"
 #include "fixture.h"
-#include "popping_meter.h"
-#include "refiner.h"
+#include "diagnostics/popping_meter.h"
+#include "lod/refiner.h"
 
 using namespace hexlod;
 

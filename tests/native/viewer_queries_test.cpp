@@ -1,6 +1,6 @@
 // The ABI queries the viewer page needs: cell kinds for the HUD, the drawn surface for the
 // walk camera, the achieved screen error. Through the C ABI, on a real DEM.
-#include "hexlod.h"
+#include "api/hexlod.h"
 
 #include <gtest/gtest.h>
 
