@@ -1,49 +1,92 @@
-// The C ABI declared in hexlod.h: thin wrappers that check the handle, call the core and turn
-// failures into hexlod_last_error() messages. No logic of its own lives here.
+// The product C ABI declared in hexlod.h: thin wrappers that check their arguments, drive the
+// terrain facade (terrain.h) and turn failures into hexlod_last_error() messages. No logic of
+// the paper lives here.
 #include "api/hexlod.h"
 
 #include <cmath>
-#include <memory>
+#include <cstddef>
+#include <new>
 #include <vector>
 
-#include "stream/fan_stream.h"
-#include "stream/drawn_surface.h"
-#include "stream/geomorph.h"
-#include "field/heightfield.h"
-#include "mesh/hex_mesh.h"
-#include "mesh/hex_mesh_refine.h"
+#include "api/terrain_handle.h"
 #include "mesh/mesh_census.h"
-#include "diagnostics/error_evaluator.h"
-#include "diagnostics/popping_meter.h"
-#include "lod/refiner.h"
-#include "terrain.h"
 
-// The handle: the terrain and the diagnostics' state kept per terrain.
-struct hexlod_terrain {
-    std::unique_ptr<hexlod::Terrain> core;
-    hexlod::PoppingMeter popping;
-    uint32_t poppingEpoch = 0; // the mesh the popping meter's last frame belongs to
-};
+// JS reads the structs through views at fixed wasm32 offsets (web/core.js).
+#if UINTPTR_MAX == 0xFFFFFFFFu
+static_assert(sizeof(hexlod_scale) == 48 && offsetof(hexlod_scale, has_nodata) == 40, "hexlod_scale layout");
+static_assert(sizeof(hexlod_field_info) == 32, "hexlod_field_info layout");
+static_assert(sizeof(hexlod_settings) == 64 && offsetof(hexlod_settings, max_operations) == 32, "hexlod_settings layout");
+static_assert(sizeof(hexlod_camera) == 112 && offsetof(hexlod_camera, near_m) == 96, "hexlod_camera layout");
+static_assert(offsetof(hexlod_frame, version) == 48 && offsetof(hexlod_frame, vertex_count) == 48 + 4 * 15 &&
+                  offsetof(hexlod_frame, vertices_ptr) == 176 && sizeof(hexlod_frame) == 192,
+              "hexlod_frame layout");
+static_assert(offsetof(hexlod_level_view, index_count) == 12 && sizeof(hexlod_level_view) == 24, "hexlod_level_view layout");
+#endif
+
+namespace {
+thread_local const char* lastError = "";
+} // namespace
+
+void hexlod::api::setError(const char* message) { lastError = message; }
+
+using hexlod::api::fail;
+using hexlod::api::kNullHandle;
+using hexlod::api::needMesh;
 
 namespace {
 
-thread_local const char* lastError = "";
+bool finiteNonNegative(double value) { return std::isfinite(value) && value >= 0.0; }
 
-// Records a failure and returns the value the caller should return.
-template <typename T>
-T fail(const char* message, T result) {
-    lastError = message;
-    return result;
+// The ranges as (first, count) int32 pairs.
+const int32_t* rangePairs(const std::vector<hexlod::ElementRange>& ranges) {
+    static_assert(sizeof(hexlod::ElementRange) == 2 * sizeof(int32_t), "ranges are read as int32 pairs");
+    return ranges.empty() ? nullptr : &ranges[0].first;
 }
 
-constexpr const char* kNullHandle = "the terrain handle is NULL (create it with hexlod_terrain_create)";
-constexpr const char* kNoMesh = "the terrain has no hexagon mesh yet (call hexlod_mesh_reset)";
+void fillFrame(hexlod_terrain* terrain, int32_t steps, hexlod_frame* out) {
+    hexlod::Terrain& core = *terrain->core;
+    const hexlod::HexMesh& mesh = core.mesh();
+    const hexlod::Refiner& refiner = core.refiner();
+    const hexlod::UpdateStats& last = refiner.lastUpdate();
+    hexlod::FanStream& stream = core.stream(); // collecting the dirty ranges sorts them
+    out->update_ms = last.milliseconds;
+    out->tau_px = refiner.currentTau();
+    out->frame = double(core.morph().frame());
+    out->memory_bytes = double(core.memoryBytes());
+    out->triangles = double(mesh.triangleCount());
+    out->version = int32_t(stream.version() & 0x7FFFFFFF);
+    out->converged = core.converged() ? 1 : 0;
+    out->operations = last.operations;
+    out->splits = last.splits;
+    out->merges = last.merges;
+    out->cells_tested = last.cellsTested;
+    out->pending_merges = refiner.pendingMerges();
+    out->cells = mesh.liveCells();
+    out->vertices = mesh.liveVertices();
+    out->max_level = mesh.maxLevel();
+    if (steps & HEXLOD_FRAME_CENSUS) {
+        const auto kinds = hexlod::countCellKinds(mesh);
+        out->full_hexagons = kinds[0];
+        out->semi_hexagons = kinds[1];
+        out->boundary_semi_hexagons = kinds[2];
+        out->achieved_error_px = refiner.achievedErrorPixels();
+    }
+    if (steps & HEXLOD_FRAME_HASH) {
+        const uint64_t hash = mesh.hash();
+        out->hash_low = uint32_t(hash);
+        out->hash_high = uint32_t(hash >> 32);
+    }
+    out->vertex_count = mesh.vertexCapacity();
+    out->index_count = stream.indexCount();
+    out->dirty_vertex_pairs = int32_t(stream.dirtyVertices().size());
+    out->dirty_index_pairs = int32_t(stream.dirtyIndices().size());
+    out->vertices_ptr = mesh.vertexData();
+    out->indices_ptr = stream.indices().data();
+    out->dirty_vertices_ptr = rangePairs(stream.dirtyVertices());
+    out->dirty_indices_ptr = rangePairs(stream.dirtyIndices());
+}
 
 } // namespace
-
-#define HEXLOD_NEED_MESH(result)                      \
-    if (!terrain) return fail(kNullHandle, result);   \
-    if (!terrain->core->hasMesh()) return fail(kNoMesh, result)
 
 extern "C" {
 
@@ -54,9 +97,9 @@ const char* hexlod_last_error(void) { return lastError; }
 hexlod_terrain* hexlod_terrain_create(int32_t width, int32_t height, int32_t sample_type) {
     const char* error = nullptr;
     auto core = hexlod::Terrain::create(width, height, hexlod::SampleType(sample_type), &error);
-    if (!core) return fail(error, static_cast<hexlod_terrain*>(nullptr));
+    if (!core) return fail(error), nullptr;
     hexlod_terrain* terrain = new (std::nothrow) hexlod_terrain();
-    if (!terrain) return fail("out of memory for the terrain", terrain);
+    if (!terrain) return fail("out of memory for the terrain"), nullptr;
     terrain->core = std::move(core);
     return terrain;
 }
@@ -64,374 +107,136 @@ hexlod_terrain* hexlod_terrain_create(int32_t width, int32_t height, int32_t sam
 void hexlod_terrain_destroy(hexlod_terrain* terrain) { delete terrain; }
 
 void* hexlod_terrain_samples(hexlod_terrain* terrain) {
-    if (!terrain) return fail(kNullHandle, static_cast<void*>(nullptr));
+    if (!terrain) return fail(kNullHandle), nullptr;
     return terrain->core->field().samples();
 }
 
-double hexlod_terrain_sample_bytes(const hexlod_terrain* terrain) {
-    if (!terrain) return fail(kNullHandle, -1.0);
-    return double(terrain->core->field().byteSize());
-}
-
-int32_t hexlod_terrain_set_scale(hexlod_terrain* terrain, double spacing_x_m, double spacing_y_m,
-                                 double height_scale, double height_offset_m, int32_t has_nodata,
-                                 double nodata_raw) {
-    if (!terrain) return fail(kNullHandle, -1);
-    hexlod::HeightfieldScale scale;
-    scale.spacingX = spacing_x_m;
-    scale.spacingY = spacing_y_m;
-    scale.heightScale = height_scale;
-    scale.heightOffset = height_offset_m;
-    scale.hasNodata = has_nodata != 0;
-    scale.nodataRaw = nodata_raw;
-    if (const char* error = terrain->core->setScale(scale)) return fail(error, -1);
+int32_t hexlod_terrain_set_scale(hexlod_terrain* terrain, const hexlod_scale* scale) {
+    if (!terrain) return fail(kNullHandle);
+    if (!scale) return fail("hexlod_terrain_set_scale needs a hexlod_scale");
+    hexlod::HeightfieldScale s;
+    s.spacingX = scale->spacing_x_m != 0.0 ? scale->spacing_x_m : 1.0;
+    s.spacingY = scale->spacing_y_m != 0.0 ? scale->spacing_y_m : 1.0;
+    s.heightScale = scale->height_scale != 0.0 ? scale->height_scale : 1.0;
+    s.heightOffset = scale->height_offset_m;
+    s.hasNodata = scale->has_nodata != 0;
+    s.nodataRaw = scale->nodata_raw;
+    if (const char* error = terrain->core->setScale(s)) return fail(error);
     return 0;
 }
 
-double hexlod_terrain_prepare(hexlod_terrain* terrain) {
-    if (!terrain) return fail(kNullHandle, -1.0);
-    if (const char* error = terrain->core->field().prepare()) return fail(error, -1.0);
-    return double(terrain->core->field().missingCount());
-}
-
-double hexlod_terrain_min_height(const hexlod_terrain* terrain) {
-    return terrain ? terrain->core->field().minHeight() : fail(kNullHandle, 0.0);
-}
-
-double hexlod_terrain_max_height(const hexlod_terrain* terrain) {
-    return terrain ? terrain->core->field().maxHeight() : fail(kNullHandle, 0.0);
-}
-
-double hexlod_terrain_height_at(const hexlod_terrain* terrain, double x_m, double z_m) {
-    return terrain ? terrain->core->field().heightAtPosition(x_m, z_m) : fail(kNullHandle, 0.0);
-}
-
-int32_t hexlod_mesh_reset(hexlod_terrain* terrain, int32_t embedding) {
-    if (!terrain) return fail(kNullHandle, -1);
-    if (embedding != HEXLOD_EMBEDDING_SHIFTED && embedding != HEXLOD_EMBEDDING_EXACT)
-        return fail("unknown embedding (expected 0 = shifted, 1 = exact)", -1);
-    if (const char* error = terrain->core->resetMesh(hexlod::Embedding(embedding))) return fail(error, -1);
+int32_t hexlod_terrain_prepare(hexlod_terrain* terrain, hexlod_field_info* info) {
+    if (!terrain) return fail(kNullHandle);
+    const hexlod::Heightfield& field = terrain->core->field();
+    if (const char* error = terrain->core->prepare()) return fail(error);
+    if (info) {
+        info->min_height_m = field.minHeight();
+        info->max_height_m = field.maxHeight();
+        info->missing = double(field.missingCount());
+        info->sample_bytes = double(field.byteSize());
+    }
     return 0;
 }
 
-int32_t hexlod_mesh_refine_uniform(hexlod_terrain* terrain, int32_t rounds) {
-    HEXLOD_NEED_MESH(-1);
-    return int32_t(terrain->core->refineUniform(rounds));
-}
-
-int32_t hexlod_mesh_max_level(const hexlod_terrain* terrain) {
-    if (!terrain) return fail(kNullHandle, -1);
-    return terrain->core->hasMesh() ? terrain->core->mesh().maxLevel() : fail(kNoMesh, -1);
-}
-
-int32_t hexlod_mesh_triangle_count(const hexlod_terrain* terrain) {
-    if (!terrain) return fail(kNullHandle, -1);
-    return terrain->core->hasMesh() ? int32_t(terrain->core->mesh().triangleCount()) : fail(kNoMesh, -1);
-}
-
-int32_t hexlod_mesh_cell_count(const hexlod_terrain* terrain) {
-    if (!terrain) return fail(kNullHandle, -1);
-    return terrain->core->hasMesh() ? terrain->core->mesh().liveCells() : fail(kNoMesh, -1);
-}
-
-int32_t hexlod_mesh_vertex_count(const hexlod_terrain* terrain) {
-    if (!terrain) return fail(kNullHandle, -1);
-    return terrain->core->hasMesh() ? terrain->core->mesh().liveVertices() : fail(kNoMesh, -1);
-}
-
-double hexlod_mesh_memory_bytes(const hexlod_terrain* terrain) {
-    if (!terrain) return fail(kNullHandle, -1.0);
-    if (!terrain->core->hasMesh()) return fail(kNoMesh, -1.0);
-    return double(terrain->core->memoryBytes());
-}
-
-int32_t hexlod_mesh_check(const hexlod_terrain* terrain) {
-    if (!terrain) return fail(kNullHandle, -1);
-    if (!terrain->core->hasMesh()) return fail(kNoMesh, -1);
-    if (const char* problem = terrain->core->mesh().checkInvariants()) return fail(problem, -1);
+int32_t hexlod_terrain_reset_mesh(hexlod_terrain* terrain, const hexlod_mesh_settings* settings) {
+    if (!terrain) return fail(kNullHandle);
+    const int32_t embedding = settings ? settings->embedding : HEXLOD_EMBEDDING_EXACT;
+    if (embedding != HEXLOD_EMBEDDING_EXACT && embedding != HEXLOD_EMBEDDING_SHIFTED)
+        return fail("unknown embedding (expected 0 = exact, 1 = shifted)");
+    const hexlod::Embedding e = embedding == HEXLOD_EMBEDDING_SHIFTED ? hexlod::Embedding::Shifted : hexlod::Embedding::Exact;
+    if (const char* error = terrain->core->resetMesh(e)) return fail(error);
     return 0;
 }
 
-int32_t hexlod_stream_update(hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1);
-    terrain->core->syncStream();
-    return int32_t(terrain->core->stream().version() & 0x7FFFFFFF);
-}
-
-int32_t hexlod_stream_set_layout(hexlod_terrain* terrain, int32_t layout) {
-    HEXLOD_NEED_MESH(-1);
-    if (layout != HEXLOD_LAYOUT_FANS && layout != HEXLOD_LAYOUT_TRIANGLES)
-        return fail("unknown index layout (expected 0 = fans, 1 = triangles)", -1);
-    terrain->core->stream().setLayout(hexlod::IndexLayout(layout));
+int32_t hexlod_terrain_set_settings(hexlod_terrain* terrain, const hexlod_settings* settings) {
+    if (!terrain) return fail(kNullHandle);
+    const hexlod_settings defaults{};
+    const hexlod_settings& in = settings ? *settings : defaults;
+    if (!finiteNonNegative(in.tau_px)) return fail("tau must be a positive number of pixels (0: 1 px)");
+    if (!finiteNonNegative(in.max_error_m)) return fail("the maximum error must be a positive number of metres (0: tau mode)");
+    if (!finiteNonNegative(in.vertical_scale)) return fail("the vertical scale must be a positive number (0: 1)");
+    if (!std::isfinite(in.budget_ms)) return fail("the time budget must be a finite number of milliseconds (0: none)");
+    if (in.morph_frames < 0 || in.morph_frames > hexlod::Geomorph::kMaxFrames) return fail("morph frames must be 0 (off) to 1000");
+    if (in.layout != HEXLOD_LAYOUT_FANS && in.layout != HEXLOD_LAYOUT_TRIANGLES)
+        return fail("unknown index layout (expected 0 = fans, 1 = triangles)");
+    hexlod::TerrainSettings s;
+    s.lod.viewIndependent = in.max_error_m > 0.0;
+    s.lod.tau = in.tau_px > 0.0 ? in.tau_px : 1.0;
+    s.lod.maxError = in.max_error_m > 0.0 ? in.max_error_m : 1.0;
+    s.lod.verticalScale = in.vertical_scale > 0.0 ? in.vertical_scale : 1.0;
+    s.lod.budgetMs = in.budget_ms;
+    s.lod.maxOperations = in.max_operations;
+    s.lod.maxTriangles = in.max_triangles;
+    s.lod.autoTau = in.auto_tau != 0;
+    s.lod.culling = in.no_frustum_culling == 0;
+    s.lod.backfaceCulling = in.no_backface_culling == 0;
+    s.morphFrames = in.morph_frames;
+    s.layout = hexlod::IndexLayout(in.layout);
+    s.normals = in.no_normals == 0;
+    terrain->core->configure(s);
     return 0;
 }
 
-int32_t hexlod_stream_set_normals(hexlod_terrain* terrain, int32_t on) {
-    HEXLOD_NEED_MESH(-1);
-    if (on != 0 && on != 1) return fail("stream normals are on (1) or off (0)", -1);
-    terrain->core->stream().setNormals(on == 1);
+int32_t hexlod_terrain_frame(hexlod_terrain* terrain, const hexlod_camera* camera, int32_t steps, hexlod_frame* out) {
+    if (const char* error = needMesh(terrain)) return fail(error);
+    if (!out) return fail("hexlod_terrain_frame needs a hexlod_frame to fill");
+    constexpr int32_t kSteps = HEXLOD_FRAME_CAMERA | HEXLOD_FRAME_LOD | HEXLOD_FRAME_STREAM;
+    if (!(steps & (kSteps | HEXLOD_FRAME_QUERY))) steps |= kSteps;
+    if (steps & HEXLOD_FRAME_QUERY) steps &= ~kSteps;
+    hexlod::Terrain& core = *terrain->core;
+    if ((steps & HEXLOD_FRAME_CAMERA) && camera) {
+        const double* up = camera->up;
+        const bool defaultUp = up[0] == 0.0 && up[1] == 0.0 && up[2] == 0.0;
+        hexlod::View view;
+        if (!hexlod::makeView({camera->eye[0], camera->eye[1], camera->eye[2]},
+                              {camera->target[0], camera->target[1], camera->target[2]},
+                              defaultUp ? glm::dvec3(0, 1, 0) : glm::dvec3(up[0], up[1], up[2]), camera->tan_half_fov_y,
+                              camera->aspect, camera->viewport_height_px, camera->near_m, camera->far_m, view))
+            return fail("degenerate camera: eye on the target, up along the view, or a non-positive size or plane");
+        core.setView(view); // the refiner re-tests only what the camera's movement may have changed
+    }
+    if (steps & HEXLOD_FRAME_LOD) core.updateLod();
+    if (steps & HEXLOD_FRAME_STREAM) core.syncStream();
+    fillFrame(terrain, steps, out);
     return 0;
 }
 
-int32_t hexlod_stream_version(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1);
-    return int32_t(terrain->core->stream().version() & 0x7FFFFFFF);
-}
-
-const void* hexlod_stream_vertices(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(static_cast<const void*>(nullptr));
-    return terrain->core->mesh().vertexData();
-}
-
-int32_t hexlod_stream_vertex_count(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1);
-    return terrain->core->mesh().vertexCapacity();
-}
-
-const uint32_t* hexlod_stream_indices(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(static_cast<const uint32_t*>(nullptr));
-    return terrain->core->stream().indices().data();
-}
-
-int32_t hexlod_stream_index_count(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1);
-    return terrain->core->stream().indexCount();
-}
-
-namespace {
-const int32_t* rangePairs(const std::vector<hexlod::ElementRange>& ranges, int32_t* pair_count) {
-    static_assert(sizeof(hexlod::ElementRange) == 2 * sizeof(int32_t), "ranges are read as int32 pairs");
-    if (pair_count) *pair_count = int32_t(ranges.size());
-    return ranges.empty() ? nullptr : &ranges[0].first;
-}
-} // namespace
-
-const int32_t* hexlod_stream_dirty_vertices(hexlod_terrain* terrain, int32_t* pair_count) {
-    HEXLOD_NEED_MESH(static_cast<const int32_t*>(nullptr));
-    return rangePairs(terrain->core->stream().dirtyVertices(), pair_count);
-}
-
-const int32_t* hexlod_stream_dirty_indices(hexlod_terrain* terrain, int32_t* pair_count) {
-    HEXLOD_NEED_MESH(static_cast<const int32_t*>(nullptr));
-    return rangePairs(terrain->core->stream().dirtyIndices(), pair_count);
-}
-
-int32_t hexlod_stream_acknowledge(hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1);
+int32_t hexlod_terrain_acknowledge(hexlod_terrain* terrain) {
+    if (const char* error = needMesh(terrain)) return fail(error);
     terrain->core->stream().acknowledge();
     return 0;
 }
 
-int32_t hexlod_stream_build_level_view(hexlod_terrain* terrain, int32_t outline) {
-    HEXLOD_NEED_MESH(-1);
-    terrain->core->stream().buildLevelView(terrain->core->mesh(), outline != 0);
-    return int32_t(terrain->core->stream().levelIndices().size());
-}
-
-const uint32_t* hexlod_stream_level_indices(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(static_cast<const uint32_t*>(nullptr));
-    return terrain->core->stream().levelIndices().data();
-}
-
-const int32_t* hexlod_stream_level_offsets(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(static_cast<const int32_t*>(nullptr));
-    return terrain->core->stream().levelOffsets().data();
-}
-
-const uint32_t* hexlod_stream_outline(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(static_cast<const uint32_t*>(nullptr));
-    return terrain->core->stream().outline().data();
-}
-
-int32_t hexlod_stream_outline_count(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1);
-    return int32_t(terrain->core->stream().outline().size());
-}
-
-int32_t hexlod_lod_set_morph_frames(hexlod_terrain* terrain, int32_t frames) {
-    HEXLOD_NEED_MESH(-1);
-    if (frames < 0 || frames > hexlod::Geomorph::kMaxFrames) return fail("morph frames must be 0 (off) to 1000", -1);
-    terrain->core->morph().setFrames(frames);
-    return 0;
-}
-
-double hexlod_lod_frame(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1.0);
-    return double(terrain->core->morph().frame());
-}
-
-int32_t hexlod_lod_pending_merges(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1);
-    return terrain->core->refiner().pendingMerges();
-}
-
-int32_t hexlod_measure_popping(hexlod_terrain* terrain, double* out) {
-    HEXLOD_NEED_MESH(-1);
-    if (!out) return fail("out must point to 7 doubles", -1);
-    if (terrain->poppingEpoch != terrain->core->meshEpoch()) terrain->popping.reset(); // a new mesh: start again
-    terrain->poppingEpoch = terrain->core->meshEpoch();
-    const hexlod::PoppingStats stats = terrain->popping.measure(terrain->core->mesh(), terrain->core->morph(), terrain->core->refiner().view(),
-                                                                terrain->core->refiner().settings().verticalScale);
-    out[0] = stats.maxJumpPx;
-    out[1] = double(stats.jumpsOverHalfPx);
-    out[2] = double(stats.measured);
-    out[3] = stats.atX;
-    out[4] = stats.atY;
-    out[5] = stats.atDepth;
-    out[6] = double(stats.kind);
-    return 0;
-}
-
-int32_t hexlod_lod_set_camera(hexlod_terrain* terrain, double eye_x, double eye_y, double eye_z,
-                              double target_x, double target_y, double target_z, double up_x,
-                              double up_y, double up_z, double tan_half_fov_y, double aspect,
-                              double viewport_height_px, double near_m, double far_m) {
-    HEXLOD_NEED_MESH(-1);
-    hexlod::View view;
-    if (!hexlod::makeView({eye_x, eye_y, eye_z}, {target_x, target_y, target_z}, {up_x, up_y, up_z}, tan_half_fov_y,
-                          aspect, viewport_height_px, near_m, far_m, view))
-        return fail("degenerate camera: eye on the target, up along the view, or a non-positive size or plane", -1);
-    terrain->core->refiner().setView(view); // marks the cycle changed only when the camera moved
-    return 0;
-}
-
-int32_t hexlod_lod_set_tolerance(hexlod_terrain* terrain, double tau_px) {
-    HEXLOD_NEED_MESH(-1);
-    if (!(tau_px > 0.0) || !std::isfinite(tau_px)) return fail("tau must be a positive number of pixels", -1);
-    hexlod::RefinerSettings& s = terrain->core->refiner().settings();
-    s.viewIndependent = false;
-    s.tau = tau_px;
-    terrain->core->refiner().markChanged();
-    return 0;
-}
-
-int32_t hexlod_lod_set_max_error(hexlod_terrain* terrain, double max_error_m) {
-    HEXLOD_NEED_MESH(-1);
-    if (!(max_error_m > 0.0) || !std::isfinite(max_error_m)) return fail("the maximum error must be a positive number of metres", -1);
-    hexlod::RefinerSettings& s = terrain->core->refiner().settings();
-    s.viewIndependent = true;
-    s.maxError = max_error_m;
-    terrain->core->refiner().markChanged();
-    return 0;
-}
-
-int32_t hexlod_lod_set_vertical_scale(hexlod_terrain* terrain, double vertical_scale) {
-    HEXLOD_NEED_MESH(-1);
-    if (!(vertical_scale > 0.0) || !std::isfinite(vertical_scale)) return fail("the vertical scale must be a positive number", -1);
-    terrain->core->refiner().settings().verticalScale = vertical_scale;
-    terrain->core->refiner().markChanged();
-    return 0;
-}
-
-int32_t hexlod_lod_set_budget(hexlod_terrain* terrain, double budget_ms, int32_t max_operations) {
-    HEXLOD_NEED_MESH(-1);
-    hexlod::RefinerSettings& s = terrain->core->refiner().settings();
-    s.budgetMs = std::isfinite(budget_ms) ? budget_ms : 0.0;
-    s.maxOperations = max_operations;
-    return 0;
-}
-
-int32_t hexlod_lod_set_limits(hexlod_terrain* terrain, int32_t max_triangles, int32_t auto_tau) {
-    HEXLOD_NEED_MESH(-1);
-    hexlod::RefinerSettings& s = terrain->core->refiner().settings();
-    s.maxTriangles = max_triangles;
-    s.autoTau = auto_tau != 0;
-    terrain->core->refiner().markChanged();
-    return 0;
-}
-
-int32_t hexlod_lod_set_culling(hexlod_terrain* terrain, int32_t enabled) {
-    HEXLOD_NEED_MESH(-1);
-    terrain->core->refiner().settings().culling = enabled != 0;
-    terrain->core->refiner().markChanged();
-    return 0;
-}
-
-int32_t hexlod_lod_set_backface_culling(hexlod_terrain* terrain, int32_t enabled) {
-    HEXLOD_NEED_MESH(-1);
-    terrain->core->refiner().settings().backfaceCulling = enabled != 0;
-    terrain->core->refiner().markChanged();
-    return 0;
-}
-
-int32_t hexlod_lod_update(hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1);
-    return terrain->core->refiner().update().operations;
-}
-
-int32_t hexlod_lod_converged(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1);
-    // The refiner's convergence does not wait for fades (issue 12); the page must keep
-    // updating until the faded merges are done, so this also asks for none pending.
-    return terrain->core->converged() ? 1 : 0;
-}
-
-int32_t hexlod_lod_last_splits(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1);
-    return terrain->core->refiner().lastUpdate().splits;
-}
-
-int32_t hexlod_lod_last_merges(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1);
-    return terrain->core->refiner().lastUpdate().merges;
-}
-
-double hexlod_lod_last_update_ms(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1.0);
-    return terrain->core->refiner().lastUpdate().milliseconds;
-}
-
-double hexlod_lod_current_tau(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1.0);
-    return terrain->core->refiner().currentTau();
-}
-
-double hexlod_lod_achieved_error_px(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(-1.0);
-    return terrain->core->refiner().achievedErrorPixels();
-}
-
-int32_t hexlod_mesh_cell_kinds(const hexlod_terrain* terrain, int32_t* out) {
-    HEXLOD_NEED_MESH(-1);
-    if (!out) return fail("hexlod_mesh_cell_kinds needs an array of 3 int32 to write to", -1);
-    const auto counts = hexlod::countCellKinds(terrain->core->mesh());
-    for (size_t k = 0; k < 3; ++k) out[k] = counts[k];
-    return counts[0] + counts[1] + counts[2];
-}
-
-double hexlod_stream_drawn_height_at(const hexlod_terrain* terrain, double x_m, double z_m) {
-    if (!terrain || !terrain->core->hasMesh()) return std::nan("");
+int32_t hexlod_terrain_height_at(const hexlod_terrain* terrain, double x_m, double z_m, int32_t surface, double* height_m) {
+    if (!terrain) return fail(kNullHandle);
+    if (!height_m) return fail("hexlod_terrain_height_at needs a double to write to");
+    if (surface == HEXLOD_SURFACE_FIELD) {
+        *height_m = terrain->core->field().heightAtPosition(x_m, z_m);
+        return 1;
+    }
+    if (surface != HEXLOD_SURFACE_DRAWN) return fail("unknown surface (expected 0 = field, 1 = drawn)");
+    if (const char* error = needMesh(terrain)) return fail(error);
     float height = 0.0f;
-    if (!terrain->core->drawnHeightAt(x_m, z_m, height)) return std::nan("");
-    return double(height);
+    if (!terrain->core->drawnHeightAt(x_m, z_m, height)) {
+        *height_m = std::nan("");
+        return 0;
+    }
+    *height_m = double(height);
+    return 1;
 }
 
-uint32_t hexlod_mesh_hash_low(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(0u);
-    return uint32_t(terrain->core->mesh().hash());
-}
-
-uint32_t hexlod_mesh_hash_high(const hexlod_terrain* terrain) {
-    HEXLOD_NEED_MESH(0u);
-    return uint32_t(terrain->core->mesh().hash() >> 32);
-}
-
-int32_t hexlod_mesh_measure_error(const hexlod_terrain* terrain, int32_t against_stored, double* out) {
-    HEXLOD_NEED_MESH(-1);
-    if (!out) return fail("out must point to 4 doubles", -1);
-    std::vector<uint32_t> triangles;
-    terrain->core->mesh().appendTriangles(triangles);
-    hexlod::ErrorOptions options;
-    options.shiftedOddRows = against_stored != 0 && terrain->core->mesh().embedding() == hexlod::Embedding::Shifted;
-    const hexlod::ErrorStats stats = hexlod::evaluateMeshError(terrain->core->field(), terrain->core->mesh().positionData(),
-                                                               size_t(terrain->core->mesh().vertexCapacity()), hexlod::kStreamVertexWords, triangles.data(),
-                                                               triangles.size(), options);
-    if (stats.error) return fail(stats.error, -1);
-    out[0] = stats.maxError;
-    out[1] = stats.p99Error;
-    out[2] = stats.meanError;
-    out[3] = double(stats.uncovered);
-    return 0;
+int32_t hexlod_terrain_level_view(hexlod_terrain* terrain, int32_t outline, hexlod_level_view* out) {
+    if (const char* error = needMesh(terrain)) return fail(error);
+    if (!out) return fail("hexlod_terrain_level_view needs a hexlod_level_view to fill");
+    hexlod::FanStream& stream = terrain->core->stream();
+    stream.buildLevelView(terrain->core->mesh(), outline != 0);
+    out->indices = stream.levelIndices().data();
+    out->level_offsets = stream.levelOffsets().data();
+    out->outline = stream.outline().data();
+    out->index_count = int32_t(stream.levelIndices().size());
+    out->level_offset_count = int32_t(stream.levelOffsets().size());
+    out->outline_count = int32_t(stream.outline().size());
+    return out->index_count;
 }
 
 } // extern "C"
