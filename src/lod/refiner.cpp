@@ -59,7 +59,7 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     pyramid_.build(field);
     mesh.setChangeLog(0, &changes_);
     changes_.clear();
-    cache_.assign(cache_.size(), Cached{}); // every cached bound belongs to the old mesh
+    cache_.clear(); // every cached bound belongs to the old mesh
     state_.assign(state_.size(), 0);
     currentTau_ = settings_.tau;
     last_ = {};
@@ -83,7 +83,7 @@ void Refiner::setView(const View& view) {
 }
 
 size_t Refiner::memoryBytes() const {
-    return cache_.capacity() * sizeof(Cached) + records_.capacity() * sizeof(TestRecord) + state_.capacity() +
+    return cache_.memoryBytes() + records_.capacity() * sizeof(TestRecord) + state_.capacity() +
            (changes_.capacity() + fresh_.capacity() + freedScratch_.capacity() + mergeList_.capacity()) * sizeof(int32_t) +
            heap_.capacity() * sizeof(Candidate) + pending_.capacity() * sizeof(PendingMerge) + pyramid_.memoryBytes();
 }
@@ -125,13 +125,13 @@ void Refiner::rebaseOdometers() {
 void Refiner::noteChanges(bool collect) {
     const size_t capacity = size_t(mesh_->cellCapacity());
     if (cache_.size() < capacity) { // grows with the pool
-        reserveForPool(cache_, capacity), reserveForPool(records_, capacity), reserveForPool(state_, capacity);
-        cache_.resize(capacity);
+        cache_.grow(capacity);
+        reserveForPool(records_, capacity), reserveForPool(state_, capacity);
         records_.resize(capacity);
         state_.resize(capacity, 0);
     }
     for (int32_t c : changes_) {
-        cache_[size_t(c)].valid = 0;
+        cache_.invalidate(c);
         records_[size_t(c)].rho = -1.0f;
         state_[size_t(c)] &= uint8_t(kPending | kCancel); // a pending merge is checked by stillFrees
         if (collect) fresh_.push_back(c);
@@ -167,10 +167,10 @@ const CellError& Refiner::cachedError(int32_t c, uint8_t bit, CellError& slot, c
 
 const Refiner::Cached& Refiner::ownBound(int32_t c, const Footprint& footprint) {
     Cached& cached = cache_[size_t(c)];
-    if (!(cached.valid & 1)) {
+    if (!(cached.valid & RefinementCache::kOwn)) {
         cached.own = computeCellError(*field_, mesh_->embedding(), pyramid_, shapeOfCell(*mesh_, c));
         cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), footprint);
-        cached.valid |= 1;
+        cached.valid |= RefinementCache::kOwn;
     }
     return cached;
 }
@@ -318,7 +318,7 @@ bool Refiner::canRefine(int32_t c) const {
 // it breaks: all of them must pass, or the next refine pass would split c again.
 Refiner::Verdict Refiner::mergeVerdict(int32_t c, double& dist) {
     const CellShape parent = parentShapeOfCell(*mesh_, c);
-    Verdict all = judge(footprintOf(*field_, mesh_->embedding(), parent), cachedError(c, 2, cache_[size_t(c)].parent, parent),
+    Verdict all = judge(footprintOf(*field_, mesh_->embedding(), parent), cachedError(c, RefinementCache::kParent, cache_[size_t(c)].parent, parent),
                         nullptr, true, dist);
     if (!all.pass) return all;
     const Hexagon& h = mesh_->cell(c);
@@ -433,7 +433,7 @@ bool Refiner::refineStep(int32_t c) {
     }
     CellError kept;
     CellShape keptShape;
-    const bool keep = step.kind == SplitStep::Split && (cache_[size_t(step.cell)].valid & 1);
+    const bool keep = step.kind == SplitStep::Split && (cache_[size_t(step.cell)].valid & RefinementCache::kOwn);
     if (keep) {
         kept = cache_[size_t(step.cell)].own;
         keptShape = shapeOfCell(*mesh_, step.cell);
@@ -442,7 +442,7 @@ bool Refiner::refineStep(int32_t c) {
     noteChanges();
     if (keep && mesh_->isLive(step.cell) && sameShape(parentShapeOfCell(*mesh_, step.cell), keptShape)) {
         cache_[size_t(step.cell)].parent = kept;
-        cache_[size_t(step.cell)].valid |= 2;
+        cache_[size_t(step.cell)].valid |= RefinementCache::kParent;
     }
     return true;
 }
@@ -452,7 +452,7 @@ bool Refiner::refineStep(int32_t c) {
 bool Refiner::mergeNow(int32_t c) {
     CellError kept;
     CellShape keptShape;
-    const bool keep = cache_[size_t(c)].valid & 2;
+    const bool keep = cache_[size_t(c)].valid & RefinementCache::kParent;
     if (keep) {
         kept = cache_[size_t(c)].parent;
         keptShape = parentShapeOfCell(*mesh_, c);
@@ -463,7 +463,7 @@ bool Refiner::mergeNow(int32_t c) {
         Cached& cached = cache_[size_t(c)];
         cached.own = kept;
         cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), footprintOf(*field_, mesh_->embedding(), keptShape));
-        cached.valid = 1;
+        cached.valid = RefinementCache::kOwn;
     }
     return true;
 }

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "lod/cell_bounds.h"
+#include "lod/refinement_cache.h"
 #include "stream/geomorph.h"
 #include "mesh/hex_mesh.h"
 #include "field/min_max_pyramid.h"
@@ -87,16 +88,8 @@ public:
     double achievedErrorPixels() const;
 
 private:
-    // §5.1: refinement data cached per cell record (48 bytes): its own and its parent's (what
-    // a merge makes). The footprint is recomputed from the lattice when tested (cheap; tests
-    // are rare with margins), the halves of a joined hexagon (what a break makes) when a
-    // neighbour's merge is tested.
-    struct Cached {
-        CellError own;
-        SlopeBox ownSlopes;
-        CellError parent;
-        uint8_t valid = 0; // bits: 1 own, 2 parent
-    };
+    // §5.1: refinement data cached per cell record (refinement_cache.h).
+    using Cached = RefinementCache::Entry;
     // When a cell is next due, in the camera's odometers (travel_, turn_): due once
     // (travel_ - t0) + (turn_ - a0) * (dist + travel_ - t0) >= rho. t0, a0 rounded down,
     // dist (the eye's distance to the centre at the test) rounded up, rho (metres) rounded down.
@@ -163,7 +156,7 @@ private:
     MinMaxPyramid pyramid_;
     RefinerSettings settings_;
     View view_;
-    std::vector<Cached> cache_;
+    RefinementCache cache_;
     std::vector<TestRecord> records_;
     std::vector<uint8_t> state_;
     std::vector<int32_t> changes_, fresh_;
