@@ -2,14 +2,19 @@
 # build.sh: the one build entry point of hexlod.
 #   ./build.sh          native core + tests + benchmark, then the WebAssembly module
 #   ./build.sh native   only the native part (CMake + Ninja, into build/native)
-#   ./build.sh wasm     only the WebAssembly module (Emscripten 3.1.6, into build/wasm)
+#   ./build.sh wasm     only the WebAssembly modules (Emscripten 3.1.6): build/wasm, the product the
+#                       page loads, and build/wasm-diag, the same core with the diagnostics ABI,
+#                       which Node (bin/, tests/node, benchmarks) loads
 #   ./build.sh wasm-tests  the GoogleTest suite built to WebAssembly, run under Node (build/wasm-tests)
 #   ./build.sh site     the static production site in dist/ (needs the WebAssembly module)
 set -euo pipefail
 cd "$(dirname "$0")"
 target=${1:-all}
 
-core_sources=(src/*.cpp) # the core is every .cpp directly in src/, as in CMakeLists.txt
+shopt -s nullglob
+# The core: every .cpp in src/ and its section folders, as in CMakeLists.txt (src/bench/ is the
+# benchmark's main, not core).
+core_sources=(src/*.cpp src/{field,mesh,lod,stream,diagnostics,api}/*.cpp)
 
 build_native() {
   # Compiler flags of the native build live in CMakeLists.txt, each with its reason.
@@ -17,20 +22,25 @@ build_native() {
   ninja -C build/native
 }
 
-build_wasm() {
-  mkdir -p build/wasm/include
+# One WebAssembly module: $1 the output folder, $2 the ABI headers whose functions it exports,
+# then the sources.
+build_wasm_module() {
+  local out=$1 headers=$2
+  shift 2
+  mkdir -p "$out/include"
   # emcc must see GLM but not the rest of /usr/include (glibc headers break the wasm libc).
-  ln -sfn /usr/include/glm build/wasm/include/glm
-  # Every function of the C ABI (src/hexlod.h) is exported, plus malloc/free for JS buffers.
+  ln -sfn /usr/include/glm "$out/include/glm"
+  # Every function declared in the headers is exported, plus malloc/free for JS buffers.
   local exports
-  exports=$(grep -oE '\bhexlod_[a-z0-9_]+\(' src/hexlod.h | tr -d '(' | sort -u | sed 's/^/_/' | paste -sd, -)
+  exports=$(grep -ohE '\bhexlod_[a-z0-9_]+\(' $headers | tr -d '(' | sort -u | sed 's/^/_/' | paste -sd, -)
   local flags=(
     -std=c++17                      # the core is written in C++17
     -O3                             # the per-frame LOD update runs here: optimise for speed
     -ffp-contract=off               # no fused multiply-add: the same split/merge decisions as native
     -fno-exceptions                 # errors go by return value; smaller and faster code
     -Wall -Wextra                   # the same warnings as the native build
-    -Ibuild/wasm/include            # GLM only (see the link above)
+    "-I$out/include"                # GLM only (see the link above)
+    -Isrc                           # the core names its headers from src/ (field/, mesh/, lod/, ...)
     -sMODULARIZE -sEXPORT_ES6       # an ES module factory, imported by the page, workers and Node
     -sEXPORT_NAME=createHexlodCore  # the factory's name
     -sENVIRONMENT=web,worker        # with node too, 3.1.6 emits __dirname into an ES module; Node passes wasmBinary instead
@@ -42,8 +52,19 @@ build_wasm() {
     -sEXPORTED_RUNTIME_METHODS=UTF8ToString        # to read hexlod_last_error() messages
   )
   # Debian's emscripten runs its JS optimiser with node; it needs Debian's acorn on NODE_PATH.
-  NODE_PATH=/usr/share/nodejs em++ "${flags[@]}" "${core_sources[@]}" -o build/wasm/hexlod_core.mjs
-  echo "built build/wasm/hexlod_core.mjs and hexlod_core.wasm ($(stat -c %s build/wasm/hexlod_core.wasm) bytes)"
+  NODE_PATH=/usr/share/nodejs em++ "${flags[@]}" "$@" -o "$out/hexlod_core.mjs"
+  echo "built $out/hexlod_core.mjs and hexlod_core.wasm ($(stat -c %s "$out/hexlod_core.wasm") bytes)"
+}
+
+build_wasm() {
+  # The product (the page and dist/): the ABI of src/api/hexlod.h only, no diagnostics code.
+  local product=()
+  for source in "${core_sources[@]}"; do
+    [ "$source" = src/api/hexlod_diagnostics_api.cpp ] || product+=("$source")
+  done
+  build_wasm_module build/wasm src/api/hexlod.h "${product[@]}"
+  # For Node (the CLI, its tests and benchmarks): the same core plus src/api/hexlod_diagnostics.h.
+  build_wasm_module build/wasm-diag "src/api/hexlod.h src/api/hexlod_diagnostics.h" "${core_sources[@]}"
 }
 
 build_site() {

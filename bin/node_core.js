@@ -1,15 +1,19 @@
-// Node side of the core: reads the .wasm from the build and hands it to web/core.js (the
-// ES module build cannot locate its .wasm in Node by itself; see build.sh).
+// Node side of the core: the diagnostics build (build/wasm-diag: the product core plus the
+// functions of src/api/hexlod_diagnostics.h, for the CLI, its tests and benchmarks), its .wasm
+// read from the build and handed to web/core.js (the ES module build cannot locate its .wasm in
+// Node by itself; see build.sh). The page loads the product build, build/wasm.
 import { readFileSync, existsSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { createCore } from '../web/core.js';
 
-export const wasmPath = fileURLToPath(new URL('../build/wasm/hexlod_core.wasm', import.meta.url));
+export const wasmPath = fileURLToPath(new URL('../build/wasm-diag/hexlod_core.wasm', import.meta.url));
+const factoryPath = new URL('../build/wasm-diag/hexlod_core.mjs', import.meta.url);
 
-/** Instantiates the WASM core in Node. Throws a clear error when it was not built. */
+/** Instantiates the WASM core (diagnostics build) in Node. Throws a clear error when it was not built. */
 export async function createNodeCore() {
-  if (!existsSync(wasmPath)) {
+  if (!existsSync(wasmPath) || !existsSync(fileURLToPath(factoryPath))) {
     throw new Error(`the WebAssembly core is not built (${wasmPath} is missing): run ./build.sh`);
   }
-  return createCore({ wasmBinary: readFileSync(wasmPath) });
+  const { default: factory } = await import(factoryPath.href);
+  return createCore({ wasmBinary: readFileSync(wasmPath), factory });
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# build_wasm_tests.sh: the native GoogleTest suite (tests/native/*_test.cpp + every src/*.cpp),
+# build_wasm_tests.sh: the native GoogleTest suite (tests/native/*_test.cpp + the core in src/),
 # built with Emscripten 3.1.6 into build/wasm-tests/hexlod_tests.js (+ .wasm), so the same tests
 # run under Node and tests/node/native_wasm_agreement.test.js can show the two builds agree:
 #   node build/wasm-tests/hexlod_tests.js [--gtest_filter=...]
@@ -27,7 +27,8 @@ ln -sfn "$gtest_root/include/gtest" "$out/include/gtest" # the headers that matc
 # The emitted loader is CommonJS, but the repository's package.json says "type": "module".
 printf '{ "type": "commonjs" }\n' >"$out/package.json"
 
-core_sources=(src/*.cpp)             # the core is every .cpp directly in src/, as in CMakeLists.txt
+shopt -s nullglob
+core_sources=(src/*.cpp src/{field,mesh,lod,stream,diagnostics,api}/*.cpp) # the core, as in build.sh and CMakeLists.txt
 test_sources=(tests/native/*_test.cpp) # the suite is every *_test.cpp, as in CMakeLists.txt
 
 # Debian's emscripten runs its JS optimiser with node; it needs Debian's acorn on NODE_PATH.

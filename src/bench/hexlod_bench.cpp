@@ -29,15 +29,16 @@
 
 #include <glm/geometric.hpp>
 
-#include "error_evaluator.h"
-#include "fan_stream.h"
-#include "geomorph.h"
-#include "popping_meter.h"
-#include "heightfield.h"
-#include "hex_mesh.h"
-#include "hex_mesh_refine.h"
-#include "min_max_pyramid.h"
-#include "refiner.h"
+#include "diagnostics/error_evaluator.h"
+#include "stream/fan_stream.h"
+#include "stream/geomorph.h"
+#include "diagnostics/popping_meter.h"
+#include "field/heightfield.h"
+#include "mesh/hex_mesh.h"
+#include "mesh/hex_mesh_refine.h"
+#include "field/min_max_pyramid.h"
+#include "lod/refiner.h"
+#include "terrain.h"
 
 namespace {
 
@@ -50,19 +51,21 @@ int fail(const char* what, const char* detail) {
     return 1;
 }
 
-// Reads a raw float32 field and prepares it; null (after printing why) on failure.
-std::unique_ptr<hexlod::Heightfield> loadRawField(const char* path, int32_t width, int32_t height,
-                                                  const hexlod::HeightfieldScale& scale) {
+// A terrain (the facade the C ABI drives) over a raw float32 field, prepared; null (after
+// printing why) on failure.
+std::unique_ptr<hexlod::Terrain> loadRawTerrain(const char* path, int32_t width, int32_t height,
+                                                const hexlod::HeightfieldScale& scale) {
     const char* error = nullptr;
-    auto field = hexlod::Heightfield::create(width, height, hexlod::SampleType::F32, &error);
-    if (!field) return fail(error, nullptr), nullptr;
+    auto terrain = hexlod::Terrain::create(width, height, hexlod::SampleType::F32, &error);
+    if (!terrain) return fail(error, nullptr), nullptr;
+    hexlod::Heightfield& field = terrain->field();
     FILE* file = std::fopen(path, "rb");
     if (!file) return fail("cannot open ", path), nullptr;
-    const size_t got = std::fread(field->samples(), 4, field->sampleCount(), file);
+    const size_t got = std::fread(field.samples(), 4, field.sampleCount(), file);
     std::fclose(file);
-    if (got != field->sampleCount()) return fail("too few samples in ", path), nullptr;
-    if ((error = field->setScale(scale)) || (error = field->prepare())) return fail(error, nullptr), nullptr;
-    return field;
+    if (got != field.sampleCount()) return fail("too few samples in ", path), nullptr;
+    if ((error = terrain->setScale(scale)) || (error = terrain->prepare())) return fail(error, nullptr), nullptr;
+    return terrain;
 }
 
 // CPU time of this thread in milliseconds: on a shared machine, time slices lost to other
@@ -104,7 +107,8 @@ double drawnMeshErrorPx(const hexlod::HexMesh& mesh, const hexlod::Heightfield& 
 }
 
 // Replays a camera path; prints p50 / p95 of update and stream times and the mesh figures.
-int flight(const hexlod::Heightfield& field, int argc, char** argv) {
+int flight(hexlod::Terrain& terrain, int argc, char** argv) {
+    const hexlod::Heightfield& field = terrain.field();
     const char* path = nullptr;
     double tau = 1.0, budgetMs = 0.0, tanHalfFov = 0.57735026918962573, width = 1920, height = 1080;
     int32_t budgetOps = 0, morphFrames = 0;
@@ -145,12 +149,16 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
     std::fclose(file);
     if (cameras.empty()) return fail("no cameras in ", path);
 
-    hexlod::HexMesh mesh;
-    mesh.reset(field, hexlod::Embedding::Exact);
-    hexlod::Refiner refiner;
-    refiner.attach(mesh, field);
-    refiner.settings().tau = tau;
-    refiner.settings().backfaceCulling = backface;
+    if (const char* error = terrain.resetMesh(hexlod::Embedding::Exact)) return fail(error, nullptr);
+    hexlod::HexMesh& mesh = terrain.mesh();
+    hexlod::Refiner& refiner = terrain.refiner();
+    hexlod::FanStream& stream = terrain.stream();
+    hexlod::Geomorph& morph = terrain.morph();
+    hexlod::TerrainSettings settings = terrain.settings();
+    settings.lod.tau = tau;
+    settings.lod.backfaceCulling = backface;
+    settings.normals = normals;
+    terrain.configure(settings);
     auto viewOf = [&](const std::array<double, 6>& cam, hexlod::View& view) {
         const glm::dvec3 eye(cam[0], cam[1], cam[2]), target(cam[3], cam[4], cam[5]);
         const double distance = glm::length(target - eye);
@@ -159,38 +167,34 @@ int flight(const hexlod::Heightfield& field, int argc, char** argv) {
     if (startConverged) {
         hexlod::View view;
         if (!viewOf(cameras[0], view)) return fail("degenerate camera in ", path);
-        refiner.setView(view);
-        for (int32_t n = 0; n < 1000 && !refiner.update().converged; ++n) {
+        terrain.setView(view);
+        for (int32_t n = 0; n < 1000 && !terrain.updateLod().converged; ++n) {
         }
+        terrain.syncStream(); // the start's stream is not the flight's cost
         if (verbose) {
             hexlod::MinMaxPyramid p;
             p.build(field);
             std::printf("start: %lld triangles, error %.3f px\n", (long long)mesh.triangleCount(), drawnMeshErrorPx(mesh, field, p, view, refiner.settings()));
         }
     }
-    refiner.settings().budgetMs = budgetMs;
-    refiner.settings().maxOperations = budgetOps;
+    settings.lod.budgetMs = budgetMs;
+    settings.lod.maxOperations = budgetOps;
+    settings.morphFrames = morphFrames;
+    terrain.configure(settings);
     hexlod::MinMaxPyramid pyramid;
     if (measureError) pyramid.build(field);
-    hexlod::Geomorph morph;
-    morph.setFrames(morphFrames);
-    refiner.setGeomorph(&morph);
-    hexlod::FanStream stream;
-    stream.setNormals(normals);
-    stream.attach(mesh);
     hexlod::PoppingMeter popping;
     std::vector<double> updateMs, streamMs, triangles, splits, merges, jumps, tested, convergedMsPerMillion, screenError,
         liveBytes, capacityBytes, convergedCpuMsPerMillion;
     for (const auto& cam : cameras) {
         hexlod::View view;
         if (!viewOf(cam, view)) return fail("degenerate camera in ", path);
-        refiner.setView(view);
-        refiner.markChanged();
+        terrain.setView(view);
         const double cpuStart = threadCpuMs();
-        const hexlod::UpdateStats stats = refiner.update();
+        const hexlod::UpdateStats stats = terrain.updateLod();
         const double cpuMs = threadCpuMs() - cpuStart;
         const auto start = std::chrono::steady_clock::now();
-        stream.sync(mesh, morph);
+        terrain.syncStream();
         streamMs.push_back(msSince(start));
         jumps.push_back(popping.measure(mesh, morph, view, 1.0).maxJumpPx);
         updateMs.push_back(stats.milliseconds);
@@ -250,8 +254,8 @@ int main(int argc, char** argv) {
         hexlod::HeightfieldScale scale;
         scale.spacingX = std::atof(argv[4]);
         scale.spacingY = std::atof(argv[5]);
-        auto field = loadRawField(argv[1], std::atoi(argv[2]), std::atoi(argv[3]), scale);
-        return field ? flight(*field, argc, argv) : 1;
+        auto terrain = loadRawTerrain(argv[1], std::atoi(argv[2]), std::atoi(argv[3]), scale);
+        return terrain ? flight(*terrain, argc, argv) : 1;
     }
     if (argc != 4 && argc != 6) {
         std::fprintf(stderr, "usage: hexlod_bench FILE.f32 WIDTH HEIGHT [SPACING_X_M SPACING_Y_M]\n");
@@ -261,21 +265,21 @@ int main(int argc, char** argv) {
     hexlod::HeightfieldScale scale;
     if (argc == 6) scale.spacingX = std::atof(argv[4]), scale.spacingY = std::atof(argv[5]);
 
-    auto field = loadRawField(argv[1], width, height, scale);
-    if (!field) return 1;
+    auto terrain = loadRawTerrain(argv[1], width, height, scale);
+    if (!terrain) return 1;
+    const hexlod::Heightfield* field = &terrain->field();
     std::printf("%s: %dx%d samples, spacing %.1f x %.1f m, heights %.1f .. %.1f m\n", argv[1], width, height,
                 scale.spacingX, scale.spacingY, field->minHeight(), field->maxHeight());
 
     for (hexlod::Embedding embedding : {hexlod::Embedding::Shifted, hexlod::Embedding::Exact}) {
         const char* name = embedding == hexlod::Embedding::Shifted ? "shifted" : "exact";
-        hexlod::HexMesh mesh;
+        if (const char* error = terrain->resetMesh(embedding)) return fail(error, nullptr);
+        const hexlod::HexMesh& mesh = terrain->mesh();
         auto start = std::chrono::steady_clock::now();
-        mesh.reset(*field, embedding);
-        hexlod::refineUniformly(mesh, mesh.maxLevel() / 2);
+        terrain->refineUniform(mesh.maxLevel() / 2);
         const double refineMs = msSince(start);
-        hexlod::FanStream stream;
         start = std::chrono::steady_clock::now();
-        stream.attach(mesh);
+        terrain->syncStream(); // the whole mesh is new to the stream: every slot is written
         const double streamMs = msSince(start);
         std::vector<uint32_t> triangles;
         mesh.appendTriangles(triangles);

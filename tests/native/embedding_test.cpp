@@ -1,16 +1,16 @@
 // The two lattice embeddings (§4.7), measured against the original samples at full
 // refinement, and the memory the mesh structures take per triangle (§8.1).
-#include "embedding.h"
+#include "mesh/embedding.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "error_evaluator.h"
-#include "fan_stream.h"
+#include "diagnostics/error_evaluator.h"
+#include "stream/fan_stream.h"
 #include "fixture.h"
-#include "hex_mesh_refine.h"
+#include "mesh/hex_mesh_refine.h"
 
 using namespace hexlod;
 

@@ -1,4 +1,4 @@
-#include "error_evaluator.h"
+#include "diagnostics/error_evaluator.h"
 
 #include <gtest/gtest.h>
 

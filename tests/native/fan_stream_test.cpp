@@ -1,7 +1,7 @@
 // The fan stream (paper §7): decoding the slots gives exactly the mesh's triangles, restart
 // indices close every fan, nothing exceeds capacity, incremental updates equal a rewrite bit
 // for bit, and the dirty ranges carry every change to a renderer's copy.
-#include "fan_stream.h"
+#include "stream/fan_stream.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <random>
 
 #include "fixture.h"
-#include "hex_mesh_refine.h"
+#include "mesh/hex_mesh_refine.h"
 
 using namespace hexlod;
 

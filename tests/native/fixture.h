@@ -1,12 +1,14 @@
 // Reads the real DEM fixtures in tests/fixtures (raw little-endian float32, row-major).
 #pragma once
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "heightfield.h"
+#include "field/heightfield.h"
+#include "terrain.h"
 
 namespace hexlod::test {
 
@@ -51,5 +53,20 @@ inline std::unique_ptr<Heightfield> cropFixture(const Fixture& f, int32_t column
 
 // A prepared f32 height field holding the fixture's samples (null if the file is unreadable).
 inline std::unique_ptr<Heightfield> loadFixture(const Fixture& f) { return cropFixture(f, 0, 0, f.width, f.height); }
+
+// A terrain (the facade the C ABI drives) holding the fixture's prepared samples, no mesh yet
+// (null if the file is unreadable).
+inline std::unique_ptr<Terrain> loadTerrain(const Fixture& f) {
+    const std::vector<float> data = readF32(f);
+    if (data.empty()) return nullptr;
+    auto terrain = Terrain::create(f.width, f.height, SampleType::F32, nullptr);
+    std::copy(data.begin(), data.end(), static_cast<float*>(terrain->field().samples()));
+    HeightfieldScale scale;
+    scale.spacingX = f.spacingX;
+    scale.spacingY = f.spacingY;
+    terrain->setScale(scale);
+    terrain->prepare();
+    return terrain;
+}
 
 } // namespace hexlod::test

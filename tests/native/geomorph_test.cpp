@@ -1,7 +1,7 @@
 // Geomorphing (paper §7): new vertices start on their parent edge and blend to their place in
 // n frames; a merge frees only vertices that have faded out; blends finish; the whole thing is
 // deterministic under the frame clock; and it cuts the popping the meter measures.
-#include "geomorph.h"
+#include "stream/geomorph.h"
 
 #include <gtest/gtest.h>
 
@@ -10,10 +10,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "fan_stream.h"
+#include "stream/fan_stream.h"
 #include "fixture.h"
-#include "popping_meter.h"
-#include "refiner.h"
+#include "diagnostics/popping_meter.h"
+#include "lod/refiner.h"
 
 using namespace hexlod;
 
@@ -27,24 +27,25 @@ View viewFrom(const glm::dvec3& eye, const glm::dvec3& target) {
     return view;
 }
 
-// The page's loop in miniature: mesh, refiner and stream, the blend clock shared.
+// The page's loop in miniature: the terrain facade (mesh, refiner, blends and stream wired as
+// the C ABI wires them), with names for its pieces.
 struct Lod {
-    HexMesh mesh;
-    Refiner refiner;
-    Geomorph morph;
-    FanStream stream;
-    Lod(const Heightfield& field, int32_t frames, int32_t maxOperations) {
-        mesh.reset(field, Embedding::Exact);
-        refiner.attach(mesh, field);
-        refiner.setGeomorph(&morph);
-        refiner.settings().maxOperations = maxOperations;
-        morph.setFrames(frames);
-        stream.attach(mesh);
+    std::unique_ptr<Terrain> terrain;
+    HexMesh& mesh;
+    Refiner& refiner;
+    Geomorph& morph;
+    Lod(const test::Fixture& fixture, int32_t frames, int32_t maxOperations)
+        : terrain(test::loadTerrain(fixture)), mesh(terrain->mesh()), refiner(terrain->refiner()), morph(terrain->morph()) {
+        terrain->resetMesh(Embedding::Exact);
+        TerrainSettings settings = terrain->settings();
+        settings.lod.maxOperations = maxOperations;
+        settings.morphFrames = frames;
+        terrain->configure(settings);
     }
     void frame(const View& view) {
-        refiner.setView(view);
-        refiner.update();
-        stream.sync(mesh, morph);
+        terrain->setView(view);
+        terrain->updateLod();
+        terrain->syncStream();
     }
 };
 
@@ -68,7 +69,7 @@ TEST(Geomorph, NewVerticesStartOnTheirParentEdgeAndArriveAfterNFrames) {
     auto field = test::loadFixture(test::kGrandCanyon);
     ASSERT_NE(field, nullptr);
     const int32_t n = 6;
-    Lod lod(*field, n, 400);
+    Lod lod(test::kGrandCanyon, n, 400);
     const std::vector<View> views = flight(*field, 20);
     lod.frame(views[0]);
     // The vertices of the first frame's splits, as drawn in that frame.
@@ -154,7 +155,7 @@ TEST(Geomorph, AFlightIsDeterministicUnderTheFrameClock) {
     auto field = test::loadFixture(test::kGrandCanyon);
     const std::vector<View> views = flight(*field, 60);
     auto run = [&](std::vector<StreamVertex>& vertices) {
-        Lod lod(*field, 8, 150);
+        Lod lod(test::kGrandCanyon, 8, 150);
         for (const View& view : views) lod.frame(view);
         vertices.assign(lod.mesh.vertexData(), lod.mesh.vertexData() + lod.mesh.vertexCapacity());
         return lod.mesh.hash();
@@ -171,7 +172,7 @@ TEST(Geomorph, BlendingCutsTheLargestJumpOnScreen) {
     auto field = test::loadFixture(test::kGrandCanyon);
     const std::vector<View> views = flight(*field, 90);
     auto largestJump = [&](int32_t frames) {
-        Lod lod(*field, frames, 0);
+        Lod lod(test::kGrandCanyon, frames, 0);
         for (int32_t i = 0; i < 200 && !lod.refiner.lastUpdate().converged; ++i) lod.frame(views[0]); // as loaded
         for (int32_t i = 0; i < frames; ++i) lod.frame(views[0]); // and its blends done
         PoppingMeter meter;

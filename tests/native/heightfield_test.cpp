@@ -1,4 +1,4 @@
-#include "heightfield.h"
+#include "field/heightfield.h"
 
 #include <gtest/gtest.h>
 

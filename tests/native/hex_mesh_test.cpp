@@ -1,6 +1,6 @@
 // The hexagon mesh (paper §4): uniform splits equal the 1-to-4 split, everything undoes,
 // random operation sequences keep every invariant, and the balance rule propagates (Fig. 5).
-#include "hex_mesh.h"
+#include "mesh/hex_mesh.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <random>
 
 #include "fixture.h"
-#include "hex_mesh_refine.h"
+#include "mesh/hex_mesh_refine.h"
 #include "hex_mesh_util.h"
 
 using namespace hexlod;

@@ -6,8 +6,8 @@
 #include <array>
 #include <vector>
 
-#include "hex_mesh.h"
-#include "hex_mesh_refine.h"
+#include "mesh/hex_mesh.h"
+#include "mesh/hex_mesh_refine.h"
 
 namespace hexlod::test {
 

@@ -1,7 +1,7 @@
 // View-dependent refinement (paper §5, §6): the tau bound checked by brute force over the
 // samples, the max-error bound, watertight meshes every update, coarsening, budgets and
 // determinism.
-#include "refiner.h"
+#include "lod/refiner.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "error_evaluator.h"
+#include "diagnostics/error_evaluator.h"
 #include "fixture.h"
 
 using namespace hexlod;

@@ -4,6 +4,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { createNodeCore } from '../../bin/node_core.js';
+import { createCore, FRAME } from '../../web/core.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
 
 const fixtures = new URL('../fixtures/', import.meta.url);
@@ -14,8 +15,8 @@ const floats = (base) => new Float32Array(readFileSync(new URL(`${base}.f32`, fi
 const core = await createNodeCore();
 const BASES = ['volcano_maungawhau', 'jacksboro_fault', 'grandcanyon_512'];
 
-test('the WASM core reports the ABI version of src/hexlod.h', () => {
-  assert.equal(core.abiVersion, 8);
+test('the WASM core reports the ABI version of src/api/hexlod.h', () => {
+  assert.equal(core.abiVersion, 9);
 });
 
 for (const base of BASES) {
@@ -127,4 +128,47 @@ test('the hexagon mesh through the ABI: uniform and local refinement, fans decod
   assert.equal(level.levelOffsets.at(-1), level.indices.length);
   assert.ok(stats.bytes / stats.triangles < 100, `${stats.bytes / stats.triangles} bytes per triangle`);
   terrain.destroy();
+});
+
+test('terrain.frame is one core call that returns the same stats object every frame, equal to the per-figure methods', async () => {
+  const { terrain } = await loadTerrain(core, [read('jacksboro_fault.png'), read('jacksboro_fault.json')]);
+  terrain.resetMesh('exact');
+  terrain.setLodBudget(0, 300);
+  const camera = { eye: [15000, 3000, 33000], target: [15000, 400, 9000], fovY: 0.9, aspect: 1.6, viewportHeight: 600, near: 1, far: 1e6 };
+  const first = terrain.frame(camera);
+  const operations = first.operations, version = first.version;
+  assert.ok(operations > 0 && first.splits > 0 && first.cellsTested > 0);
+  assert.ok(first.dirtyVertexPairs > 0 && first.dirtyIndexPairs > 0, 'a new mesh is all dirty');
+  terrain.acknowledgeStream();
+  const second = terrain.frame(camera);
+  assert.equal(second, first, 'the same object every frame: the frame loop makes no garbage');
+  assert.ok(second.version > version, 'the stream moved');
+  const mesh = terrain.meshStats();
+  assert.deepEqual([second.triangles, second.cells, second.vertices, second.maxLevel, second.memoryBytes],
+    [mesh.triangles, mesh.cells, mesh.vertices, mesh.maxLevel, mesh.bytes]);
+  const stream = terrain.stream();
+  assert.equal(stream.indices.length, second.indexCount);
+  assert.equal(stream.dirtyIndices.length, 2 * second.dirtyIndexPairs);
+  assert.equal(terrain.query(FRAME.hash).hash(), terrain.meshHash());
+  const kinds = terrain.cellKinds();
+  assert.equal(kinds.full + kinds.semi + kinds.boundarySemi, mesh.cells);
+  terrain.destroy();
+});
+
+test('the product build (the page\'s) exports the product ABI only; the diagnostics build adds the diagnostics', async () => {
+  const product = await createCore({ wasmBinary: readFileSync(new URL('../../build/wasm/hexlod_core.wasm', import.meta.url)) });
+  assert.equal(product.hasDiagnostics, false);
+  assert.equal(core.hasDiagnostics, true);
+  const exported = (c) => Object.keys(c.module).filter((k) => k.startsWith('_hexlod_')).sort();
+  const productAbi = exported(product);
+  assert.ok(productAbi.length <= 15, `${productAbi.length} product functions: ${productAbi}`);
+  assert.deepEqual(exported(core).filter((k) => !k.startsWith('_hexlod_diag_')), productAbi);
+  const t = product.createTerrain(4, 4, 'f32');
+  t.samples().set(Array.from({ length: 16 }, (_, k) => k));
+  t.setScale({ spacingX: 1, spacingY: 1, heightScale: 1, heightOffset: 0, nodata: null });
+  t.prepare();
+  t.resetMesh('exact');
+  assert.throws(() => t.checkMesh(), /diagnostics build/);
+  assert.ok(t.frame(null).triangles > 0);
+  t.destroy();
 });

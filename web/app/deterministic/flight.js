@@ -19,6 +19,7 @@
 // (exact in IEEE arithmetic) and one Math.tan of the fov (fdlibm in V8 both in Chromium and
 // Node), so the page and Node compute bit-identical cameras.
 import { defaultSettings, applyLodSettings } from '../settings.js';
+import { FRAME } from '../../core.js';
 
 export const DEFAULT_FPS = 30;
 export const DEFAULT_VIEWPORT = [400, 225];
@@ -247,22 +248,22 @@ export class FlightRecord {
 
   /**
    * Records the next frame, after its LOD update (`operations` is what updateLod returned). It
-   * calls the C ABI (src/hexlod.h) directly: core.js's meshStats and meshHash build objects and
-   * strings, and this runs every frame.
+   * reads the figures of one core query (web/core.js FrameStats, the same object every frame):
+   * meshStats and meshHash build objects and strings, and this runs every frame.
    */
   record(terrain, operations) {
-    const f = this.done, m = terrain.m, h = terrain.handle, x = this.fields;
-    x.triangles[f] = m._hexlod_mesh_triangle_count(h);
-    x.vertices[f] = m._hexlod_mesh_vertex_count(h);
-    x.cells[f] = m._hexlod_mesh_cell_count(h);
-    x.maxLevel[f] = m._hexlod_mesh_max_level(h);
+    const f = this.done, x = this.fields, s = terrain.query(FRAME.hash);
+    x.triangles[f] = s.triangles;
+    x.vertices[f] = s.vertices;
+    x.cells[f] = s.cells;
+    x.maxLevel[f] = s.maxLevel;
     x.operations[f] = operations;
-    x.splits[f] = m._hexlod_lod_last_splits(h);
-    x.merges[f] = m._hexlod_lod_last_merges(h);
-    x.pendingMerges[f] = m._hexlod_lod_pending_merges(h);
-    x.converged[f] = m._hexlod_lod_converged(h);
-    this.hashHigh[f] = m._hexlod_mesh_hash_high(h) >>> 0;
-    this.hashLow[f] = m._hexlod_mesh_hash_low(h) >>> 0;
+    x.splits[f] = s.splits;
+    x.merges[f] = s.merges;
+    x.pendingMerges[f] = s.pendingMerges;
+    x.converged[f] = s.converged ? 1 : 0;
+    this.hashHigh[f] = s.hashHigh;
+    this.hashLow[f] = s.hashLow;
     this.done = f + 1;
   }
 

@@ -1,0 +1,246 @@
+/* hexlod.h: the product C ABI of the hexlod core, what the page and every other caller use
+ * (JS through WebAssembly, native tests and benchmarks). Every name has the prefix hexlod_.
+ * Measurements for tests and benchmarks are in hexlod_diagnostics.h, exported only by the
+ * diagnostics builds.
+ *
+ * Conventions
+ * - Errors, one rule: a function that can fail returns a negative int32 status
+ *   (HEXLOD_ERROR) or NULL, and hexlod_last_error() then says what was wrong in one sentence.
+ *   Zero or a positive count means success; no function signals failure with 0.0, NaN or an
+ *   unset message. Misuse (a NULL handle, a NULL struct that is required) fails the same way.
+ * - Settings come in structs where zero means default: clear the struct (`= {0}`), set what
+ *   you need. Out structs are filled by the call; the pointers in them stay valid until the
+ *   next call on the same terrain (or until memory grows, for JS views).
+ * - Units: horizontal positions and spacings in metres, x east from the first column, z south
+ *   from the first row, y up; heights in metres after the height scale and offset.
+ * - A terrain handle owns its samples and the mesh built from them.
+ * - Under WebAssembly, pointers are byte offsets into the module's memory; Emscripten 3.1.6
+ *   hands them to JS as signed 32-bit numbers: read them as `ptr >>> 0`. The struct layouts
+ *   below are the wasm32 ones JS reads (src/api/hexlod_api.cpp asserts the offsets).
+ * - A frame (hexlod_terrain_frame) allocates nothing unless the mesh's pools grow.
+ */
+#ifndef HEXLOD_H
+#define HEXLOD_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Bumped whenever a signature, a struct layout or a meaning below changes. */
+#define HEXLOD_ABI_VERSION 9
+
+/* The status of every failure. */
+#define HEXLOD_ERROR (-1)
+
+/* Sample types: the native depth of the file's heights. */
+#define HEXLOD_SAMPLE_U8 1
+#define HEXLOD_SAMPLE_U16 2
+#define HEXLOD_SAMPLE_I16 3
+#define HEXLOD_SAMPLE_F32 4
+
+/* Lattice embeddings (§4.7): every vertex on its sample (the default), or the paper's odd rows
+ * shifted half a sample east with interpolated heights. */
+#define HEXLOD_EMBEDDING_EXACT 0
+#define HEXLOD_EMBEDDING_SHIFTED 1
+
+/* Index layouts of the stream (§7), see hexlod_frame. */
+#define HEXLOD_LAYOUT_FANS 0
+#define HEXLOD_LAYOUT_TRIANGLES 1
+
+typedef struct hexlod_terrain hexlod_terrain;
+
+/* How samples become metres. 48 bytes. */
+typedef struct hexlod_scale {
+    double spacing_x_m;     /* between columns (0: 1 m) */
+    double spacing_y_m;     /* between rows (0: 1 m) */
+    double height_scale;    /* height_m = raw * height_scale + height_offset_m (0: 1) */
+    double height_offset_m;
+    double nodata_raw;      /* with has_nodata, samples equal to this are missing (NaN and infinities always are) */
+    int32_t has_nodata;
+    int32_t reserved;       /* 0 */
+} hexlod_scale;
+
+/* What hexlod_terrain_prepare found. 32 bytes. */
+typedef struct hexlod_field_info {
+    double min_height_m, max_height_m; /* the height range of the valid samples */
+    double missing;                    /* missing samples, filled with the lowest valid height */
+    double sample_bytes;               /* the size of the sample array */
+} hexlod_field_info;
+
+/* The mesh's construction. 4 bytes. */
+typedef struct hexlod_mesh_settings {
+    int32_t embedding; /* HEXLOD_EMBEDDING_* (0: exact) */
+} hexlod_mesh_settings;
+
+/* Refinement (§5, §6), blends and stream (§7): everything but the camera. 64 bytes.
+ * Once converged, every sample in the view frustum is within tau pixels of the drawn surface on
+ * screen, or, with max_error_m > 0, every sample of the field within max_error_m metres. */
+typedef struct hexlod_settings {
+    double tau_px;               /* screen-space tolerance in device pixels (0: 1) */
+    double max_error_m;          /* > 0: view-independent mode, the camera ignored (0: tau mode) */
+    double vertical_scale;       /* heights are drawn times this (0: 1) */
+    double budget_ms;            /* time per LOD update (0: no limit) */
+    int32_t max_operations;      /* splits and merges per LOD update (0: no limit); every update makes progress */
+    int32_t max_triangles;       /* no split starts while more are drawn (0: no cap) */
+    int32_t auto_tau;            /* non-zero: tau rises while the cap or the time budget is exceeded and falls back (§6) */
+    int32_t no_frustum_culling;  /* non-zero: cells outside the view are refined as inside */
+    int32_t no_backface_culling; /* non-zero: no cone-of-normals culling (exact embedding, cells of up to 4096 samples) */
+    int32_t morph_frames;        /* geomorph blend length in LOD updates, at most 1000 (0: off) */
+    int32_t layout;              /* HEXLOD_LAYOUT_* (0: fans) */
+    int32_t no_normals;          /* non-zero: the stream keeps no vertex normals (24 bytes a vertex saved) */
+} hexlod_settings;
+
+/* The camera of view-dependent refinement. 112 bytes. The caller computes the tangent, so no
+ * transcendental function enters a split decision. */
+typedef struct hexlod_camera {
+    double eye[3];             /* metres, world frame (x east, y up, z south; heights times the vertical scale) */
+    double target[3];          /* metres, a point looked at */
+    double up[3];              /* (0, 0, 0): +y */
+    double tan_half_fov_y;     /* tan(vertical field of view / 2) */
+    double aspect;             /* viewport width / height */
+    double viewport_height_px; /* device pixels */
+    double near_m, far_m;      /* clip plane distances */
+} hexlod_camera;
+
+/* Steps of hexlod_terrain_frame (bits; 0 = HEXLOD_FRAME_ALL). */
+#define HEXLOD_FRAME_ALL 0     /* the camera (when given), one LOD update, the stream */
+#define HEXLOD_FRAME_CAMERA 1  /* only the steps whose bits are set */
+#define HEXLOD_FRAME_LOD 2
+#define HEXLOD_FRAME_STREAM 4
+#define HEXLOD_FRAME_QUERY 8   /* no step: only fill the output */
+#define HEXLOD_FRAME_HASH 16   /* also the mesh hash (a pass over the cells) */
+#define HEXLOD_FRAME_CENSUS 32 /* also the cell kinds and the achieved screen error (passes over the cells) */
+
+/* One frame's output. 192 bytes under wasm32: 6 doubles, 32 int32, 4 pointers.
+ *
+ * The stream (§7), what the renderer uploads, kept in step with the mesh:
+ * Vertices: the mesh's own vertex pool (vertex data exists once), 36 bytes a slot:
+ *   bytes  0..11  position, 3 float32, metres (y unscaled: the shader multiplies heights by the
+ *                 vertical exaggeration)
+ *   bytes 12..19  normal, 4 snorm16 (x, y, z, 0), averaged from the adjacent triangles (stale
+ *                 with no_normals)
+ *   bytes 20..31  morph start, 3 float32, metres: where the blend starts (the coarser surface)
+ *   bytes 32..35  morph key, float32: 0 at rest; f+1 blending in since frame f; -(f+1)
+ *                 blending out since frame f. With n = morph_frames and F = frame, the drawn
+ *                 position is mix(morph start, position, w), t = clamp((F - f) / n, 0, 1),
+ *                 w = t blending in, 1 - t blending out, 1 at rest or when n = 0.
+ * Free slots hold stale data and are never indexed.
+ * Indices: a fixed slot per cell record: HEXLOD_LAYOUT_FANS, 9 indices (a triangle fan then
+ * 0xFFFFFFFF; full hexagon: centre, six corners, first corner; boundary semi-hexagon: centre,
+ * four corners; interior semi-hexagon: four corners from the fixed-rule corner; the rest of the
+ * slot and free records: 0xFFFFFFFF), drawn as TRIANGLE_FAN with primitive restart; or
+ * HEXLOD_LAYOUT_TRIANGLES, 18 indices (the same triangles as a list, padded with 0xFFFFFFFF).
+ * Dirty ranges: what changed since the last hexlod_terrain_acknowledge, as (first, count) pairs
+ * of int32: vertex slots and indices. */
+typedef struct hexlod_frame {
+    /* doubles: Float64Array index 0..5 */
+    double update_ms;         /* the last LOD update's milliseconds */
+    double tau_px;            /* the tau in use (auto tau may have raised it) */
+    double frame;             /* the blends' clock, one tick per LOD update: the shader's F */
+    double memory_bytes;      /* mesh structures, the refiner's caches and the stream */
+    double triangles;         /* drawn triangles */
+    double achieved_error_px; /* HEXLOD_FRAME_CENSUS: the largest projected-error bound (§5) over the
+                                 cells in view whose bound is cached; at most tau once converged;
+                                 -1 in max-error mode. Else kept from the last census. */
+    /* int32: Int32Array index 12..43 */
+    int32_t version;          /* the stream's version: it moves whenever anything was written */
+    int32_t converged;        /* 1: the last update tested every due cell, resolved every failing test,
+                                 and no merge waits for a fade-out */
+    int32_t operations;       /* the last LOD update's steps (splits, joins, merges, breaks; forced ones too) */
+    int32_t splits, merges;   /* of the last LOD update, forced ones included */
+    int32_t cells_tested;     /* criteria evaluations (§5) of the last LOD update */
+    int32_t pending_merges;   /* merges waiting for their vertices to fade out */
+    int32_t cells, vertices;  /* live cells and vertices */
+    int32_t max_level;        /* the finest level a cell can reach */
+    int32_t full_hexagons, semi_hexagons, boundary_semi_hexagons; /* HEXLOD_FRAME_CENSUS (§4.2), else kept */
+    uint32_t hash_low, hash_high; /* HEXLOD_FRAME_HASH: the mesh hash (cells, levels, lattice points, positions), else kept */
+    int32_t vertex_count;     /* vertex slots (the pool's capacity) */
+    int32_t index_count;      /* indices */
+    int32_t dirty_vertex_pairs, dirty_index_pairs; /* pairs in the dirty arrays */
+    int32_t reserved[13];
+    /* pointers: Int32Array index 44..47 under wasm32 */
+    const void* vertices_ptr;         /* the vertex pool */
+    const uint32_t* indices_ptr;      /* the index array */
+    const int32_t* dirty_vertices_ptr; /* (first, count) pairs of vertex slots */
+    const int32_t* dirty_indices_ptr;  /* (first, count) pairs of indices */
+} hexlod_frame;
+
+/* The level-ordered view for diagnostics of the page (colour by level, hexagon outlines). */
+typedef struct hexlod_level_view {
+    const uint32_t* indices;      /* every cell's fan closed by 0xFFFFFFFF, grouped by level */
+    const int32_t* level_offsets; /* first index of each level 0..max_level, then the length */
+    const uint32_t* outline;      /* with outline: every cell edge once, as line pairs */
+    int32_t index_count, level_offset_count, outline_count;
+} hexlod_level_view;
+
+/* Heights hexlod_terrain_height_at can read. */
+#define HEXLOD_SURFACE_FIELD 0 /* the samples, bilinear, clamped to the field */
+#define HEXLOD_SURFACE_DRAWN 1 /* the surface as drawn now: the stream's triangles, blends included */
+
+/* Returns HEXLOD_ABI_VERSION of the compiled core. */
+uint32_t hexlod_abi_version(void);
+
+/* The message of the last failure in this thread (static storage, never NULL; empty when
+ * nothing failed yet). */
+const char* hexlod_last_error(void);
+
+/* Creates a terrain of width x height samples (each 2..65536) of a HEXLOD_SAMPLE_* type, with
+ * uninitialised samples. NULL for a bad size or type or when memory is exhausted. */
+hexlod_terrain* hexlod_terrain_create(int32_t width, int32_t height, int32_t sample_type);
+
+/* Frees the terrain and everything built from it. NULL is ignored. */
+void hexlod_terrain_destroy(hexlod_terrain* terrain);
+
+/* Where the caller writes the samples: width*height values of the sample type, row-major,
+ * row 0 north, native byte order. NULL on failure. */
+void* hexlod_terrain_samples(hexlod_terrain* terrain);
+
+/* Sets how samples become metres. With a mesh, the mesh is rebuilt from its base for the new
+ * scale (positions and cached refinement data change; settings are kept). 0 or HEXLOD_ERROR
+ * (a negative or non-finite spacing or scale). */
+int32_t hexlod_terrain_set_scale(hexlod_terrain* terrain, const hexlod_scale* scale);
+
+/* Call once the samples are written (and after any change to them): fills missing samples with
+ * the lowest valid height, computes the height range and fills *info (may be NULL).
+ * 0 or HEXLOD_ERROR (every sample missing). */
+int32_t hexlod_terrain_prepare(hexlod_terrain* terrain, hexlod_field_info* info);
+
+/* (Re)creates the base hexagon mesh over the whole field (§4.7); settings (NULL: defaults)
+ * choose the embedding. 0 or HEXLOD_ERROR. */
+int32_t hexlod_terrain_reset_mesh(hexlod_terrain* terrain, const hexlod_mesh_settings* settings);
+
+/* Sets everything but the camera (NULL: defaults). A change that decides splits re-tests every
+ * cell at the next update; a layout or normals change rewrites the stream. Works before the
+ * mesh exists and is kept across mesh resets. 0 or HEXLOD_ERROR (a negative or non-finite
+ * number, morph frames over 1000, an unknown layout). */
+int32_t hexlod_terrain_set_settings(hexlod_terrain* terrain, const hexlod_settings* settings);
+
+/* One frame, the steps chosen by `steps` (HEXLOD_FRAME_*): the camera (NULL keeps the last
+ * one), one refinement step within the budget (§6: re-test the cells whose margin the camera
+ * used up, refine the failing ones largest projected error first, coarsen in descending level
+ * order; the mesh is consistent after every operation), then the stream (§7: only what changed
+ * is rewritten). Fills *out (required). 0 or HEXLOD_ERROR (no mesh, a degenerate camera: eye
+ * on the target, up along the view, a non-positive size or plane). */
+int32_t hexlod_terrain_frame(hexlod_terrain* terrain, const hexlod_camera* camera, int32_t steps, hexlod_frame* out);
+
+/* The renderer uploaded every dirty range: forget them. 0 or HEXLOD_ERROR. */
+int32_t hexlod_terrain_acknowledge(hexlod_terrain* terrain);
+
+/* Height in metres at ground position (x_m, z_m) of a HEXLOD_SURFACE_*, written to *height_m.
+ * The drawn surface is unscaled (times the vertical scale on screen) and the highest where
+ * triangles meet; call it after the frame's stream step; it scans every cell (about a
+ * millisecond for 100k triangles). Returns 1, 0 where no drawn triangle covers the point
+ * (outside the domain; *height_m = NaN), or HEXLOD_ERROR. */
+int32_t hexlod_terrain_height_at(const hexlod_terrain* terrain, double x_m, double z_m, int32_t surface, double* height_m);
+
+/* Writes the level-ordered view (not incrementally; outline non-zero adds the cell edges) and
+ * fills *out (required). Returns its index count, or HEXLOD_ERROR. */
+int32_t hexlod_terrain_level_view(hexlod_terrain* terrain, int32_t outline, hexlod_level_view* out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HEXLOD_H */

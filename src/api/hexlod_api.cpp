@@ -1,0 +1,242 @@
+// The product C ABI declared in hexlod.h: thin wrappers that check their arguments, drive the
+// terrain facade (terrain.h) and turn failures into hexlod_last_error() messages. No logic of
+// the paper lives here.
+#include "api/hexlod.h"
+
+#include <cmath>
+#include <cstddef>
+#include <new>
+#include <vector>
+
+#include "api/terrain_handle.h"
+#include "mesh/mesh_census.h"
+
+// JS reads the structs through views at fixed wasm32 offsets (web/core.js).
+#if UINTPTR_MAX == 0xFFFFFFFFu
+static_assert(sizeof(hexlod_scale) == 48 && offsetof(hexlod_scale, has_nodata) == 40, "hexlod_scale layout");
+static_assert(sizeof(hexlod_field_info) == 32, "hexlod_field_info layout");
+static_assert(sizeof(hexlod_settings) == 64 && offsetof(hexlod_settings, max_operations) == 32, "hexlod_settings layout");
+static_assert(sizeof(hexlod_camera) == 112 && offsetof(hexlod_camera, near_m) == 96, "hexlod_camera layout");
+static_assert(offsetof(hexlod_frame, version) == 48 && offsetof(hexlod_frame, vertex_count) == 48 + 4 * 15 &&
+                  offsetof(hexlod_frame, vertices_ptr) == 176 && sizeof(hexlod_frame) == 192,
+              "hexlod_frame layout");
+static_assert(offsetof(hexlod_level_view, index_count) == 12 && sizeof(hexlod_level_view) == 24, "hexlod_level_view layout");
+#endif
+
+namespace {
+thread_local const char* lastError = "";
+} // namespace
+
+void hexlod::api::setError(const char* message) { lastError = message; }
+
+using hexlod::api::fail;
+using hexlod::api::kNullHandle;
+using hexlod::api::needMesh;
+
+namespace {
+
+bool finiteNonNegative(double value) { return std::isfinite(value) && value >= 0.0; }
+
+// The ranges as (first, count) int32 pairs.
+const int32_t* rangePairs(const std::vector<hexlod::ElementRange>& ranges) {
+    static_assert(sizeof(hexlod::ElementRange) == 2 * sizeof(int32_t), "ranges are read as int32 pairs");
+    return ranges.empty() ? nullptr : &ranges[0].first;
+}
+
+void fillFrame(hexlod_terrain* terrain, int32_t steps, hexlod_frame* out) {
+    hexlod::Terrain& core = *terrain->core;
+    const hexlod::HexMesh& mesh = core.mesh();
+    const hexlod::Refiner& refiner = core.refiner();
+    const hexlod::UpdateStats& last = refiner.lastUpdate();
+    hexlod::FanStream& stream = core.stream(); // collecting the dirty ranges sorts them
+    out->update_ms = last.milliseconds;
+    out->tau_px = refiner.currentTau();
+    out->frame = double(core.morph().frame());
+    out->memory_bytes = double(core.memoryBytes());
+    out->triangles = double(mesh.triangleCount());
+    out->version = int32_t(stream.version() & 0x7FFFFFFF);
+    out->converged = core.converged() ? 1 : 0;
+    out->operations = last.operations;
+    out->splits = last.splits;
+    out->merges = last.merges;
+    out->cells_tested = last.cellsTested;
+    out->pending_merges = refiner.pendingMerges();
+    out->cells = mesh.liveCells();
+    out->vertices = mesh.liveVertices();
+    out->max_level = mesh.maxLevel();
+    if (steps & HEXLOD_FRAME_CENSUS) {
+        const auto kinds = hexlod::countCellKinds(mesh);
+        out->full_hexagons = kinds[0];
+        out->semi_hexagons = kinds[1];
+        out->boundary_semi_hexagons = kinds[2];
+        out->achieved_error_px = refiner.achievedErrorPixels();
+    }
+    if (steps & HEXLOD_FRAME_HASH) {
+        const uint64_t hash = mesh.hash();
+        out->hash_low = uint32_t(hash);
+        out->hash_high = uint32_t(hash >> 32);
+    }
+    out->vertex_count = mesh.vertexCapacity();
+    out->index_count = stream.indexCount();
+    out->dirty_vertex_pairs = int32_t(stream.dirtyVertices().size());
+    out->dirty_index_pairs = int32_t(stream.dirtyIndices().size());
+    out->vertices_ptr = mesh.vertexData();
+    out->indices_ptr = stream.indices().data();
+    out->dirty_vertices_ptr = rangePairs(stream.dirtyVertices());
+    out->dirty_indices_ptr = rangePairs(stream.dirtyIndices());
+}
+
+} // namespace
+
+extern "C" {
+
+uint32_t hexlod_abi_version(void) { return HEXLOD_ABI_VERSION; }
+
+const char* hexlod_last_error(void) { return lastError; }
+
+hexlod_terrain* hexlod_terrain_create(int32_t width, int32_t height, int32_t sample_type) {
+    const char* error = nullptr;
+    auto core = hexlod::Terrain::create(width, height, hexlod::SampleType(sample_type), &error);
+    if (!core) return fail(error), nullptr;
+    hexlod_terrain* terrain = new (std::nothrow) hexlod_terrain();
+    if (!terrain) return fail("out of memory for the terrain"), nullptr;
+    terrain->core = std::move(core);
+    return terrain;
+}
+
+void hexlod_terrain_destroy(hexlod_terrain* terrain) { delete terrain; }
+
+void* hexlod_terrain_samples(hexlod_terrain* terrain) {
+    if (!terrain) return fail(kNullHandle), nullptr;
+    return terrain->core->field().samples();
+}
+
+int32_t hexlod_terrain_set_scale(hexlod_terrain* terrain, const hexlod_scale* scale) {
+    if (!terrain) return fail(kNullHandle);
+    if (!scale) return fail("hexlod_terrain_set_scale needs a hexlod_scale");
+    hexlod::HeightfieldScale s;
+    s.spacingX = scale->spacing_x_m != 0.0 ? scale->spacing_x_m : 1.0;
+    s.spacingY = scale->spacing_y_m != 0.0 ? scale->spacing_y_m : 1.0;
+    s.heightScale = scale->height_scale != 0.0 ? scale->height_scale : 1.0;
+    s.heightOffset = scale->height_offset_m;
+    s.hasNodata = scale->has_nodata != 0;
+    s.nodataRaw = scale->nodata_raw;
+    if (const char* error = terrain->core->setScale(s)) return fail(error);
+    return 0;
+}
+
+int32_t hexlod_terrain_prepare(hexlod_terrain* terrain, hexlod_field_info* info) {
+    if (!terrain) return fail(kNullHandle);
+    const hexlod::Heightfield& field = terrain->core->field();
+    if (const char* error = terrain->core->prepare()) return fail(error);
+    if (info) {
+        info->min_height_m = field.minHeight();
+        info->max_height_m = field.maxHeight();
+        info->missing = double(field.missingCount());
+        info->sample_bytes = double(field.byteSize());
+    }
+    return 0;
+}
+
+int32_t hexlod_terrain_reset_mesh(hexlod_terrain* terrain, const hexlod_mesh_settings* settings) {
+    if (!terrain) return fail(kNullHandle);
+    const int32_t embedding = settings ? settings->embedding : HEXLOD_EMBEDDING_EXACT;
+    if (embedding != HEXLOD_EMBEDDING_EXACT && embedding != HEXLOD_EMBEDDING_SHIFTED)
+        return fail("unknown embedding (expected 0 = exact, 1 = shifted)");
+    const hexlod::Embedding e = embedding == HEXLOD_EMBEDDING_SHIFTED ? hexlod::Embedding::Shifted : hexlod::Embedding::Exact;
+    if (const char* error = terrain->core->resetMesh(e)) return fail(error);
+    return 0;
+}
+
+int32_t hexlod_terrain_set_settings(hexlod_terrain* terrain, const hexlod_settings* settings) {
+    if (!terrain) return fail(kNullHandle);
+    const hexlod_settings defaults{};
+    const hexlod_settings& in = settings ? *settings : defaults;
+    if (!finiteNonNegative(in.tau_px)) return fail("tau must be a positive number of pixels (0: 1 px)");
+    if (!finiteNonNegative(in.max_error_m)) return fail("the maximum error must be a positive number of metres (0: tau mode)");
+    if (!finiteNonNegative(in.vertical_scale)) return fail("the vertical scale must be a positive number (0: 1)");
+    if (!std::isfinite(in.budget_ms)) return fail("the time budget must be a finite number of milliseconds (0: none)");
+    if (in.morph_frames < 0 || in.morph_frames > hexlod::Geomorph::kMaxFrames) return fail("morph frames must be 0 (off) to 1000");
+    if (in.layout != HEXLOD_LAYOUT_FANS && in.layout != HEXLOD_LAYOUT_TRIANGLES)
+        return fail("unknown index layout (expected 0 = fans, 1 = triangles)");
+    hexlod::TerrainSettings s;
+    s.lod.viewIndependent = in.max_error_m > 0.0;
+    s.lod.tau = in.tau_px > 0.0 ? in.tau_px : 1.0;
+    s.lod.maxError = in.max_error_m > 0.0 ? in.max_error_m : 1.0;
+    s.lod.verticalScale = in.vertical_scale > 0.0 ? in.vertical_scale : 1.0;
+    s.lod.budgetMs = in.budget_ms;
+    s.lod.maxOperations = in.max_operations;
+    s.lod.maxTriangles = in.max_triangles;
+    s.lod.autoTau = in.auto_tau != 0;
+    s.lod.culling = in.no_frustum_culling == 0;
+    s.lod.backfaceCulling = in.no_backface_culling == 0;
+    s.morphFrames = in.morph_frames;
+    s.layout = hexlod::IndexLayout(in.layout);
+    s.normals = in.no_normals == 0;
+    terrain->core->configure(s);
+    return 0;
+}
+
+int32_t hexlod_terrain_frame(hexlod_terrain* terrain, const hexlod_camera* camera, int32_t steps, hexlod_frame* out) {
+    if (const char* error = needMesh(terrain)) return fail(error);
+    if (!out) return fail("hexlod_terrain_frame needs a hexlod_frame to fill");
+    constexpr int32_t kSteps = HEXLOD_FRAME_CAMERA | HEXLOD_FRAME_LOD | HEXLOD_FRAME_STREAM;
+    if (!(steps & (kSteps | HEXLOD_FRAME_QUERY))) steps |= kSteps;
+    if (steps & HEXLOD_FRAME_QUERY) steps &= ~kSteps;
+    hexlod::Terrain& core = *terrain->core;
+    if ((steps & HEXLOD_FRAME_CAMERA) && camera) {
+        const double* up = camera->up;
+        const bool defaultUp = up[0] == 0.0 && up[1] == 0.0 && up[2] == 0.0;
+        hexlod::View view;
+        if (!hexlod::makeView({camera->eye[0], camera->eye[1], camera->eye[2]},
+                              {camera->target[0], camera->target[1], camera->target[2]},
+                              defaultUp ? glm::dvec3(0, 1, 0) : glm::dvec3(up[0], up[1], up[2]), camera->tan_half_fov_y,
+                              camera->aspect, camera->viewport_height_px, camera->near_m, camera->far_m, view))
+            return fail("degenerate camera: eye on the target, up along the view, or a non-positive size or plane");
+        core.setView(view); // the refiner re-tests only what the camera's movement may have changed
+    }
+    if (steps & HEXLOD_FRAME_LOD) core.updateLod();
+    if (steps & HEXLOD_FRAME_STREAM) core.syncStream();
+    fillFrame(terrain, steps, out);
+    return 0;
+}
+
+int32_t hexlod_terrain_acknowledge(hexlod_terrain* terrain) {
+    if (const char* error = needMesh(terrain)) return fail(error);
+    terrain->core->stream().acknowledge();
+    return 0;
+}
+
+int32_t hexlod_terrain_height_at(const hexlod_terrain* terrain, double x_m, double z_m, int32_t surface, double* height_m) {
+    if (!terrain) return fail(kNullHandle);
+    if (!height_m) return fail("hexlod_terrain_height_at needs a double to write to");
+    if (surface == HEXLOD_SURFACE_FIELD) {
+        *height_m = terrain->core->field().heightAtPosition(x_m, z_m);
+        return 1;
+    }
+    if (surface != HEXLOD_SURFACE_DRAWN) return fail("unknown surface (expected 0 = field, 1 = drawn)");
+    if (const char* error = needMesh(terrain)) return fail(error);
+    float height = 0.0f;
+    if (!terrain->core->drawnHeightAt(x_m, z_m, height)) {
+        *height_m = std::nan("");
+        return 0;
+    }
+    *height_m = double(height);
+    return 1;
+}
+
+int32_t hexlod_terrain_level_view(hexlod_terrain* terrain, int32_t outline, hexlod_level_view* out) {
+    if (const char* error = needMesh(terrain)) return fail(error);
+    if (!out) return fail("hexlod_terrain_level_view needs a hexlod_level_view to fill");
+    hexlod::FanStream& stream = terrain->core->stream();
+    stream.buildLevelView(terrain->core->mesh(), outline != 0);
+    out->indices = stream.levelIndices().data();
+    out->level_offsets = stream.levelOffsets().data();
+    out->outline = stream.outline().data();
+    out->index_count = int32_t(stream.levelIndices().size());
+    out->level_offset_count = int32_t(stream.levelOffsets().size());
+    out->outline_count = int32_t(stream.outline().size());
+    return out->index_count;
+}
+
+} // extern "C"

@@ -1,0 +1,41 @@
+/* hexlod_diagnostics.h: measurements of the core for tests, benchmarks and the command line
+ * (paper §4 invariants, §5 error, §7 popping). Not part of the product: only the diagnostics
+ * builds export these (native, build/wasm-diag for Node, build/wasm-tests); the page's
+ * build/wasm does not. The conventions of hexlod.h hold: failures return HEXLOD_ERROR and set
+ * hexlod_last_error(). */
+#ifndef HEXLOD_DIAGNOSTICS_H
+#define HEXLOD_DIAGNOSTICS_H
+
+#include "hexlod.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Checks every invariant of the mesh (§4: neighbour symmetry, no hanging nodes, balance rule,
+ * counters, free lists). 0, or HEXLOD_ERROR with the violation in hexlod_last_error(). */
+int32_t hexlod_diag_check_mesh(const hexlod_terrain* terrain);
+
+/* Splits every whole cell of the coarsest levels, `rounds` times: the uniform split (Fig. 4),
+ * equal to that many 1-to-4 splits of the base triangulation. Returns the splits, or HEXLOD_ERROR. */
+int32_t hexlod_diag_refine_uniform(hexlod_terrain* terrain, int32_t rounds);
+
+/* Measures the mesh against the samples (a pass over every sample): out[0..3] = max, p99 and
+ * mean error in metres, uncovered samples. against_stored non-zero compares with the field the
+ * core stores (for the shifted embedding, odd rows interpolated at their shifted positions),
+ * 0 with the original samples at their true positions. 0 or HEXLOD_ERROR. */
+int32_t hexlod_diag_measure_error(const hexlod_terrain* terrain, int32_t against_stored, double* out);
+
+/* Popping (§7): the largest screen-space jump of any vertex, in pixels, between the frame now
+ * drawn and the one measured last, with the current camera (src/diagnostics/popping_meter.h):
+ * out[0] max jump px, out[1] jumps over 0.5 px, out[2] jumps measured; where the largest was:
+ * out[3], out[4] screen x, y in pixels from the centre (y up), out[5] depth in metres, out[6]
+ * 0 a kept vertex, 1 a new one, 2 a freed one. The first call after a mesh reset only records
+ * the frame. 0 or HEXLOD_ERROR. */
+int32_t hexlod_diag_measure_popping(hexlod_terrain* terrain, double* out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HEXLOD_DIAGNOSTICS_H */

@@ -1,0 +1,65 @@
+// The diagnostics ABI declared in hexlod_diagnostics.h (paper §4 invariants, §5 error, §7
+// popping): thin wrappers over the core and src/diagnostics/. Linked into the native library
+// and the diagnostics WASM builds only.
+#include "api/hexlod_diagnostics.h"
+
+#include <vector>
+
+#include "api/terrain_handle.h"
+#include "diagnostics/error_evaluator.h"
+
+using hexlod::api::fail;
+using hexlod::api::needMesh;
+
+extern "C" {
+
+int32_t hexlod_diag_check_mesh(const hexlod_terrain* terrain) {
+    if (const char* error = needMesh(terrain)) return fail(error);
+    if (const char* problem = terrain->core->mesh().checkInvariants()) return fail(problem);
+    return 0;
+}
+
+int32_t hexlod_diag_refine_uniform(hexlod_terrain* terrain, int32_t rounds) {
+    if (const char* error = needMesh(terrain)) return fail(error);
+    if (rounds < 0) return fail("the rounds of uniform refinement must be 0 or more");
+    return int32_t(terrain->core->refineUniform(rounds));
+}
+
+int32_t hexlod_diag_measure_error(const hexlod_terrain* terrain, int32_t against_stored, double* out) {
+    if (const char* error = needMesh(terrain)) return fail(error);
+    if (!out) return fail("out must point to 4 doubles");
+    const hexlod::HexMesh& mesh = terrain->core->mesh();
+    std::vector<uint32_t> triangles;
+    mesh.appendTriangles(triangles);
+    hexlod::ErrorOptions options;
+    options.shiftedOddRows = against_stored != 0 && mesh.embedding() == hexlod::Embedding::Shifted;
+    const hexlod::ErrorStats stats =
+        hexlod::evaluateMeshError(terrain->core->field(), mesh.positionData(), size_t(mesh.vertexCapacity()),
+                                  hexlod::kStreamVertexWords, triangles.data(), triangles.size(), options);
+    if (stats.error) return fail(stats.error);
+    out[0] = stats.maxError;
+    out[1] = stats.p99Error;
+    out[2] = stats.meanError;
+    out[3] = double(stats.uncovered);
+    return 0;
+}
+
+int32_t hexlod_diag_measure_popping(hexlod_terrain* terrain, double* out) {
+    if (const char* error = needMesh(terrain)) return fail(error);
+    if (!out) return fail("out must point to 7 doubles");
+    hexlod::Terrain& core = *terrain->core;
+    if (terrain->poppingEpoch != core.meshEpoch()) terrain->popping.reset(); // a new mesh: start again
+    terrain->poppingEpoch = core.meshEpoch();
+    const hexlod::PoppingStats stats =
+        terrain->popping.measure(core.mesh(), core.morph(), core.refiner().view(), core.refiner().settings().verticalScale);
+    out[0] = stats.maxJumpPx;
+    out[1] = double(stats.jumpsOverHalfPx);
+    out[2] = double(stats.measured);
+    out[3] = stats.atX;
+    out[4] = stats.atY;
+    out[5] = stats.atDepth;
+    out[6] = double(stats.kind);
+    return 0;
+}
+
+} // extern "C"

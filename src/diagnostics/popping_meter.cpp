@@ -1,0 +1,94 @@
+// Popping measured as the issue of §7's geomorphing defines it; see popping_meter.h.
+#include "diagnostics/popping_meter.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace hexlod {
+
+namespace {
+
+// Screen position in pixels from the view centre; false behind the near plane.
+bool project(const View& view, const glm::vec3& p, double verticalScale, double& x, double& y, bool& onScreen) {
+    const glm::dvec3 rel = glm::dvec3(p.x, double(p.y) * verticalScale, p.z) - view.eye;
+    const double depth = glm::dot(rel, view.forward);
+    if (depth < view.nearPlane) return false;
+    const double tx = glm::dot(rel, view.right) / depth, ty = glm::dot(rel, view.up) / depth;
+    x = tx * view.pixelsPerTangent;
+    y = ty * view.pixelsPerTangent;
+    onScreen = std::abs(tx) <= view.tanHalfX && std::abs(ty) <= view.tanHalfY;
+    return true;
+}
+
+} // namespace
+
+bool PoppingMeter::sameVertex(const HexMesh& mesh, int32_t v) const {
+    return size_t(v) < previous_.size() && previous_[size_t(v)].live && mesh.isVertexLive(v) &&
+           previous_[size_t(v)].lattice == mesh.vertexLattice(v);
+}
+
+// Where the previous frame's surface was at a vertex that may be new.
+glm::vec3 PoppingMeter::previousSurfaceAt(const HexMesh& mesh, const Geomorph& morph, int32_t v, int32_t depth) const {
+    if (sameVertex(mesh, v)) return previous_[size_t(v)].drawn;
+    if (mesh.vertexParentA(v) == kNone || depth > 40) return morph.displayed(mesh.streamVertex(v));
+    return Geomorph::coarserSurface(mesh, v, [&](int32_t u) { return previousSurfaceAt(mesh, morph, u, depth + 1); });
+}
+
+// Where this frame's surface is at a vertex slot of the previous frame that may be gone.
+glm::vec3 PoppingMeter::currentSurfaceAt(const HexMesh& mesh, const Geomorph& morph, int32_t v, int32_t depth) const {
+    if (sameVertex(mesh, v)) return morph.displayed(mesh.streamVertex(v));
+    const Seen& seen = previous_[size_t(v)];
+    if (seen.parent[0] == kNone || depth > 40) return seen.drawn;
+    glm::vec3 p(0.0f);
+    for (int k = 0; k < 3; ++k)
+        if (seen.weight[k] != 0.0f) p += seen.weight[k] * currentSurfaceAt(mesh, morph, seen.parent[k], depth + 1);
+    return p;
+}
+
+PoppingStats PoppingMeter::measure(const HexMesh& mesh, const Geomorph& morph, const View& view, double verticalScale) {
+    PoppingStats stats;
+    const int32_t slots = mesh.vertexCapacity();
+    const bool first = previous_.empty();
+    auto jump = [&](const glm::vec3& from, const glm::vec3& to, int32_t kind) {
+        double x0, y0, x1, y1;
+        bool on0, on1;
+        if (!project(view, from, verticalScale, x0, y0, on0) || !project(view, to, verticalScale, x1, y1, on1)) return;
+        if (!on0 && !on1) return;
+        const double px = std::hypot(x1 - x0, y1 - y0);
+        ++stats.measured;
+        if (px > 0.5) ++stats.jumpsOverHalfPx;
+        if (px <= stats.maxJumpPx) return;
+        stats.maxJumpPx = px;
+        stats.atX = x1, stats.atY = y1, stats.kind = kind;
+        stats.atDepth = glm::dot(glm::dvec3(to.x, double(to.y) * verticalScale, to.z) - view.eye, view.forward);
+    };
+    if (!first) {
+        for (int32_t v = 0; v < slots; ++v) {
+            const bool live = mesh.isVertexLive(v);
+            const glm::vec3 now = live ? morph.displayed(mesh.streamVertex(v)) : glm::vec3(0.0f);
+            if (sameVertex(mesh, v)) {
+                jump(previous_[size_t(v)].drawn, now, 0);
+                continue;
+            }
+            if (size_t(v) < previous_.size() && previous_[size_t(v)].live) // freed (or its slot reused)
+                jump(previous_[size_t(v)].drawn, currentSurfaceAt(mesh, morph, v, 0), 2);
+            if (live) jump(previousSurfaceAt(mesh, morph, v, 0), now, 1); // new
+        }
+    }
+    previous_.resize(size_t(slots));
+    for (int32_t v = 0; v < slots; ++v) {
+        Seen& seen = previous_[size_t(v)];
+        seen.live = mesh.isVertexLive(v);
+        if (!seen.live) continue;
+        seen.lattice = mesh.vertexLattice(v);
+        seen.drawn = morph.displayed(mesh.streamVertex(v));
+        seen.parent[0] = mesh.vertexParentA(v);
+        seen.parent[1] = mesh.vertexParentB(v);
+        seen.parent[2] = mesh.vertexAcross(v);
+        if (seen.parent[0] != kNone) Geomorph::coarserWeights(mesh, v, seen.weight);
+    }
+    return stats;
+}
+
+} // namespace hexlod

@@ -1,0 +1,124 @@
+// The height field under paper §4.7; see heightfield.h.
+#include "field/heightfield.h"
+
+#include <algorithm>
+#include <cmath>
+#include <new>
+
+namespace hexlod {
+
+size_t sampleBytes(SampleType type) {
+    switch (type) {
+        case SampleType::U8: return 1;
+        case SampleType::U16: return 2;
+        case SampleType::I16: return 2;
+        case SampleType::F32: return 4;
+    }
+    return 0;
+}
+
+std::unique_ptr<Heightfield> Heightfield::create(int32_t width, int32_t height, SampleType type,
+                                                 const char** error) {
+    const char* ignored = nullptr;
+    if (!error) error = &ignored;
+    if (sampleBytes(type) == 0) {
+        *error = "unknown sample type (expected 1=u8, 2=u16, 3=i16, 4=f32)";
+        return nullptr;
+    }
+    if (width < 2 || height < 2) {
+        *error = "a height field needs at least 2x2 samples";
+        return nullptr;
+    }
+    if (width > kMaxFieldSide || height > kMaxFieldSide) {
+        *error = "a height field side is limited to 65536 samples";
+        return nullptr;
+    }
+    const uint64_t bytes = uint64_t(width) * uint64_t(height) * sampleBytes(type);
+    if (bytes > uint64_t(SIZE_MAX)) {
+        *error = "the height field does not fit this address space";
+        return nullptr;
+    }
+    std::unique_ptr<Heightfield> field(new (std::nothrow) Heightfield());
+    if (field) field->samples_.reset(new (std::nothrow) uint8_t[size_t(bytes)]);
+    if (!field || !field->samples_) {
+        *error = "out of memory for the height field samples";
+        return nullptr;
+    }
+    field->width_ = width;
+    field->height_ = height;
+    field->type_ = type;
+    return field;
+}
+
+const char* Heightfield::setScale(const HeightfieldScale& scale) {
+    const bool finite = std::isfinite(scale.spacingX) && std::isfinite(scale.spacingY) &&
+                        std::isfinite(scale.heightScale) && std::isfinite(scale.heightOffset);
+    if (!finite) return "spacing, height scale and offset must be finite numbers";
+    if (scale.spacingX <= 0.0 || scale.spacingY <= 0.0) return "sample spacing must be positive";
+    if (scale.heightScale == 0.0) return "height scale must not be zero";
+    scale_ = scale;
+    return nullptr;
+}
+
+bool Heightfield::isMissing(size_t k) const {
+    const double raw = rawAt(k);
+    if (!std::isfinite(raw)) return true;
+    return scale_.hasNodata && raw == scale_.nodataRaw;
+}
+
+void Heightfield::setRaw(size_t k, double raw) {
+    switch (type_) {
+        case SampleType::U8: static_cast<uint8_t*>(samples_.get())[k] = uint8_t(raw); break;
+        case SampleType::U16: reinterpret_cast<uint16_t*>(samples_.get())[k] = uint16_t(raw); break;
+        case SampleType::I16: reinterpret_cast<int16_t*>(samples_.get())[k] = int16_t(raw); break;
+        case SampleType::F32: reinterpret_cast<float*>(samples_.get())[k] = float(raw); break;
+    }
+}
+
+const char* Heightfield::prepare() {
+    const size_t n = sampleCount();
+    double lowRaw = 0.0, highRaw = 0.0;
+    bool any = false;
+    missingCount_ = 0;
+    for (size_t k = 0; k < n; ++k) {
+        if (isMissing(k)) {
+            ++missingCount_;
+            continue;
+        }
+        const double raw = rawAt(k);
+        if (!any) lowRaw = highRaw = raw, any = true;
+        lowRaw = std::min(lowRaw, raw);
+        highRaw = std::max(highRaw, raw);
+    }
+    if (!any) return "every sample is nodata";
+    // A negative scale flips which raw extreme is the lowest height.
+    const double fillRaw = scale_.heightScale > 0.0 ? lowRaw : highRaw;
+    if (missingCount_ > 0) {
+        for (size_t k = 0; k < n; ++k)
+            if (isMissing(k)) setRaw(k, fillRaw);
+    }
+    const double a = lowRaw * scale_.heightScale + scale_.heightOffset;
+    const double b = highRaw * scale_.heightScale + scale_.heightOffset;
+    minHeight_ = float(std::min(a, b));
+    maxHeight_ = float(std::max(a, b));
+    return nullptr;
+}
+
+float Heightfield::heightClamped(int32_t j, int32_t i) const {
+    j = std::clamp(j, 0, width_ - 1);
+    i = std::clamp(i, 0, height_ - 1);
+    return heightAt(j, i);
+}
+
+float Heightfield::heightAtPosition(double xMetres, double zMetres) const {
+    const double u = std::clamp(xMetres / scale_.spacingX, 0.0, double(width_ - 1));
+    const double v = std::clamp(zMetres / scale_.spacingY, 0.0, double(height_ - 1));
+    const int32_t j = std::min(int32_t(u), width_ - 2);
+    const int32_t i = std::min(int32_t(v), height_ - 2);
+    const double fu = u - j, fv = v - i;
+    const double top = heightAt(j, i) * (1.0 - fu) + heightAt(j + 1, i) * fu;
+    const double bottom = heightAt(j, i + 1) * (1.0 - fu) + heightAt(j + 1, i + 1) * fu;
+    return float(top * (1.0 - fv) + bottom * fv);
+}
+
+} // namespace hexlod

@@ -1,0 +1,180 @@
+// Refinement data of paper §5 (Fig. 10), cached per §5.1; see cell_bounds.h.
+#include "lod/cell_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hexlod {
+
+namespace {
+
+struct Triangle {
+    glm::vec3 a, b, c;
+};
+
+// The drawn triangles of a shape, as hex_mesh.cpp's appendTriangles draws them.
+int32_t shapeTriangles(const Heightfield& field, Embedding embedding, const CellShape& shape, Triangle out[6]) {
+    auto corner = [&](int32_t slot) {
+        return embedLatticePoint(field, embedding, latticeAdd(shape.center, kDirections[wrapSlot(slot) - 1], shape.step));
+    };
+    if (shape.kind == CellKind::Full) {
+        const glm::vec3 centre = embedLatticePoint(field, embedding, shape.center);
+        for (int32_t k = 1; k <= 6; ++k) out[k - 1] = {centre, corner(k), corner(k + 1)};
+        return 6;
+    }
+    const int32_t a = shape.firstVisible;
+    if (shape.kind == CellKind::BoundarySemi) {
+        const glm::vec3 centre = embedLatticePoint(field, embedding, shape.center);
+        for (int32_t k = 0; k < 3; ++k) out[k] = {centre, corner(a + k), corner(a + k + 1)};
+        return 3;
+    }
+    auto lattice = [&](int32_t slot) { return latticeAdd(shape.center, kDirections[wrapSlot(slot) - 1], shape.step); };
+    const int32_t start = semiFanFromSecondCorner(embedding, lattice(a), lattice(a + 1), lattice(a + 2), lattice(a + 3)) ? 1 : 0;
+    auto fan = [&](int32_t i) { return corner(a + (start + i) % 4); }; // as HexMesh::semiFanSlots
+    out[0] = {fan(0), fan(1), fan(2)};
+    out[1] = {fan(0), fan(2), fan(3)};
+    return 2;
+}
+
+// Scans the samples inside one triangle: the largest |sample - plane| and the sample range.
+// The exact embedding is measured against the original samples; the shifted one against the
+// field it stores (§4.7: odd rows half a sample east, heights interpolated), which is what
+// its vertices sample and what its full refinement reproduces.
+void scanTriangle(const Heightfield& field, Embedding embedding, const Triangle& t, double& error, float& low, float& high) {
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    const double ax = t.a.x, ay = t.a.y, az = t.a.z;
+    const double ux = double(t.b.x) - ax, uy = double(t.b.y) - ay, uz = double(t.b.z) - az;
+    const double vx = double(t.c.x) - ax, vy = double(t.c.y) - ay, vz = double(t.c.z) - az;
+    const double ny = uz * vx - ux * vz; // y of (u x v): twice the ground area
+    if (std::abs(ny) < 1e-12) return;
+    const double nx = uy * vz - uz * vy, nz = ux * vy - uy * vx;
+    // Samples within a hair of an edge belong to both triangles: none may fall between cells.
+    const double eps = 1e-4;
+    const double zMin = std::min({double(t.a.z), double(t.b.z), double(t.c.z)});
+    const double zMax = std::max({double(t.a.z), double(t.b.z), double(t.c.z)});
+    const int32_t i0 = std::max(0, int32_t(std::ceil(zMin / sy - eps)));
+    const int32_t i1 = std::min(field.height() - 1, int32_t(std::floor(zMax / sy + eps)));
+    const glm::vec3* p[3] = {&t.a, &t.b, &t.c};
+    for (int32_t i = i0; i <= i1; ++i) {
+        // Sample positions rounded as a vertex on the sample stores them (embedding.cpp), so
+        // a sample under a vertex has no error from position rounding.
+        const double z = float(i * sy);
+        double xl = 1e300, xr = -1e300;
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3& e0 = *p[k];
+            const glm::vec3& e1 = *p[(k + 1) % 3];
+            const double za = e0.z, zb = e1.z;
+            if (z < std::min(za, zb) - eps * sy || z > std::max(za, zb) + eps * sy) continue;
+            if (za == zb) {
+                xl = std::min({xl, double(e0.x), double(e1.x)});
+                xr = std::max({xr, double(e0.x), double(e1.x)});
+                continue;
+            }
+            const double s = std::clamp((z - za) / (zb - za), 0.0, 1.0);
+            const double x = e0.x + s * (double(e1.x) - e0.x);
+            xl = std::min(xl, x);
+            xr = std::max(xr, x);
+        }
+        if (xl > xr) continue;
+        const bool shifted = embedding == Embedding::Shifted && (i & 1) != 0;
+        const double shift = shifted ? 0.5 : 0.0;
+        const int32_t j0 = std::max(0, int32_t(std::ceil(xl / sx - shift - eps)));
+        const int32_t j1 = std::min(field.width() - 1, int32_t(std::floor(xr / sx - shift + eps)));
+        for (int32_t j = j0; j <= j1; ++j) {
+            const double x = float((j + shift) * sx);
+            const double plane = ay - (nx * (x - ax) + nz * (z - az)) / ny;
+            const float h = shifted ? 0.5f * (field.heightClamped(j, i) + field.heightClamped(j + 1, i)) : field.heightAt(j, i);
+            error = std::max(error, std::abs(h - plane));
+            low = std::min(low, h);
+            high = std::max(high, h);
+        }
+    }
+}
+
+} // namespace
+
+CellShape shapeOfCell(const HexMesh& mesh, int32_t cell) {
+    const Hexagon& h = mesh.cell(cell);
+    return {h.kind, h.firstVisible, mesh.cellCenter(cell), mesh.cellStep(cell)};
+}
+
+CellShape parentShapeOfCell(const HexMesh& mesh, int32_t cell) {
+    CellShape shape = shapeOfCell(mesh, cell);
+    shape.step *= 2;
+    return shape;
+}
+
+Footprint footprintOf(const Heightfield& field, Embedding embedding, const CellShape& shape) {
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    Footprint f{1e30f, -1e30f, 1e30f, -1e30f};
+    auto add = [&](LatticePoint p) {
+        const double column = embedding == Embedding::Exact ? double(sampleColumn(p)) : p.q + 0.5 * p.r;
+        f.x0 = std::min(f.x0, float(column * sx)), f.x1 = std::max(f.x1, float(column * sx));
+        f.z0 = std::min(f.z0, float(p.r * sy)), f.z1 = std::max(f.z1, float(p.r * sy));
+    };
+    const int32_t first = shape.kind == CellKind::Full ? 1 : shape.firstVisible;
+    const int32_t corners = shape.kind == CellKind::Full ? 6 : 4;
+    for (int32_t i = 0; i < corners; ++i) add(latticeAdd(shape.center, kDirections[wrapSlot(first + i) - 1], shape.step));
+    if (shape.kind != CellKind::Semi) add(shape.center);
+    return f;
+}
+
+SlopeBox slopesUnder(const Heightfield& field, Embedding embedding, const Footprint& f) {
+    SlopeBox box;
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    const int32_t j0 = std::max(0, int32_t(std::floor(f.x0 / sx))), j1 = std::min(field.width() - 1, int32_t(std::ceil(f.x1 / sx)));
+    const int32_t i0 = std::max(0, int32_t(std::floor(f.z0 / sy))), i1 = std::min(field.height() - 1, int32_t(std::ceil(f.z1 / sy)));
+    if (embedding != Embedding::Exact || j1 <= j0 || i1 <= i0 || double(j1 - j0 + 1) * (i1 - i0 + 1) > kExactScanSamples) return box;
+    box.dxLow = box.dzLow = 1e30f;
+    box.dxHigh = box.dzHigh = -1e30f;
+    for (int32_t i = i0; i <= i1; ++i)
+        for (int32_t j = j0; j <= j1; ++j) {
+            const float h = field.heightAt(j, i);
+            if (j < j1) {
+                const float dx = float((field.heightAt(j + 1, i) - h) / sx);
+                box.dxLow = std::min(box.dxLow, dx), box.dxHigh = std::max(box.dxHigh, dx);
+            }
+            if (i < i1) {
+                const float dz = float((field.heightAt(j, i + 1) - h) / sy);
+                box.dzLow = std::min(box.dzLow, dz), box.dzHigh = std::max(box.dzHigh, dz);
+            }
+        }
+    box.known = true;
+    return box;
+}
+
+CellError computeCellError(const Heightfield& field, Embedding embedding, const MinMaxPyramid& pyramid,
+                           const CellShape& shape) {
+    Triangle triangles[6];
+    const int32_t count = shapeTriangles(field, embedding, shape, triangles);
+    const Footprint f = footprintOf(field, embedding, shape);
+    float vertexLow = 1e30f, vertexHigh = -1e30f;
+    for (int32_t t = 0; t < count; ++t)
+        for (const glm::vec3& v : {triangles[t].a, triangles[t].b, triangles[t].c})
+            vertexLow = std::min(vertexLow, v.y), vertexHigh = std::max(vertexHigh, v.y);
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    const double samples = (double(f.x1 - f.x0) / sx + 1.0) * (double(f.z1 - f.z0) / sy + 1.0);
+    CellError e{vertexLow, vertexHigh, 0.0f};
+    const bool outside = f.x1 < 0.0f || f.z1 < 0.0f || f.x0 > float((field.width() - 1) * sx) ||
+                         f.z0 > float((field.height() - 1) * sy);
+    if (outside) {
+        // No sample lies under the cell: nothing to approximate.
+    } else if (samples <= kExactScanSamples) {
+        double error = 0.0;
+        for (int32_t t = 0; t < count; ++t) scanTriangle(field, embedding, triangles[t], error, e.low, e.high);
+        // Rounded up to the next float: the bound must not shrink in the conversion.
+        e.error = std::nextafter(float(error), 1e30f);
+    } else {
+        // The drawn surface stays within its vertices' heights, the samples within the
+        // pyramid's range over the footprint: their distance is bounded by the larger gap.
+        float sampleLow, sampleHigh;
+        pyramid.query(int32_t(std::floor(f.x0 / sx)), int32_t(std::floor(f.z0 / sy)), int32_t(std::ceil(f.x1 / sx)),
+                      int32_t(std::ceil(f.z1 / sy)), sampleLow, sampleHigh);
+        e.error = std::max(sampleHigh - vertexLow, vertexHigh - sampleLow);
+        e.low = std::min(e.low, sampleLow);
+        e.high = std::max(e.high, sampleHigh);
+    }
+    return e;
+}
+
+} // namespace hexlod

@@ -1,0 +1,690 @@
+// The refinement loop of "Hexagonal LOD for Interactive Terrain Rendering" (Sußner,
+// Dachsbacher, Greiner, VMV 2005), §6, with the criteria of §5 (view_criteria.h) and the
+// cached refinement data of §5.1. See refiner.h for the order of work and the margins.
+#include "lod/refiner.h"
+#include "mesh/pool_growth.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+namespace hexlod {
+
+namespace {
+
+constexpr double kForever = 1e30; // a margin no camera uses up (a verdict that does not depend on the view)
+// How far the far plane may come closer before every cell is due (cells far away are often
+// near the far plane: a loose factor would leave their merge tests without margins).
+constexpr double kFarShrink = 15.0 / 16.0;
+
+float roundedDown(double x) {
+    float f = float(x);
+    if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+    return f;
+}
+
+float roundedUp(double x) {
+    float f = float(x);
+    if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    return f;
+}
+
+// The largest margin in (0, cap] found to hold by bisection (the test is monotone: a
+// verdict that holds within m holds within anything less), 0 when none. Six evaluations at most.
+template <typename Holds>
+double largestMargin(double cap, Holds&& holds) {
+    if (!(cap > 0.0)) return 0.0;
+    if (cap < kForever && holds(cap)) return cap;
+    double lo = 0.0, hi = std::min(cap, 1e12);
+    for (int32_t k = 0; k < 5; ++k) {
+        const double m = 0.5 * (lo + hi);
+        if (holds(m)) lo = m;
+        else hi = m;
+    }
+    return lo;
+}
+
+bool sameShape(const CellShape& a, const CellShape& b) {
+    return a.kind == b.kind && a.firstVisible == b.firstVisible && a.center.q == b.center.q && a.center.r == b.center.r &&
+           a.step == b.step;
+}
+
+} // namespace
+
+void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
+    mesh_ = &mesh;
+    field_ = &field;
+    pyramid_.build(field);
+    mesh.setChangeLog(0, &changes_);
+    changes_.clear();
+    cache_.clear(); // every cached bound belongs to the old mesh
+    state_.assign(state_.size(), 0);
+    currentTau_ = settings_.tau;
+    last_ = {};
+    pending_.clear(); // their vertices belong to the old mesh
+    restart();
+}
+
+void Refiner::setView(const View& view) {
+    if (haveView_) {
+        travel_ += glm::length(view.eye - view_.eye);
+        const glm::dvec3 dr = view.right - view_.right, du = view.up - view_.up, df = view.forward - view_.forward;
+        turn_ += std::sqrt(glm::dot(dr, dr) + glm::dot(du, du) + glm::dot(df, df));
+    }
+    const bool sameShapeOfView = haveView_ && view.tanHalfX == view_.tanHalfX && view.tanHalfY == view_.tanHalfY &&
+                                 view.pixelsPerTangent == view_.pixelsPerTangent;
+    // Margins of failing merge tests assume near <= 2 nearRef_ and far >= kFarShrink * farRef_ (judge()).
+    const bool planesMoved = view.nearPlane > 2.0 * nearRef_ || view.farPlane < kFarShrink * farRef_;
+    view_ = view;
+    haveView_ = true;
+    if (!sameShapeOfView || planesMoved) invalidateAll();
+}
+
+size_t Refiner::memoryBytes() const {
+    return cache_.memoryBytes() + records_.capacity() * sizeof(TestRecord) + state_.capacity() +
+           (changes_.capacity() + fresh_.capacity() + freedScratch_.capacity() + mergeList_.capacity()) * sizeof(int32_t) +
+           heap_.capacity() * sizeof(Candidate) + pending_.capacity() * sizeof(PendingMerge) + pyramid_.memoryBytes();
+}
+
+size_t Refiner::liveMemoryBytes() const {
+    return size_t(mesh_ ? mesh_->liveCells() : 0) * (sizeof(Cached) + sizeof(TestRecord) + 1) +
+           pending_.size() * sizeof(PendingMerge) + pyramid_.memoryBytes();
+}
+
+void Refiner::invalidateAll() {
+    for (TestRecord& r : records_) r.rho = -1.0f;
+    nearRef_ = view_.nearPlane;
+    farRef_ = view_.farPlane;
+}
+
+// The settings that the verdicts depend on; a change makes every cell due.
+void Refiner::checkSettings() {
+    const RefinerSettings& s = settings_;
+    const bool same = settingsChecked_ && s.viewIndependent == checked_.viewIndependent && tau() == checkedTau_ &&
+                      s.maxError == checked_.maxError && s.verticalScale == checked_.verticalScale &&
+                      s.culling == checked_.culling && s.backfaceCulling == checked_.backfaceCulling;
+    if (!same) invalidateAll();
+    checked_ = s;
+    checkedTau_ = tau();
+    settingsChecked_ = true;
+}
+
+// Keeps the odometers small, so that the records' floats keep their resolution.
+void Refiner::rebaseOdometers() {
+    if (travel_ < 65536.0 && turn_ < 64.0) return;
+    for (TestRecord& r : records_) {
+        r.t0 = roundedDown(double(r.t0) - travel_);
+        r.a0 = roundedDown(double(r.a0) - turn_);
+    }
+    travel_ = 0.0;
+    turn_ = 0.0;
+}
+
+void Refiner::noteChanges(bool collect) {
+    const size_t capacity = size_t(mesh_->cellCapacity());
+    if (cache_.size() < capacity) { // grows with the pool
+        cache_.grow(capacity);
+        reserveForPool(records_, capacity), reserveForPool(state_, capacity);
+        records_.resize(capacity);
+        state_.resize(capacity, 0);
+    }
+    for (int32_t c : changes_) {
+        cache_.invalidate(c);
+        records_[size_t(c)].rho = -1.0f;
+        state_[size_t(c)] &= uint8_t(kPending | kCancel); // a pending merge is checked by stillFrees
+        if (collect) fresh_.push_back(c);
+    }
+    changes_.clear();
+}
+
+// Tests the cells the last operations created or changed (they are due), and the blocked
+// merge candidates next to them: what blocked a merge (a ring cell that could not be broken)
+// is a neighbour, and changes with the operation that unblocks it.
+void Refiner::retestChanged() {
+    for (size_t k = 0; k < fresh_.size(); ++k) {
+        const int32_t c = fresh_[k];
+        if (!mesh_->isLive(c)) continue;
+        if (records_[size_t(c)].rho < 0.0f) testCell(c);
+        for (int32_t o : mesh_->cell(c).opposite) {
+            if (o == kNone) continue;
+            const int32_t n = hexIdx(o);
+            if ((state_[size_t(n)] & kBlocked) && mesh_->isLive(n) && mesh_->canMerge(n)) testCell(n);
+        }
+    }
+    fresh_.clear();
+}
+
+const CellError& Refiner::cachedError(int32_t c, uint8_t bit, CellError& slot, const CellShape& shape) {
+    Cached& cached = cache_[size_t(c)];
+    if (!(cached.valid & bit)) {
+        slot = computeCellError(*field_, mesh_->embedding(), pyramid_, shape);
+        cached.valid |= bit;
+    }
+    return slot;
+}
+
+const Refiner::Cached& Refiner::ownBound(int32_t c, const Footprint& footprint) {
+    Cached& cached = cache_[size_t(c)];
+    if (!(cached.valid & RefinementCache::kOwn)) {
+        cached.own = computeCellError(*field_, mesh_->embedding(), pyramid_, shapeOfCell(*mesh_, c));
+        cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), footprint);
+        cached.valid |= RefinementCache::kOwn;
+    }
+    return cached;
+}
+
+// The criteria of §5 for one bound (see view_criteria.h), and the margin of the verdict: how
+// far the sphere's centre may move in view coordinates (the eye by as much in the world, the
+// world's up vector in view coordinates by at most margin / dist) before the verdict can change.
+//  - outside a side plane of the frustum: the distance beyond it (the planes are fixed in view
+//    coordinates; near and far planes move with the camera, so they give no margin);
+//  - back-facing: the smallest (v.n - r|n|)/|n| over the slope box's corners (v = centre - eye);
+//  - projected error within tau: a margin m for which the bound over every sphere of radius
+//    r + m around the centre, at depth >= z - r - m and with the up vector turned by up to
+//    m / dist, stays within tau (projectedErrorPixels' corner argument, plus the turn's share);
+//  - failing (asked for with failMargin, for merge tests): a margin that keeps the sphere
+//    inside the side planes and the far plane, not back-facing, and a lower bound of the
+//    projected error (at the centre's screen tangent, the nearest depth at most
+//    max(z - r + m, 2 nearRef_)) above tau, given near <= 2 nearRef_ and far >= kFarShrink farRef_.
+// Without a margin known, 0: the cell is due at the next update.
+Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin,
+                                double& distOut) const {
+    ++tested_;
+    Verdict v;
+    if (settings_.viewIndependent) {
+        v.pass = !(e.error > settings_.maxError);
+        v.pixels = e.error;
+        v.margin = kForever;
+        distOut = 0.0;
+        return v;
+    }
+    glm::dvec3 center;
+    double radius;
+    boundingSphere(f, e, settings_.verticalScale, center, radius);
+    const glm::dvec3 d = center - view_.eye;
+    distOut = double(roundedUp(glm::length(d)));
+    const double dist = distOut;
+    const double x = glm::dot(d, view_.right), y = glm::dot(d, view_.up), z = glm::dot(d, view_.forward);
+    double inside = kForever; // smallest slack inside the side planes
+    if (settings_.culling) {
+        const double sx = std::sqrt(1.0 + view_.tanHalfX * view_.tanHalfX), sy = std::sqrt(1.0 + view_.tanHalfY * view_.tanHalfY);
+        const double slack[4] = {(view_.tanHalfX * z - x) / sx + radius, (view_.tanHalfX * z + x) / sx + radius,
+                                 (view_.tanHalfY * z - y) / sy + radius, (view_.tanHalfY * z + y) / sy + radius};
+        double outside = 0.0;
+        for (double s : slack) {
+            inside = std::min(inside, s);
+            outside = std::max(outside, -s);
+        }
+        if (outside > 0.0) return {true, 0.0, outside};
+        if (z + radius < view_.nearPlane || z - radius > view_.farPlane) return {true, 0.0, 0.0};
+    }
+    double front = kForever; // how far the eye may move before a front-facing cell can turn its back
+    if (settings_.backfaceCulling && slopes && slopes->known) {
+        double back = kForever, frontFacing = -kForever;
+        bool backFacing = true;
+        for (double dx : {double(slopes->dxLow), double(slopes->dxHigh)})
+            for (double dz : {double(slopes->dzLow), double(slopes->dzHigh)}) {
+                const glm::dvec3 n(-settings_.verticalScale * dx, 1.0, -settings_.verticalScale * dz);
+                const double length = glm::length(n);
+                const double s = (glm::dot(d, n) - radius * length) / length;
+                if (s <= 0.0) backFacing = false;
+                back = std::min(back, s);
+                frontFacing = std::max(frontFacing, -s);
+            }
+        if (backFacing) return {true, 0.0, back};
+        front = frontFacing;
+    }
+    const double error = double(e.error) * settings_.verticalScale;
+    v.pixels = projectedErrorPixels(view_, center, radius, error);
+    const double t = tau();
+    v.pass = !(v.pixels > t);
+    if (error <= 0.0) {
+        v.margin = kForever;
+        return v;
+    }
+    const double ux = view_.right.y, uy = view_.up.y, uz = view_.forward.y;
+    if (v.pass) {
+        // Upper bound of the projected error over every view within margin m.
+        auto upper = [&](double m) {
+            const double zLow = z - radius - m;
+            if (!(zLow > 0.0)) return kForever;
+            const double r = radius + m, zHigh = z + r;
+            auto range = [&](double c, double& lo, double& hi) {
+                const double a = c - r, b = c + r;
+                lo = a < 0.0 ? a / zLow : a / zHigh;
+                hi = b > 0.0 ? b / zLow : b / zHigh;
+            };
+            double xLo, xHi, yLo, yHi;
+            range(x, xLo, xHi);
+            range(y, yLo, yHi);
+            double g = 0.0;
+            for (double tx : {xLo, xHi})
+                for (double ty : {yLo, yHi}) {
+                    const double px = ux - tx * uz, py = uy - ty * uz;
+                    g = std::max(g, px * px + py * py);
+                }
+            const double tMax2 = std::max(xLo * xLo, xHi * xHi) + std::max(yLo * yLo, yHi * yHi);
+            const double turn = dist > 0.0 ? m / dist : kForever;
+            return view_.pixelsPerTangent * error * (std::sqrt(g) + turn * std::sqrt(1.0 + tMax2)) / zLow;
+        };
+        v.margin = largestMargin((z - radius) * (1.0 - v.pixels / t), [&](double m) { return upper(m) <= t; });
+        return v;
+    }
+    if (!failMargin) return v;
+    // Lower bound of the projected error over every view within margin m.
+    if (!(z > 0.0)) return v;
+    const double tcx = x / z, tcy = y / z;
+    const double pcx = ux - tcx * uz, pcy = uy - tcy * uz;
+    const double pc = std::sqrt(pcx * pcx + pcy * pcy);
+    auto lower = [&](double m) {
+        // The centre stays in front of the near plane (its screen tangent is then in the box
+        // the bound maximises over), and the sphere short of the far plane when culling.
+        if (z - m < 2.0 * nearRef_ || (settings_.culling && z - radius + m > kFarShrink * farRef_)) return 0.0;
+        const double dt = m * std::sqrt((1.0 + std::abs(tcx)) * (1.0 + std::abs(tcx)) + (1.0 + std::abs(tcy)) * (1.0 + std::abs(tcy))) / (z - m);
+        const double tc = std::sqrt(tcx * tcx + tcy * tcy) + dt;
+        const double turn = dist > 0.0 ? m / dist : kForever;
+        const double g = pc - std::abs(uz) * dt - turn * std::sqrt(1.0 + tc * tc);
+        return g > 0.0 ? view_.pixelsPerTangent * error * g / std::max(z - radius + m, 2.0 * nearRef_) : 0.0;
+    };
+    const double atCenter = view_.pixelsPerTangent * error * pc / std::max(z - radius, view_.nearPlane);
+    // Strictly inside the side planes and in front: a margin just below those slacks.
+    const double cap = std::min({(z - radius) * (atCenter / t - 1.0), 0.999 * inside, 0.999 * front});
+    v.margin = largestMargin(cap, [&](double m) { return lower(m) > t; });
+    return v;
+}
+
+void Refiner::setRecord(int32_t c, double margin, double dist) {
+    TestRecord& r = records_[size_t(c)];
+    r.t0 = roundedDown(travel_);
+    r.a0 = roundedDown(turn_);
+    r.dist = float(dist); // already rounded up by judge()
+    r.rho = margin >= kForever ? std::numeric_limits<float>::max() : roundedDown(margin);
+    if (r.rho < 0.0f) r.rho = 0.0f;
+}
+
+// Whether a step could refine the cell: false at the finest level (the split cannot happen,
+// whatever the view), or for a semi-hexagon across from a cell at the finest level.
+bool Refiner::canRefine(int32_t c) const {
+    const Hexagon& h = mesh_->cell(c);
+    if (h.kind != CellKind::Semi) return mesh_->canSplit(c);
+    const int32_t across = h.opposite[wrapSlot(h.firstVisible + 3) - 1];
+    if (across == kNone || mesh_->isLongEdge(across)) return true;
+    return mesh_->canSplit(hexIdx(across));
+}
+
+// A merge of c draws c's parent, and the outer halves of the joined hexagons in c's ring that
+// it breaks: all of them must pass, or the next refine pass would split c again.
+Refiner::Verdict Refiner::mergeVerdict(int32_t c, double& dist) {
+    const CellShape parent = parentShapeOfCell(*mesh_, c);
+    Verdict all = judge(footprintOf(*field_, mesh_->embedding(), parent), cachedError(c, RefinementCache::kParent, cache_[size_t(c)].parent, parent),
+                        nullptr, true, dist);
+    if (!all.pass) return all;
+    const Hexagon& h = mesh_->cell(c);
+    const int32_t first = h.kind == CellKind::Full ? 1 : h.firstVisible;
+    const int32_t edges = h.kind == CellKind::Full ? 6 : 3;
+    for (int32_t i = 0; i < edges; ++i) {
+        const int32_t o = h.opposite[wrapSlot(first + i) - 1];
+        if (o == kNone) continue;
+        const int32_t n = hexIdx(o);
+        const Hexagon& ring = mesh_->cell(n);
+        if (ring.kind != CellKind::Full || ring.splitCount != 0) continue; // a semi or a boundary cell: removed
+        const int32_t k = mesh_->breakDiameterSlot(n);
+        const bool facingFirstHalf = wrapSlot(edgeSlot(o) - k + 7) <= 3; // edge slots k, k+1, k+2
+        const int32_t outerHalf = facingFirstHalf ? 1 : 0;
+        CellShape outer;
+        outer.kind = CellKind::Semi;
+        outer.firstVisible = outerHalf == 0 ? k : wrapSlot(k + 3);
+        outer.center = mesh_->cellCenter(n);
+        outer.step = mesh_->cellStep(n);
+        double halfDist;
+        const Verdict half = judge(footprintOf(*field_, mesh_->embedding(), outer),
+                                   computeCellError(*field_, mesh_->embedding(), pyramid_, outer), nullptr, true, halfDist);
+        if (!half.pass) {
+            dist = halfDist;
+            return half;
+        }
+        // One record for all: the smallest margin, checked with the largest distance (a turn
+        // then moves each centre by at most the record's allowance; see testCell).
+        all.margin = std::min(all.margin, half.margin);
+        dist = std::max(dist, halfDist);
+    }
+    return all;
+}
+
+// Tests a cell's own bound and, for a merge candidate, its merge; sets its record and state.
+void Refiner::testCell(int32_t c) {
+    const Footprint footprint = footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c));
+    const Cached& cached = ownBound(c, footprint);
+    double dist;
+    const Verdict own = judge(footprint, cached.own, &cached.ownSlopes, false, dist);
+    uint8_t& state = state_[size_t(c)];
+    state &= uint8_t(kPending | kCancel);
+    if (!own.pass && canRefine(c)) {
+        state |= kFailing;
+        records_[size_t(c)].rho = -1.0f;
+        heap_.push_back({float(own.pixels), c});
+        std::push_heap(heap_.begin(), heap_.end(), lowerPriority);
+        if (state & kPending) state |= kCancel;
+        return;
+    }
+    double margin = own.pass ? own.margin : kForever; // failing at the finest level: nothing to do, whatever the view
+    const Hexagon& h = mesh_->cell(c);
+    if (h.kind != CellKind::Semi && h.splitCount > 0) {
+        // The cheap structural check first: a blocked merge is not worth its criteria.
+        if (!(state & kPending) && !mesh_->canMerge(c)) {
+            state |= kBlocked;
+        } else {
+            double mergeDist;
+            const Verdict merge = mergeVerdict(c, mergeDist);
+            if (merge.pass) {
+                if (state & kPending) {
+                    // still wanted: it completes once faded
+                } else {
+                    state |= kWanted;
+                    mergeList_.push_back(c);
+                }
+            } else if (state & kPending) {
+                state |= kCancel;
+            }
+            // One record for both tests: the smaller margin, checked with the larger distance.
+            // Not due means (travel) + (turn) * (D + travel) < rho for D >= every tested centre's
+            // distance at the test: each centre moved less than rho <= its margin, and the view
+            // turned by less than rho / D <= margin / its distance, as judge() assumed.
+            margin = std::min(margin, merge.margin);
+            dist = std::max(dist, mergeDist);
+        }
+    }
+    setRecord(c, margin, dist);
+}
+
+bool Refiner::outOfBudget(double share) {
+    if (settings_.maxOperations > 0 && operations_ >= std::max(1, int32_t(double(settings_.maxOperations) * share))) return true;
+    // Reading the clock costs more than testing a cell: look at it every 32 visits.
+    if (settings_.budgetMs > 0.0 && (visits_ & 31) == 0) {
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+        if (ms >= settings_.budgetMs * share) return true;
+    }
+    return false;
+}
+
+// One operation towards refining cell c: a split of it (or of what the balance rule needs
+// first), or, for a semi-hexagon, the join that the split of the cell across it would make.
+// A split keeps the split cell's record as the centre child (§4.1), so the bound it had is its
+// parent's now (§5.1: refinement data kept per centre vertex across levels).
+bool Refiner::refineStep(int32_t c) {
+    const Hexagon& h = mesh_->cell(c);
+    if (settings_.maxTriangles > 0 && mesh_->triangleCount() >= settings_.maxTriangles) return false;
+    SplitStep step;
+    if (h.kind != CellKind::Semi) {
+        if (!mesh_->canSplit(c)) return false;
+        step = mesh_->firstStepToSplit(c);
+    } else {
+        const int32_t across = h.opposite[wrapSlot(h.firstVisible + 3) - 1];
+        if (across == kNone || mesh_->isLongEdge(across)) {
+            if (!mesh_->join(c)) return false;
+            noteChanges();
+            return true;
+        }
+        const int32_t other = hexIdx(across);
+        if (!mesh_->canSplit(other)) return false;
+        step = mesh_->firstStepToSplit(other);
+    }
+    CellError kept;
+    CellShape keptShape;
+    const bool keep = step.kind == SplitStep::Split && (cache_[size_t(step.cell)].valid & RefinementCache::kOwn);
+    if (keep) {
+        kept = cache_[size_t(step.cell)].own;
+        keptShape = shapeOfCell(*mesh_, step.cell);
+    }
+    mesh_->applyStep(step);
+    noteChanges();
+    if (keep && mesh_->isLive(step.cell) && sameShape(parentShapeOfCell(*mesh_, step.cell), keptShape)) {
+        cache_[size_t(step.cell)].parent = kept;
+        cache_[size_t(step.cell)].valid |= RefinementCache::kParent;
+    }
+    return true;
+}
+
+// A merge turns the cell's record back into its parent (§4.6): the parent bound it cached is
+// its own bound now (§5.1).
+bool Refiner::mergeNow(int32_t c) {
+    CellError kept;
+    CellShape keptShape;
+    const bool keep = cache_[size_t(c)].valid & RefinementCache::kParent;
+    if (keep) {
+        kept = cache_[size_t(c)].parent;
+        keptShape = parentShapeOfCell(*mesh_, c);
+    }
+    if (!mesh_->merge(c)) return false;
+    noteChanges();
+    if (keep && sameShape(shapeOfCell(*mesh_, c), keptShape)) {
+        Cached& cached = cache_[size_t(c)];
+        cached.own = kept;
+        cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), footprintOf(*field_, mesh_->embedding(), keptShape));
+        cached.valid = RefinementCache::kOwn;
+    }
+    return true;
+}
+
+// §7: "If a vertex v is to be removed, inverse blending is triggered by a merge [...], which
+// [is] finished when the vertex has faded out." Without geomorphing the merge happens now.
+bool Refiner::beginMerge(int32_t c) {
+    if (!morph_ || !morph_->enabled()) return mergeNow(c);
+    if (!mesh_->canMerge(c)) return false;
+    PendingMerge merge{c, 0, {}};
+    freedScratch_.clear();
+    mesh_->verticesFreedByMerge(c, freedScratch_);
+    for (int32_t v : freedScratch_) {
+        merge.vertices[merge.count++] = v;
+        morph_->blendOut(*mesh_, v);
+    }
+    pending_.push_back(merge);
+    state_[size_t(c)] |= kPending;
+    return false; // nothing changed in the mesh yet
+}
+
+// Whether the merge would still free exactly the vertices that are fading out.
+bool Refiner::stillFrees(const PendingMerge& merge) {
+    if (!mesh_->canMerge(merge.cell)) return false;
+    freedScratch_.clear();
+    mesh_->verticesFreedByMerge(merge.cell, freedScratch_);
+    return std::equal(freedScratch_.begin(), freedScratch_.end(), merge.vertices, merge.vertices + merge.count);
+}
+
+void Refiner::callOff(const PendingMerge& merge) {
+    for (int32_t i = 0; i < merge.count; ++i)
+        if (mesh_->isVertexLive(merge.vertices[i])) morph_->cancelBlendOut(*mesh_, merge.vertices[i]);
+    state_[size_t(merge.cell)] &= uint8_t(~(kPending | kCancel));
+    records_[size_t(merge.cell)].rho = -1.0f; // its merge test again at the next sweep
+}
+
+// The fading merges: called off when the mesh around them changed or their record's re-test
+// found them no longer wanted (they are re-tested only when due, like every cell); merged
+// once faded, each merge an operation of the budget.
+void Refiner::advancePendingMerges() {
+    size_t kept = 0;
+    for (size_t i = 0; i < pending_.size(); ++i) {
+        const PendingMerge merge = pending_[i];
+        if ((state_[size_t(merge.cell)] & kCancel) || !stillFrees(merge)) {
+            callOff(merge); // the mesh changed around it, or the view wants the detail back
+            continue;
+        }
+        bool faded = morph_ == nullptr || !morph_->enabled();
+        if (!faded) {
+            faded = true;
+            for (int32_t k = 0; k < merge.count; ++k) {
+                const StreamVertex& v = mesh_->streamVertex(merge.vertices[k]);
+                if (!morph_->blendingOut(v)) morph_->blendOut(*mesh_, merge.vertices[k]); // reversed by a called-off merge
+                faded = faded && morph_->fadedOut(v);
+            }
+        }
+        if (!faded || (progressed() && outOfBudget())) {
+            pending_[kept++] = merge;
+            continue;
+        }
+        state_[size_t(merge.cell)] &= uint8_t(~(kPending | kCancel));
+        if (mergeNow(merge.cell)) ++operations_;
+    }
+    pending_.resize(kept);
+}
+
+void Refiner::adaptTau() {
+    if (settings_.viewIndependent || !settings_.autoTau) {
+        currentTau_ = settings_.tau;
+        return;
+    }
+    const bool overCap = settings_.maxTriangles > 0 && mesh_->triangleCount() >= settings_.maxTriangles;
+    const bool overTime = settings_.budgetMs > 0.0 && last_.milliseconds >= settings_.budgetMs && !last_.converged;
+    if (overCap || overTime) currentTau_ = std::min(currentTau_ * 1.1, settings_.tau * 64.0);
+    else if (last_.converged) currentTau_ = std::max(currentTau_ / 1.05, settings_.tau);
+}
+
+// Every update makes progress before a budget may stop it: an operation, or a few hundred
+// cells tested (the next update resumes after them).
+bool Refiner::progressed() const { return operations_ > 0 || visits_ - visitsAtStart_ >= kMinVisits; }
+
+void Refiner::restart() {
+    for (const PendingMerge& merge : pending_) callOff(merge);
+    pending_.clear();
+    sweepCursor_ = 0;
+    noteChanges(false);
+    fresh_.clear();
+    heap_.clear();
+    mergeList_.clear();
+    std::fill(state_.begin(), state_.end(), uint8_t(0));
+    invalidateAll();
+}
+
+// Tests the due cells in index order (the check of each compact record first), queueing
+// failing cells and wanted merges. One sweep is a full circle over the records, starting where
+// the last one stopped; with a time budget it takes at most half of it, so that refining gets
+// the rest. False when the budget stopped it (the cursor keeps the place).
+bool Refiner::sweep() {
+    const int32_t end = int32_t(records_.size());
+    const double halfBudget = 0.5 * settings_.budgetMs;
+    const int32_t begin = sweepCursor_ < end ? sweepCursor_ : 0;
+    for (int32_t k = 0; k < end; ++k) {
+        const int32_t c = begin + k < end ? begin + k : begin + k - end;
+        if ((k & 255) == 255 && settings_.budgetMs > 0.0 && progressed()) {
+            const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+            if (ms >= halfBudget) {
+                sweepCursor_ = c;
+                return false;
+            }
+        }
+        const TestRecord& r = records_[size_t(c)];
+        const double moved = travel_ - double(r.t0);
+        const bool due = moved + (turn_ - double(r.a0)) * (double(r.dist) + moved) >= double(r.rho);
+        const uint8_t state = state_[size_t(c)];
+        if (!due) {
+            if (state & kWanted) mergeList_.push_back(c); // queued before, the budget ran out
+                continue;
+        }
+        if (!mesh_->isLive(c)) continue;
+        ++visits_;
+        testCell(c);
+    }
+    sweepCursor_ = begin;
+    return true;
+}
+
+// Refines the failing cells, largest projected error first (as ROAM's split queue does),
+// testing what each operation made. False when kRefineShare of the budget is spent: merges
+// get the rest, or a fast camera would only ever add triangles.
+bool Refiner::drain() {
+    while (!heap_.empty()) {
+        if (progressed() && outOfBudget(kRefineShare)) return false;
+        std::pop_heap(heap_.begin(), heap_.end(), lowerPriority);
+        const int32_t c = heap_.back().cell;
+        const float pixels = heap_.back().pixels;
+        heap_.pop_back();
+        if (!mesh_->isLive(c) || !(state_[size_t(c)] & kFailing)) continue; // stale: changed and re-tested since
+        ++visits_;
+        if (!refineStep(c)) {
+            // Held back by the triangle cap: it waits (due again at the next update).
+            continue;
+        }
+        ++operations_;
+        retestChanged();
+        if (mesh_->isLive(c) && (state_[size_t(c)] & kFailing) && records_[size_t(c)].rho < 0.0f) {
+            // Not done with c yet (the step was one the balance rule needed first). A second
+            // entry for c does no harm: an entry whose cell no longer fails is skipped.
+            heap_.push_back({pixels, c});
+            std::push_heap(heap_.begin(), heap_.end(), lowerPriority);
+        }
+    }
+    return true;
+}
+
+// §6: merges in descending level order, each when what it makes passes. False when the
+// budget stopped it.
+bool Refiner::coarsen() {
+    std::sort(mergeList_.begin(), mergeList_.end(), [&](int32_t a, int32_t b) {
+        const int32_t la = mesh_->isLive(a) ? mesh_->cell(a).level : -1, lb = mesh_->isLive(b) ? mesh_->cell(b).level : -1;
+        return la > lb || (la == lb && a < b);
+    });
+    mergeList_.erase(std::unique(mergeList_.begin(), mergeList_.end()), mergeList_.end());
+    size_t k = 0;
+    for (; k < mergeList_.size(); ++k) {
+        if (progressed() && outOfBudget()) break;
+        const int32_t c = mergeList_[k];
+        if (!mesh_->isLive(c) || !(state_[size_t(c)] & kWanted)) continue; // changed since
+        ++visits_;
+        state_[size_t(c)] &= uint8_t(~kWanted);
+        if (!mesh_->canMerge(c)) {
+            state_[size_t(c)] |= kBlocked;
+            continue;
+        }
+        if (beginMerge(c)) {
+            ++operations_;
+            retestChanged();
+        }
+    }
+    const bool done = k == mergeList_.size();
+    mergeList_.clear(); // what is left keeps kWanted: the next sweep queues it again
+    return done;
+}
+
+UpdateStats Refiner::update() {
+    start_ = std::chrono::steady_clock::now();
+    operations_ = 0;
+    tested_ = 0;
+    visitsAtStart_ = visits_;
+    const OperationCounts before = mesh_->counts();
+    bool converged = false;
+    noteChanges(false); // changed outside an operation of ours: their records are due
+    checkSettings();
+    rebaseOdometers();
+    heap_.clear();
+    mergeList_.clear();
+    if (morph_) morph_->advance(); // one frame per update
+    // One sweep tests what is due; then the work it queued, and what that work makes, until
+    // none is left. Converged: the sweep went full circle within this update and every
+    // failing test was resolved (refined) and every wanted merge started; fades under way and
+    // cells held back by the triangle cap do not count.
+    const bool swept = sweep(); // when the budget stopped it, the work it found still goes first
+    for (int32_t round = 0; round < kMaxCyclesPerUpdate; ++round) {
+        advancePendingMerges();
+        retestChanged();
+        const bool drained = drain(); // stops at kRefineShare of the budget: merges get the rest
+        if (!coarsen() || !drained) break;
+        retestChanged();
+        if (heap_.empty() && mergeList_.empty()) {
+            converged = swept;
+            break;
+        }
+    }
+    heap_.clear();
+    last_.operations = operations_;
+    last_.splits = int32_t(mesh_->counts().splits - before.splits);
+    last_.merges = int32_t(mesh_->counts().merges - before.merges);
+    last_.cellsTested = tested_;
+    last_.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    last_.converged = converged;
+    adaptTau();
+    return last_;
+}
+
+} // namespace hexlod

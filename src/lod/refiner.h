@@ -1,0 +1,195 @@
+// Refiner: the interruptible refinement loop of paper §6 over the hexagon mesh, driven by the
+// conservative criteria of view_criteria.h (§5) or by a view-independent maximum error.
+//
+// One update (§6) sweeps the cells in index order and re-tests only the cells that are due
+// (below), refines the failing ones largest projected error first (a failing semi-hexagon is
+// joined by splitting the cell across its long edge; the balance rule's steps come first),
+// then coarsens in descending level order (a cell is merged back when what the merge makes
+// passes). Each step is one mesh operation, after which the mesh is consistent; the update
+// stops when the time or operation budget is spent and the next update resumes.
+//
+// Deferred re-testing: each test leaves a margin per cell, the distance the cell's centre may
+// move in view space (eye travel plus the turn of the view times the cell's distance) before
+// the test's verdict can change; a compact record per cell (16 bytes, swept in index order)
+// says when the camera has used it up. The margins are bounds (see judge()), so a mesh that
+// passed stays within tau until its cells are due.
+//
+// With geomorphing (§7), a merge first fades out the vertices it will free and happens in the
+// update where they have faded; it is called off if the mesh or the view no longer allow it.
+// Refinement data is cached per cell record (§5.1), recomputed only for cells an operation
+// changed, and carried across a split (the split cell's bound is its parent's) and a merge.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include "lod/cell_bounds.h"
+#include "lod/refinement_cache.h"
+#include "stream/geomorph.h"
+#include "mesh/hex_mesh.h"
+#include "field/min_max_pyramid.h"
+#include "lod/view_criteria.h"
+
+namespace hexlod {
+
+struct RefinerSettings {
+    bool viewIndependent = false; // true: maxError metres everywhere; false: tau pixels on screen
+    double tau = 1.0;             // pixels
+    double maxError = 1.0;        // metres
+    double verticalScale = 1.0;
+    double budgetMs = 0.0;        // <= 0: no time limit
+    int32_t maxOperations = 0;    // <= 0: no limit
+    int32_t maxTriangles = 0;     // <= 0: no cap (a cell failing under the cap waits; the update still converges)
+    bool autoTau = false;
+    bool culling = true;          // frustum culling
+    bool backfaceCulling = true;  // cone-of-normals culling (exact embedding, cells of up to 4096 samples)
+};
+
+struct UpdateStats {
+    int32_t operations = 0; // refiner steps: splits, joins and merges it performed
+    int32_t splits = 0, merges = 0; // mesh splits and merges, forced ones included
+    int32_t cellsTested = 0; // criteria evaluations (§5) this update: a cell's own, parent or half bound against the view
+    double milliseconds = 0.0;
+    bool converged = false; // every due re-test passes and nothing is left to refine or merge (fades may run on)
+};
+
+class Refiner {
+public:
+    /// Attaches to a mesh over `field` (both outlive the refiner's use) and builds the
+    /// min/max pyramid (one pass over the samples).
+    void attach(HexMesh& mesh, const Heightfield& field);
+    /// The blends to drive (their clock ticks once per update); null: merges happen at once.
+    void setGeomorph(Geomorph* morph) { morph_ = morph; }
+
+    RefinerSettings& settings() { return settings_; }
+    const RefinerSettings& settings() const { return settings_; }
+    const View& view() const { return view_; }
+    /// Sets the camera. Eye travel and turn feed the margins; a different frustum shape or
+    /// resolution (or near and far planes moved far) makes every cell due.
+    void setView(const View& view);
+    /// Every cell is due at the next update (after the mesh changed outside the refiner).
+    void restart();
+    /// Kept for callers that change settings; nothing to do: every update compares the
+    /// settings and makes every cell due when one that matters changed.
+    void markChanged() {}
+
+    /// One update (see above). Returns its figures.
+    UpdateStats update();
+    const UpdateStats& lastUpdate() const { return last_; }
+    double currentTau() const { return currentTau_; }
+    /// Merges waiting for their vertices to fade out.
+    int32_t pendingMerges() const { return int32_t(pending_.size()); }
+    size_t memoryBytes() const;
+    /// Of memoryBytes(), what the live cells and pending merges use (pools counted by use, not capacity).
+    size_t liveMemoryBytes() const;
+    /// The achieved screen error (refiner_achieved_error.cpp): the largest projected error in
+    /// pixels over the live cells in view whose bound is cached; -1 in view-independent mode.
+    double achievedErrorPixels() const;
+
+private:
+    // §5.1: refinement data cached per cell record (refinement_cache.h).
+    using Cached = RefinementCache::Entry;
+    // When a cell is next due, in the camera's odometers (travel_, turn_): due once
+    // (travel_ - t0) + (turn_ - a0) * (dist + travel_ - t0) >= rho. t0, a0 rounded down,
+    // dist (the eye's distance to the centre at the test) rounded up, rho (metres) rounded down.
+    // rho < 0: due now.
+    struct TestRecord {
+        float t0 = 0, a0 = 0, dist = 0, rho = -1;
+    };
+    enum State : uint8_t {
+        kFailing = 1,  // its own test failed: waiting for a refining step
+        kWanted = 2,   // its merge is wanted (not started yet)
+        kBlocked = 4,  // a merge candidate that canMerge refused: checked again every update
+        kPending = 8,  // a merge of this record is fading its vertices out
+        kCancel = 16,  // the pending merge is no longer wanted
+    };
+    // A verdict of the criteria (§5) for one bound, and how far it holds.
+    struct Verdict {
+        bool pass = true;
+        double pixels = 0.0; // projected error (0 when culled)
+        double margin = 0.0; // metres of view-space movement of the centre during which it cannot change
+    };
+    // A merge started under geomorphing: the vertices it frees, fading out (§7).
+    struct PendingMerge {
+        int32_t cell;
+        int32_t count;
+        int32_t vertices[12]; // six corners and up to six centres of the ring cells it breaks
+    };
+    struct Candidate {
+        float pixels;
+        int32_t cell;
+    };
+    // Heap order: largest projected error on top; ties by cell index (deterministic).
+    static bool lowerPriority(const Candidate& a, const Candidate& b) {
+        return a.pixels < b.pixels || (a.pixels == b.pixels && a.cell > b.cell);
+    }
+
+    Verdict judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin, double& distOut) const;
+    const CellError& cachedError(int32_t cell, uint8_t bit, CellError& slot, const CellShape& shape);
+    const Cached& ownBound(int32_t cell, const Footprint& footprint);
+    void noteChanges(bool collect = true); // collect: queue the changed cells for retestChanged
+    void retestChanged();
+    void testCell(int32_t cell);
+    Verdict mergeVerdict(int32_t cell, double& dist);
+    void setRecord(int32_t cell, double margin, double dist);
+    void invalidateAll();
+    void checkSettings();
+    void rebaseOdometers();
+    bool canRefine(int32_t cell) const;
+    bool refineStep(int32_t cell);   // one operation towards refining the cell; false if none
+    bool beginMerge(int32_t cell);   // merges now, or starts fading out (then false)
+    bool mergeNow(int32_t cell);     // the merge itself, its parent bound carried over (§5.1)
+    void advancePendingMerges();     // completes faded merges, calls off the stale ones
+    void callOff(const PendingMerge& merge);
+    bool stillFrees(const PendingMerge& merge);
+    bool outOfBudget(double share = 1.0); // share: of the time and operation budgets
+    bool sweep();
+    bool drain();
+    bool coarsen();
+    bool progressed() const;
+    void adaptTau();
+    double tau() const { return settings_.autoTau ? currentTau_ : settings_.tau; }
+
+    HexMesh* mesh_ = nullptr;
+    const Heightfield* field_ = nullptr;
+    MinMaxPyramid pyramid_;
+    RefinerSettings settings_;
+    View view_;
+    RefinementCache cache_;
+    std::vector<TestRecord> records_;
+    std::vector<uint8_t> state_;
+    std::vector<int32_t> changes_, fresh_;
+    std::vector<Candidate> heap_;     // failing cells, largest projected error on top
+    std::vector<int32_t> mergeList_;  // cells whose merge is wanted
+    Geomorph* morph_ = nullptr;
+    std::vector<PendingMerge> pending_;
+    std::vector<int32_t> freedScratch_;
+    double currentTau_ = 1.0;
+
+    // The camera's odometers: metres travelled by the eye, and the summed turn of the view
+    // basis (Frobenius norm of each change, a bound on the rotation's operator norm).
+    double travel_ = 0.0, turn_ = 0.0;
+    bool haveView_ = false;
+    double nearRef_ = 0.0, farRef_ = 0.0; // near and far planes when every cell was last made due
+    // The settings the records were computed for.
+    RefinerSettings checked_;
+    double checkedTau_ = 0.0;
+    bool settingsChecked_ = false;
+
+    // Where the loop stands, kept across updates.
+    int32_t sweepCursor_ = 0;
+
+    // Per-update state.
+    std::chrono::steady_clock::time_point start_;
+    int32_t operations_ = 0;
+    int32_t unresolved_ = 0; // failing cells left this cycle that a step could still refine
+    uint32_t visits_ = 0, visitsAtStart_ = 0;
+    static constexpr uint32_t kMinVisits = 256;
+    UpdateStats last_;
+    mutable int32_t tested_ = 0; // criteria evaluations this update
+    static constexpr int32_t kMaxCyclesPerUpdate = 64;
+    static constexpr double kRefineShare = 0.8;
+};
+
+} // namespace hexlod

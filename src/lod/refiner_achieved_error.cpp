@@ -1,0 +1,32 @@
+// The achieved screen error of the current mesh, for the viewer's HUD: what the refiner's
+// bound (paper §5, view_criteria.h) says of the cells now drawn, for the current camera. Once
+// converged it is at most tau (the refiner's promise); while refining, or with a triangle cap,
+// it shows how far the mesh is from it. Kept out of refiner.cpp: it reads the per-cell cache
+// (§5.1) and changes nothing.
+#include "lod/refiner.h"
+
+#include <algorithm>
+
+namespace hexlod {
+
+double Refiner::achievedErrorPixels() const {
+    if (settings_.viewIndependent || !mesh_) return -1.0;
+    double worst = 0.0;
+    const int32_t cells = std::min(mesh_->cellCapacity(), int32_t(cache_.size()));
+    for (int32_t c = 0; c < cells; ++c) {
+        const Cached& cached = cache_[size_t(c)];
+        // A cell not tested since it was made has no bound yet; the next update computes it.
+        if (!mesh_->isLive(c) || !(cached.valid & RefinementCache::kOwn)) continue;
+        glm::dvec3 center;
+        double radius;
+        boundingSphere(footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c)), cached.own, settings_.verticalScale, center, radius);
+        // Cells that cannot be seen do not count: outside the (unwidened) frustum, or back-facing.
+        if (settings_.culling && outsideFrustum(view_, center, radius)) continue;
+        if (settings_.backfaceCulling && backFacing(view_, center, radius, cached.ownSlopes, settings_.verticalScale))
+            continue;
+        worst = std::max(worst, projectedErrorPixels(view_, center, radius, double(cached.own.error) * settings_.verticalScale));
+    }
+    return worst;
+}
+
+} // namespace hexlod

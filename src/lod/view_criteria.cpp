@@ -1,0 +1,91 @@
+// Refinement criteria of paper §5, made a bound; see view_criteria.h.
+#include "lod/view_criteria.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace hexlod {
+
+bool makeView(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up, double tanHalfFovY,
+              double aspect, double viewportHeightPx, double nearPlane, double farPlane, View& view) {
+    const glm::dvec3 toward = target - eye;
+    const double distance = glm::length(toward);
+    if (!(distance > 0.0) || !(tanHalfFovY > 0.0) || !(aspect > 0.0) || !(viewportHeightPx > 0.0) ||
+        !(nearPlane > 0.0) || !(farPlane > nearPlane))
+        return false;
+    const glm::dvec3 forward = toward / distance;
+    glm::dvec3 right = glm::cross(forward, up);
+    const double rightLength = glm::length(right);
+    if (!(rightLength > 1e-9)) return false;
+    right /= rightLength;
+    view.eye = eye;
+    view.forward = forward;
+    view.right = right;
+    view.up = glm::cross(right, forward);
+    view.tanHalfY = tanHalfFovY;
+    view.tanHalfX = tanHalfFovY * aspect;
+    view.pixelsPerTangent = viewportHeightPx / (2.0 * tanHalfFovY);
+    view.nearPlane = nearPlane;
+    view.farPlane = farPlane;
+    return true;
+}
+
+void boundingSphere(const Footprint& f, const CellError& e, double verticalScale, glm::dvec3& center, double& radius) {
+    const glm::dvec3 low(f.x0, double(e.low) * verticalScale, f.z0), high(f.x1, double(e.high) * verticalScale, f.z1);
+    center = 0.5 * (low + high);
+    radius = 0.5 * glm::length(high - low);
+}
+
+bool outsideFrustum(const View& view, const glm::dvec3& center, double radius) {
+    const glm::dvec3 d = center - view.eye;
+    const double x = glm::dot(d, view.right), y = glm::dot(d, view.up), z = glm::dot(d, view.forward);
+    if (z + radius < view.nearPlane || z - radius > view.farPlane) return true;
+    // Side planes through the eye: inside is |x| <= tanHalfX * z (and likewise y).
+    const double sx = std::sqrt(1.0 + view.tanHalfX * view.tanHalfX), sy = std::sqrt(1.0 + view.tanHalfY * view.tanHalfY);
+    if ((view.tanHalfX * z - x) / sx < -radius || (view.tanHalfX * z + x) / sx < -radius) return true;
+    if ((view.tanHalfY * z - y) / sy < -radius || (view.tanHalfY * z + y) / sy < -radius) return true;
+    return false;
+}
+
+bool backFacing(const View& view, const glm::dvec3& center, double radius, const SlopeBox& slopes, double verticalScale) {
+    if (!slopes.known) return false;
+    const glm::dvec3 v = center - view.eye;
+    // v . n - radius * |n| is concave in the slope, so its smallest value over the box is at
+    // one of the four corners.
+    for (double dx : {double(slopes.dxLow), double(slopes.dxHigh)})
+        for (double dz : {double(slopes.dzLow), double(slopes.dzHigh)}) {
+            const glm::dvec3 n(-verticalScale * dx, 1.0, -verticalScale * dz);
+            if (glm::dot(v, n) - radius * glm::length(n) <= 0.0) return false;
+        }
+    return true;
+}
+
+double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError) {
+    if (verticalError <= 0.0) return 0.0;
+    const glm::dvec3 d = center - view.eye;
+    const double x = glm::dot(d, view.right), y = glm::dot(d, view.up), z = glm::dot(d, view.forward);
+    const double zMin = std::max(z - radius, view.nearPlane), zMax = std::max(z + radius, zMin);
+    // Range of the screen tangents X/Z and Y/Z over the sphere (with depths in [zMin, zMax]).
+    auto tangentRange = [&](double c, double& lo, double& hi) {
+        const double a = c - radius, b = c + radius;
+        lo = a < 0.0 ? a / zMin : a / zMax;
+        hi = b > 0.0 ? b / zMin : b / zMax;
+    };
+    double xLo, xHi, yLo, yHi;
+    tangentRange(x, xLo, xHi);
+    tangentRange(y, yLo, yHi);
+    // World up in view coordinates; the Jacobian of (X/Z, Y/Z) times it is
+    // (ux - tx * uz, uy - ty * uz) / Z, whose length is convex in (tx, ty): largest at a corner.
+    const double ux = view.right.y, uy = view.up.y, uz = view.forward.y;
+    double g = 0.0;
+    for (double tx : {xLo, xHi})
+        for (double ty : {yLo, yHi}) {
+            const double px = ux - tx * uz, py = uy - ty * uz;
+            g = std::max(g, px * px + py * py);
+        }
+    return view.pixelsPerTangent * verticalError * std::sqrt(g) / zMin;
+}
+
+} // namespace hexlod

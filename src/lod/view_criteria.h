@@ -1,0 +1,49 @@
+// Refinement criteria (paper §5, after Hoppe 1997), made conservative: a bound, not an
+// estimate, on how far any sample under a cell can appear from the drawn surface on screen.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "lod/cell_bounds.h"
+
+namespace hexlod {
+
+/// A perspective camera in the world frame (x east, y up, z south; metres, heights already
+/// times the vertical scale).
+struct View {
+    glm::dvec3 eye{0.0};
+    glm::dvec3 right{1, 0, 0}, up{0, 1, 0}, forward{0, 0, -1}; // orthonormal view basis
+    double tanHalfX = 1.0, tanHalfY = 1.0; // frustum half-angle tangents
+    double pixelsPerTangent = 540.0;       // viewport height in pixels / (2 tan(fovy / 2))
+    double nearPlane = 1.0, farPlane = 1e12; // metres
+};
+
+/// Builds a view from eye, target and up. Returns false for a degenerate camera (eye on the
+/// target, up along the view direction, non-positive sizes or planes).
+bool makeView(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up, double tanHalfFovY,
+              double aspect, double viewportHeightPx, double nearPlane, double farPlane, View& view);
+
+/// The cell's bounding sphere: its footprint box, heights from `low` to `high` (times the
+/// vertical scale).
+void boundingSphere(const Footprint& f, const CellError& e, double verticalScale, glm::dvec3& center, double& radius);
+
+/// Whether the sphere lies completely outside one plane of the view frustum (§5, first test).
+bool outsideFrustum(const View& view, const glm::dvec3& center, double radius);
+
+/// Whether every point of the sphere sees the back of every surface with a slope in the box
+/// (§5, second test, made a bound): the normals (-s*dx, 1, -s*dz) for the vertical scale s
+/// all satisfy (p - eye) . n > 0 for every point p of the sphere. Such a cell's samples
+/// cannot be seen: where a ray from an eye above a height field first meets it, the surface
+/// faces the eye.
+bool backFacing(const View& view, const glm::dvec3& center, double radius, const SlopeBox& slopes, double verticalScale);
+
+/// Upper bound, in pixels, of the screen distance between any sample under the cell and the
+/// drawn surface above or below it (§5, third test, made a bound):
+///   a vertical segment of length e = error * verticalScale inside the sphere projects to at
+///   most pixelsPerTangent * e * g / Zmin pixels, where Zmin is the sphere's nearest depth
+///   (depth minus radius, at least the near plane) and g the largest length of the projected
+///   up vector over the sphere's range of screen tangents (1 looking level, 0 looking straight
+///   down at the cell's centre): the projection's Jacobian applied to the world's up vector.
+double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError);
+
+} // namespace hexlod

@@ -1,0 +1,585 @@
+// The hexagon mesh operations of Sußner, Dachsbacher, Greiner (VMV 2005): split and join
+// (§4.1, Fig. 3), the balance rule (§4.5, Fig. 5), merge and break (§4.6, Fig. 6), on the
+// record layout of §4.3 and the level lists of §4.4. See hex_mesh.h for the slot conventions.
+//
+// Ring cell numbering used throughout: splitting a cell of step s around centre c with corners
+// P_k = c + s*d(k-1) gives new corners Q_k = c + (s/2)*d(k-1), and along each edge k
+// (P_k -> P_k+1) a semi-hexagon R_k whose own corners, in its own slots, are
+//   slot k+2: P_k+1,  slot k+3: Q_k+1,  slot k+4: Q_k,  slot k+5: P_k   (firstVisible = k+2)
+// so its edges are: slot k+2 side (shared with R_k+1's slot k+5), slot k+3 inner (shared with
+// the centre's edge k), slot k+4 side, slot k+5 long (on the parent's edge k). Along a domain
+// boundary edge R_k becomes a boundary semi-hexagon around the edge's midpoint (§4.2).
+#include "mesh/hex_mesh.h"
+#include "mesh/pool_growth.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace hexlod {
+
+namespace {
+
+// The edge slots along which a cell is split into ring cells, and its own corner slots.
+struct CellSlots {
+    int32_t firstEdge, edgeCount, cornerCount;
+};
+
+CellSlots slotsOf(const Hexagon& h) {
+    if (h.kind == CellKind::Full) return {1, 6, 6};
+    return {h.firstVisible, 3, 4}; // semi-hexagons: three short edges, four corners
+}
+
+} // namespace
+
+// --- Pools and level lists (§4.4) ---------------------------------------------------------
+
+int32_t HexMesh::allocateCell() {
+    int32_t c = freeCell_;
+    if (c != kNone) {
+        freeCell_ = cells_[size_t(c)].next;
+    } else {
+        c = int32_t(cells_.size());
+        reserveForPool(cells_, cells_.size() + 1);
+        cells_.emplace_back();
+    }
+    Hexagon& h = cells_[size_t(c)];
+    std::fill(std::begin(h.vertex), std::end(h.vertex), kNone);
+    std::fill(std::begin(h.opposite), std::end(h.opposite), kNone);
+    h.prev = h.next = kNone;
+    h.level = 0;
+    h.splitCount = 0;
+    h.kind = CellKind::Full;
+    h.firstVisible = 0;
+    ++liveCells_;
+    logChange(c);
+    return c;
+}
+
+void HexMesh::freeCell(int32_t c) {
+    Hexagon& h = cells_[size_t(c)];
+    h.level = kFreeLevel;
+    h.next = freeCell_;
+    h.prev = kNone;
+    freeCell_ = c;
+    --liveCells_;
+    logChange(c);
+}
+
+int32_t HexMesh::allocateVertex(LatticePoint p, int32_t parentA, int32_t parentB) {
+    int32_t v;
+    if (!freeVertices_.empty()) {
+        v = freeVertices_.back();
+        freeVertices_.pop_back();
+    } else {
+        v = int32_t(vertexLattice_.size());
+        const size_t size = vertexLattice_.size() + 1;
+        reserveForPool(vertexLattice_, size), reserveForPool(vertices_, size);
+        reserveForPool(vertexParents_, size), reserveForPool(vertexLive_, size);
+        vertexLattice_.emplace_back();
+        vertices_.emplace_back();
+        vertexParents_.emplace_back();
+        vertexLive_.emplace_back();
+    }
+    vertexLattice_[size_t(v)] = p;
+    StreamVertex& sv = vertices_[size_t(v)];
+    sv.position = embedLatticePoint(*field_, embedding_, p);
+    sv.normal[0] = sv.normal[2] = sv.normal[3] = 0;
+    sv.normal[1] = 32767;
+    sv.morphFrom = sv.position;
+    sv.morphKey = 0.0f;
+    vertexParents_[size_t(v)] = {parentA, parentB, kNone};
+    vertexLive_[size_t(v)] = 1;
+    ++liveVertices_;
+    if (vertexLog_) vertexLog_->push_back(v);
+    return v;
+}
+
+void HexMesh::setAcross(int32_t v, int32_t candidate1, int32_t candidate2) {
+    const Parents& p = vertexParents_[size_t(v)];
+    const glm::vec3 a = vertices_[size_t(p.a)].position, b = vertices_[size_t(p.b)].position;
+    // Side of a ground-plane point relative to the edge a -> b, in double: exact for floats.
+    auto side = [&](const glm::vec3& q) {
+        const double cross = (double(b.x) - a.x) * (double(q.z) - a.z) - (double(b.z) - a.z) * (double(q.x) - a.x);
+        return (cross > 0.0) - (cross < 0.0);
+    };
+    const int own = side(vertices_[size_t(v)].position);
+    int32_t across = kNone;
+    if (own != 0) {
+        for (int32_t c : {candidate1, candidate2})
+            if (c != kNone && side(vertices_[size_t(c)].position) == own) across = c;
+    }
+    vertexParents_[size_t(v)].across = across;
+}
+
+void HexMesh::freeVertex(int32_t v) {
+    vertexLive_[size_t(v)] = 0;
+    (deferVertexReuse_ ? freedVertices_ : freeVertices_).push_back(v);
+    --liveVertices_;
+    if (vertexLog_) vertexLog_->push_back(~v);
+}
+
+void HexMesh::releaseFreedVertices() {
+    freeVertices_.insert(freeVertices_.end(), freedVertices_.begin(), freedVertices_.end());
+    freedVertices_.clear();
+}
+
+void HexMesh::linkLevel(int32_t c) {
+    Hexagon& h = cells_[size_t(c)];
+    const size_t level = h.level;
+    h.prev = levelTail_[level];
+    h.next = kNone;
+    if (h.prev != kNone) cells_[size_t(h.prev)].next = c;
+    else levelHead_[level] = c;
+    levelTail_[level] = c;
+}
+
+void HexMesh::unlinkLevel(int32_t c) {
+    Hexagon& h = cells_[size_t(c)];
+    const size_t level = h.level;
+    if (h.prev != kNone) cells_[size_t(h.prev)].next = h.next;
+    else levelHead_[level] = h.next;
+    if (h.next != kNone) cells_[size_t(h.next)].prev = h.prev;
+    else levelTail_[level] = h.prev;
+    h.prev = h.next = kNone;
+}
+
+void HexMesh::setLevel(int32_t c, int32_t level) {
+    logChange(c); // every operation changes the level of what it changes
+    unlinkLevel(c);
+    cells_[size_t(c)].level = uint8_t(level);
+    linkLevel(c);
+}
+
+void HexMesh::connect(int32_t e, int32_t f) {
+    if (e != kNone) cells_[size_t(hexIdx(e))].opposite[edgeSlot(e) - 1] = f;
+    if (f != kNone) cells_[size_t(hexIdx(f))].opposite[edgeSlot(f) - 1] = e;
+}
+
+// --- Queries -------------------------------------------------------------------------------
+
+int32_t HexMesh::cellStep(int32_t c) const {
+    const int32_t level = cells_[size_t(c)].level;
+    return baseStep_ >> ((level + 1) / 2); // a semi-hexagon is half of a hexagon one level up
+}
+
+LatticePoint HexMesh::cellCenter(int32_t c) const {
+    const Hexagon& h = cells_[size_t(c)];
+    if (h.kind != CellKind::Semi) return vertexLattice_[size_t(h.vertex[0])];
+    return latticeMidpoint(vertexLattice_[size_t(h.vertex[h.firstVisible])],
+                           vertexLattice_[size_t(h.vertex[wrapSlot(h.firstVisible + 3)])]);
+}
+
+bool HexMesh::isLongEdge(int32_t e) const {
+    const Hexagon& h = cells_[size_t(hexIdx(e))];
+    return h.kind == CellKind::Semi && edgeSlot(e) == wrapSlot(h.firstVisible + 3);
+}
+
+int32_t HexMesh::edgeEnd(int32_t e) const {
+    const Hexagon& h = cells_[size_t(hexIdx(e))];
+    const int32_t slot = edgeSlot(e);
+    if (h.kind != CellKind::Full && slot == wrapSlot(h.firstVisible + 3)) return h.vertex[h.firstVisible];
+    return h.vertex[wrapSlot(slot + 1)];
+}
+
+void HexMesh::semiFanSlots(const Hexagon& h, int32_t slots[4]) const {
+    const int32_t a = h.firstVisible;
+    auto at = [&](int32_t slot) { return vertexLattice_[size_t(h.vertex[wrapSlot(slot)])]; };
+    const int32_t start = semiFanFromSecondCorner(embedding_, at(a), at(a + 1), at(a + 2), at(a + 3)) ? 1 : 0;
+    for (int32_t i = 0; i < 4; ++i) slots[i] = wrapSlot(a + (start + i) % 4);
+}
+
+int64_t HexMesh::cellTriangles(const Hexagon& h) const {
+    switch (h.kind) {
+        case CellKind::Full: return 6;
+        case CellKind::BoundarySemi: return 3;
+        case CellKind::Semi: return 2;
+    }
+    return 0;
+}
+
+size_t HexMesh::memoryBytes() const {
+    return cells_.capacity() * sizeof(Hexagon) +
+           vertexLattice_.capacity() * sizeof(LatticePoint) +
+           vertices_.capacity() * sizeof(StreamVertex) + vertexParents_.capacity() * sizeof(Parents) +
+           vertexLive_.capacity() + (freeVertices_.capacity() + freedVertices_.capacity()) * sizeof(int32_t) +
+           (levelHead_.capacity() + levelTail_.capacity()) * sizeof(int32_t);
+}
+
+size_t HexMesh::liveMemoryBytes() const {
+    return size_t(liveCells_) * sizeof(Hexagon) +
+           size_t(liveVertices_) * (sizeof(LatticePoint) + sizeof(StreamVertex) + sizeof(Parents) + 1) +
+           (levelHead_.size() + levelTail_.size()) * sizeof(int32_t);
+}
+
+int32_t HexMesh::cellFan(const Hexagon& h, uint32_t out[8]) const {
+    const int32_t* v = h.vertex;
+    if (h.kind == CellKind::Full) {
+        for (int32_t slot = 0; slot <= 7; ++slot) out[slot] = uint32_t(v[slot]);
+        return 8;
+    }
+    if (h.kind == CellKind::BoundarySemi) { // §4.2: three-triangle half fan around the centre
+        out[0] = uint32_t(v[0]);
+        for (int32_t i = 0; i < 4; ++i) out[1 + i] = uint32_t(v[wrapSlot(h.firstVisible + i)]);
+        return 5;
+    }
+    int32_t slots[4];
+    semiFanSlots(h, slots); // §7: the fixed rule for the "arbitrary corner"
+    for (int32_t i = 0; i < 4; ++i) out[i] = uint32_t(v[slots[i]]);
+    return 4;
+}
+
+void HexMesh::appendTriangles(std::vector<uint32_t>& out) const {
+    for (int32_t level = 0; level <= maxLevel_; ++level) {
+        for (int32_t c = levelHead_[size_t(level)]; c != kNone; c = cells_[size_t(c)].next) {
+            uint32_t fan[8];
+            const int32_t n = cellFan(cells_[size_t(c)], fan);
+            for (int32_t k = 1; k + 1 < n; ++k) out.insert(out.end(), {fan[0], fan[k], fan[k + 1]});
+        }
+    }
+}
+
+uint64_t HexMesh::hash() const {
+    // Cells are combined by addition, so the hash depends on the mesh, not on the order of the
+    // level lists (which depends on the history of operations).
+    uint64_t sum = 0;
+    for (int32_t level = 0; level <= maxLevel_; ++level) {
+        for (int32_t c = levelHead_[size_t(level)]; c != kNone; c = cells_[size_t(c)].next) {
+            const Hexagon& cell = cells_[size_t(c)];
+            uint64_t h = 1469598103934665603ull; // FNV-1a over the cell
+            auto mix = [&](uint64_t value) {
+                for (int byte = 0; byte < 8; ++byte, value >>= 8) h = (h ^ (value & 0xFF)) * 1099511628211ull;
+            };
+            mix(uint64_t(cell.level) | uint64_t(cell.kind) << 8 | uint64_t(cell.splitCount) << 16 | uint64_t(cell.firstVisible) << 24);
+            for (int32_t slot = 0; slot <= 6; ++slot) {
+                const int32_t v = cell.vertex[slot];
+                if (v == kNone) continue;
+                mix(latticeKey(vertexLattice_[size_t(v)]));
+                const glm::vec3& p = vertices_[size_t(v)].position;
+                uint32_t bits[3];
+                std::memcpy(bits, &p, sizeof(bits));
+                mix(uint64_t(bits[0]) << 32 | bits[1]);
+                mix(bits[2]);
+            }
+            sum += h * 0x9E3779B97F4A7C15ull + (h >> 29);
+        }
+    }
+    return sum;
+}
+
+// --- split (§4.1) and the balance rule (§4.5) ---------------------------------------------
+
+bool HexMesh::canSplit(int32_t c) const {
+    if (!isLive(c)) return false;
+    const Hexagon& h = cells_[size_t(c)];
+    return h.kind != CellKind::Semi && h.level < maxLevel_;
+}
+
+bool HexMesh::split(int32_t c) {
+    if (!canSplit(c)) return false;
+    for (;;) {
+        const SplitStep step = firstStepToSplit(c);
+        applyStep(step);
+        if (step.kind == SplitStep::Split && step.cell == c) return true;
+    }
+}
+
+// §4.5: after splitting c, its new semi-hexagons (level l+1) border c's neighbours. A
+// neighbour semi-hexagon touching c with a short edge has level l-1: two levels apart, which
+// the balance rule forbids (Fig. 5). It is joined first: with its partner across its long
+// edge, or by splitting the whole cell across it, which in turn may need a step first.
+SplitStep HexMesh::firstStepToSplit(int32_t c) const {
+    const CellSlots slots = slotsOf(cells_[size_t(c)]);
+    for (int32_t i = 0; i < slots.edgeCount; ++i) {
+        const int32_t o = cells_[size_t(c)].opposite[wrapSlot(slots.firstEdge + i) - 1];
+        if (o == kNone || cells_[size_t(hexIdx(o))].kind != CellKind::Semi || isLongEdge(o)) continue;
+        const int32_t n = hexIdx(o);
+        const int32_t across = cells_[size_t(n)].opposite[wrapSlot(cells_[size_t(n)].firstVisible + 3) - 1];
+        if (across == kNone) return {SplitStep::JoinBoundary, n, kNone};
+        if (cells_[size_t(hexIdx(across))].kind == CellKind::Semi) return {SplitStep::JoinPair, n, hexIdx(across)};
+        return firstStepToSplit(hexIdx(across));
+    }
+    return {SplitStep::Split, c, kNone};
+}
+
+void HexMesh::applyStep(const SplitStep& step) {
+    switch (step.kind) {
+        case SplitStep::Split: splitUnchecked(step.cell); break;
+        case SplitStep::JoinPair: joinPair(step.cell, step.other); break;
+        case SplitStep::JoinBoundary: joinBoundary(step.cell); break;
+    }
+}
+
+void HexMesh::splitUnchecked(int32_t c) {
+    const Hexagon h = cells_[size_t(c)]; // a copy: the pool may grow below
+    const CellSlots slots = slotsOf(h);
+    const int32_t level = h.level;
+    const int32_t half = cellStep(c) / 2;
+    const LatticePoint center = vertexLattice_[size_t(h.vertex[0])];
+
+    int32_t newCorner[8], ring[8];
+    std::fill(std::begin(ring), std::end(ring), kNone);
+    for (int32_t i = 0; i < slots.cornerCount; ++i) {
+        const int32_t k = wrapSlot(slots.firstEdge + i);
+        newCorner[k] = allocateVertex(latticeAdd(center, kDirections[k - 1], half), h.vertex[0], h.vertex[k]);
+        // The spoke's two triangles in the fan: towards corner k-1 and corner k+1.
+        setAcross(newCorner[k], h.vertex[wrapSlot(k + 5)], h.vertex[wrapSlot(k + 1)]);
+    }
+    for (int32_t i = 0; i < slots.edgeCount; ++i) {
+        const int32_t k = wrapSlot(slots.firstEdge + i), k1 = wrapSlot(k + 1);
+        const int32_t r = allocateCell();
+        Hexagon& R = cells_[size_t(r)];
+        R.firstVisible = uint8_t(wrapSlot(k + 2));
+        R.vertex[wrapSlot(k + 2)] = h.vertex[k1];
+        R.vertex[wrapSlot(k + 3)] = newCorner[k1];
+        R.vertex[wrapSlot(k + 4)] = newCorner[k];
+        R.vertex[wrapSlot(k + 5)] = h.vertex[k];
+        if (h.opposite[k - 1] == kNone) { // §4.2: on the domain boundary the semi keeps a centre
+            R.kind = CellKind::BoundarySemi;
+            R.level = uint8_t(level + 2);
+        } else {
+            R.kind = CellKind::Semi;
+            R.level = uint8_t(level + 1);
+        }
+        R.vertex[7] = R.vertex[1];
+        ring[k] = r;
+        if (R.kind == CellKind::BoundarySemi) { // allocateVertex does not touch the cell pool
+            const int32_t m = allocateVertex(latticeMidpoint(vertexLattice_[size_t(h.vertex[k])],
+                                                             vertexLattice_[size_t(h.vertex[k1])]),
+                                             h.vertex[k], h.vertex[k1]);
+            setAcross(m, h.vertex[0], kNone); // the fan triangle (centre, k, k+1); outside is no surface
+            cells_[size_t(r)].vertex[0] = m;
+        }
+        linkLevel(r);
+        triangles_ += cellTriangles(cells_[size_t(r)]);
+    }
+    Hexagon& shrunk = cells_[size_t(c)];
+    for (int32_t i = 0; i < slots.cornerCount; ++i) {
+        const int32_t k = wrapSlot(slots.firstEdge + i);
+        shrunk.vertex[k] = newCorner[k];
+    }
+    shrunk.vertex[7] = shrunk.vertex[1];
+    shrunk.splitCount = uint8_t(shrunk.splitCount + 1);
+    for (int32_t i = 0; i < slots.edgeCount; ++i) {
+        const int32_t k = wrapSlot(slots.firstEdge + i);
+        const int32_t r = ring[k];
+        connect(makeEdge(c, k), makeEdge(r, wrapSlot(k + 3)));       // inner edge
+        connect(makeEdge(r, wrapSlot(k + 5)), h.opposite[k - 1]);     // long edge, on the old edge
+        const int32_t next = ring[wrapSlot(k + 1)];                    // side edge to the next ring cell
+        if (next != kNone) connect(makeEdge(r, wrapSlot(k + 2)), makeEdge(next, wrapSlot(k + 5)));
+    }
+    setLevel(c, level + 2);
+    ++counts_.splits;
+    // Fig. 3b: semi-hexagons that share a long edge with a neighbour's are joined.
+    for (int32_t i = 0; i < slots.edgeCount; ++i) {
+        const int32_t k = wrapSlot(slots.firstEdge + i);
+        const int32_t r = ring[k];
+        if (cells_[size_t(r)].kind != CellKind::Semi) continue;
+        const int32_t o = cells_[size_t(r)].opposite[wrapSlot(k + 5) - 1];
+        if (o != kNone && isLongEdge(o)) joinPair(r, hexIdx(o));
+    }
+}
+
+// --- join (§4.1, Fig. 3b) ------------------------------------------------------------------
+
+bool HexMesh::join(int32_t s) {
+    if (!isLive(s) || cells_[size_t(s)].kind != CellKind::Semi) return false;
+    const int32_t o = cells_[size_t(s)].opposite[wrapSlot(cells_[size_t(s)].firstVisible + 3) - 1];
+    if (o == kNone) {
+        joinBoundary(s);
+        return true;
+    }
+    if (!isLongEdge(o)) return false; // the cell across is whole: only its split can join s
+    joinPair(s, hexIdx(o));
+    return true;
+}
+
+int32_t HexMesh::longEdgeFanCorner(const Hexagon& semi) const {
+    // The fan (q0; q1, q2, q3) has triangles (q0, q1, q2) and (q0, q2, q3); the long edge joins
+    // corners a and a+3, so its triangle's third corner is a+2 when fanning from a, else a+1.
+    int32_t slots[4];
+    semiFanSlots(semi, slots);
+    const int32_t a = semi.firstVisible;
+    return semi.vertex[slots[0] == a ? wrapSlot(a + 2) : wrapSlot(a + 1)];
+}
+
+void HexMesh::joinPair(int32_t keep, int32_t other) {
+    const Hexagon o = cells_[size_t(other)];
+    const int32_t a = cells_[size_t(keep)].firstVisible;
+    const int32_t m = allocateVertex(cellCenter(keep), cells_[size_t(keep)].vertex[a], // the midpoint of the shared long edge
+                                     cells_[size_t(keep)].vertex[wrapSlot(a + 3)]);
+    setAcross(m, longEdgeFanCorner(cells_[size_t(keep)]), longEdgeFanCorner(o));
+    Hexagon& k = cells_[size_t(keep)];
+    k.vertex[0] = m;
+    k.vertex[wrapSlot(a + 4)] = o.vertex[wrapSlot(a + 4)];
+    k.vertex[wrapSlot(a + 5)] = o.vertex[wrapSlot(a + 5)];
+    k.vertex[7] = k.vertex[1];
+    k.kind = CellKind::Full;
+    k.firstVisible = 0;
+    // The other half's three short edges become this hexagon's edges a+3 .. a+5.
+    for (int32_t slot = a + 3; slot <= a + 5; ++slot) connect(makeEdge(keep, wrapSlot(slot)), o.opposite[wrapSlot(slot) - 1]);
+    setLevel(keep, k.level + 1);
+    unlinkLevel(other);
+    freeCell(other);
+    triangles_ += 2; // two semis (2 + 2 triangles) become one hexagon (6)
+    ++counts_.joins;
+}
+
+void HexMesh::joinBoundary(int32_t s) {
+    const Hexagon& h = cells_[size_t(s)];
+    const int32_t m = allocateVertex(cellCenter(s), h.vertex[h.firstVisible], // the midpoint of its long edge
+                                     h.vertex[wrapSlot(h.firstVisible + 3)]);
+    setAcross(m, longEdgeFanCorner(cells_[size_t(s)]), kNone);
+    cells_[size_t(s)].vertex[0] = m;
+    cells_[size_t(s)].kind = CellKind::BoundarySemi;
+    setLevel(s, cells_[size_t(s)].level + 1);
+    triangles_ += 1;
+    ++counts_.joins;
+}
+
+// --- break (§4.6, Fig. 6b) -----------------------------------------------------------------
+
+bool HexMesh::wouldStayBalancedAfterBreak(int32_t c) const {
+    // After the break every edge of c is a short edge of a semi-hexagon; none may carry the
+    // long edge of a finer semi-hexagon (§4.5).
+    const CellSlots slots = slotsOf(cells_[size_t(c)]);
+    for (int32_t i = 0; i < slots.edgeCount; ++i) {
+        const int32_t o = cells_[size_t(c)].opposite[wrapSlot(slots.firstEdge + i) - 1];
+        if (o != kNone && isLongEdge(o)) return false;
+    }
+    return true;
+}
+
+bool HexMesh::canBreak(int32_t c) const {
+    if (!isLive(c)) return false;
+    const Hexagon& h = cells_[size_t(c)];
+    // Only a cell made by a join (level >= 2, never split since) can be broken apart again.
+    if (h.kind == CellKind::Semi || h.splitCount != 0 || h.level < 2) return false;
+    return wouldStayBalancedAfterBreak(c);
+}
+
+bool HexMesh::breakHexagon(int32_t c) {
+    if (!canBreak(c)) return false;
+    breakUnchecked(c);
+    return true;
+}
+
+int32_t HexMesh::breakDiameterSlot(int32_t c) const {
+    // The hexagon was joined along its parent's edge: the one diameter whose two corners are
+    // vertices of the parent resolution (step 2s).
+    const Hexagon& h = cells_[size_t(c)];
+    const int32_t parentStep = 2 * cellStep(c);
+    for (int32_t k = 1; k <= 3; ++k) {
+        const LatticePoint p = vertexLattice_[size_t(h.vertex[k])];
+        if (p.q % parentStep == 0 && p.r % parentStep == 0) return k;
+    }
+    return 1; // unreachable for a consistent mesh (checkInvariants verifies the lattice)
+}
+
+void HexMesh::breakUnchecked(int32_t c) {
+    const Hexagon j = cells_[size_t(c)];
+    if (j.kind == CellKind::BoundarySemi) { // back to a semi-hexagon whose long edge is the boundary
+        freeVertex(j.vertex[0]);
+        cells_[size_t(c)].vertex[0] = kNone;
+        cells_[size_t(c)].kind = CellKind::Semi;
+        setLevel(c, j.level - 1);
+        triangles_ -= 1;
+        ++counts_.breaks;
+        return;
+    }
+    const int32_t k = breakDiameterSlot(c);
+    const int32_t other = allocateCell();
+    Hexagon& h2 = cells_[size_t(other)];
+    h2.kind = CellKind::Semi;
+    h2.firstVisible = uint8_t(wrapSlot(k + 3));
+    h2.level = uint8_t(j.level - 1);
+    for (int32_t slot = k + 3; slot <= k + 6; ++slot) h2.vertex[wrapSlot(slot)] = j.vertex[wrapSlot(slot)];
+    h2.vertex[7] = h2.vertex[1];
+    linkLevel(other);
+    for (int32_t slot = k + 3; slot <= k + 5; ++slot) connect(makeEdge(other, wrapSlot(slot)), j.opposite[wrapSlot(slot) - 1]);
+
+    Hexagon& h1 = cells_[size_t(c)];
+    h1.vertex[0] = kNone;
+    h1.vertex[wrapSlot(k + 4)] = kNone;
+    h1.vertex[wrapSlot(k + 5)] = kNone;
+    h1.vertex[7] = h1.vertex[1];
+    h1.opposite[wrapSlot(k + 4) - 1] = kNone;
+    h1.opposite[wrapSlot(k + 5) - 1] = kNone;
+    h1.kind = CellKind::Semi;
+    h1.firstVisible = uint8_t(k);
+    connect(makeEdge(c, wrapSlot(k + 3)), makeEdge(other, k)); // the two long edges
+    freeVertex(j.vertex[0]);
+    setLevel(c, j.level - 1);
+    triangles_ -= 2;
+    ++counts_.breaks;
+}
+
+// --- merge (§4.6, Fig. 6a) -----------------------------------------------------------------
+
+bool HexMesh::canMerge(int32_t c) const {
+    if (!isLive(c)) return false;
+    const Hexagon& h = cells_[size_t(c)];
+    if (h.kind == CellKind::Semi || h.splitCount == 0) return false;
+    const CellSlots slots = slotsOf(h);
+    for (int32_t i = 0; i < slots.edgeCount; ++i) {
+        const int32_t k = wrapSlot(slots.firstEdge + i);
+        const int32_t o = h.opposite[k - 1];
+        if (o == kNone) return false;
+        const Hexagon& n = cells_[size_t(hexIdx(o))];
+        if (n.kind == CellKind::Semi) {
+            // The ring semi-hexagon of c's last split, touching c with its inner edge.
+            if (n.level + 1 != h.level || edgeSlot(o) != wrapSlot(n.firstVisible + 1)) return false;
+        } else if (n.level != h.level || !canBreak(hexIdx(o))) {
+            // A ring cell that was joined can be broken only while its split counter is 0.
+            return false;
+        }
+    }
+    return true;
+}
+
+void HexMesh::verticesFreedByMerge(int32_t c, std::vector<int32_t>& out) const {
+    const Hexagon& h = cells_[size_t(c)];
+    const CellSlots slots = slotsOf(h);
+    for (int32_t i = 0; i < slots.edgeCount; ++i) { // the centres of the ring cells merge breaks first
+        const Hexagon& n = cells_[size_t(hexIdx(h.opposite[wrapSlot(slots.firstEdge + i) - 1]))];
+        if (n.kind != CellKind::Semi) out.push_back(n.vertex[0]);
+    }
+    for (int32_t i = 0; i < slots.cornerCount; ++i) out.push_back(h.vertex[wrapSlot(slots.firstEdge + i)]);
+}
+
+bool HexMesh::merge(int32_t c) {
+    if (!canMerge(c)) return false;
+    const CellSlots slots = slotsOf(cells_[size_t(c)]);
+    for (int32_t i = 0; i < slots.edgeCount; ++i) {
+        const int32_t n = hexIdx(cells_[size_t(c)].opposite[wrapSlot(slots.firstEdge + i) - 1]);
+        if (cells_[size_t(n)].kind != CellKind::Semi) breakUnchecked(n);
+    }
+    const Hexagon h = cells_[size_t(c)];
+    int32_t ring[8], outerCorner[8];
+    for (int32_t i = 0; i < slots.edgeCount; ++i) {
+        const int32_t k = wrapSlot(slots.firstEdge + i);
+        ring[k] = hexIdx(h.opposite[k - 1]);
+        const Hexagon& r = cells_[size_t(ring[k])];
+        outerCorner[k] = r.vertex[wrapSlot(k + 5)];
+        outerCorner[wrapSlot(k + 1)] = r.vertex[wrapSlot(k + 2)];
+    }
+    for (int32_t i = 0; i < slots.edgeCount; ++i) {
+        const int32_t k = wrapSlot(slots.firstEdge + i);
+        connect(makeEdge(c, k), cells_[size_t(ring[k])].opposite[wrapSlot(k + 5) - 1]);
+        unlinkLevel(ring[k]);
+        freeCell(ring[k]);
+        triangles_ -= 2;
+    }
+    Hexagon& merged = cells_[size_t(c)];
+    for (int32_t i = 0; i < slots.cornerCount; ++i) {
+        const int32_t k = wrapSlot(slots.firstEdge + i);
+        freeVertex(h.vertex[k]);
+        merged.vertex[k] = outerCorner[k];
+    }
+    merged.vertex[7] = merged.vertex[1];
+    merged.splitCount = uint8_t(merged.splitCount - 1);
+    setLevel(c, h.level - 2);
+    ++counts_.merges;
+    return true;
+}
+
+} // namespace hexlod

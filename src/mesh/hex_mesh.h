@@ -1,0 +1,260 @@
+// HexMesh: the hexagon mesh of "Hexagonal LOD for Interactive Terrain Rendering" (Sußner,
+// Dachsbacher, Greiner, VMV 2005), §4: an abstraction layer of hexagons above the triangular
+// 1-to-4 split, refined by split and join and coarsened by merge and break, free of hanging
+// nodes after every single operation.
+//
+// Cells are records in one flat pool (indices, free list); vertices are entries in flat
+// arrays (indices, free list), stored once and shared by every cell that uses them.
+//
+// A cell is a full hexagon (even level), an interior semi-hexagon (odd level: half of a
+// hexagon, a trapezoid of four corners drawn as two triangles), or a boundary semi-hexagon
+// (even level: half of a hexagon whose centre lies on the domain boundary, drawn as a
+// three-triangle half fan around that centre, §4.2).
+//
+// Slots (§4.3): vertex[0] is the centre, vertex[1..6] the corners counter-clockwise with
+// corner k in lattice direction kDirections[k-1], vertex[7] a copy of vertex[1], so a full
+// hexagon's slots are its triangle-fan index list. A semi-hexagon keeps the slots of the whole
+// hexagon it is half of: corners firstVisible .. firstVisible+3 (cyclically) are its own, the
+// rest are kNone. Edge slot k (1..6) runs from corner k to corner k+1; a semi's long edge (its
+// diameter, on the parent's edge) is stored in edge slot firstVisible+3 and runs from corner
+// firstVisible+3 back to corner firstVisible. Directed edges are numbered e = 8*cell + slot.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "mesh/embedding.h"
+#include "field/heightfield.h"
+#include "mesh/lattice.h"
+#include "mesh/stream_vertex.h"
+
+namespace hexlod {
+
+constexpr int32_t kNone = -1;
+
+/// §4.3: the cell of a directed edge, and the next and previous edge around that cell (the
+/// slot arithmetic wraps 6 to 1 and maps the closing slot 7 to 2).
+inline int32_t hexIdx(int32_t e) { return e / 8; }
+inline int32_t nextEdge(int32_t e) { return (e / 8) * 8 + ((e - (e / 8) * 8) % 6) + 1; }
+inline int32_t prevEdge(int32_t e) { return (e / 8) * 8 + ((e - (e / 8) * 8 + 4) % 6) + 1; }
+inline int32_t edgeSlot(int32_t e) { return e - (e / 8) * 8; }
+inline int32_t makeEdge(int32_t cell, int32_t slot) { return cell * 8 + slot; }
+/// Slot arithmetic: maps any slot number >= 1 onto 1..6.
+inline int32_t wrapSlot(int32_t slot) { return (slot - 1) % 6 + 1; }
+
+enum class CellKind : uint8_t { Full = 0, Semi = 1, BoundarySemi = 2 };
+
+struct Hexagon {
+    int32_t vertex[8];     // §4.3 slots: centre, six corners, first corner again; kNone if absent
+    int32_t opposite[6];   // opposite directed edge across edge slot k at [k-1]; kNone on the domain boundary or unused
+    int32_t prev, next;    // §4.4: neighbours in the list of this level; next also chains free records
+    uint8_t level;         // §4.4: even for full and boundary semi-hexagons, odd for semi-hexagons
+    uint8_t splitCount;    // §4.6: splits of this record not yet undone by a merge
+    CellKind kind;
+    uint8_t firstVisible;  // semi-hexagons: first own corner slot (1..6); 0 for full hexagons
+};
+
+/// One operation that a split needs first under the balance rule (§4.5), or the split itself.
+struct SplitStep {
+    enum Kind : uint8_t { Split, JoinPair, JoinBoundary } kind = Split;
+    int32_t cell = kNone;  // the cell to split, or the semi-hexagon to join
+    int32_t other = kNone; // JoinPair: the semi-hexagon across its long edge
+};
+
+/// Counts of the operations a call performed, for tests and the refinement loop.
+struct OperationCounts {
+    int64_t splits = 0, joins = 0, merges = 0, breaks = 0;
+};
+
+class HexMesh {
+public:
+    /// Sets up the base mesh over the field (§4.7, see hex_mesh_domain.cpp). Allocates the
+    /// pools; `baseStep` 0 picks one from the field size. Returns an error message or null.
+    const char* reset(const Heightfield& field, Embedding embedding, int32_t baseStep = 0);
+
+    // --- The four operations (§4.1, §4.5, §4.6). Each returns false, changing nothing, when it
+    // does not apply; otherwise the mesh is consistent when it returns.
+
+    /// split: halves a full or boundary hexagon about its centre and fills the gap with
+    /// semi-hexagons, joining those that share a long edge with a neighbour's. Splits first
+    /// whatever the balance rule forces (§4.5). False at the finest level.
+    bool split(int32_t cell);
+    /// join: turns a semi-hexagon and the semi-hexagon across its long edge into one full
+    /// hexagon (or, on the domain boundary, a semi-hexagon into a boundary hexagon).
+    bool join(int32_t semi);
+    /// merge: the inverse split of a cell whose split counter is positive; breaks neighbouring
+    /// full hexagons with split counter 0 first. False (nothing changed) when impossible.
+    bool merge(int32_t cell);
+    /// break: the inverse join, allowed only where the result stays balanced.
+    bool breakHexagon(int32_t cell);
+
+    /// The first operation splitting `cell` needs (§4.5): the split itself when nothing is in
+    /// the way, else a join or the split of a coarser cell that must come first. Each step
+    /// needs nothing else first, so a caller can spend an operation budget one step at a time.
+    SplitStep firstStepToSplit(int32_t cell) const;
+    /// Performs one step from firstStepToSplit.
+    void applyStep(const SplitStep& step);
+
+    /// Records every cell an operation creates, changes or frees, into up to two logs (the
+    /// refiner's caches and the fan stream); null: none. Slot 0 or 1.
+    void setChangeLog(int32_t slot, std::vector<int32_t>* log) { changeLog_[slot] = log; }
+    /// Records every vertex an operation creates (v) or frees (~v), in order; null: none.
+    void setVertexLog(std::vector<int32_t>* log) { vertexLog_ = log; }
+    /// While on, freed vertex slots are not reused until releaseFreedVertices(): a consumer of
+    /// the logs can still read the positions of the vertices the old cells used.
+    void setDeferVertexReuse(bool defer) { deferVertexReuse_ = defer; }
+    void releaseFreedVertices();
+
+    /// For a hexagon made by a join: the corner slot k (1..3) where the joined long edge starts;
+    /// the halves a break makes own corners k..k+3 and k+3..k+6.
+    int32_t breakDiameterSlot(int32_t cell) const;
+
+    /// Whether merge(cell) / breakHexagon(cell) would succeed, without changing anything.
+    bool canMerge(int32_t cell) const;
+    bool canBreak(int32_t cell) const;
+    bool canSplit(int32_t cell) const;
+
+    // --- Queries.
+    const Hexagon& cell(int32_t c) const { return cells_[size_t(c)]; }
+    bool isLive(int32_t c) const { return c >= 0 && size_t(c) < cells_.size() && cells_[size_t(c)].level != kFreeLevel; }
+    int32_t cellCapacity() const { return int32_t(cells_.size()); }
+    int32_t vertexCapacity() const { return int32_t(vertexLattice_.size()); }
+    int32_t liveCells() const { return liveCells_; }
+    int32_t liveVertices() const { return liveVertices_; }
+    int32_t maxLevel() const { return maxLevel_; }
+    int32_t baseStep() const { return baseStep_; }
+    /// First cell of a level's list, and the next one after a cell (kNone at the end).
+    int32_t firstOfLevel(int32_t level) const { return levelHead_[size_t(level)]; }
+    int32_t nextInLevel(int32_t c) const { return cells_[size_t(c)].next; }
+    LatticePoint vertexLattice(int32_t v) const { return vertexLattice_[size_t(v)]; }
+    const glm::vec3& vertexPosition(int32_t v) const { return vertices_[size_t(v)].position; }
+    /// The vertex pool (free slots hold stale values), kStreamVertexWords floats a vertex with
+    /// the position first: what the renderer uploads and the evaluator reads.
+    const StreamVertex* vertexData() const { return vertices_.empty() ? nullptr : vertices_.data(); }
+    /// The first position of the pool, with kStreamVertexWords floats between positions.
+    const float* positionData() const { return vertices_.empty() ? nullptr : &vertices_[0].position.x; }
+    /// The renderer's part of a vertex (normal and blend) is written by FanStream and Geomorph.
+    StreamVertex& streamVertex(int32_t v) { return vertices_[size_t(v)]; }
+    const StreamVertex& streamVertex(int32_t v) const { return vertices_[size_t(v)]; }
+    /// The two ends of the coarser edge whose midpoint a vertex was created at (§7: the blend
+    /// starts there); kNone for the base mesh's vertices. `across` is the third corner of the
+    /// coarser triangle on the side of that edge where the vertex lies in the ground plane (the
+    /// exact embedding moves vertices off their parent edge by up to half a sample), or kNone
+    /// when the vertex lies on the edge; the coarser surface under the vertex is in triangle
+    /// (a, b, across). The same triangle is there again when a merge or break removes it.
+    int32_t vertexParentA(int32_t v) const { return vertexParents_[size_t(v)].a; }
+    int32_t vertexParentB(int32_t v) const { return vertexParents_[size_t(v)].b; }
+    int32_t vertexAcross(int32_t v) const { return vertexParents_[size_t(v)].across; }
+    /// Appends the vertices merge(cell) would free, forced breaks included. Call when
+    /// canMerge(cell): the geomorph fades them out before the merge happens (§7).
+    void verticesFreedByMerge(int32_t cell, std::vector<int32_t>& out) const;
+    bool isVertexLive(int32_t v) const { return vertexLive_[size_t(v)] != 0; }
+    /// Lattice step of a cell: the distance from its (possibly virtual) centre to its corners.
+    int32_t cellStep(int32_t c) const;
+    /// The cell's centre on the lattice (a semi-hexagon's lies on its long edge).
+    LatticePoint cellCenter(int32_t c) const;
+    const OperationCounts& counts() const { return counts_; }
+    Embedding embedding() const { return embedding_; }
+    /// Number of triangles drawn: 6 per full hexagon, 3 per boundary, 2 per interior semi.
+    int64_t triangleCount() const { return triangles_; }
+    /// Bytes held by the mesh structures (pools at capacity, lists, free lists), the vertex
+    /// pool's render data (StreamVertex) included.
+    size_t memoryBytes() const;
+    /// Of memoryBytes(), what live cells and vertices use (pools counted by use, not capacity).
+    size_t liveMemoryBytes() const;
+    /// Of memoryBytes(), the StreamVertex pool (what the renderer uploads).
+    size_t vertexPoolBytes() const { return vertices_.capacity() * sizeof(StreamVertex); }
+    /// The domain outline: lattice segments of the base mesh's boundary edges.
+    const std::vector<std::pair<LatticePoint, LatticePoint>>& domainBoundary() const { return boundary_; }
+    /// Twice the domain's area in lattice units (see latticeDoubleArea).
+    int64_t domainDoubleArea() const { return domainDoubleArea_; }
+
+    /// Appends the drawn triangles (vertex indices, counter-clockwise seen from +y): full
+    /// hexagons as six triangles around the centre, boundary semi-hexagons as three, interior
+    /// semi-hexagons as the two-triangle fan from their first own corner (a fixed rule).
+    void appendTriangles(std::vector<uint32_t>& indices) const;
+
+    /// The cell's triangle fan (§7) as vertex indices into `out`, returning its length: a full
+    /// hexagon's centre, six corners and first corner again (8); a boundary semi-hexagon's
+    /// centre and four corners (5); an interior semi-hexagon's four corners from the fixed-rule
+    /// corner (4). appendTriangles and the fan stream both expand this.
+    int32_t cellFan(const Hexagon& h, uint32_t out[8]) const;
+
+    /// A semi-hexagon's two-triangle fan as its four own corner slots in fan order: a, a+1,
+    /// a+2, a+3, or a+1, a+2, a+3, a when the fixed rule fans from the second corner
+    /// (see semiFanFromSecondCorner).
+    void semiFanSlots(const Hexagon& h, int32_t slots[4]) const;
+
+    /// Start and end vertex of a directed edge (a semi's long edge ends at its first corner).
+    int32_t edgeStart(int32_t e) const { return cells_[size_t(hexIdx(e))].vertex[edgeSlot(e)]; }
+    int32_t edgeEnd(int32_t e) const;
+    /// Whether the edge is the long edge of a semi-hexagon.
+    bool isLongEdge(int32_t e) const;
+
+    /// A hash of the mesh: every cell in level-list order with its kind, level, counter and
+    /// the lattice points and positions of its vertices. Equal on native and WASM builds when
+    /// the same operations ran.
+    uint64_t hash() const;
+
+    /// Checks every structural invariant (hex_mesh_invariants.cpp). Returns null when all
+    /// hold, else a message naming the first violation. Costs O(n log n); for tests and debug.
+    const char* checkInvariants() const;
+
+    static constexpr uint8_t kFreeLevel = 0xFF;
+
+private:
+    friend class HexMeshInvariants;
+    int32_t allocateCell();
+    void freeCell(int32_t c);
+    int32_t allocateVertex(LatticePoint p, int32_t parentA, int32_t parentB);
+    /// Sets a new vertex's `across` (see vertexAcross): whichever candidate lies on its side.
+    void setAcross(int32_t v, int32_t candidate1, int32_t candidate2);
+    /// The third corner of the semi-hexagon's fan triangle that holds its long edge.
+    int32_t longEdgeFanCorner(const Hexagon& semi) const;
+    void freeVertex(int32_t v);
+    void linkLevel(int32_t c);
+    void unlinkLevel(int32_t c);
+    void setLevel(int32_t c, int32_t level);
+    void connect(int32_t e, int32_t f); // makes e and f opposite (either may be kNone)
+    bool wouldStayBalancedAfterBreak(int32_t cell) const;
+    void splitUnchecked(int32_t cell);
+    void joinPair(int32_t keep, int32_t other);
+    void joinBoundary(int32_t semi);
+    void breakUnchecked(int32_t cell);
+    int64_t cellTriangles(const Hexagon& h) const;
+
+    const Heightfield* field_ = nullptr;
+    Embedding embedding_ = Embedding::Exact;
+    int32_t baseStep_ = 1;
+    int32_t maxLevel_ = 0;
+
+    std::vector<Hexagon> cells_;
+    int32_t freeCell_ = kNone;
+    int32_t liveCells_ = 0;
+    std::vector<int32_t> levelHead_, levelTail_;
+
+    std::vector<LatticePoint> vertexLattice_;
+    struct Parents { int32_t a, b, across; };
+    std::vector<StreamVertex> vertices_;
+    std::vector<Parents> vertexParents_;
+    std::vector<uint8_t> vertexLive_;
+    std::vector<int32_t> freeVertices_;
+    std::vector<int32_t> freedVertices_; // freed while reuse is deferred
+    bool deferVertexReuse_ = false;
+    int32_t liveVertices_ = 0;
+
+    std::vector<std::pair<LatticePoint, LatticePoint>> boundary_;
+    int64_t domainDoubleArea_ = 0;
+    int64_t triangles_ = 0;
+    OperationCounts counts_;
+    std::vector<int32_t>* changeLog_[2] = {nullptr, nullptr};
+    std::vector<int32_t>* vertexLog_ = nullptr;
+    void logChange(int32_t c) {
+        for (std::vector<int32_t>* log : changeLog_)
+            if (log) log->push_back(c);
+    }
+};
+
+} // namespace hexlod

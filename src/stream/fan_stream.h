@@ -1,0 +1,133 @@
+// FanStream: the index arrays the renderer uploads (paper §7), kept in step with the mesh
+// incrementally. The vertex array is the mesh's own pool of StreamVertex (vertex data exists
+// once); this class writes its normals and keeps the indices.
+//
+// Every cell record owns a fixed slot of the index array, so an operation rewrites only the
+// slots of the cells it changed:
+//   Fans layout (9 indices a cell), drawn as TRIANGLE_FAN with primitive restart:
+//     full hexagon:          centre, six corners, first corner again, restart
+//     boundary semi-hexagon: centre, its four corners, restart            (3 triangles, §4.2)
+//     interior semi-hexagon: its four corners from the fixed-rule corner, restart (2 triangles)
+//     free record / padding: restart
+//   Triangles layout (18 indices a cell): the same triangles as an indexed list, padded with
+//     restart indices (which end no triangle: WebGL2 always restarts at 0xFFFFFFFF).
+//
+// Normals (§7, "averaged from the adjacent triangles of the current mesh") are sums of face
+// normals kept per vertex in 64-bit fixed point: an operation subtracts the triangles of the
+// slots it overwrites and adds the new ones, exactly, so incremental normals equal rebuilt ones
+// bit for bit and never drift. That needs the old triangles' vertices to keep their positions
+// until the sync, which HexMesh's deferred vertex reuse guarantees.
+//
+// What changed since the renderer last acknowledged is kept as dirty blocks, handed out as
+// element ranges; the version moves whenever something was written.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/gtc/type_precision.hpp>
+#include <glm/vec3.hpp>
+
+#include "stream/geomorph.h"
+#include "mesh/hex_mesh.h"
+
+namespace hexlod {
+
+constexpr uint32_t kRestartIndex = 0xFFFFFFFFu; // WebGL2's fixed primitive-restart index
+
+enum class IndexLayout : int32_t { Fans = 0, Triangles = 1 };
+
+/// A run of array elements [first, first + count) to upload.
+struct ElementRange {
+    int32_t first, count;
+};
+
+class FanStream {
+public:
+    static constexpr int32_t kFanSlot = 9;
+    static constexpr int32_t kTriangleSlot = 18;
+
+    /// Starts following `mesh` (until the next attach): sets its change logs and deferred vertex
+    /// reuse, and writes every slot and normal afresh. Call after every mesh reset.
+    void attach(HexMesh& mesh);
+    /// Switches the layout; everything is rewritten.
+    void setLayout(IndexLayout layout);
+    IndexLayout layout() const { return layout_; }
+    /// Whether the stream keeps the mesh's vertex normals (§7), on by default. Off, it keeps no
+    /// normal sums (24 bytes a vertex) and does no normal arithmetic, and the normals in the
+    /// vertex pool are stale; turned on, every normal is rebuilt exactly and marked dirty. The
+    /// viewer turns them off while it lights the terrain from the field's own normals.
+    void setNormals(bool on);
+    bool normals() const { return normals_; }
+    int32_t slotSize() const { return layout_ == IndexLayout::Fans ? kFanSlot : kTriangleSlot; }
+
+    /// Applies what the mesh did since the last sync: rewrites the changed cells' slots and
+    /// the normals they touch, starts the blend-in of new vertices, and marks all of it dirty.
+    /// Allocates nothing unless the pools grew.
+    void sync(HexMesh& mesh, Geomorph& morph);
+
+    const std::vector<uint32_t>& indices() const { return indices_; }
+    /// Indices to draw: the slots of every cell record the pool has (free ones are restarts).
+    int32_t indexCount() const { return int32_t(indices_.size()); }
+    uint32_t version() const { return version_; }
+    /// Dirty ranges since the last acknowledge(), in vertices and in indices.
+    const std::vector<ElementRange>& dirtyVertices();
+    const std::vector<ElementRange>& dirtyIndices();
+    void acknowledge();
+
+    // --- The level-ordered view, written on demand for the diagnostic views (colour by level,
+    // hexagon outlines); the drawing path does not need it.
+    /// Writes every cell's fan grouped by level (levelOffsets: first index of each level, plus
+    /// the end), and, with outline, every cell edge once as a line pair.
+    void buildLevelView(const HexMesh& mesh, bool outline);
+    const std::vector<uint32_t>& levelIndices() const { return levelIndices_; }
+    const std::vector<int32_t>& levelOffsets() const { return levelOffsets_; }
+    const std::vector<uint32_t>& outline() const { return outline_; }
+
+    size_t memoryBytes() const;
+    /// Of memoryBytes(), what the mesh's live cells and vertices need: their index slots and
+    /// normal sums (scratch lists and the diagnostic level view not counted).
+    size_t liveMemoryBytes() const;
+
+private:
+    // Dirty blocks of 32 vertices (1.1 KB) or cells (1.1 KB of fan indices). Runs of dirty
+    // blocks closer than kMergeGap blocks are uploaded as one range: a few clean bytes cost
+    // less than another bufferSubData call.
+    static constexpr int32_t kBlockShift = 5;
+    static constexpr int32_t kMergeGap = 4;
+
+    void rewriteAll(HexMesh& mesh);
+    void writeSlot(const HexMesh& mesh, int32_t cell);
+    template <typename Visit>
+    void forEachTriangle(const uint32_t* slot, Visit&& visit) const;
+    void accumulate(const HexMesh& mesh, const uint32_t* slot, int64_t sign);
+    void markVertex(int32_t v);
+    void finishNormals(HexMesh& mesh);
+    void rebuildNormals(HexMesh& mesh);
+    struct DirtySet {
+        std::vector<uint8_t> marked; // per block
+        std::vector<int32_t> list;   // the marked blocks, in marking order
+        void mark(int32_t element);
+        void markAll(int32_t elements);
+        void clear();
+        void collect(int32_t elements, std::vector<ElementRange>& out); // sorts the list
+    };
+
+    IndexLayout layout_ = IndexLayout::Fans;
+    bool normals_ = true;
+    HexMesh* mesh_ = nullptr;
+    std::vector<uint32_t> indices_;
+    std::vector<glm::i64vec3> normalSum_; // per vertex, fixed point (see normalScale_)
+    double normalScale_ = 1.0;            // fixed-point units per square metre of face normal
+    std::vector<int32_t> changedCells_, vertexLog_;
+    std::vector<uint8_t> cellPending_, vertexPending_;
+    std::vector<int32_t> touchedVertices_;
+    DirtySet dirtyVertices_, dirtyIndices_;
+    std::vector<ElementRange> vertexRanges_, indexRanges_;
+    uint32_t version_ = 0;
+
+    std::vector<uint32_t> levelIndices_, outline_;
+    std::vector<int32_t> levelOffsets_;
+};
+
+} // namespace hexlod

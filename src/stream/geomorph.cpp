@@ -1,0 +1,53 @@
+// Geomorph blends (paper §7); see geomorph.h.
+#include "stream/geomorph.h"
+
+namespace hexlod {
+
+void Geomorph::coarserWeights(const HexMesh& mesh, int32_t v, float w[3]) {
+    w[0] = w[1] = 0.5f, w[2] = 0.0f;
+    const int32_t c = mesh.vertexAcross(v);
+    if (c == kNone || !mesh.isVertexLive(c)) return;
+    // Barycentric coordinates in the ground plane: p = a + s (b - a) + t (c - a).
+    const glm::dvec3 a(mesh.vertexPosition(mesh.vertexParentA(v))), b(mesh.vertexPosition(mesh.vertexParentB(v))),
+        cc(mesh.vertexPosition(c)), p(mesh.vertexPosition(v));
+    const double e1x = b.x - a.x, e1z = b.z - a.z, e2x = cc.x - a.x, e2z = cc.z - a.z, px = p.x - a.x, pz = p.z - a.z;
+    const double det = e1x * e2z - e1z * e2x;
+    if (det == 0.0) return;
+    const double s = (px * e2z - pz * e2x) / det, t = (e1x * pz - e1z * px) / det;
+    w[0] = float(1.0 - s - t), w[1] = float(s), w[2] = float(t);
+}
+
+glm::vec3 Geomorph::coarserSurfaceNow(const HexMesh& mesh, int32_t v) const {
+    if (mesh.vertexParentA(v) == kNone) return mesh.vertexPosition(v);
+    return coarserSurface(mesh, v, [&](int32_t u) { return displayed(mesh.streamVertex(u)); });
+}
+
+void Geomorph::blendIn(HexMesh& mesh, int32_t v) {
+    StreamVertex& sv = mesh.streamVertex(v);
+    sv.morphFrom = coarserSurfaceNow(mesh, v);
+    sv.morphKey = enabled() ? float(frame_) + 1.0f : 0.0f; // weight 0 in the frame it appears
+    changed_.push_back(v);
+}
+
+void Geomorph::blendOut(HexMesh& mesh, int32_t v) {
+    StreamVertex& sv = mesh.streamVertex(v);
+    if (!enabled() || sv.morphKey < 0.0f) return;
+    const float w = weight(sv);
+    // A vertex at rest fades to the parent midpoint as drawn now; one still blending in
+    // reverses along its own path, so nothing jumps.
+    if (w == 1.0f) sv.morphFrom = coarserSurfaceNow(mesh, v);
+    const float start = float(frame_) - (1.0f - w) * float(frames_); // weight(now) == w
+    sv.morphKey = -(start + 1.0f);
+    changed_.push_back(v);
+}
+
+void Geomorph::cancelBlendOut(HexMesh& mesh, int32_t v) {
+    StreamVertex& sv = mesh.streamVertex(v);
+    if (sv.morphKey >= 0.0f) return;
+    const float w = weight(sv);
+    const float start = float(frame_) - w * float(frames_);
+    sv.morphKey = start + 1.0f;
+    changed_.push_back(v);
+}
+
+} // namespace hexlod

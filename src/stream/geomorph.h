@@ -1,0 +1,98 @@
+// Geomorph: the blends that hide popping (paper §7). "When splitting an edge of a hexagon, the
+// end points of the edge are assigned to the new vertex together with a stop value n frames
+// ahead. Until the frame counter has reached the stop value, the position of a newly inserted
+// vertex v is linearly interpolated between the edge's mid point in space and the height field
+// value of v. If a vertex v is to be removed, inverse blending is triggered by a merge- or
+// inverse join-operation, which are finished when the vertex has faded out."
+//
+// The blend lives in each StreamVertex (morphFrom, morphKey) and is evaluated in the vertex
+// shader from the frame counter, so a blending vertex is written once, not every frame. The
+// weight formula below is the shader's (shaders/terrain.vert), in the same float arithmetic.
+// The start is the coarser surface under the vertex as drawn in that frame (the corners of the
+// coarser triangle may still be blending themselves): in the paper's embedding the midpoint of
+// the parent edge in space, in the exact-sample embedding (where a vertex may sit up to half a
+// sample off its parent edge) the point of the parent triangle straight below or above it, so
+// the vertex blends vertically, as the paper's does.
+// The blend is tied to frames, so it is deterministic under a fixed frame clock.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "mesh/hex_mesh.h"
+
+namespace hexlod {
+
+class Geomorph {
+public:
+    /// The clock starts here so that a reversed blend's start frame (up to kMaxFrames in the
+    /// past) stays positive, which its sign encoding needs.
+    static constexpr uint32_t kFirstFrame = 1024;
+    static constexpr int32_t kMaxFrames = 1000;
+
+    /// Frames a blend takes; 0 turns geomorphing off (vertices appear and vanish at once).
+    void setFrames(int32_t frames) { frames_ = std::clamp(frames, 0, kMaxFrames); }
+    int32_t frames() const { return frames_; }
+    bool enabled() const { return frames_ > 0; }
+
+    /// The frame counter: one tick per LOD update, i.e. per drawn frame. Keys and the shader's
+    /// uniform are floats, exact to 2^24 frames (77 hours at 60 fps); past that, blends still
+    /// end (the weight clamps) but step less evenly.
+    uint32_t frame() const { return frame_; }
+    void advance() { ++frame_; }
+    void resetClock() { frame_ = kFirstFrame; }
+
+    /// How far a vertex is towards its true position this frame: 1 there, 0 at morphFrom.
+    float weight(const StreamVertex& v) const {
+        if (v.morphKey == 0.0f || frames_ == 0) return 1.0f;
+        const float start = v.morphKey > 0.0f ? v.morphKey - 1.0f : -v.morphKey - 1.0f;
+        const float t = std::clamp((float(frame_) - start) / float(frames_), 0.0f, 1.0f);
+        return v.morphKey > 0.0f ? t : 1.0f - t;
+    }
+    /// Where the vertex is drawn this frame (unscaled heights).
+    glm::vec3 displayed(const StreamVertex& v) const {
+        const float w = weight(v);
+        return v.morphFrom + (v.position - v.morphFrom) * w;
+    }
+
+    /// Weights of a vertex over its parents a, b and across (HexMesh::vertexAcross) such that
+    /// their weighted ground-plane position is the vertex's: the coarser surface under it is
+    /// the same weighted sum of their positions. (0.5, 0.5, 0) on the parent edge.
+    static void coarserWeights(const HexMesh& mesh, int32_t v, float w[3]);
+    /// The coarser surface under vertex v, with `drawn(u)` where vertex u is drawn.
+    template <typename Drawn>
+    static glm::vec3 coarserSurface(const HexMesh& mesh, int32_t v, Drawn&& drawn) {
+        float w[3];
+        coarserWeights(mesh, v, w);
+        const int32_t across = mesh.vertexAcross(v);
+        glm::vec3 p = w[0] * drawn(mesh.vertexParentA(v)) + w[1] * drawn(mesh.vertexParentB(v));
+        if (w[2] != 0.0f) p += w[2] * drawn(across);
+        return p;
+    }
+
+    /// A vertex the mesh just created: blends in from the coarser surface under it as drawn
+    /// now. With geomorphing off it appears at once; morphFrom still records the start (the
+    /// popping meter measures the jump from there).
+    void blendIn(HexMesh& mesh, int32_t v);
+    /// A vertex a merge will free: blends back to the coarser surface under it, continuing
+    /// from where it is drawn now. Not yet blending out; kNone parents are ignored.
+    void blendOut(HexMesh& mesh, int32_t v);
+    /// Reverses a blend-out (the merge was called off), continuing from where it is drawn.
+    void cancelBlendOut(HexMesh& mesh, int32_t v);
+    bool blendingOut(const StreamVertex& v) const { return v.morphKey < 0.0f; }
+    /// Faded out: drawn at the parent midpoint, so freeing it changes nothing on screen.
+    bool fadedOut(const StreamVertex& v) const { return v.morphKey < 0.0f && weight(v) == 0.0f; }
+
+    /// Vertices whose blend changed since the last take (the renderer re-uploads them).
+    std::vector<int32_t>& changedVertices() { return changed_; }
+
+private:
+    glm::vec3 coarserSurfaceNow(const HexMesh& mesh, int32_t v) const;
+
+    int32_t frames_ = 0;
+    uint32_t frame_ = kFirstFrame;
+    std::vector<int32_t> changed_;
+};
+
+} // namespace hexlod

@@ -1,0 +1,65 @@
+// The terrain facade: the wiring of paper §4 (mesh), §5-§6 (refiner) and §7 (blends, stream)
+// in one place; see terrain.h.
+#include "terrain.h"
+
+#include <new>
+
+#include "mesh/hex_mesh_refine.h"
+#include "stream/drawn_surface.h"
+
+namespace hexlod {
+
+std::unique_ptr<Terrain> Terrain::create(int32_t width, int32_t height, SampleType type, const char** error) {
+    auto field = Heightfield::create(width, height, type, error);
+    if (!field) return nullptr;
+    std::unique_ptr<Terrain> terrain(new (std::nothrow) Terrain(std::move(field)));
+    if (!terrain && error) *error = "out of memory for the terrain";
+    return terrain;
+}
+
+const char* Terrain::setScale(const HeightfieldScale& scale) {
+    if (const char* error = field_->setScale(scale)) return error;
+    if (!hasMesh_) return nullptr;
+    if (const char* error = field_->prepare()) return error;
+    if (const char* error = mesh_.reset(*field_, mesh_.embedding(), mesh_.baseStep())) return error;
+    attachMesh();
+    return nullptr;
+}
+
+const char* Terrain::resetMesh(Embedding embedding) {
+    if (const char* error = mesh_.reset(*field_, embedding)) return error;
+    hasMesh_ = true;
+    attachMesh();
+    return nullptr;
+}
+
+void Terrain::attachMesh() {
+    // Every consumer starts from the base mesh; the blend clock starts again.
+    refiner_.attach(mesh_, *field_);
+    refiner_.setGeomorph(&morph_);
+    morph_.resetClock();
+    morph_.changedVertices().clear();
+    stream_.attach(mesh_);
+    ++meshEpoch_;
+}
+
+void Terrain::configure(const TerrainSettings& settings) {
+    refiner_.settings() = settings.lod;
+    morph_.setFrames(settings.morphFrames);
+    stream_.setLayout(settings.layout);
+    stream_.setNormals(settings.normals);
+}
+
+int64_t Terrain::refineUniform(int32_t rounds) {
+    const int64_t splits = refineUniformly(mesh_, rounds);
+    refiner_.restart();
+    return splits;
+}
+
+bool Terrain::drawnHeightAt(double x, double z, float& height) const {
+    return hasMesh_ && hexlod::drawnHeightAt(*field_, mesh_, stream_, morph_, x, z, height);
+}
+
+size_t Terrain::memoryBytes() const { return mesh_.memoryBytes() + refiner_.memoryBytes() + stream_.memoryBytes(); }
+
+} // namespace hexlod

@@ -1,0 +1,103 @@
+// Terrain: one height field and everything the paper builds on it, wired once: the field
+// (§4.7's input), the hexagon mesh (§4), the refiner with its criteria and caches (§5, §5.1,
+// §6), the geomorph blends and the fan stream (§7). The C ABI (api/hexlod.h), the benchmark
+// and the tests drive the core through this class instead of wiring the pieces by hand.
+//
+// Allocation happens when the terrain is created, when the mesh is (re)built and when a pool
+// grows; a frame (setView, updateLod, syncStream) allocates nothing else.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "field/heightfield.h"
+#include "lod/refiner.h"
+#include "lod/view_criteria.h"
+#include "mesh/hex_mesh.h"
+#include "stream/fan_stream.h"
+#include "stream/geomorph.h"
+
+namespace hexlod {
+
+/// Everything that is not the camera: the refinement (§5, §6), the blends and the stream (§7).
+struct TerrainSettings {
+    RefinerSettings lod;
+    int32_t morphFrames = 0;                // geomorph blend length in LOD updates (0: off, at most Geomorph::kMaxFrames)
+    IndexLayout layout = IndexLayout::Fans; // how the stream writes each cell's slot
+    bool normals = true;                    // whether the stream keeps the vertex normals
+};
+
+class Terrain {
+public:
+    /// A terrain of width x height samples of `type`, uninitialised; null (and *error set)
+    /// for a bad size or type or when memory is exhausted.
+    static std::unique_ptr<Terrain> create(int32_t width, int32_t height, SampleType type, const char** error);
+
+    Heightfield& field() { return *field_; }
+    const Heightfield& field() const { return *field_; }
+    /// How samples become metres. With a mesh, the mesh is rebuilt from its base for the new
+    /// scale (every position and cached bound depends on it; the settings are kept).
+    /// Returns null or what is wrong.
+    const char* setScale(const HeightfieldScale& scale);
+    /// After the samples were written: fills missing ones, computes the height range.
+    const char* prepare() { return field_->prepare(); }
+
+    /// (Re)creates the base mesh over the whole field (§4.7) and attaches the refiner, the
+    /// blends and the stream to it. Returns null or what is wrong.
+    const char* resetMesh(Embedding embedding);
+    bool hasMesh() const { return hasMesh_; }
+    /// Counts mesh rebuilds: state kept per mesh outside the terrain (a popping meter)
+    /// compares it to know when to start again.
+    uint32_t meshEpoch() const { return meshEpoch_; }
+
+    /// Applies the settings. The refiner compares them at its next update and re-tests every
+    /// cell when one that decides a split changed; the layout and normals switches rewrite the
+    /// stream only when they change.
+    void configure(const TerrainSettings& settings);
+    /// The settings in force (read from the pieces, so direct changes to them show).
+    TerrainSettings settings() const {
+        return {refiner_.settings(), morph_.frames(), stream_.layout(), stream_.normals()};
+    }
+
+    // One frame, in this order: the camera, one budgeted refinement step (§6), the stream (§7).
+    void setView(const View& view) { refiner_.setView(view); }
+    UpdateStats updateLod() { return refiner_.update(); }
+    void syncStream() { stream_.sync(mesh_, morph_); }
+    /// The refiner converged and no merge waits for its vertices to fade out (§7), so the
+    /// drawn surface will not change until the camera or a setting does.
+    bool converged() const { return refiner_.lastUpdate().converged && refiner_.pendingMerges() == 0; }
+
+    /// The uniform split, `rounds` times (Fig. 4), outside the refiner. Returns the splits.
+    int64_t refineUniform(int32_t rounds);
+    /// Height in metres (unscaled) of the surface as drawn now at (x, z) metres, blends
+    /// included (drawn_surface.h); false where no drawn triangle covers the point.
+    bool drawnHeightAt(double x, double z, float& height) const;
+    /// Bytes of the mesh structures, the refiner's caches and the stream.
+    size_t memoryBytes() const;
+
+    HexMesh& mesh() { return mesh_; }
+    const HexMesh& mesh() const { return mesh_; }
+    Refiner& refiner() { return refiner_; }
+    const Refiner& refiner() const { return refiner_; }
+    Geomorph& morph() { return morph_; }
+    const Geomorph& morph() const { return morph_; }
+    FanStream& stream() { return stream_; }
+    const FanStream& stream() const { return stream_; }
+
+    Terrain(const Terrain&) = delete; // the pieces point at each other
+    Terrain& operator=(const Terrain&) = delete;
+
+private:
+    explicit Terrain(std::unique_ptr<Heightfield> field) : field_(std::move(field)) {}
+    void attachMesh();
+
+    std::unique_ptr<Heightfield> field_;
+    HexMesh mesh_;
+    bool hasMesh_ = false;
+    uint32_t meshEpoch_ = 0;
+    Geomorph morph_;
+    Refiner refiner_;
+    FanStream stream_;
+};
+
+} // namespace hexlod
