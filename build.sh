@@ -12,8 +12,7 @@ cd "$(dirname "$0")"
 target=${1:-all}
 
 shopt -s nullglob
-# The core: every .cpp in src/ and its section folders, as in CMakeLists.txt (src/bench/ is the
-# benchmark's main, not core).
+# The core: every .cpp in src/ and its section folders, as in CMakeLists.txt.
 core_sources=(src/*.cpp src/{field,mesh,lod,stream,diagnostics,api}/*.cpp)
 
 build_native() {

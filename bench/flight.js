@@ -12,7 +12,7 @@ import {
   extentOf, cameraFor, quantile, round,
 } from '../bin/cli_common.js';
 import { decodeFans } from '../bin/mesh_export.js';
-import { STREAM_VERTEX_BYTES, STREAM_VERTEX_WORDS } from '../web/core.js';
+import { STREAM_VERTEX_BYTES, STREAM_VERTEX_WORDS } from '../web/core/core.js';
 import { gridMeshError, padToPowerOfTwoPlusOne } from './rtin_error.js';
 import { seededRandom } from '../web/app/seeded_random.js';
 

@@ -85,7 +85,7 @@ build_stamp=$(printf '%s\n' "emscripten $emscripten_version" "${compile_flags[*]
   "${core_sources[@]}" "${test_sources[@]}")
 if [ -f "$out_js" ] && [ -f "$out_wasm" ] && [ "$(cat "$out/build.stamp" 2>/dev/null)" = "$build_stamp" ] &&
    [ -z "$(find src tests/native scripts/build_wasm_tests.sh "$out/gtest-all.o" "$out/gtest_main.o" \
-           -path src/bench -prune -o -type f -newer "$out_js" -print | head -n 1)" ]; then
+           -type f -newer "$out_js" -print | head -n 1)" ]; then
   echo "$out_js is up to date"
   exit 0
 fi

@@ -3,6 +3,7 @@
 // on from frame to frame lives in objects made once here, so a frame makes no garbage of its
 // own (the figures the HUD and tests read are updated in place).
 import { MORPH_FRAMES } from './settings.js';
+import { FRAME } from '../core/core.js';
 
 const FRAME_LOG = 4096; // frames kept in state.frameLog while recording
 
@@ -23,8 +24,11 @@ export class FramePipeline {
     // Made once, filled every frame.
     this.lodCamera = { eye: null, target: null, fovY: 0, aspect: 1, viewportHeight: 1, near: 0, far: 0 };
     this.timingFigures = { updateMs: 0, streamMs: 0, uploadMs: 0, drawMs: 0, frameMs: 0 };
-    this.hudFrame = { terrain: null, lod: null, stats: null, timing: this.timingFigures, settings, camera: null };
+    this.hudFrame = { terrain: null, stats: null, timing: this.timingFigures, settings, camera: null };
     this.eye = [0, 0, 0];
+    // What tests read (state.lod, state.mesh): plain objects, filled in place.
+    this.lodFigures = { frame: 0, pendingMerges: 0, converged: false, splits: 0, merges: 0, updateMs: 0, tau: 0 };
+    this.meshFigures = { triangles: 0, cells: 0, vertices: 0, maxLevel: 0, bytes: 0 };
     this.render = this.render.bind(this);
   }
 
@@ -76,45 +80,37 @@ export class FramePipeline {
   updateTerrain(camera, width, height, now) {
     const { det, settings, view, renderer, state } = this;
     const current = this.current, { terrain } = current;
-    // §6: one budgeted refinement step per frame for the current camera, then the fans.
-    // Frozen: the mesh stays as it is while the camera moves (to look at it from outside).
-    if (!settings.freeze) {
-      terrain.setLodCamera(det ? det.lodCamera : this.lodCameraOf(camera, height));
-      const operations = terrain.updateLod();
-      if (det) det.afterLod(terrain, operations);
-    }
-    const lod = terrain.lodStats();
-    const streamStart = performance.now();
     terrain.setStreamNormals(renderer.usesMeshNormals(view));
     state.streamNormals = terrain.streamNormals;
-    const version = terrain.updateStream();
+    // §6: one budgeted refinement step for the current camera, then the fans (§7), in one core
+    // call. Frozen: the mesh stays as it is while the camera moves (to look at it from outside).
+    const frozen = settings.freeze;
+    const lodStart = performance.now();
+    const stats = frozen ? terrain.frame(null, FRAME.stream)
+      : terrain.frame(det ? det.lodCamera : this.lodCameraOf(camera, height), FRAME.all);
+    const coreMs = performance.now() - lodStart;
+    if (det && !frozen) det.afterLod(terrain, stats.operations);
     current.world.version += 1; // the drawn surface may have moved: the walk floor is asked anew
     if (camera.mode === 'walk') {
       camera.settle(); // stand on the surface as it is drawn in this frame
       camera.update(width / height);
     }
     const uploadStart = performance.now();
-    if (version !== current.streamVersion) current.blendsEnd = lod.frame + MORPH_FRAMES; // new blends run
-    current.streamVersion = version;
-    state.uploadBytes = renderer.upload(terrain, view.layout);
+    if (stats.version !== current.streamVersion) current.blendsEnd = stats.frame + MORPH_FRAMES; // new blends run
+    current.streamVersion = stats.version;
+    state.uploadBytes = renderer.upload(terrain, stats, view.layout);
     state.streamBytes = renderer.streamBytes;
     if (view.colorByLevel || view.outline) renderer.setLevelView(terrain.levelView(view.outline));
     const timing = this.timingFigures;
-    timing.updateMs = settings.freeze ? 0 : lod.updateMs;
-    timing.streamMs = uploadStart - streamStart;
+    timing.updateMs = frozen ? 0 : stats.updateMs;
+    timing.streamMs = Math.max(0, coreMs - timing.updateMs); // the core call's time beyond the update: the stream
     timing.uploadMs = performance.now() - uploadStart;
     timing.frameMs = this.lastFrameMs;
-    view.frame = lod.frame;
-    const stats = terrain.meshStats();
-    state.triangles = stats.triangles;
-    state.mesh = stats;
-    state.converged = lod.converged;
-    state.lod = lod;
-    state.timing = timing;
-    if (!settings.freeze && (!lod.converged || lod.frame < current.blendsEnd)) this.request();
+    view.frame = stats.frame;
+    this.publish(stats);
+    if (!frozen && (!stats.converged || stats.frame < current.blendsEnd)) this.request();
     const hud = this.hud, figures = this.hudFrame;
     figures.terrain = terrain;
-    figures.lod = lod;
     figures.stats = stats;
     figures.camera = camera;
     hud.tick(now);
@@ -123,6 +119,28 @@ export class FramePipeline {
     const eye = this.eye;
     eye[0] = camera.position[0], eye[1] = camera.position[1], eye[2] = camera.position[2];
     state.eye = eye;
+  }
+
+  // The frame's figures as tests read them, in objects made once.
+  publish(stats) {
+    const { state } = this, lod = this.lodFigures, mesh = this.meshFigures;
+    lod.frame = stats.frame;
+    lod.pendingMerges = stats.pendingMerges;
+    lod.converged = stats.converged;
+    lod.splits = stats.splits;
+    lod.merges = stats.merges;
+    lod.updateMs = stats.updateMs;
+    lod.tau = stats.tau;
+    mesh.triangles = stats.triangles;
+    mesh.cells = stats.cells;
+    mesh.vertices = stats.vertices;
+    mesh.maxLevel = stats.maxLevel;
+    mesh.bytes = stats.memoryBytes;
+    state.triangles = mesh.triangles;
+    state.mesh = mesh;
+    state.converged = lod.converged;
+    state.lod = lod;
+    state.timing = this.timingFigures;
   }
 
   // The camera as the core takes it, in the object made once.

@@ -1,7 +1,7 @@
 // The viewer page: loads the core and the default terrain, and wires the frame pipeline
 // (frame_pipeline.js), the settings, the panel, HUD, keys, URL state, screenshots and context
 // loss together. In test mode (test_api.js) its state is published on window.hexlod.
-import { createCore } from '../core.js';
+import { createCore } from '../core/core.js';
 import { createFileIntake } from '../ui/file_intake.js';
 import { TerrainRenderer } from '../render/renderer.js';
 import { CameraRig } from '../cameras/rig.js';

@@ -8,7 +8,7 @@ import { emptyWorld } from './clip_planes.js';
 const MAX_SAMPLES_ACROSS = 8; // bounds the work of a wide reach
 
 /**
- * @param {import('../core.js').Terrain} terrain
+ * @param {import('../core/core.js').Terrain} terrain
  * @param {{extentX: number, extentZ: number, low: number, high: number}} extent drawn metres
  * @param {() => number} verticalScale the current exaggeration
  * @param {() => number} reach metres around the point that must stay above ground (the near plane)

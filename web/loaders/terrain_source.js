@@ -1,4 +1,4 @@
-// Glue between the loaders (web/loaders) and the core (web/core.js): the file's samples are
+// Glue between the loaders (web/loaders) and the core (web/core/core.js): the file's samples are
 // decoded straight into a terrain's WASM buffer at their native depth, then scaled and prepared.
 // Runs in the browser and in Node.
 import { loadHeightfield, HeightfieldError } from './index.js';
@@ -9,14 +9,14 @@ const RELIEF_RATIO = 0.05; // height range / extent of a guessed spacing
 
 /**
  * Loads files into a new core terrain.
- * @param {import('../core.js').HexlodCore} core
+ * @param {import('../core/core.js').HexlodCore} core
  * @param {Array<{name: string, bytes: Uint8Array}>} files one height field (with its sidecar)
  * @param {{spacing?: {x: number, y: number}, guessSpacing?: boolean, width?: number, height?: number, encoding?: string,
  *   onProgress?: (fraction: number, phase: string) => void}} [options] spacing: metres between
  *   columns and rows to use instead of the file's (field still reports the file's); width,
  *   height, encoding, onProgress: see loadHeightfield; guessSpacing: when neither the file nor
  *   `spacing` gives one, pick a spacing from the relief instead of 1 m (the page does)
- * @returns {Promise<{terrain: import('../core.js').Terrain, field: object, missing: number, loadMs: number}>}
+ * @returns {Promise<{terrain: import('../core/core.js').Terrain, field: object, missing: number, loadMs: number}>}
  *   field is the loader's metadata (its `samples` view is dropped: it may be detached later);
  *   missing counts the no-data samples that were filled.
  * @throws HeightfieldError for a bad file (including one too big for the core's memory),

@@ -20,7 +20,7 @@ import fieldTexturesGlsl from '../../shaders/field_textures.glsl?raw';
 import groundColorGlsl from '../../shaders/ground_color.glsl?raw';
 import tonemapGlsl from '../../shaders/tonemap.glsl?raw';
 import { mat4 } from 'gl-matrix';
-import { STREAM_VERTEX_BYTES } from '../core.js';
+import { STREAM_VERTEX_BYTES } from '../core/core.js';
 import { resolveIncludes } from './shading/includes.js';
 import { Atmosphere, BETA_RAYLEIGH, BETA_MIE, SCALE_HEIGHTS, MIE_G, SUN_IRRADIANCE, EXPOSURE } from './shading/atmosphere.js';
 import { FieldTextures, TEXTURE_UNIT_GRADIENTS, TEXTURE_UNIT_SUN, TEXTURE_UNIT_OCCLUSION } from './shading/field_textures.js';
@@ -87,25 +87,28 @@ class MirroredBuffer {
   }
 
   /**
-   * Makes the GPU copy equal `bytes` where `ranges` ([first, count] pairs, in elements of
-   * `elementBytes`) say it changed, or everywhere when `all`. Returns the bytes uploaded.
+   * Makes the GPU copy equal the `byteLength` bytes at `pointer` in WASM memory (`heap`: all of
+   * it as bytes) where the ranges say it changed, or everywhere when `all`. The ranges are
+   * `pairs` [first, count] pairs of elements of `elementBytes`, at int32 index `rangesAt` of
+   * `i32` (all of memory as int32). Copies straight from WASM memory: no view is made. Returns
+   * the bytes uploaded.
    */
-  update(bytes, ranges, elementBytes, all) {
+  update(heap, pointer, byteLength, i32, rangesAt, pairs, elementBytes, all) {
     const gl = this.gl;
     gl.bindBuffer(this.target, this.buffer);
-    if (bytes.byteLength > this.capacity) {
-      this.capacity = Math.max(bytes.byteLength, 2 * this.capacity, 1 << 16);
+    if (byteLength > this.capacity) {
+      this.capacity = Math.max(byteLength, 2 * this.capacity, 1 << 16);
       gl.bufferData(this.target, this.capacity, gl.DYNAMIC_DRAW);
       all = true;
     }
     if (all) {
-      if (bytes.byteLength > 0) gl.bufferSubData(this.target, 0, bytes);
-      return bytes.byteLength;
+      if (byteLength > 0) gl.bufferSubData(this.target, 0, heap, pointer, byteLength);
+      return byteLength;
     }
     let uploaded = 0;
-    for (let k = 0; k < ranges.length; k += 2) {
-      const offset = ranges[k] * elementBytes, length = ranges[k + 1] * elementBytes;
-      gl.bufferSubData(this.target, offset, bytes, offset, length);
+    for (let k = 0; k < pairs; k++) {
+      const offset = i32[rangesAt + 2 * k] * elementBytes, length = i32[rangesAt + 2 * k + 1] * elementBytes;
+      gl.bufferSubData(this.target, offset, heap, pointer + offset, length);
       uploaded += length;
     }
     return uploaded;
@@ -188,24 +191,25 @@ export class TerrainRenderer {
   /**
    * Brings the GPU copy of the terrain's stream up to date, uploading only what changed since
    * the last call, and only when the version moved. Returns the bytes uploaded.
-   * @param {import('../core.js').Terrain} terrain after updateLod and updateStream
+   * @param {import('../core/core.js').Terrain} terrain
+   * @param {import('../core/core.js').FrameStats} stats the figures of its last frame (stream step included)
    * @param {'fans'|'triangles'} layout the stream's index layout
    */
-  upload(terrain, layout) {
+  upload(terrain, stats, layout) {
     const all = this.version < 0 || layout !== this.layout;
     let bytes = 0;
-    // The views and dirty ranges are fetched only when there is something to copy.
-    if (all || terrain.streamVersion() !== this.version) {
-      const stream = terrain.stream();
-      bytes += this.vertices.update(stream.vertexBytes, stream.dirtyVertices, STREAM_VERTEX_BYTES, all);
+    if (all || stats.version !== this.version) {
+      const heap = terrain.core.module.HEAPU8, i32 = terrain.scratchI32();
+      bytes += this.vertices.update(heap, stats.vertexPointer, stats.vertexCount * STREAM_VERTEX_BYTES, i32,
+        stats.dirtyVerticesPointer / 4, stats.dirtyVertexPairs, STREAM_VERTEX_BYTES, all);
       this.gl.bindVertexArray(null);
-      bytes += this.indices.update(new Uint8Array(stream.indices.buffer, stream.indices.byteOffset, stream.indices.byteLength),
-        stream.dirtyIndices, 4, all);
-      terrain.acknowledgeStream();
-      this.version = stream.version;
+      bytes += this.indices.update(heap, stats.indexPointer, stats.indexCount * 4, i32,
+        stats.dirtyIndicesPointer / 4, stats.dirtyIndexPairs, 4, all);
+      this.version = stats.version;
       this.layout = layout;
-      this.indexCount = stream.indices.length;
-      this.streamBytes = stream.vertexBytes.byteLength + stream.indices.byteLength;
+      this.indexCount = stats.indexCount;
+      this.streamBytes = stats.vertexCount * STREAM_VERTEX_BYTES + stats.indexCount * 4;
+      terrain.acknowledgeStream(); // after reading the figures: it clears the dirty ranges
     }
     this.lastUploadBytes = bytes;
     return bytes;
@@ -235,7 +239,7 @@ export class TerrainRenderer {
   /**
    * The field the shading reads (normals, shadows, ambient occlusion; web/render/shading/field_textures.js).
    * Textures are made when the next frame needs them, and again only when what they depend on changes.
-   * @param {import('../core.js').Terrain} terrain @param {{heightScale: number, heightOffset: number}} field
+   * @param {import('../core/core.js').Terrain} terrain @param {{heightScale: number, heightOffset: number}} field
    */
   setField(terrain, field) {
     this.fieldTextures.setField(terrain, field);

@@ -9,7 +9,7 @@ import { extensionOf, baseNameOf } from '../loaders/common.js';
 const PROGRESS_AFTER_MS = 100; // slower than a blink: show the bar
 
 /**
- * @param {{ core: import('../core.js').HexlodCore, state: object, show: (loaded: object) => void,
+ * @param {{ core: import('../core/core.js').HexlodCore, state: object, show: (loaded: object) => void,
  *   showStatus: (message: string, isError?: boolean) => void }} page
  * @returns {{ open: (files: Array<{name: string, bytes: Uint8Array}>, options?: object) => Promise<boolean>,
  *   openUrl: (url: string) => Promise<boolean> }}

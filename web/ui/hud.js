@@ -1,10 +1,12 @@
 // The heads-up display: what the terrain is, how fast the frames go, what the LOD did, and
 // what lies under the pointer. Redrawn a few times a second, not every frame: the mesh
 // census and the achieved error are passes over the cells.
+import { FRAME } from '../core/core.js';
+
 const REFRESH_MS = 250;
-// The achieved screen error is a pass over every cell in view (about 9 ms on 270k triangles
-// in WASM): once a second keeps it from showing up as a periodic hitch.
-const ERROR_REFRESH_MS = 1000;
+// The census (cell kinds and the achieved screen error) is a pass over every cell in view
+// (about 9 ms on 270k triangles in WASM): once a second keeps it from showing up as a hitch.
+const CENSUS_REFRESH_MS = 1000;
 const FPS_WINDOW = 30; // frames averaged for fps
 
 const number = (n) => Math.round(n).toLocaleString('en');
@@ -31,8 +33,9 @@ export class Hud {
     this.setCollapsed(collapsed);
     this.frameTimes = []; // rAF timestamps of the last frames
     this.lastRefresh = -Infinity;
-    this.lastErrorRefresh = -Infinity;
+    this.lastCensus = -Infinity;
     this.errorPx = -1;
+    this.kinds = { full: 0, semi: 0, boundarySemi: 0 };
     this.values = null;   // the figures last shown, for tests (window.hexlod.hud)
   }
 
@@ -65,29 +68,35 @@ export class Hud {
 
   /**
    * Shows the figures of the frame just drawn (at most every REFRESH_MS, unless `force`).
-   * @param {{terrain: object, lod: object, stats: object, timing: object, settings: object, camera: object}} f
+   * @param {{terrain: object, stats: import('../core/core.js').FrameStats, timing: object, settings: object,
+   *   camera: object}} f
    */
   update(f, now, force = false) {
     if (!force && now - this.lastRefresh < REFRESH_MS) return;
     this.lastRefresh = now;
-    const { terrain, lod, stats, timing, settings, camera } = f;
-    const kinds = terrain.cellKinds();
-    if (force || now - this.lastErrorRefresh >= ERROR_REFRESH_MS) {
-      this.errorPx = terrain.achievedErrorPx();
-      this.lastErrorRefresh = now;
+    const { terrain, timing, settings, camera } = f;
+    const { updateMs, triangles, vertices, splits, merges, tau, converged, memoryBytes } = f.stats;
+    if (force || now - this.lastCensus >= CENSUS_REFRESH_MS) {
+      const census = terrain.query(FRAME.census); // the terrain's one figures object: read what it says now
+      this.kinds.full = census.fullHexagons;
+      this.kinds.semi = census.semiHexagons;
+      this.kinds.boundarySemi = census.boundarySemiHexagons;
+      this.errorPx = census.achievedErrorPx;
+      this.lastCensus = now;
     }
+    const kinds = this.kinds;
     const error = this.errorPx;
     const span = this.frameTimes.length > 1 ? this.frameTimes.at(-1) - this.frameTimes[0] : 0;
     const fps = span > 0 && now - this.frameTimes.at(-1) < 1000 ? ((this.frameTimes.length - 1) * 1000) / span : 0;
-    const meshBytes = stats.bytes, coreBytes = meshBytes + terrain.sampleBytes;
-    this.values = { fps, frameMs: timing.frameMs ?? 0, updateMs: lod.updateMs, triangles: stats.triangles,
-      full: kinds.full, semi: kinds.semi, boundarySemi: kinds.boundarySemi, vertices: stats.vertices,
-      splits: lod.splits, merges: lod.merges, coreMB: coreBytes / 2 ** 20,
-      bytesPerTriangle: stats.triangles ? meshBytes / stats.triangles : 0, screenErrorPx: error, tau: lod.tau };
+    const meshBytes = memoryBytes, coreBytes = meshBytes + terrain.sampleBytes;
+    this.values = { fps, frameMs: timing.frameMs ?? 0, updateMs, triangles,
+      full: kinds.full, semi: kinds.semi, boundarySemi: kinds.boundarySemi, vertices,
+      splits, merges, coreMB: coreBytes / 2 ** 20,
+      bytesPerTriangle: triangles ? meshBytes / triangles : 0, screenErrorPx: error, tau };
     const v = this.values;
     this.figures.textContent = [
       `${camera.mode} camera   ${fps > 0 ? `${fps.toFixed(0)} fps` : 'idle'}   frame ${v.frameMs.toFixed(1)} ms   ` +
-        `LOD ${v.updateMs.toFixed(1)} ms${settings.freeze ? ' (frozen)' : lod.converged ? '' : ', refining…'}`,
+        `LOD ${v.updateMs.toFixed(1)} ms${settings.freeze ? ' (frozen)' : converged ? '' : ', refining…'}`,
       `${number(v.triangles)} triangles   hexagons: ${number(v.full)} full, ${number(v.semi + v.boundarySemi)} semi ` +
         `(${number(v.boundarySemi)} on the boundary)   ${number(v.vertices)} vertices`,
       `last frame: ${number(v.splits)} splits, ${number(v.merges)} merges`,

@@ -19,7 +19,7 @@
 // (exact in IEEE arithmetic) and one Math.tan of the fov (fdlibm in V8 both in Chromium and
 // Node), so the page and Node compute bit-identical cameras.
 import { defaultSettings, applyLodSettings } from '../settings.js';
-import { FRAME } from '../../core.js';
+import { FRAME } from '../../core/core.js';
 
 export const DEFAULT_FPS = 30;
 export const DEFAULT_VIEWPORT = [400, 225];
@@ -248,7 +248,7 @@ export class FlightRecord {
 
   /**
    * Records the next frame, after its LOD update (`operations` is what updateLod returned). It
-   * reads the figures of one core query (web/core.js FrameStats, the same object every frame):
+   * reads the figures of one core query (web/core/core.js FrameStats, the same object every frame):
    * meshStats and meshHash build objects and strings, and this runs every frame.
    */
   record(terrain, operations) {

@@ -4,7 +4,7 @@
 //   hexlod_bench FILE.f32 WIDTH HEIGHT [SPACING_X_M SPACING_Y_M]
 //   hexlod_bench FILE.f32 WIDTH HEIGHT SPACING_X_M SPACING_Y_M --flight CAMERAS.txt
 //                [--tau PX] [--budget-ms MS] [--budget-ops N] [--viewport WxH] [--tan-half-fov T]
-//                [--morph-frames N] [--start-converged] [--measure-error] [--no-backface] [--verbose]
+//                [--morph-frames N] [--start-converged] [--measure-error] [--no-backface] [--no-normals] [--verbose]
 //
 // Without --flight: for both lattice embeddings (paper §4.7), the time to refine uniformly to
 // the finest level, the triangles and bytes per triangle of the mesh structures, the time to

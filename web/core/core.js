@@ -7,7 +7,7 @@
 // WASM memory may grow during any core call, which detaches every typed-array view on the old
 // buffer: views are re-made whenever `view.buffer !== memory.buffer`, and the views handed to
 // callers (stream(), levelView(), samples()) are valid only until the next core call.
-import createHexlodCore from '../build/wasm/hexlod_core.mjs';
+import createHexlodCore from '../../build/wasm/hexlod_core.mjs';
 
 /** Sample type names of the loaders mapped to HEXLOD_SAMPLE_* and typed-array constructors. */
 export const SAMPLE_TYPES = {
@@ -48,7 +48,7 @@ export async function createCore(options = {}) {
   if (options.wasmBinary) {
     settings.wasmBinary = options.wasmBinary;
   } else {
-    const url = options.wasmUrl ?? new URL('../build/wasm/hexlod_core.wasm', import.meta.url).href;
+    const url = options.wasmUrl ?? new URL('../../build/wasm/hexlod_core.wasm', import.meta.url).href;
     settings.locateFile = () => url;
   }
   const module = await (options.factory ?? createHexlodCore)(settings);
