@@ -85,3 +85,26 @@ test('the panel edits the settings; the HUD shows the figures', async () => {
   await page.evaluate(() => window.hexlod.setSetting('tau', 1));
   assert.deepEqual(problems, []);
 });
+
+test('a refused value keeps the previous one everywhere and says why; the terrain stays', async () => {
+  await set('budgetMs', 50);
+  await converged();
+  const before = await page.evaluate(() => ({ tau: window.hexlod.settings.tau, cellSize: window.hexlod.settings.cellSize,
+    triangles: window.hexlod.triangles, name: window.hexlod.terrain.name }));
+  for (const [key, value, message] of [['tau', -2, /tau=-2 is not a number from 0.25 to 16/], ['cellSize', 0, /cell size must be a positive/],
+    ['shading', 'sepia', /shading must be one of natural/], ['freeze', 'yes', /freeze is on or off/]]) {
+    await set(key, value);
+    const status = await page.evaluate(() => document.getElementById('status').textContent);
+    assert.match(status, message, `${key} = ${value}`);
+    assert.notEqual(await page.evaluate((k) => window.hexlod.settings[k], key), value, `${key} kept its value`);
+  }
+  await frames(3);
+  const after = await page.evaluate(() => ({ tau: window.hexlod.settings.tau, cellSize: window.hexlod.settings.cellSize,
+    triangles: window.hexlod.triangles, name: window.hexlod.terrain.name }));
+  assert.deepEqual(after, before, 'the settings, the terrain and its mesh are as before');
+  await set('tau', 2); // a good value afterwards still applies
+  assert.equal(await page.evaluate(() => window.hexlod.settings.tau), 2);
+  assert.equal(await page.evaluate(() => document.getElementById('status').textContent), '');
+  await set('tau', 1);
+  await set('budgetMs', 4);
+});

@@ -1,10 +1,10 @@
-// The WebAssembly build of the core, driven from Node through web/core.js exactly as the page
+// The WebAssembly build of the core, driven from Node through web/core/core.js exactly as the page
 // drives it: real fixtures decoded straight into WASM memory, at native depth.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { createNodeCore } from '../../bin/node_core.js';
-import { createCore, FRAME } from '../../web/core.js';
+import { createCore, FRAME } from '../../web/core/core.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
 
 const fixtures = new URL('../fixtures/', import.meta.url);

@@ -1,4 +1,4 @@
-// View-dependent refinement (src/hexlod.h, "View-dependent refinement") through web/core.js,
+// View-dependent refinement (src/hexlod.h, "View-dependent refinement") through web/core/core.js,
 // on real fixtures decoded straight into WASM memory, as the page and the CLI drive it. The
 // mesh invariants are checked after every update.
 import { test } from 'node:test';
@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { createNodeCore } from '../../bin/node_core.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
-import { CoreError } from '../../web/core.js';
+import { CoreError } from '../../web/core/core.js';
 
 const fixtures = new URL('../fixtures/', import.meta.url);
 const read = (name) => ({ name, bytes: new Uint8Array(readFileSync(new URL(name, fixtures))) });

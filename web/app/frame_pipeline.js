@@ -6,6 +6,9 @@ import { MORPH_FRAMES } from './settings.js';
 import { FRAME } from '../core/core.js';
 
 const FRAME_LOG = 4096; // frames kept in state.frameLog while recording
+// The FrameStats figures copied into state.lod and state.mesh (plain objects a test can read).
+const LOD_FIGURES = ['frame', 'pendingMerges', 'converged', 'splits', 'merges', 'updateMs', 'tau'];
+const MESH_FIGURES = ['triangles', 'cells', 'vertices', 'maxLevel'];
 
 export class FramePipeline {
   /**
@@ -124,17 +127,8 @@ export class FramePipeline {
   // The frame's figures as tests read them, in objects made once.
   publish(stats) {
     const { state } = this, lod = this.lodFigures, mesh = this.meshFigures;
-    lod.frame = stats.frame;
-    lod.pendingMerges = stats.pendingMerges;
-    lod.converged = stats.converged;
-    lod.splits = stats.splits;
-    lod.merges = stats.merges;
-    lod.updateMs = stats.updateMs;
-    lod.tau = stats.tau;
-    mesh.triangles = stats.triangles;
-    mesh.cells = stats.cells;
-    mesh.vertices = stats.vertices;
-    mesh.maxLevel = stats.maxLevel;
+    for (const key of LOD_FIGURES) lod[key] = stats[key];
+    for (const key of MESH_FIGURES) mesh[key] = stats[key];
     mesh.bytes = stats.memoryBytes;
     state.triangles = mesh.triangles;
     state.mesh = mesh;

@@ -18,6 +18,7 @@ import { deterministicMode } from './deterministic/mode.js';
 import { FramePipeline } from './frame_pipeline.js';
 import { isTestMode, installTestApi } from './test_api.js';
 import { installKeys } from './keys.js';
+import { SettingsOwner } from './settings_owner.js';
 
 // The names are given, not taken from the URLs: a production build puts a content hash into
 // each asset's file name, and the loader pairs a height field with its sidecar by name.
@@ -146,7 +147,7 @@ async function main() {
     makeWorld(loaded);
     frameDefault(loaded);
     renderer.invalidate();
-    settings.cellSize = terrain.spacingX;
+    owner.adopt('cellSize', terrain.spacingX);
     panel.setCellSizeRange(terrain.spacingX);
     state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
       minHeight: terrain.minHeight, maxHeight: terrain.maxHeight };
@@ -180,36 +181,41 @@ async function main() {
     rig.cameras.orbit.distance *= k;
   }
 
-  /** A setting changed (panel, key or URL): apply it to the core, the cameras or the view. */
-  function onSetting(key, value) {
+  /** Applies a setting that SettingsOwner checked (to the core, the cameras or the view); throws when it cannot. */
+  function applySetting(key, value, previous) {
     const terrain = current?.terrain;
-    try {
-      if (key === 'camera') rig.setMode(value);
-      else if (key === 'eyeHeight') rig.cameras.walk.eyeHeight = value;
-      else if (key === 'exaggeration') {
-        rescaleHeights(view.verticalScale, value);
-        if (terrain) {
-          terrain.setLodVerticalScale(value); // no mesh rebuild: the shader scales heights
-          makeWorld(current);
-          keepCamerasAboveGround(); // taller hills may now stand where the eye is
-        }
-      } else if (key === 'embedding' && terrain) {
-        terrain.resetMesh(value);
-        applyLodSettings(terrain, settings);
-        terrain.setStreamLayout(view.layout);
-        renderer.invalidate();
-      } else if (key === 'cellSize' && terrain) {
-        const k = value / terrain.spacingX;
-        if (!(k > 0) || !Number.isFinite(k)) throw new Error(`cell size ${value} m is not a positive number`);
-        terrain.setScale({ ...current.field, spacingX: terrain.spacingX * k, spacingY: terrain.spacingY * k });
-        rescaleGround(k);
+    if (key === 'eyeHeight') rig.cameras.walk.eyeHeight = value;
+    else if (key === 'exaggeration') {
+      rescaleHeights(previous, value);
+      if (terrain) {
+        terrain.setLodVerticalScale(value); // no mesh rebuild: the shader scales heights
         makeWorld(current);
-        keepCamerasAboveGround();
-        renderer.invalidate();
-        hud.setTerrain(current.field, terrain, current.loadMs);
-      } else if (terrain && !['wireframe', 'colorByLevel', 'freeze', ...SHADING_KEYS].includes(key)) {
-        applyLodSettings(terrain, settings);
+        keepCamerasAboveGround(); // taller hills may now stand where the eye is
       }
+    } else if (key === 'embedding' && terrain) {
+      terrain.resetMesh(value);
+      applyLodSettings(terrain, settings);
+      terrain.setStreamLayout(view.layout);
+      renderer.invalidate();
+    } else if (key === 'cellSize' && terrain) {
+      const k = value / terrain.spacingX;
+      terrain.setScale({ ...current.field, spacingX: terrain.spacingX * k, spacingY: terrain.spacingY * k });
+      rescaleGround(k);
+      makeWorld(current);
+      keepCamerasAboveGround();
+      renderer.invalidate();
+      hud.setTerrain(current.field, terrain, current.loadMs);
+    } else if (terrain && !['wireframe', 'colorByLevel', 'freeze', ...SHADING_KEYS].includes(key)) {
+      applyLodSettings(terrain, settings);
+    }
+  }
+  const owner = new SettingsOwner(settings, applySetting);
+
+  /** A setting changed (panel, key, test): through its owner, which keeps the old value when it fails. */
+  function onSetting(key, value) {
+    try {
+      if (key === 'camera') rig.setMode(value); // the camera is the rig's, not a setting
+      else owner.set(key, value);
       showStatus('');
     } catch (error) {
       showStatus(error.message, true);
@@ -253,7 +259,7 @@ async function main() {
   // Drop, file picker, ?src=, progress, RAW size dialog and error display (file_intake.js).
   const intake = createFileIntake({ core, state, show, showStatus });
 
-  const setSetting = (key, value) => { settings[key] = value; onSetting(key, value); };
+  const setSetting = (key, value) => onSetting(key, value);
   const resetView = () => { if (current) frameDefault(current); syncPanel(); requestRender(); };
   if (window.hexlod === state) {
     installTestApi(state, { gl, rig, settings, view, requestRender, setSetting, screenshot, urlWriter,
