@@ -8,7 +8,7 @@ import {
   loadForCommand, FILE_OPTIONS, FILE_USAGE, parseFileOptions, extentOf, cameraFor, highestLevel, round,
 } from './cli_common.js';
 import { decodeFans, resolveDegenerate, clipToRectangle, writeObj } from './mesh_export.js';
-import { RESTART_INDEX, STREAM_VERTEX_WORDS } from '../web/core.js';
+import { RESTART_INDEX, STREAM_VERTEX_WORDS } from '../web/core/core.js';
 
 export const MESH_USAGE = `usage: hexlod mesh <heightfield> (--max-error M | --camera X,Y,Z --target X,Y,Z) [options]
   Refines the hexagon mesh until it converges (or for --budget-splits operations), prints a

@@ -6,7 +6,7 @@
 // triangle (a, b, c) is counter-clockwise seen from +y when (b - a) x (c - a) has a positive
 // y component, i.e. (b.z - a.z) * (c.x - a.x) - (b.x - a.x) * (c.z - a.z) > 0.
 import { openSync, writeSync, closeSync } from 'node:fs';
-import { RESTART_INDEX } from '../web/core.js';
+import { RESTART_INDEX } from '../web/core/core.js';
 
 /** Twice the area of (a, b, c) in the x-z plane, positive when counter-clockwise seen from +y. */
 export function ccwArea2(ax, az, bx, bz, cx, cz) {

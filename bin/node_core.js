@@ -1,10 +1,10 @@
 // Node side of the core: the diagnostics build (build/wasm-diag: the product core plus the
 // functions of src/api/hexlod_diagnostics.h, for the CLI, its tests and benchmarks), its .wasm
-// read from the build and handed to web/core.js (the ES module build cannot locate its .wasm in
+// read from the build and handed to web/core/core.js (the ES module build cannot locate its .wasm in
 // Node by itself; see build.sh). The page loads the product build, build/wasm.
 import { readFileSync, existsSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
-import { createCore } from '../web/core.js';
+import { createCore } from '../web/core/core.js';
 
 export const wasmPath = fileURLToPath(new URL('../build/wasm-diag/hexlod_core.wasm', import.meta.url));
 const factoryPath = new URL('../build/wasm-diag/hexlod_core.mjs', import.meta.url);

@@ -11,7 +11,7 @@
 #include "api/terrain_handle.h"
 #include "mesh/mesh_census.h"
 
-// JS reads the structs through views at fixed wasm32 offsets (web/core.js).
+// JS reads the structs through views at fixed wasm32 offsets (web/core/core.js).
 #if UINTPTR_MAX == 0xFFFFFFFFu
 static_assert(sizeof(hexlod_scale) == 48 && offsetof(hexlod_scale, has_nodata) == 40, "hexlod_scale layout");
 static_assert(sizeof(hexlod_field_info) == 32, "hexlod_field_info layout");
