@@ -5,7 +5,7 @@ precision highp float;
 
 layout(location = 0) in vec3 aPosition;  // ATTRIB_POSITION in web/render/renderer.js: true position, unscaled height
 layout(location = 1) in vec3 aNormal;    // ATTRIB_NORMAL: snorm16, averaged from the adjacent triangles
-layout(location = 2) in vec3 aMorphFrom; // ATTRIB_MORPH_FROM: the coarser surface where the blend starts
+layout(location = 2) in float aMorphFromHeight; // ATTRIB_MORPH_FROM: height of the coarser surface under the vertex, where the blend starts
 layout(location = 3) in float aMorphKey; // ATTRIB_MORPH_KEY: 0 at rest, f+1 blending in, -(f+1) out, since frame f
 
 uniform mat4 uViewProjection;
@@ -30,7 +30,7 @@ void main() {
         float t = clamp((uFrame - (abs(aMorphKey) - 1.0)) / uMorphFrames, 0.0, 1.0);
         w = aMorphKey > 0.0 ? t : 1.0 - t;
     }
-    vec3 p = aMorphFrom + (aPosition - aMorphFrom) * w;
+    vec3 p = vec3(aPosition.x, aMorphFromHeight + (aPosition.y - aMorphFromHeight) * w, aPosition.z); // blends are vertical
     // The lattice reaches past the field on the east, west and south (docs/DESIGN.md). Moving
     // those vertices onto the field's edge, where the core's clamped lookups already put
     // their heights, folds the overhang onto the border: cells wholly outside become

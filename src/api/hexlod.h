@@ -29,7 +29,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature, a struct layout or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 9
+#define HEXLOD_ABI_VERSION 10
 
 /* The status of every failure. */
 #define HEXLOD_ERROR (-1)
@@ -116,15 +116,16 @@ typedef struct hexlod_camera {
 /* One frame's output. 192 bytes under wasm32: 6 doubles, 32 int32, 4 pointers.
  *
  * The stream (§7), what the renderer uploads, kept in step with the mesh:
- * Vertices: the mesh's own vertex pool (vertex data exists once), 36 bytes a slot:
+ * Vertices: the mesh's own vertex pool (vertex data exists once), 28 bytes a slot:
  *   bytes  0..11  position, 3 float32, metres (y unscaled: the shader multiplies heights by the
  *                 vertical exaggeration)
  *   bytes 12..19  normal, 4 snorm16 (x, y, z, 0), averaged from the adjacent triangles (stale
  *                 with no_normals)
- *   bytes 20..31  morph start, 3 float32, metres: where the blend starts (the coarser surface)
- *   bytes 32..35  morph key, float32: 0 at rest; f+1 blending in since frame f; -(f+1)
+ *   bytes 20..23  morph start height, float32, metres (unscaled): the height of the coarser
+ *                 surface under the vertex, where the blend starts (blends are vertical)
+ *   bytes 24..27  morph key, float32: 0 at rest; f+1 blending in since frame f; -(f+1)
  *                 blending out since frame f. With n = morph_frames and F = frame, the drawn
- *                 position is mix(morph start, position, w), t = clamp((F - f) / n, 0, 1),
+ *                 position is (x, mix(morph start height, y, w), z), t = clamp((F - f) / n, 0, 1),
  *                 w = t blending in, 1 - t blending out, 1 at rest or when n = 0.
  * Free slots hold stale data and are never indexed.
  * Indices: a fixed slot per cell record: HEXLOD_LAYOUT_FANS, 9 indices (a triangle fan then

@@ -85,7 +85,7 @@ int32_t HexMesh::allocateVertex(LatticePoint p, int32_t parentA, int32_t parentB
     sv.position = embedLatticePoint(*field_, embedding_, p);
     sv.normal[0] = sv.normal[2] = sv.normal[3] = 0;
     sv.normal[1] = 32767;
-    sv.morphFrom = sv.position;
+    sv.morphFromHeight = sv.position.y;
     sv.morphKey = 0.0f;
     vertexParents_[size_t(v)] = {parentA, parentB, kNone};
     vertexLive_[size_t(v)] = 1;

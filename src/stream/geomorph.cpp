@@ -17,14 +17,14 @@ void Geomorph::coarserWeights(const HexMesh& mesh, int32_t v, float w[3]) {
     w[0] = float(1.0 - s - t), w[1] = float(s), w[2] = float(t);
 }
 
-glm::vec3 Geomorph::coarserSurfaceNow(const HexMesh& mesh, int32_t v) const {
-    if (mesh.vertexParentA(v) == kNone) return mesh.vertexPosition(v);
-    return coarserSurface(mesh, v, [&](int32_t u) { return displayed(mesh.streamVertex(u)); });
+float Geomorph::coarserHeightNow(const HexMesh& mesh, int32_t v) const {
+    if (mesh.vertexParentA(v) == kNone) return mesh.vertexPosition(v).y;
+    return coarserSurface(mesh, v, [&](int32_t u) { return displayed(mesh.streamVertex(u)); }).y;
 }
 
 void Geomorph::blendIn(HexMesh& mesh, int32_t v) {
     StreamVertex& sv = mesh.streamVertex(v);
-    sv.morphFrom = coarserSurfaceNow(mesh, v);
+    sv.morphFromHeight = coarserHeightNow(mesh, v);
     sv.morphKey = enabled() ? float(frame_) + 1.0f : 0.0f; // weight 0 in the frame it appears
     changed_.push_back(v);
 }
@@ -35,7 +35,7 @@ void Geomorph::blendOut(HexMesh& mesh, int32_t v) {
     const float w = weight(sv);
     // A vertex at rest fades to the parent midpoint as drawn now; one still blending in
     // reverses along its own path, so nothing jumps.
-    if (w == 1.0f) sv.morphFrom = coarserSurfaceNow(mesh, v);
+    if (w == 1.0f) sv.morphFromHeight = coarserHeightNow(mesh, v);
     const float start = float(frame_) - (1.0f - w) * float(frames_); // weight(now) == w
     sv.morphKey = -(start + 1.0f);
     changed_.push_back(v);

@@ -5,14 +5,16 @@
 // value of v. If a vertex v is to be removed, inverse blending is triggered by a merge- or
 // inverse join-operation, which are finished when the vertex has faded out."
 //
-// The blend lives in each StreamVertex (morphFrom, morphKey) and is evaluated in the vertex
+// The blend lives in each StreamVertex (morphFromHeight, morphKey) and is evaluated in the vertex
 // shader from the frame counter, so a blending vertex is written once, not every frame. The
 // weight formula below is the shader's (shaders/terrain.vert), in the same float arithmetic.
 // The start is the coarser surface under the vertex as drawn in that frame (the corners of the
 // coarser triangle may still be blending themselves): in the paper's embedding the midpoint of
 // the parent edge in space, in the exact-sample embedding (where a vertex may sit up to half a
 // sample off its parent edge) the point of the parent triangle straight below or above it, so
-// the vertex blends vertically, as the paper's does.
+// the vertex blends vertically, as the paper's does. Either way only the height moves (the
+// midpoint of the parent edge lies over the vertex in the paper's embedding), so a blend keeps
+// just its start height.
 // The blend is tied to frames, so it is deterministic under a fixed frame clock.
 #pragma once
 
@@ -43,7 +45,7 @@ public:
     void advance() { ++frame_; }
     void resetClock() { frame_ = kFirstFrame; }
 
-    /// How far a vertex is towards its true position this frame: 1 there, 0 at morphFrom.
+    /// How far a vertex is towards its true position this frame: 1 there, 0 at its start.
     float weight(const StreamVertex& v) const {
         if (v.morphKey == 0.0f || frames_ == 0) return 1.0f;
         const float start = v.morphKey > 0.0f ? v.morphKey - 1.0f : -v.morphKey - 1.0f;
@@ -53,7 +55,7 @@ public:
     /// Where the vertex is drawn this frame (unscaled heights).
     glm::vec3 displayed(const StreamVertex& v) const {
         const float w = weight(v);
-        return v.morphFrom + (v.position - v.morphFrom) * w;
+        return {v.position.x, v.morphFromHeight + (v.position.y - v.morphFromHeight) * w, v.position.z};
     }
 
     /// Weights of a vertex over its parents a, b and across (HexMesh::vertexAcross) such that
@@ -72,7 +74,7 @@ public:
     }
 
     /// A vertex the mesh just created: blends in from the coarser surface under it as drawn
-    /// now. With geomorphing off it appears at once; morphFrom still records the start (the
+    /// now. With geomorphing off it appears at once; morphFromHeight still records the start (the
     /// popping meter measures the jump from there).
     void blendIn(HexMesh& mesh, int32_t v);
     /// A vertex a merge will free: blends back to the coarser surface under it, continuing
@@ -88,7 +90,7 @@ public:
     std::vector<int32_t>& changedVertices() { return changed_; }
 
 private:
-    glm::vec3 coarserSurfaceNow(const HexMesh& mesh, int32_t v) const;
+    float coarserHeightNow(const HexMesh& mesh, int32_t v) const;
 
     int32_t frames_ = 0;
     uint32_t frame_ = kFirstFrame;

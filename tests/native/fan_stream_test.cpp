@@ -326,7 +326,7 @@ TEST(FanStream, WithoutNormalsTheDirtyRangesStillCarryEveryPositionAndIndex) {
             if (!mesh.isVertexLive(v)) continue;
             const StreamVertex &got = gpu.vertices[size_t(v)], &want = mesh.streamVertex(v);
             ASSERT_EQ(std::memcmp(&got.position, &want.position, sizeof want.position), 0) << "vertex " << v;
-            ASSERT_EQ(std::memcmp(&got.morphFrom, &want.morphFrom, sizeof want.morphFrom), 0) << "vertex " << v;
+            ASSERT_EQ(std::memcmp(&got.morphFromHeight, &want.morphFromHeight, sizeof want.morphFromHeight), 0) << "vertex " << v;
             ASSERT_EQ(got.morphKey, want.morphKey) << "vertex " << v;
         }
     }

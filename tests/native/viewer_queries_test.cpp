@@ -66,14 +66,18 @@ void set(hexlod_terrain* t, double tau, int32_t morphFrames = 0, int32_t maxOper
 }
 
 // Where the stream draws vertex v now (the shader's blend formula, hexlod.h "The fan stream").
+// A stream vertex as hexlod.h documents it, in 4-byte words: position x, y, z at 0..2, the
+// normal at 3..4, the morph start height at 5, the morph key at 6.
+constexpr int32_t kWords = 7, kY = 1, kMorphFromHeight = 5, kMorphKey = 6;
+
 double drawnVertexHeight(const float* vertex, double frame, double frames) {
-    const double key = vertex[8];
+    const double key = vertex[kMorphKey];
     double w = 1.0;
     if (key != 0.0 && frames > 0.0) {
         const double t = std::clamp((frame - (std::fabs(key) - 1.0)) / frames, 0.0, 1.0);
         w = key > 0.0 ? t : 1.0 - t;
     }
-    return vertex[6] + (vertex[1] - vertex[6]) * w;
+    return vertex[kMorphFromHeight] + (vertex[kY] - vertex[kMorphFromHeight]) * w;
 }
 
 } // namespace
@@ -110,11 +114,11 @@ TEST(ViewerQueries, DrawnHeightFollowsTheBlendsAndStaysWithinTheErrorOfTheSample
     int32_t blending = 0, checked = 0;
     for (int32_t k = 0; k < out.index_count && checked < 1500; ++k) {
         if (indices[k] == 0xFFFFFFFFu) continue;
-        const float* v = pool + size_t(indices[k]) * 9;
+        const float* v = pool + size_t(indices[k]) * kWords;
         const double drawn = drawnHeightAt(t, v[0], v[2]);
         if (std::isnan(drawn)) continue; // a vertex of the lattice past the field's edge
         ++checked;
-        if (v[8] != 0.0f && std::fabs(v[1] - drawnVertexHeight(v, frame, 16)) > 1.0) ++blending;
+        if (v[kMorphKey] != 0.0f && std::fabs(v[kY] - drawnVertexHeight(v, frame, 16)) > 1.0) ++blending;
         EXPECT_NEAR(drawn, drawnVertexHeight(v, frame, 16), 1e-2) << "vertex " << indices[k];
     }
     EXPECT_GT(checked, 1000);

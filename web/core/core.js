@@ -23,10 +23,10 @@ export const STREAM_LAYOUTS = { fans: 0, triangles: 1 };
 export const EMBEDDINGS = { exact: 0, shifted: 1 };
 /**
  * A stream vertex (src/mesh/stream_vertex.h): position 3 x f32 at byte 0, normal 4 x snorm16 at
- * 12, morph start 3 x f32 at 20, morph key f32 at 32.
+ * 12, morph start height f32 at 20, morph key f32 at 24.
  */
-export const STREAM_VERTEX_BYTES = 36;
-export const STREAM_VERTEX_WORDS = 9;
+export const STREAM_VERTEX_BYTES = 28;
+export const STREAM_VERTEX_WORDS = 7;
 export const RESTART_INDEX = 0xffffffff;
 
 /** Steps of hexlod_terrain_frame (HEXLOD_FRAME_*): 0 runs the camera, one LOD update and the stream. */

@@ -175,9 +175,9 @@ export class TerrainRenderer {
     gl.enableVertexAttribArray(ATTRIB_NORMAL);
     gl.vertexAttribPointer(ATTRIB_NORMAL, 3, gl.SHORT, true, stride, 12);
     gl.enableVertexAttribArray(ATTRIB_MORPH_FROM);
-    gl.vertexAttribPointer(ATTRIB_MORPH_FROM, 3, gl.FLOAT, false, stride, 20);
+    gl.vertexAttribPointer(ATTRIB_MORPH_FROM, 1, gl.FLOAT, false, stride, 20);
     gl.enableVertexAttribArray(ATTRIB_MORPH_KEY);
-    gl.vertexAttribPointer(ATTRIB_MORPH_KEY, 1, gl.FLOAT, false, stride, 32);
+    gl.vertexAttribPointer(ATTRIB_MORPH_KEY, 1, gl.FLOAT, false, stride, 24);
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indexBuffer);
     gl.bindVertexArray(null);
     return vao;
