@@ -29,7 +29,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature, a struct layout or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 10
+#define HEXLOD_ABI_VERSION 11
 
 /* The status of every failure. */
 #define HEXLOD_ERROR (-1)
@@ -89,7 +89,7 @@ typedef struct hexlod_settings {
     int32_t no_backface_culling; /* non-zero: no cone-of-normals culling (exact embedding, cells of up to 4096 samples) */
     int32_t morph_frames;        /* geomorph blend length in LOD updates, at most 1000 (0: off) */
     int32_t layout;              /* HEXLOD_LAYOUT_* (0: fans) */
-    int32_t no_normals;          /* non-zero: the stream keeps no vertex normals (24 bytes a vertex saved) */
+    int32_t no_normals;          /* non-zero: the stream keeps no vertex normals (32 bytes a vertex saved) */
 } hexlod_settings;
 
 /* The camera of view-dependent refinement. 112 bytes. The caller computes the tangent, so no
@@ -113,21 +113,21 @@ typedef struct hexlod_camera {
 #define HEXLOD_FRAME_HASH 16   /* also the mesh hash (a pass over the cells) */
 #define HEXLOD_FRAME_CENSUS 32 /* also the cell kinds and the achieved screen error (passes over the cells) */
 
-/* One frame's output. 192 bytes under wasm32: 6 doubles, 32 int32, 4 pointers.
+/* One frame's output. 192 bytes under wasm32: 6 doubles, 31 int32, 5 pointers.
  *
  * The stream (§7), what the renderer uploads, kept in step with the mesh:
- * Vertices: the mesh's own vertex pool (vertex data exists once), 28 bytes a slot:
+ * Vertices: the mesh's own vertex pool (vertex data exists once), 20 bytes a slot:
  *   bytes  0..11  position, 3 float32, metres (y unscaled: the shader multiplies heights by the
  *                 vertical exaggeration)
- *   bytes 12..19  normal, 4 snorm16 (x, y, z, 0), averaged from the adjacent triangles (stale
- *                 with no_normals)
- *   bytes 20..23  morph start height, float32, metres (unscaled): the height of the coarser
+ *   bytes 12..15  morph start height, float32, metres (unscaled): the height of the coarser
  *                 surface under the vertex, where the blend starts (blends are vertical)
- *   bytes 24..27  morph key, float32: 0 at rest; f+1 blending in since frame f; -(f+1)
+ *   bytes 16..19  morph key, float32: 0 at rest; f+1 blending in since frame f; -(f+1)
  *                 blending out since frame f. With n = morph_frames and F = frame, the drawn
  *                 position is (x, mix(morph start height, y, w), z), t = clamp((F - f) / n, 0, 1),
  *                 w = t blending in, 1 - t blending out, 1 at rest or when n = 0.
  * Free slots hold stale data and are never indexed.
+ * Normals (NULL with no_normals): one per vertex slot, 8 bytes, 4 snorm16 (x, y, z, 0), averaged
+ * from the adjacent triangles (§7); they change with the same dirty vertex ranges.
  * Indices: a fixed slot per cell record: HEXLOD_LAYOUT_FANS, 9 indices (a triangle fan then
  * 0xFFFFFFFF; full hexagon: centre, six corners, first corner; boundary semi-hexagon: centre,
  * four corners; interior semi-hexagon: four corners from the fixed-rule corner; the rest of the
@@ -160,12 +160,13 @@ typedef struct hexlod_frame {
     int32_t vertex_count;     /* vertex slots (the pool's capacity) */
     int32_t index_count;      /* indices */
     int32_t dirty_vertex_pairs, dirty_index_pairs; /* pairs in the dirty arrays */
-    int32_t reserved[13];
-    /* pointers: Int32Array index 44..47 under wasm32 */
+    int32_t reserved[12];
+    /* pointers: Int32Array index 43..47 under wasm32 */
     const void* vertices_ptr;         /* the vertex pool */
     const uint32_t* indices_ptr;      /* the index array */
     const int32_t* dirty_vertices_ptr; /* (first, count) pairs of vertex slots */
     const int32_t* dirty_indices_ptr;  /* (first, count) pairs of indices */
+    const int16_t* normals_ptr;        /* the vertex normals, or NULL with no_normals */
 } hexlod_frame;
 
 /* The level-ordered view for diagnostics of the page (colour by level, hexagon outlines). */

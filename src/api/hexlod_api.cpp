@@ -18,7 +18,7 @@ static_assert(sizeof(hexlod_field_info) == 32, "hexlod_field_info layout");
 static_assert(sizeof(hexlod_settings) == 64 && offsetof(hexlod_settings, max_operations) == 32, "hexlod_settings layout");
 static_assert(sizeof(hexlod_camera) == 112 && offsetof(hexlod_camera, near_m) == 96, "hexlod_camera layout");
 static_assert(offsetof(hexlod_frame, version) == 48 && offsetof(hexlod_frame, vertex_count) == 48 + 4 * 15 &&
-                  offsetof(hexlod_frame, vertices_ptr) == 176 && sizeof(hexlod_frame) == 192,
+                  offsetof(hexlod_frame, vertices_ptr) == 172 && sizeof(hexlod_frame) == 192,
               "hexlod_frame layout");
 static_assert(offsetof(hexlod_level_view, index_count) == 12 && sizeof(hexlod_level_view) == 24, "hexlod_level_view layout");
 #endif
@@ -84,6 +84,7 @@ void fillFrame(hexlod_terrain* terrain, int32_t steps, hexlod_frame* out) {
     out->indices_ptr = stream.indices().data();
     out->dirty_vertices_ptr = rangePairs(stream.dirtyVertices());
     out->dirty_indices_ptr = rangePairs(stream.dirtyIndices());
+    out->normals_ptr = stream.normalData();
 }
 
 } // namespace

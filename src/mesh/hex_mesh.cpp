@@ -83,8 +83,6 @@ int32_t HexMesh::allocateVertex(LatticePoint p, int32_t parentA, int32_t parentB
     vertexLattice_[size_t(v)] = p;
     StreamVertex& sv = vertices_[size_t(v)];
     sv.position = embedLatticePoint(*field_, embedding_, p);
-    sv.normal[0] = sv.normal[2] = sv.normal[3] = 0;
-    sv.normal[1] = 32767;
     sv.morphFromHeight = sv.position.y;
     sv.morphKey = 0.0f;
     vertexParents_[size_t(v)] = {parentA, parentB, kNone};

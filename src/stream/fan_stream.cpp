@@ -40,6 +40,7 @@ void FanStream::setNormals(bool on) {
         // The point of turning them off: give the memory back (shrink_to_fit does nothing in
         // libstdc++ without exceptions).
         std::vector<glm::i64vec3>().swap(normalSum_);
+        std::vector<PackedNormal>().swap(vertexNormals_);
         return;
     }
     if (mesh_) rebuildNormals(*mesh_);
@@ -50,6 +51,8 @@ void FanStream::setNormals(bool on) {
 void FanStream::rebuildNormals(HexMesh& mesh) {
     reserveForPool(normalSum_, size_t(mesh.vertexCapacity()));
     normalSum_.assign(size_t(mesh.vertexCapacity()), glm::i64vec3(0));
+    reserveForPool(vertexNormals_, size_t(mesh.vertexCapacity()));
+    vertexNormals_.assign(size_t(mesh.vertexCapacity()), PackedNormal{});
     if (vertexPending_.size() < normalSum_.size()) vertexPending_.resize(normalSum_.size(), 0);
     const size_t slots = indices_.size() / size_t(slotSize());
     for (size_t c = 0; c < slots; ++c) accumulate(mesh, indices_.data() + c * size_t(slotSize()), +1);
@@ -60,7 +63,10 @@ void FanStream::rebuildNormals(HexMesh& mesh) {
 
 void FanStream::rewriteAll(HexMesh& mesh) {
     indices_.assign(size_t(mesh.cellCapacity()) * size_t(slotSize()), kRestartIndex);
-    if (normals_) normalSum_.assign(size_t(mesh.vertexCapacity()), glm::i64vec3(0));
+    if (normals_) {
+        normalSum_.assign(size_t(mesh.vertexCapacity()), glm::i64vec3(0));
+        vertexNormals_.assign(size_t(mesh.vertexCapacity()), PackedNormal{});
+    }
     changedCells_.clear();
     for (int32_t c = 0; c < mesh.cellCapacity(); ++c) changedCells_.push_back(c);
     vertexLog_.clear();
@@ -130,6 +136,10 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
         reserveForPool(normalSum_, vertices);
         normalSum_.resize(vertices, glm::i64vec3(0));
     }
+    if (normals_ && vertexNormals_.size() < vertices) {
+        reserveForPool(vertexNormals_, vertices);
+        vertexNormals_.resize(vertices, PackedNormal{});
+    }
     if (vertexPending_.size() < vertices) {
         reserveForPool(vertexPending_, vertices);
         vertexPending_.resize(vertices, 0);
@@ -174,7 +184,7 @@ void FanStream::finishNormals(HexMesh& mesh) {
         if (!normals_ || !mesh.isVertexLive(v)) continue; // a freed vertex's sum is back to exactly zero
         const glm::dvec3 n(normalSum_[size_t(v)]);
         const double length = glm::length(n);
-        int16_t* out = mesh.streamVertex(v).normal;
+        int16_t* out = vertexNormals_[size_t(v)].xyz;
         if (length > 0.0) {
             for (int k = 0; k < 3; ++k) out[k] = int16_t(std::lround(n[k] / length * 32767.0));
         } else {
@@ -264,6 +274,7 @@ void FanStream::buildLevelView(const HexMesh& mesh, bool outline) {
 
 size_t FanStream::memoryBytes() const {
     return indices_.capacity() * sizeof(uint32_t) + normalSum_.capacity() * sizeof(glm::i64vec3) +
+           vertexNormals_.capacity() * sizeof(PackedNormal) +
            (changedCells_.capacity() + vertexLog_.capacity() + touchedVertices_.capacity()) * sizeof(int32_t) +
            cellPending_.capacity() + vertexPending_.capacity() + dirtyVertices_.marked.capacity() + dirtyIndices_.marked.capacity() +
            (dirtyVertices_.list.capacity() + dirtyIndices_.list.capacity()) * sizeof(int32_t) +
@@ -274,7 +285,7 @@ size_t FanStream::memoryBytes() const {
 size_t FanStream::liveMemoryBytes() const {
     if (!mesh_) return 0;
     return size_t(mesh_->liveCells()) * size_t(slotSize()) * sizeof(uint32_t) +
-           (normals_ ? size_t(mesh_->liveVertices()) * sizeof(glm::i64vec3) : 0);
+           (normals_ ? size_t(mesh_->liveVertices()) * (sizeof(glm::i64vec3) + sizeof(PackedNormal)) : 0);
 }
 
 } // namespace hexlod

@@ -54,11 +54,16 @@ public:
     void setLayout(IndexLayout layout);
     IndexLayout layout() const { return layout_; }
     /// Whether the stream keeps the mesh's vertex normals (§7), on by default. Off, it keeps no
-    /// normal sums (24 bytes a vertex) and does no normal arithmetic, and the normals in the
-    /// vertex pool are stale; turned on, every normal is rebuilt exactly and marked dirty. The
-    /// viewer turns them off while it lights the terrain from the field's own normals.
+    /// normals (8 bytes a vertex) and no normal sums (24 bytes) and does no normal arithmetic;
+    /// turned on, every normal is rebuilt exactly and marked dirty. The viewer turns them off
+    /// while it lights the terrain from the field's own normals.
     void setNormals(bool on);
     bool normals() const { return normals_; }
+    /// The vertex normals, one per vertex slot, 4 snorm16 (x, y, z, 0) each, averaged over the
+    /// adjacent triangles; the renderer uploads them beside the vertex pool, with the same
+    /// dirty ranges. Null while normals are off.
+    const int16_t* normalData() const { return normals_ && !vertexNormals_.empty() ? vertexNormals_[0].xyz : nullptr; }
+    const int16_t* normal(int32_t v) const { return vertexNormals_[size_t(v)].xyz; }
     int32_t slotSize() const { return layout_ == IndexLayout::Fans ? kFanSlot : kTriangleSlot; }
 
     /// Applies what the mesh did since the last sync: rewrites the changed cells' slots and
@@ -118,6 +123,10 @@ private:
     HexMesh* mesh_ = nullptr;
     std::vector<uint32_t> indices_;
     std::vector<glm::i64vec3> normalSum_; // per vertex, fixed point (see normalScale_)
+    struct PackedNormal {
+        int16_t xyz[4] = {0, 32767, 0, 0}; // snorm16 x, y, z and 0; up until written
+    };
+    std::vector<PackedNormal> vertexNormals_; // per vertex slot while normals are on
     double normalScale_ = 1.0;            // fixed-point units per square metre of face normal
     std::vector<int32_t> changedCells_, vertexLog_;
     std::vector<uint8_t> cellPending_, vertexPending_;

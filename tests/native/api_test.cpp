@@ -122,7 +122,7 @@ TEST(Api, RoundTripOfARealFieldThroughTheAbi) {
     ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_STREAM, &out), 0);
     float maxX = 0.0f;
     const auto* vertices = static_cast<const float*>(out.vertices_ptr);
-    for (int32_t v = 0; v < out.vertex_count; ++v) maxX = std::max(maxX, vertices[v * 7]); // 7 words a vertex (hexlod.h)
+    for (int32_t v = 0; v < out.vertex_count; ++v) maxX = std::max(maxX, vertices[v * 5]); // 5 words a vertex (hexlod.h)
     EXPECT_GT(maxX, 402 * 74.4f * 1.5f) << "positions use the new spacing";
     do ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_LOD, &out), 0);
     while (out.operations > 0);

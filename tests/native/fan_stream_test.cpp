@@ -84,13 +84,16 @@ void randomOperations(HexMesh& mesh, std::mt19937& random, int32_t count) {
     }
 }
 
-// What a renderer holds: copies updated only through the dirty ranges.
+// What a renderer holds: copies updated only through the dirty ranges (the normals, while the
+// stream keeps them, through the vertices' ranges).
 struct RendererCopy {
     std::vector<uint32_t> indices;
     std::vector<StreamVertex> vertices;
+    std::vector<int16_t> normals;
     void upload(FanStream& stream, const HexMesh& mesh) {
         indices.resize(stream.indices().size(), 0xDEADBEEFu);
         vertices.resize(size_t(mesh.vertexCapacity()));
+        normals.resize(4 * size_t(mesh.vertexCapacity()), int16_t(0x7EAD));
         for (const ElementRange& r : stream.dirtyIndices()) {
             ASSERT_LE(size_t(r.first + r.count), stream.indices().size()) << "a dirty range past the used indices";
             std::copy_n(stream.indices().begin() + r.first, r.count, indices.begin() + r.first);
@@ -98,6 +101,7 @@ struct RendererCopy {
         for (const ElementRange& r : stream.dirtyVertices()) {
             ASSERT_LE(r.first + r.count, mesh.vertexCapacity()) << "a dirty range past the vertex pool";
             std::copy_n(mesh.vertexData() + r.first, r.count, vertices.begin() + r.first);
+            if (stream.normalData()) std::copy_n(stream.normalData() + 4 * r.first, 4 * r.count, normals.begin() + 4 * r.first);
         }
         stream.acknowledge();
     }
@@ -160,12 +164,12 @@ TEST(FanStream, IncrementalUpdatesEqualARewriteBitForBit) {
         stream.sync(mesh, morph);
         ASSERT_EQ(mesh.checkInvariants(), nullptr);
         const std::vector<uint32_t> indices = stream.indices();
-        std::vector<StreamVertex> vertices(mesh.vertexData(), mesh.vertexData() + mesh.vertexCapacity());
+        const std::vector<int16_t> normals(stream.normalData(), stream.normalData() + 4 * size_t(mesh.vertexCapacity()));
         stream.attach(mesh); // a rewrite from scratch
         ASSERT_EQ(stream.indices(), indices) << "round " << round;
         for (int32_t v = 0; v < mesh.vertexCapacity(); ++v) {
             if (!mesh.isVertexLive(v)) continue;
-            ASSERT_EQ(std::memcmp(vertices[size_t(v)].normal, mesh.streamVertex(v).normal, sizeof(int16_t) * 4), 0)
+            ASSERT_EQ(std::memcmp(&normals[4 * size_t(v)], stream.normal(v), sizeof(int16_t) * 4), 0)
                 << "vertex " << v << " round " << round;
         }
     }
@@ -174,6 +178,7 @@ TEST(FanStream, IncrementalUpdatesEqualARewriteBitForBit) {
 TEST(FanStream, NormalsAreUnitUpwardAndAveragedFromTheAdjacentTriangles) {
     VolcanoStream volcano; // its stream wrote the normals
     HexMesh& mesh = volcano.mesh;
+    ASSERT_NE(volcano.stream.normalData(), nullptr);
     // Reference: area-weighted face normals summed in double over the decoded triangles.
     std::vector<glm::dvec3> sum(size_t(mesh.vertexCapacity()), glm::dvec3(0.0));
     for (const Triangle& t : meshTriangles(mesh)) {
@@ -184,7 +189,7 @@ TEST(FanStream, NormalsAreUnitUpwardAndAveragedFromTheAdjacentTriangles) {
     }
     for (int32_t v = 0; v < mesh.vertexCapacity(); ++v) {
         if (!mesh.isVertexLive(v)) continue;
-        const int16_t* n = mesh.streamVertex(v).normal;
+        const int16_t* n = volcano.stream.normal(v);
         const glm::dvec3 got(n[0] / 32767.0, n[1] / 32767.0, n[2] / 32767.0);
         ASSERT_NEAR(glm::length(got), 1.0, 1e-4);
         ASSERT_GT(got.y, 0.0);
@@ -219,6 +224,7 @@ TEST(FanStream, TheDirtyRangesCarryEveryChangeToARenderersCopy) {
         for (int32_t v = 0; v < mesh.vertexCapacity(); ++v) {
             if (!mesh.isVertexLive(v)) continue;
             ASSERT_EQ(std::memcmp(&gpu.vertices[size_t(v)], &mesh.streamVertex(v), sizeof(StreamVertex)), 0) << "vertex " << v;
+            ASSERT_EQ(std::memcmp(&gpu.normals[4 * size_t(v)], stream.normal(v), 4 * sizeof(int16_t)), 0) << "normal of vertex " << v;
         }
     }
 }
@@ -288,8 +294,9 @@ TEST(FanStream, NormalsTurnedOffAndOnAgainEqualNormalsKeptAllAlongBitForBit) {
         if (round == 2) {
             const size_t withNormals = toggledStream.memoryBytes();
             toggledStream.setNormals(false);
-            EXPECT_LE(toggledStream.memoryBytes() + size_t(toggled.vertexCapacity()) * 24, withNormals)
-                << "off, the stream keeps no normal sums";
+            EXPECT_LE(toggledStream.memoryBytes() + size_t(toggled.vertexCapacity()) * (24 + 8), withNormals)
+                << "off, the stream keeps no normal sums and no normals";
+            EXPECT_EQ(toggledStream.normalData(), nullptr);
         }
         if (round == 9) toggledStream.setNormals(true);
         randomOperations(kept, randomKept, 150);
@@ -300,7 +307,7 @@ TEST(FanStream, NormalsTurnedOffAndOnAgainEqualNormalsKeptAllAlongBitForBit) {
         if (!toggledStream.normals()) continue;
         for (int32_t v = 0; v < kept.vertexCapacity(); ++v) {
             if (!kept.isVertexLive(v)) continue;
-            ASSERT_EQ(std::memcmp(kept.streamVertex(v).normal, toggled.streamVertex(v).normal, sizeof(int16_t) * 4), 0)
+            ASSERT_EQ(std::memcmp(keptStream.normal(v), toggledStream.normal(v), sizeof(int16_t) * 4), 0)
                 << "vertex " << v << " round " << round;
         }
     }

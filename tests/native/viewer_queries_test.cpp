@@ -67,8 +67,8 @@ void set(hexlod_terrain* t, double tau, int32_t morphFrames = 0, int32_t maxOper
 
 // Where the stream draws vertex v now (the shader's blend formula, hexlod.h "The fan stream").
 // A stream vertex as hexlod.h documents it, in 4-byte words: position x, y, z at 0..2, the
-// normal at 3..4, the morph start height at 5, the morph key at 6.
-constexpr int32_t kWords = 7, kY = 1, kMorphFromHeight = 5, kMorphKey = 6;
+// morph start height at 3, the morph key at 4.
+constexpr int32_t kWords = 5, kY = 1, kMorphFromHeight = 3, kMorphKey = 4;
 
 double drawnVertexHeight(const float* vertex, double frame, double frames) {
     const double key = vertex[kMorphKey];

@@ -22,11 +22,13 @@ export const STREAM_LAYOUTS = { fans: 0, triangles: 1 };
 /** Lattice embeddings (HEXLOD_EMBEDDING_*). */
 export const EMBEDDINGS = { exact: 0, shifted: 1 };
 /**
- * A stream vertex (src/mesh/stream_vertex.h): position 3 x f32 at byte 0, normal 4 x snorm16 at
- * 12, morph start height f32 at 20, morph key f32 at 24.
+ * A stream vertex (src/mesh/stream_vertex.h): position 3 x f32 at byte 0, morph start height f32
+ * at 12, morph key f32 at 16. The normals, while the stream keeps them, are an array of their
+ * own: 4 x snorm16 (x, y, z, 0) a vertex slot.
  */
-export const STREAM_VERTEX_BYTES = 28;
-export const STREAM_VERTEX_WORDS = 7;
+export const STREAM_VERTEX_BYTES = 20;
+export const STREAM_VERTEX_WORDS = 5;
+export const STREAM_NORMAL_BYTES = 8;
 export const RESTART_INDEX = 0xffffffff;
 
 /** Steps of hexlod_terrain_frame (HEXLOD_FRAME_*): 0 runs the camera, one LOD update and the stream. */
@@ -129,7 +131,7 @@ const I32 = {
   version: 12, converged: 13, operations: 14, splits: 15, merges: 16, cellsTested: 17, pendingMerges: 18,
   cells: 19, vertices: 20, maxLevel: 21, fullHexagons: 22, semiHexagons: 23, boundarySemiHexagons: 24,
   hashLow: 25, hashHigh: 26, vertexCount: 27, indexCount: 28, dirtyVertexPairs: 29, dirtyIndexPairs: 30,
-  vertexPointer: 44, indexPointer: 45, dirtyVerticesPointer: 46, dirtyIndicesPointer: 47,
+  vertexPointer: 43, indexPointer: 44, dirtyVerticesPointer: 45, dirtyIndicesPointer: 46, normalsPointer: 47,
 };
 
 /**
@@ -189,6 +191,8 @@ export class FrameStats {
   get indexPointer() { return this.i32(I32.indexPointer) >>> 0; }
   get dirtyVerticesPointer() { return this.i32(I32.dirtyVerticesPointer) >>> 0; }
   get dirtyIndicesPointer() { return this.i32(I32.dirtyIndicesPointer) >>> 0; }
+  /** The vertex normals (STREAM_NORMAL_BYTES a slot), or 0 while the stream keeps none. */
+  get normalsPointer() { return this.i32(I32.normalsPointer) >>> 0; }
 
   /** The mesh hash as 16 hexadecimal digits (high half first; a string, so not per frame). */
   hash() {
@@ -572,7 +576,8 @@ export class Terrain {
   /**
    * Whether the stream keeps the mesh's vertex normals (paper §7): the viewer needs them only
    * for mesh normals, the plain mode, and until the field's own normals are ready. Off saves
-   * 24 bytes a vertex and the normal arithmetic; turning them on rebuilds them all.
+   * 32 bytes a vertex (the normal and its exact sum) and the normal arithmetic; turning them on
+   * rebuilds them all.
    */
   setStreamNormals(on) {
     if (on === this.streamNormals) return;

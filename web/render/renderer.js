@@ -20,7 +20,7 @@ import fieldTexturesGlsl from '../../shaders/field_textures.glsl?raw';
 import groundColorGlsl from '../../shaders/ground_color.glsl?raw';
 import tonemapGlsl from '../../shaders/tonemap.glsl?raw';
 import { mat4 } from 'gl-matrix';
-import { STREAM_VERTEX_BYTES } from '../core/core.js';
+import { STREAM_VERTEX_BYTES, STREAM_NORMAL_BYTES } from '../core/core.js';
 import { resolveIncludes } from './shading/includes.js';
 import { Atmosphere, BETA_RAYLEIGH, BETA_MIE, SCALE_HEIGHTS, MIE_G, SUN_IRRADIANCE, EXPOSURE } from './shading/atmosphere.js';
 import { FieldTextures, TEXTURE_UNIT_GRADIENTS, TEXTURE_UNIT_SUN, TEXTURE_UNIT_OCCLUSION } from './shading/field_textures.js';
@@ -151,6 +151,9 @@ export class TerrainRenderer {
     this.fieldTextures?.forgetGl();
     this.fieldTextures = this.fieldTextures ?? new FieldTextures(gl);
     this.vertices = new MirroredBuffer(gl, gl.ARRAY_BUFFER);
+    this.normals = new MirroredBuffer(gl, gl.ARRAY_BUFFER); // while the core keeps mesh normals
+    this.hasNormals = false;
+    gl.vertexAttrib3f(ATTRIB_NORMAL, 0, 1, 0); // what the shader reads while there are none
     this.indices = new MirroredBuffer(gl, gl.ELEMENT_ARRAY_BUFFER);
     this.levelBuffer = gl.createBuffer();
     this.outlineBuffer = gl.createBuffer();
@@ -172,12 +175,13 @@ export class TerrainRenderer {
     const stride = STREAM_VERTEX_BYTES; // src/stream_vertex.h
     gl.enableVertexAttribArray(ATTRIB_POSITION);
     gl.vertexAttribPointer(ATTRIB_POSITION, 3, gl.FLOAT, false, stride, 0);
-    gl.enableVertexAttribArray(ATTRIB_NORMAL);
-    gl.vertexAttribPointer(ATTRIB_NORMAL, 3, gl.SHORT, true, stride, 12);
     gl.enableVertexAttribArray(ATTRIB_MORPH_FROM);
-    gl.vertexAttribPointer(ATTRIB_MORPH_FROM, 1, gl.FLOAT, false, stride, 20);
+    gl.vertexAttribPointer(ATTRIB_MORPH_FROM, 1, gl.FLOAT, false, stride, 12);
     gl.enableVertexAttribArray(ATTRIB_MORPH_KEY);
-    gl.vertexAttribPointer(ATTRIB_MORPH_KEY, 1, gl.FLOAT, false, stride, 24);
+    gl.vertexAttribPointer(ATTRIB_MORPH_KEY, 1, gl.FLOAT, false, stride, 16);
+    // The normals are a buffer of their own, read only while the core keeps them (setNormalsOn).
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.normals.buffer);
+    gl.vertexAttribPointer(ATTRIB_NORMAL, 3, gl.SHORT, true, STREAM_NORMAL_BYTES, 0);
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indexBuffer);
     gl.bindVertexArray(null);
     return vao;
@@ -202,17 +206,36 @@ export class TerrainRenderer {
       const heap = terrain.core.module.HEAPU8, i32 = terrain.scratchI32();
       bytes += this.vertices.update(heap, stats.vertexPointer, stats.vertexCount * STREAM_VERTEX_BYTES, i32,
         stats.dirtyVerticesPointer / 4, stats.dirtyVertexPairs, STREAM_VERTEX_BYTES, all);
+      const normals = stats.normalsPointer !== 0;
+      if (normals) {
+        bytes += this.normals.update(heap, stats.normalsPointer, stats.vertexCount * STREAM_NORMAL_BYTES, i32,
+          stats.dirtyVerticesPointer / 4, stats.dirtyVertexPairs, STREAM_NORMAL_BYTES, all || !this.hasNormals);
+      }
+      this.setNormalsOn(normals);
       this.gl.bindVertexArray(null);
       bytes += this.indices.update(heap, stats.indexPointer, stats.indexCount * 4, i32,
         stats.dirtyIndicesPointer / 4, stats.dirtyIndexPairs, 4, all);
       this.version = stats.version;
       this.layout = layout;
       this.indexCount = stats.indexCount;
-      this.streamBytes = stats.vertexCount * STREAM_VERTEX_BYTES + stats.indexCount * 4;
+      this.streamBytes = stats.vertexCount * (STREAM_VERTEX_BYTES + (normals ? STREAM_NORMAL_BYTES : 0)) + stats.indexCount * 4;
       terrain.acknowledgeStream(); // after reading the figures: it clears the dirty ranges
     }
     this.lastUploadBytes = bytes;
     return bytes;
+  }
+
+  /** Whether the vertex arrays read the normals buffer (else the constant up normal). */
+  setNormalsOn(on) {
+    if (on === this.hasNormals) return;
+    const gl = this.gl;
+    for (const vao of [this.mainVao, this.levelVao, this.outlineVao]) {
+      gl.bindVertexArray(vao);
+      if (on) gl.enableVertexAttribArray(ATTRIB_NORMAL);
+      else gl.disableVertexAttribArray(ATTRIB_NORMAL);
+    }
+    gl.bindVertexArray(null);
+    this.hasNormals = on;
   }
 
   /** The level-ordered view (Terrain.levelView) for colour by level and the outlines. */
@@ -301,7 +324,7 @@ export class TerrainRenderer {
   /**
    * Whether drawing `view` reads the mesh's vertex normals (paper §7): the plain mode, the mesh
    * as the normals' source, and any mode until the field's textures are ready. The page keeps
-   * the core's stream normals on only then (issue 12: 24 bytes a vertex).
+   * the core's stream normals on only then (issue 12: 32 bytes a vertex).
    */
   usesMeshNormals(view) {
     const plain = (SHADING_MODES[view.shading ?? 'natural'] ?? 0) === SHADING_MODES.plain;
