@@ -19,4 +19,21 @@ void reserveForPool(std::vector<T>& pool, size_t size) {
     pool.reserve(std::max(size, pool.capacity() + pool.capacity() / 8 + kMinimumGrowth));
 }
 
+/// What a frame's logs and work lists keep between frames: room for changes to an eighth of the
+/// live records (at least 1024). See trimExcess.
+inline size_t frameListRoom(size_t liveRecords) { return std::max<size_t>(1024, liveRecords / 8); }
+
+/// A log or work list that one large event (a new mesh refined in one go, a camera that jumped)
+/// grew far past what frames use gives the excess back once it is drained: past four times
+/// `room` it is cut to `room`, contents kept. The factor four is hysteresis, so frames of a
+/// steady flight never reallocate; only the frame after such an event does, once.
+template <typename T>
+void trimExcess(std::vector<T>& list, size_t room) {
+    if (list.capacity() <= 4 * room || list.size() > room) return;
+    std::vector<T> trimmed;
+    trimmed.reserve(room);
+    trimmed.assign(list.begin(), list.end());
+    list.swap(trimmed);
+}
+
 } // namespace hexlod

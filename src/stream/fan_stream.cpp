@@ -174,6 +174,12 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
     wrote = wrote || !touchedVertices_.empty();
     touchedVertices_.clear();
     mesh.releaseFreedVertices(); // every slot that used them has been rewritten
+    // A sync after a large change (a new mesh refined in one go) leaves its logs far larger than
+    // frames need: that memory goes back (issue 12 counts memory at capacity).
+    trimExcess(changedCells_, frameListRoom(size_t(mesh.liveCells())));
+    trimExcess(vertexLog_, frameListRoom(size_t(mesh.liveVertices())));
+    trimExcess(touchedVertices_, frameListRoom(size_t(mesh.liveVertices())));
+    trimExcess(morph.changedVertices(), frameListRoom(size_t(mesh.liveVertices())));
     if (wrote) ++version_;
 }
 
