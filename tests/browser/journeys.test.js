@@ -23,7 +23,7 @@ after(async () => { await viewer?.close(); });
  * `minTriangles`, over at least `minCoverage` of the window, in many colours, the eye above
  * the ground. Saves the screenshot as tests/out/journey-<label>.png.
  */
-async function assertSeen(page, label, { minCoverage = 0.15, minTriangles = 3000, minSpread = 4, minColours = 30 } = {}) {
+async function assertSeen(page, label, { minCoverage = 0.15, maxCoverage = 1, minTriangles = 3000, minSpread = 4, minColours = 30 } = {}) {
   await converged(page);
   const triangles = await page.evaluate(() => window.hexlod.triangles);
   assert.ok(triangles >= minTriangles, `${label}: ${triangles} triangles after convergence (at least ${minTriangles})`);
@@ -31,6 +31,7 @@ async function assertSeen(page, label, { minCoverage = 0.15, minTriangles = 3000
   await page.screenshot({ path: `${outDir}/journey-${label}.png` });
   assert.ok(!seen.skyOnly, `${label}: the terrain is on screen`);
   assert.ok(seen.coverage >= minCoverage, `${label}: the terrain covers ${(100 * seen.coverage).toFixed(1)} % of the view`);
+  assert.ok(seen.coverage <= maxCoverage, `${label}: the terrain covers ${(100 * seen.coverage).toFixed(1)} % of the view, no sky above it`);
   assert.ok(seen.colours >= minColours && seen.luminanceStd >= minSpread, `${label}: the terrain is shaded, not one colour (${JSON.stringify(seen)})`);
   const clearance = await eyeClearance(page);
   assert.ok(clearance === null || clearance > 0, `${label}: the eye is ${clearance} m above the ground`);
@@ -179,8 +180,11 @@ test('after a drop: orbit → fly → walk → orbit, and a new exaggeration, ke
     await nextFrame(page);
     const mode = await page.evaluate(() => window.hexlod.camera.mode);
     assert.equal(mode, { 2: 'fly', 3: 'walk', 1: 'orbit' }[key]);
-    // Walking puts the eye at eye height on the ground, seeing little of a 30 km field at τ = 1.
-    await assertSeen(page, `cameras-${mode}`, { minCoverage: mode === 'walk' ? 0.1 : 0.2, minTriangles: mode === 'walk' ? 500 : 2000 });
+    // Walking puts the eye at eye height on the ground, seeing little of a 30 km field at τ = 1,
+    // and looking ahead at the landscape: the sky above the horizon is in view, not only the
+    // ground at the walker's feet.
+    await assertSeen(page, `cameras-${mode}`, { minCoverage: mode === 'walk' ? 0.1 : 0.2, minTriangles: mode === 'walk' ? 500 : 2000,
+      maxCoverage: mode === 'walk' ? 0.9 : 1 });
   }
   for (const exaggeration of [10, 1]) {
     await page.evaluate((value) => window.hexlod.setSetting('exaggeration', value), exaggeration);

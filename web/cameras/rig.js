@@ -5,9 +5,13 @@ import { OrbitCamera } from './orbit.js';
 import { FlyCamera } from './fly.js';
 import { WalkCamera } from './walk.js';
 import { attachTouchControls } from './touch.js';
-import { emptyWorld } from './clip_planes.js';
+import { vec3 } from 'gl-matrix';
+import { clearanceOf, emptyWorld } from './clip_planes.js';
 
 export const CAMERA_MODES = ['orbit', 'fly', 'walk'];
+// A camera more than this many eye heights above the ground hands the walk the ground it looked
+// at, not the ground straight below it.
+const WALK_FROM_ABOVE = 100;
 
 // Held keys and what they do: [forward, right, up].
 const MOVE_KEYS = {
@@ -36,16 +40,31 @@ export class CameraRig {
     for (const camera of Object.values(this.cameras)) camera.world = world;
   }
 
-  /** Switches the camera, keeping the eye and the view direction where it can. */
+  /**
+   * Switches the camera, keeping the eye and the view direction where it can. Where the eye
+   * cannot stay, the switch goes where a person would: walking starts on the ground the view
+   * was centred on (from high above, the ground straight below is often the field's edge or
+   * nothing in view), looking ahead; leaving a walk for the orbit camera brings its overview
+   * back (its distance and pitch) around where the walk ended.
+   */
   setMode(mode) {
     if (!CAMERA_MODES.includes(mode)) throw new Error(`unknown camera '${mode}' (orbit, fly or walk)`);
     const from = this.active, to = this.cameras[mode];
     if (from === to) return;
     from.update(from.aspect ?? 1);
-    if (mode === 'orbit') {
+    if (mode === 'orbit' && from.mode === 'walk') {
+      const { distance, pitch } = to;
+      vec3.set(to.target, from.position[0], from.position[1] - from.eyeHeight, from.position[2]);
+      Object.assign(to, { distance, pitch, yaw: from.yaw });
+      to.keepAboveGround(Math.max(this.world.spacing * 0.05, 0.01 * to.distance));
+    } else if (mode === 'orbit') {
       // Orbit around the ground point ahead, from where the eye is.
       const ahead = this.groundAhead(from);
       to.lookAround(ahead[0], ahead[1], ahead[2], from.position);
+    } else if (mode === 'walk' && clearanceOf(from.position, this.world) > WALK_FROM_ABOVE * to.eyeHeight) {
+      const ahead = this.groundAhead(from);
+      to.copyPose(from);
+      to.standAt(ahead[0], ahead[2]);
     } else {
       to.copyPose(from);
     }

@@ -5,6 +5,9 @@ import { FlyCamera } from './fly.js';
 
 const WALK_SPEED = 1.4; // metres per second, a person's pace
 const FAST = 40;        // shift: a fast vehicle
+// The view's pitch when the walk takes over from another camera, radians: about 9 degrees down
+// to 6 up, so the horizon is in view whatever the other camera looked at.
+const WALK_START_PITCH_LOW = -0.15, WALK_START_PITCH_HIGH = 0.1;
 
 export class WalkCamera extends FlyCamera {
   constructor() {
@@ -40,11 +43,18 @@ export class WalkCamera extends FlyCamera {
     return this.eyeHeight;
   }
 
+  /** Stands on the ground at (x, z), on the field, keeping the view direction. */
+  standAt(x, z) {
+    this.position[0] = Math.min(Math.max(x, 0), this.world.extentX);
+    this.position[2] = Math.min(Math.max(z, 0), this.world.extentZ);
+    this.settle();
+  }
+
   copyPose(other) {
     super.copyPose(other);
-    this.pitch = Math.max(this.pitch, -0.6); // look ahead, not at the feet
-    this.position[0] = Math.min(Math.max(this.position[0], 0), this.world.extentX);
-    this.position[2] = Math.min(Math.max(this.position[2], 0), this.world.extentZ);
-    this.settle();
+    // A person who starts walking looks ahead at the landscape, with the horizon in view: from
+    // a camera that looked down on the terrain, -0.6 rad showed only the ground at the feet.
+    this.pitch = Math.min(Math.max(this.pitch, WALK_START_PITCH_LOW), WALK_START_PITCH_HIGH);
+    this.standAt(this.position[0], this.position[2]);
   }
 }
