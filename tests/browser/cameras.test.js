@@ -111,6 +111,26 @@ test('the fly camera moves with the keys, faster when higher, and the cursor rea
   assert.match(readout.text, new RegExp(`height ${readout.height.toFixed(1)} m  slope \\d+\\.\\d°`));
 });
 
+test('a double click orbits around the ground under the pointer, from any camera', async () => {
+  await page.evaluate(() => window.hexlod.setSetting('camera', 'fly'));
+  await frames(2);
+  // One move, past the readout's 50 ms interval: the readout is of exactly the clicked pixel.
+  await page.evaluate(() => { window.hexlod.cursor = null; });
+  await page.waitForTimeout(60);
+  await page.mouse.move(301, 201);
+  await page.waitForFunction(() => window.hexlod.cursor !== null, null, { timeout: 10000 });
+  const under = await page.evaluate(() => ({ ...window.hexlod.cursor }));
+  await page.mouse.dblclick(301, 201);
+  await frames(2);
+  const orbit = await page.evaluate(() => ({ mode: window.hexlod.camera.mode, target: Array.from(window.hexlod.rig.cameras.orbit.target),
+    exaggeration: window.hexlod.settings.exaggeration }));
+  assert.equal(orbit.mode, 'orbit');
+  const [x, y, z] = orbit.target;
+  assert.ok(Math.hypot(x - under.x, z - under.z) < 1e-6 * Math.hypot(under.x, under.z) + 1,
+    `the orbit's target ${x}, ${z} is the ground under the pointer ${under.x}, ${under.z}`);
+  assert.ok(Math.abs(y - under.height * orbit.exaggeration) < 1, `at its height: ${y} against ${under.height}`);
+});
+
 test('touch: one finger orbits, pinch zooms, two fingers pan', async () => {
   const orbit = () => page.evaluate(() => { const c = window.hexlod.rig.cameras.orbit; return { yaw: c.yaw, distance: c.distance, target: Array.from(c.target) }; });
   const touch = (type, id, x, y) => page.dispatchEvent('#view', type, { pointerType: 'touch', pointerId: id, clientX: x, clientY: y, isPrimary: id === 1, bubbles: true });

@@ -1,6 +1,6 @@
 // The viewer page: loads the core and the default terrain, and wires the frame pipeline
-// (frame_pipeline.js), the settings, the panel, HUD, keys, URL state, screenshots and context
-// loss together. In test mode (test_api.js) its state is published on window.hexlod.
+// (frame_pipeline.js), the settings, the panel, HUD, keys, pointer readout, URL state, screenshots
+// and context loss together. In test mode (test_api.js) its state is published on window.hexlod.
 import { createCore } from '../core/core.js';
 import { createFileIntake } from '../ui/file_intake.js';
 import { TerrainRenderer } from '../render/renderer.js';
@@ -10,7 +10,7 @@ import { frameTerrain } from '../cameras/framing.js';
 import { defaultSettings, applyLodSettings, MORPH_FRAMES, SHADING_MODES } from './settings.js';
 import { createControlsPanel } from '../ui/controls_panel.js';
 import { Hud } from '../ui/hud.js';
-import { pickGround } from '../cameras/picking.js';
+import { installPointerReadout } from '../ui/pointer_readout.js';
 import { parseUrlState, applyCameraState, UrlWriter } from './url_state.js';
 import { captureView, download } from './screenshot.js';
 import { handleContextLoss } from './context_loss.js';
@@ -273,28 +273,9 @@ async function main() {
     screenshot: () => screenshot(1).catch((error) => showStatus(error.message, true)), resetView: () => current && resetView() });
   window.addEventListener('resize', requestRender);
 
-  // The cursor readout: the ground under the mouse, at most every 50 ms.
-  let lastPick = 0;
-  canvas.addEventListener('pointermove', (e) => {
-    if (!current || e.pointerType === 'touch' || e.timeStamp - lastPick < 50) return;
-    lastPick = e.timeStamp;
-    const rect = canvas.getBoundingClientRect();
-    state.cursor = pickGround(rig.active, e.clientX - rect.left, e.clientY - rect.top, rect.width, rect.height,
-      current.terrain, current.world, settings.exaggeration);
-    hud.setCursor(state.cursor);
-  });
-  // A double click orbits around the point under the pointer.
-  canvas.addEventListener('dblclick', (e) => {
-    if (!current) return;
-    const rect = canvas.getBoundingClientRect();
-    const pick = pickGround(rig.active, e.clientX - rect.left, e.clientY - rect.top, rect.width, rect.height,
-      current.terrain, current.world, settings.exaggeration);
-    if (!pick) return;
-    if (rig.mode !== 'orbit') rig.setMode('orbit');
-    rig.cameras.orbit.lookAround(pick.x, pick.height * settings.exaggeration, pick.z);
-    syncPanel();
-    requestRender();
-  });
+  installPointerReadout(canvas, { rig, settings, terrain: () => current,
+    onCursor: (pick) => { state.cursor = pick; hud.setCursor(pick); },
+    onOrbit: () => { syncPanel(); requestRender(); } });
 
   handleContextLoss(canvas, {
     onLost() {
