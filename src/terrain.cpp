@@ -3,6 +3,7 @@
 #include "terrain.h"
 
 #include <new>
+#include <vector>
 
 #include "mesh/hex_mesh_refine.h"
 #include "stream/drawn_surface.h"
@@ -48,6 +49,23 @@ void Terrain::configure(const TerrainSettings& settings) {
     morph_.setFrames(settings.morphFrames);
     stream_.setLayout(settings.layout);
     stream_.setNormals(settings.normals);
+    compactPools_ = settings.compactPools;
+}
+
+UpdateStats Terrain::updateLod() {
+    if (!renumbering_.empty()) std::vector<int32_t>().swap(renumbering_);
+    // Between frames: the stream has applied every change, the refiner is between updates.
+    if (compactPools_ && mesh_.wantsCompaction()) compact();
+    return refiner_.update();
+}
+
+void Terrain::compact() {
+    std::vector<int32_t> cellMap; // a rare event: the mesh shrank by a quarter
+    mesh_.compact(cellMap, renumbering_);
+    refiner_.renumber(cellMap, renumbering_);
+    morph_.changedVertices().clear(); // the stream's rewrite uploads every vertex
+    stream_.renumbered(mesh_);
+    ++renumberings_;
 }
 
 int64_t Terrain::refineUniform(int32_t rounds) {
@@ -60,6 +78,8 @@ bool Terrain::drawnHeightAt(double x, double z, float& height) const {
     return hasMesh_ && hexlod::drawnHeightAt(*field_, mesh_, stream_, morph_, x, z, height);
 }
 
-size_t Terrain::memoryBytes() const { return mesh_.memoryBytes() + refiner_.memoryBytes() + stream_.memoryBytes(); }
+size_t Terrain::memoryBytes() const {
+    return mesh_.memoryBytes() + refiner_.memoryBytes() + stream_.memoryBytes() + renumbering_.capacity() * sizeof(int32_t);
+}
 
 } // namespace hexlod

@@ -3,12 +3,14 @@
 // §6), the geomorph blends and the fan stream (§7). The C ABI (api/hexlod.h), the benchmark
 // and the tests drive the core through this class instead of wiring the pieces by hand.
 //
-// Allocation happens when the terrain is created, when the mesh is (re)built and when a pool
-// grows; a frame (setView, updateLod, syncStream) allocates nothing else.
+// Allocation happens when the terrain is created, when the mesh is (re)built, when a pool grows
+// and when the pools are compacted after the mesh shrank by a quarter; a frame (setView,
+// updateLod, syncStream) allocates nothing else.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "field/heightfield.h"
 #include "lod/refiner.h"
@@ -25,6 +27,7 @@ struct TerrainSettings {
     int32_t morphFrames = 0;                // geomorph blend length in LOD updates (0: off, at most Geomorph::kMaxFrames)
     IndexLayout layout = IndexLayout::Fans; // how the stream writes each cell's slot
     bool normals = true;                    // whether the stream keeps the vertex normals
+    bool compactPools = true;               // give the pools' free records back when the mesh shrank by a quarter
 };
 
 class Terrain {
@@ -56,13 +59,24 @@ public:
     void configure(const TerrainSettings& settings);
     /// The settings in force (read from the pieces, so direct changes to them show).
     TerrainSettings settings() const {
-        return {refiner_.settings(), morph_.frames(), stream_.layout(), stream_.normals()};
+        return {refiner_.settings(), morph_.frames(), stream_.layout(), stream_.normals(), compactPools_};
     }
 
     // One frame, in this order: the camera, one budgeted refinement step (§6), the stream (§7).
     void setView(const View& view) { refiner_.setView(view); }
-    UpdateStats updateLod() { return refiner_.update(); }
+    /// First gives the pools' free records back when the mesh shrank by a quarter (compact()).
+    UpdateStats updateLod();
     void syncStream() { stream_.sync(mesh_, morph_); }
+    /// Renumbers the mesh densely and every consumer with it, giving the pools' free records
+    /// back. updateLod does it (with compactPools) when the mesh shrank by a quarter; call it
+    /// between frames only.
+    void compact();
+    /// Counts compactions: state kept per vertex number outside the terrain (a popping meter)
+    /// renumbers itself with lastRenumbering() when this moved.
+    uint32_t renumberings() const { return renumberings_; }
+    /// Old -> new vertex numbers of the compaction at the start of this frame's updateLod
+    /// (kNone: freed); kept until the next updateLod.
+    const std::vector<int32_t>& lastRenumbering() const { return renumbering_; }
     /// The refiner converged and no merge waits for its vertices to fade out (§7), so the
     /// drawn surface will not change until the camera or a setting does.
     bool converged() const { return refiner_.lastUpdate().converged && refiner_.pendingMerges() == 0; }
@@ -95,6 +109,9 @@ private:
     HexMesh mesh_;
     bool hasMesh_ = false;
     uint32_t meshEpoch_ = 0;
+    bool compactPools_ = true;
+    uint32_t renumberings_ = 0;
+    std::vector<int32_t> renumbering_;
     Geomorph morph_;
     Refiner refiner_;
     FanStream stream_;

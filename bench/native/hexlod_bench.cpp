@@ -196,6 +196,7 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
         const auto start = std::chrono::steady_clock::now();
         terrain.syncStream();
         streamMs.push_back(msSince(start));
+        popping.follow(terrain.meshEpoch(), terrain.renumberings(), terrain.lastRenumbering()); // a compaction renumbers vertices
         jumps.push_back(popping.measure(mesh, morph, view, 1.0).maxJumpPx);
         updateMs.push_back(stats.milliseconds);
         triangles.push_back(double(mesh.triangleCount()));

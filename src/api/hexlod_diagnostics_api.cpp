@@ -48,8 +48,7 @@ int32_t hexlod_diag_measure_popping(hexlod_terrain* terrain, double* out) {
     if (const char* error = needMesh(terrain)) return fail(error);
     if (!out) return fail("out must point to 7 doubles");
     hexlod::Terrain& core = *terrain->core;
-    if (terrain->poppingEpoch != core.meshEpoch()) terrain->popping.reset(); // a new mesh: start again
-    terrain->poppingEpoch = core.meshEpoch();
+    terrain->popping.follow(core.meshEpoch(), core.renumberings(), core.lastRenumbering());
     const hexlod::PoppingStats stats =
         terrain->popping.measure(core.mesh(), core.morph(), core.refiner().view(), core.refiner().settings().verticalScale);
     out[0] = stats.maxJumpPx;

@@ -12,7 +12,6 @@
 struct hexlod_terrain {
     std::unique_ptr<hexlod::Terrain> core;
     hexlod::PoppingMeter popping; // diagnostics only; unused by the product
-    uint32_t poppingEpoch = 0;    // the mesh the popping meter's last frame belongs to
 };
 
 namespace hexlod::api {

@@ -46,6 +46,29 @@ glm::vec3 PoppingMeter::currentSurfaceAt(const HexMesh& mesh, const Geomorph& mo
     return p;
 }
 
+void PoppingMeter::follow(uint32_t meshEpoch, uint32_t renumberings, const std::vector<int32_t>& lastRenumbering) {
+    if (meshEpoch != meshEpoch_) reset();
+    else if (renumberings == renumberings_ + 1 && !lastRenumbering.empty()) renumber(lastRenumbering);
+    else if (renumberings != renumberings_) reset();
+    meshEpoch_ = meshEpoch;
+    renumberings_ = renumberings;
+}
+
+void PoppingMeter::renumber(const std::vector<int32_t>& vertexMap) {
+    auto renumbered = [&](int32_t v) { return v >= 0 && size_t(v) < vertexMap.size() ? vertexMap[size_t(v)] : kNone; };
+    int32_t size = 0;
+    for (int32_t to : vertexMap) size = std::max(size, to + 1);
+    std::vector<Seen> moved(size_t(size), Seen{{}, glm::vec3(0.0f), {kNone, kNone, kNone}, {0.0f, 0.0f, 0.0f}, false});
+    for (size_t v = 0; v < previous_.size(); ++v) {
+        const int32_t to = renumbered(int32_t(v));
+        if (to == kNone) continue;
+        Seen seen = previous_[v];
+        for (int32_t& parent : seen.parent) parent = renumbered(parent);
+        moved[size_t(to)] = seen;
+    }
+    previous_.swap(moved);
+}
+
 PoppingStats PoppingMeter::measure(const HexMesh& mesh, const Geomorph& morph, const View& view, double verticalScale) {
     PoppingStats stats;
     const int32_t slots = mesh.vertexCapacity();

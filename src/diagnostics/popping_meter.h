@@ -33,6 +33,11 @@ public:
     /// Compares the frame now drawn with the last measured one (nothing on the first call).
     PoppingStats measure(const HexMesh& mesh, const Geomorph& morph, const View& view, double verticalScale);
     void reset() { previous_.clear(); }
+    /// Keeps the last frame comparable across what the terrain did since: a new mesh (its
+    /// epoch moved) starts again; one compaction (Terrain::renumberings moved by one) renumbers
+    /// the last frame's records with Terrain::lastRenumbering; anything else starts again.
+    /// Call before measure().
+    void follow(uint32_t meshEpoch, uint32_t renumberings, const std::vector<int32_t>& lastRenumbering);
 
 private:
     struct Seen {
@@ -46,7 +51,10 @@ private:
     glm::vec3 previousSurfaceAt(const HexMesh& mesh, const Geomorph& morph, int32_t v, int32_t depth) const;
     glm::vec3 currentSurfaceAt(const HexMesh& mesh, const Geomorph& morph, int32_t v, int32_t depth) const;
 
+    void renumber(const std::vector<int32_t>& vertexMap);
+
     std::vector<Seen> previous_;
+    uint32_t meshEpoch_ = 0, renumberings_ = 0; // of the last frame's terrain
 };
 
 } // namespace hexlod

@@ -38,6 +38,8 @@ public:
     }
     /// Every entry invalid (a new mesh).
     void clear() { entries_.assign(entries_.size(), Entry{}); }
+    /// The mesh renumbered its records (HexMesh::compact): entries follow their records.
+    void renumber(const std::vector<int32_t>& map, size_t records) { renumberPool(entries_, map, records); }
     /// The record changed in a way the carry-over rules do not cover.
     void invalidate(int32_t record) { entries_[size_t(record)].valid = 0; }
 

@@ -82,6 +82,40 @@ void Refiner::setView(const View& view) {
     if (!sameShapeOfView || planesMoved) invalidateAll();
 }
 
+void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<int32_t>& vertexMap) {
+    const size_t cells = size_t(mesh_->cellCapacity());
+    // The sweep goes on from the first kept cell at or after where it stopped.
+    int32_t cursor = 0;
+    for (size_t c = size_t(std::max(sweepCursor_, 0)); c < cellMap.size(); ++c) {
+        if (cellMap[c] != kNone) {
+            cursor = cellMap[c];
+            break;
+        }
+    }
+    sweepCursor_ = cursor;
+    cache_.renumber(cellMap, cells);
+    renumberPool(records_, cellMap, cells);
+    renumberPool(state_, cellMap, cells);
+    // A merge whose cell or vertex is gone (the mesh changed around it in the last update) keeps
+    // kNone for it: the next update calls it off, as it would have without the renumbering.
+    for (PendingMerge& merge : pending_) {
+        merge.cell = cellMap[size_t(merge.cell)];
+        for (int32_t k = 0; k < merge.count; ++k) merge.vertices[k] = vertexMap[size_t(merge.vertices[k])];
+    }
+    // Cells queued for the next update; a freed cell is gone with its record.
+    for (std::vector<int32_t>* list : {&changes_, &fresh_, &mergeList_}) {
+        size_t kept = 0;
+        for (int32_t c : *list)
+            if (size_t(c) < cellMap.size() && cellMap[size_t(c)] != kNone) (*list)[kept++] = cellMap[size_t(c)];
+        list->resize(kept);
+    }
+    size_t kept = 0;
+    for (const Candidate& candidate : heap_)
+        if (cellMap[size_t(candidate.cell)] != kNone) heap_[kept++] = {candidate.pixels, cellMap[size_t(candidate.cell)]};
+    heap_.resize(kept);
+    std::make_heap(heap_.begin(), heap_.end(), lowerPriority);
+}
+
 size_t Refiner::memoryBytes() const {
     return cache_.memoryBytes() + records_.capacity() * sizeof(TestRecord) + state_.capacity() +
            (changes_.capacity() + fresh_.capacity() + freedScratch_.capacity() + mergeList_.capacity()) * sizeof(int32_t) +
@@ -487,7 +521,7 @@ bool Refiner::beginMerge(int32_t c) {
 
 // Whether the merge would still free exactly the vertices that are fading out.
 bool Refiner::stillFrees(const PendingMerge& merge) {
-    if (!mesh_->canMerge(merge.cell)) return false;
+    if (merge.cell == kNone || !mesh_->canMerge(merge.cell)) return false; // kNone: gone (renumber)
     freedScratch_.clear();
     mesh_->verticesFreedByMerge(merge.cell, freedScratch_);
     return std::equal(freedScratch_.begin(), freedScratch_.end(), merge.vertices, merge.vertices + merge.count);
@@ -495,7 +529,8 @@ bool Refiner::stillFrees(const PendingMerge& merge) {
 
 void Refiner::callOff(const PendingMerge& merge) {
     for (int32_t i = 0; i < merge.count; ++i)
-        if (mesh_->isVertexLive(merge.vertices[i])) morph_->cancelBlendOut(*mesh_, merge.vertices[i]);
+        if (merge.vertices[i] != kNone && mesh_->isVertexLive(merge.vertices[i])) morph_->cancelBlendOut(*mesh_, merge.vertices[i]);
+    if (merge.cell == kNone) return; // its record is gone (renumber)
     state_[size_t(merge.cell)] &= uint8_t(~(kPending | kCancel));
     records_[size_t(merge.cell)].rho = -1.0f; // its merge test again at the next sweep
 }
@@ -507,7 +542,7 @@ void Refiner::advancePendingMerges() {
     size_t kept = 0;
     for (size_t i = 0; i < pending_.size(); ++i) {
         const PendingMerge merge = pending_[i];
-        if ((state_[size_t(merge.cell)] & kCancel) || !stillFrees(merge)) {
+        if (merge.cell == kNone || (state_[size_t(merge.cell)] & kCancel) || !stillFrees(merge)) {
             callOff(merge); // the mesh changed around it, or the view wants the detail back
             continue;
         }

@@ -74,6 +74,10 @@ public:
     /// settings and makes every cell due when one that matters changed.
     void markChanged() {}
 
+    /// The mesh renumbered its cells and vertices (HexMesh::compact): per-cell records, caches,
+    /// states, pending merges and queued cells follow them; the sweep resumes at the same cell.
+    void renumber(const std::vector<int32_t>& cellMap, const std::vector<int32_t>& vertexMap);
+
     /// One update (see above). Returns its figures.
     UpdateStats update();
     const UpdateStats& lastUpdate() const { return last_; }

@@ -121,6 +121,51 @@ void HexMesh::releaseFreedVertices() {
     freedVertices_.clear();
 }
 
+bool HexMesh::wantsCompaction() const {
+    // A quarter of a large pool unused; small pools are not worth a rewrite.
+    constexpr size_t kLargePool = 4096;
+    const size_t cells = cells_.size(), vertices = vertexLattice_.size();
+    return (cells >= kLargePool && 4 * size_t(liveCells_) < 3 * cells) ||
+           (vertices >= kLargePool && 4 * size_t(liveVertices_) < 3 * vertices);
+}
+
+void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& vertexMap) {
+    releaseFreedVertices();
+    cellMap.assign(cells_.size(), kNone);
+    int32_t cells = 0;
+    for (size_t c = 0; c < cells_.size(); ++c)
+        if (cells_[c].level != kFreeLevel) cellMap[c] = cells++;
+    vertexMap.assign(vertexLattice_.size(), kNone);
+    int32_t vertices = 0;
+    for (size_t v = 0; v < vertexLattice_.size(); ++v)
+        if (vertexLive_[v]) vertexMap[v] = vertices++;
+    // Every reference to a cell or a vertex, renumbered; records move down in place.
+    for (size_t c = 0; c < cells_.size(); ++c) {
+        if (cellMap[c] == kNone) continue;
+        Hexagon& h = cells_[c];
+        for (int32_t& v : h.vertex)
+            if (v != kNone) v = vertexMap[size_t(v)];
+        for (int32_t& o : h.opposite)
+            if (o != kNone) o = makeEdge(cellMap[size_t(hexIdx(o))], edgeSlot(o));
+        if (h.prev != kNone) h.prev = cellMap[size_t(h.prev)];
+        if (h.next != kNone) h.next = cellMap[size_t(h.next)];
+    }
+    for (std::vector<int32_t>* ends : {&levelHead_, &levelTail_})
+        for (int32_t& c : *ends)
+            if (c != kNone) c = cellMap[size_t(c)];
+    // A parent that is gone (never, for a live vertex's edge ends) reads as none.
+    auto renumbered = [&](int32_t v) { return v == kNone ? kNone : vertexMap[size_t(v)]; };
+    for (Parents& p : vertexParents_) p = {renumbered(p.a), renumbered(p.b), renumbered(p.across)};
+    renumberPool(cells_, cellMap, size_t(cells));
+    renumberPool(vertexLattice_, vertexMap, size_t(vertices));
+    renumberPool(vertices_, vertexMap, size_t(vertices));
+    renumberPool(vertexParents_, vertexMap, size_t(vertices));
+    renumberPool(vertexLive_, vertexMap, size_t(vertices));
+    freeCell_ = kNone;
+    std::vector<int32_t>().swap(freeVertices_);
+    std::vector<int32_t>().swap(freedVertices_);
+}
+
 void HexMesh::linkLevel(int32_t c) {
     Hexagon& h = cells_[size_t(c)];
     const size_t level = h.level;

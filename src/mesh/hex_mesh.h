@@ -107,6 +107,16 @@ public:
     void setDeferVertexReuse(bool defer) { deferVertexReuse_ = defer; }
     void releaseFreedVertices();
 
+    /// Whether the pools hold so many free records (after the mesh shrank) that compact() is
+    /// worth its cost: a full rewrite of the stream and a full upload.
+    bool wantsCompaction() const;
+    /// Renumbers the live cells and vertices densely, keeping their order, and gives the free
+    /// records' memory back (the pools never shrink otherwise). Writes old -> new numbers into
+    /// cellMap and vertexMap (kNone for free records) for the consumers of per-record data,
+    /// which must renumber theirs; the change logs are not renumbered (drain them first).
+    /// Positions, blends, the hash and the triangles stay as they are.
+    void compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& vertexMap);
+
     /// For a hexagon made by a join: the corner slot k (1..3) where the joined long edge starts;
     /// the halves a break makes own corners k..k+3 and k+3..k+6.
     int32_t breakDiameterSlot(int32_t cell) const;

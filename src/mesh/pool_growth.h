@@ -19,6 +19,19 @@ void reserveForPool(std::vector<T>& pool, size_t size) {
     pool.reserve(std::max(size, pool.capacity() + pool.capacity() / 8 + kMinimumGrowth));
 }
 
+/// Moves element i of a per-record array to map[i] (negative: the record is gone) and keeps
+/// `size` elements, giving the rest of the memory back. The map is increasing on the records it
+/// keeps (HexMesh::compact), so the moves go downwards and can be made in place.
+template <typename T>
+void renumberPool(std::vector<T>& pool, const std::vector<int32_t>& map, size_t size) {
+    const size_t n = std::min(pool.size(), map.size());
+    for (size_t i = 0; i < n; ++i)
+        if (map[i] >= 0) pool[size_t(map[i])] = pool[i];
+    pool.resize(std::min(pool.size(), size));
+    std::vector<T>(pool.begin(), pool.end()).swap(pool); // capacity == size
+    pool.resize(size);
+}
+
 /// What a frame's logs and work lists keep between frames: room for changes to an eighth of the
 /// live records (at least 1024). See trimExcess.
 inline size_t frameListRoom(size_t liveRecords) { return std::max<size_t>(1024, liveRecords / 8); }

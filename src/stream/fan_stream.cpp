@@ -61,6 +61,21 @@ void FanStream::rebuildNormals(HexMesh& mesh) {
     ++version_;
 }
 
+void FanStream::renumbered(HexMesh& mesh) {
+    // Emptied first, so that the rewrite allocates them at the compacted sizes.
+    std::vector<uint32_t>().swap(indices_);
+    std::vector<glm::i64vec3>().swap(normalSum_);
+    std::vector<PackedNormal>().swap(vertexNormals_);
+    std::vector<uint8_t>().swap(cellPending_);
+    std::vector<uint8_t>().swap(vertexPending_);
+    std::vector<uint8_t>().swap(dirtyVertices_.marked);
+    std::vector<uint8_t>().swap(dirtyIndices_.marked);
+    dirtyVertices_.list.clear();
+    dirtyIndices_.list.clear();
+    touchedVertices_.clear();
+    rewriteAll(mesh);
+}
+
 void FanStream::rewriteAll(HexMesh& mesh) {
     indices_.assign(size_t(mesh.cellCapacity()) * size_t(slotSize()), kRestartIndex);
     if (normals_) {

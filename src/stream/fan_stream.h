@@ -66,6 +66,10 @@ public:
     const int16_t* normal(int32_t v) const { return vertexNormals_[size_t(v)].xyz; }
     int32_t slotSize() const { return layout_ == IndexLayout::Fans ? kFanSlot : kTriangleSlot; }
 
+    /// The mesh renumbered its cells and vertices (HexMesh::compact): every slot and normal is
+    /// written afresh into arrays sized for the compacted pools, and marked dirty.
+    void renumbered(HexMesh& mesh);
+
     /// Applies what the mesh did since the last sync: rewrites the changed cells' slots and
     /// the normals they touch, starts the blend-in of new vertices, and marks all of it dirty.
     /// Allocates nothing unless the pools grew.

@@ -176,10 +176,12 @@ TEST(Geomorph, BlendingCutsTheLargestJumpOnScreen) {
         for (int32_t i = 0; i < 200 && !lod.refiner.lastUpdate().converged; ++i) lod.frame(views[0]); // as loaded
         for (int32_t i = 0; i < frames; ++i) lod.frame(views[0]); // and its blends done
         PoppingMeter meter;
+        meter.follow(lod.terrain->meshEpoch(), lod.terrain->renumberings(), lod.terrain->lastRenumbering());
         meter.measure(lod.mesh, lod.morph, views[0], 1.0);
         double worst = 0.0;
         for (const View& view : views) {
             lod.frame(view);
+            meter.follow(lod.terrain->meshEpoch(), lod.terrain->renumberings(), lod.terrain->lastRenumbering());
             worst = std::max(worst, meter.measure(lod.mesh, lod.morph, view, 1.0).maxJumpPx);
         }
         return worst;

@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
 #include "fixture.h"
 
 using namespace hexlod;
@@ -41,4 +45,81 @@ TEST(Terrain, SettingsSurviveAMeshRebuildAndEveryRebuildStartsFromTheBase) {
     EXPECT_EQ(kept.layout, IndexLayout::Triangles);
     EXPECT_FALSE(kept.normals);
     EXPECT_GT(terrain->memoryBytes(), 0u);
+}
+
+// Issue 12, pools sized well: the pools never shrink by themselves, so after the mesh shrank
+// by a quarter the terrain renumbers it densely (Terrain::compact) and every consumer with it.
+// A compaction changes no cell and no vertex: the same mesh, the same blends under way, a
+// converged mesh stays converged; flying on, the stream stays in step with the mesh.
+TEST(Terrain, CompactionGivesTheFreeRecordsBackAndChangesNothingElse) {
+    std::unique_ptr<Terrain> terrain = test::loadTerrain(test::kGrandCanyon);
+    ASSERT_NE(terrain, nullptr);
+    ASSERT_EQ(terrain->resetMesh(Embedding::Exact), nullptr);
+    TerrainSettings settings = terrain->settings();
+    settings.morphFrames = 8; // merges fade across the compaction
+    settings.compactPools = false; // compactions at chosen frames only
+    terrain->configure(settings);
+    const Heightfield& field = terrain->field();
+    const double w = (field.width() - 1) * field.scale().spacingX, h = (field.height() - 1) * field.scale().spacingY;
+    auto viewAt = [&](double up) {
+        const double x = 0.4 * w, z = 0.6 * h;
+        View view;
+        EXPECT_TRUE(makeView({x, field.heightAtPosition(x, z) + 300.0 + up, z}, {x + 0.2 * w, field.heightAtPosition(x, z), z - 0.2 * h},
+                             {0, 1, 0}, 0.57735026918962573, 16.0 / 9.0, 1080.0, 1.0, 1e9, view));
+        return view;
+    };
+    auto frame = [&](const View& view) {
+        terrain->setView(view);
+        const UpdateStats stats = terrain->updateLod();
+        terrain->syncStream();
+        return stats;
+    };
+    // Down low, then climbing: the mesh shrinks while merges fade.
+    for (int32_t k = 0; k < 100 && !terrain->converged(); ++k) frame(viewAt(0.0));
+    const int64_t peak = terrain->mesh().triangleCount();
+    for (int32_t k = 1; k <= 20; ++k) frame(viewAt(5000.0 * k));
+    ASSERT_LT(4 * terrain->mesh().liveCells(), 3 * terrain->mesh().cellCapacity()) << "the mesh shrank by a quarter";
+    ASSERT_GT(terrain->refiner().pendingMerges(), 0) << "with merges fading";
+    const uint64_t hash = terrain->mesh().hash();
+    const int32_t pending = terrain->refiner().pendingMerges();
+    const size_t bytes = terrain->memoryBytes();
+    std::vector<StreamVertex> drawn;
+    for (int32_t v = 0; v < terrain->mesh().vertexCapacity(); ++v)
+        if (terrain->mesh().isVertexLive(v)) drawn.push_back(terrain->mesh().streamVertex(v));
+    terrain->compact();
+    EXPECT_EQ(terrain->renumberings(), 1u);
+    EXPECT_EQ(terrain->mesh().hash(), hash);
+    EXPECT_EQ(terrain->mesh().checkInvariants(), nullptr);
+    EXPECT_EQ(terrain->mesh().liveCells(), terrain->mesh().cellCapacity()) << "dense";
+    EXPECT_EQ(terrain->refiner().pendingMerges(), pending) << "every fading merge goes on";
+    EXPECT_LT(terrain->memoryBytes(), bytes * 3 / 4);
+    ASSERT_EQ(size_t(terrain->mesh().vertexCapacity()), drawn.size());
+    for (size_t v = 0; v < drawn.size(); ++v)
+        ASSERT_EQ(std::memcmp(&drawn[v], &terrain->mesh().streamVertex(int32_t(v)), sizeof(StreamVertex)), 0)
+            << "vertex " << v << ": positions and blends keep their order";
+    // High up and holding still until converged with no fade left: a compaction then leaves
+    // nothing to do.
+    for (int32_t k = 0; k < 400 && !terrain->converged(); ++k) frame(viewAt(30000.0));
+    ASSERT_TRUE(terrain->converged());
+    const uint64_t still = terrain->mesh().hash();
+    terrain->compact();
+    const UpdateStats after = frame(viewAt(30000.0));
+    EXPECT_EQ(after.operations, 0) << "every margin and state followed its cell";
+    EXPECT_TRUE(after.converged);
+    terrain->refiner().restart(); // every cell due: tested again from its cached bounds (§5.1)
+    EXPECT_EQ(frame(viewAt(30000.0)).operations, 0) << "every cached bound followed its cell";
+    EXPECT_EQ(terrain->mesh().hash(), still);
+    // Down again, compacting on its own when it pays: the stream stays in step with the mesh.
+    settings.compactPools = true;
+    terrain->configure(settings);
+    for (int32_t k = 6; k >= 0; --k) frame(viewAt(5000.0 * k));
+    for (int32_t k = 6; k >= 0; --k) frame(viewAt(5000.0 * k)); // and up and down once more
+    for (int32_t k = 0; k <= 6; ++k) frame(viewAt(5000.0 * k));
+    EXPECT_GT(terrain->mesh().triangleCount(), 0);
+    EXPECT_GT(peak, 0);
+    EXPECT_EQ(terrain->mesh().checkInvariants(), nullptr);
+    const std::vector<uint32_t> indices = terrain->stream().indices();
+    FanStream fresh; // written afresh for the same mesh (it takes over the mesh's change log: last)
+    fresh.attach(terrain->mesh());
+    EXPECT_EQ(indices, fresh.indices());
 }
