@@ -53,9 +53,9 @@ export class CameraRig {
     if (from === to) return;
     from.update(from.aspect ?? 1);
     if (mode === 'orbit' && from.mode === 'walk') {
-      const { distance, pitch } = to;
+      // The orbit keeps its own distance and pitch: its overview.
       vec3.set(to.target, from.position[0], from.position[1] - from.eyeHeight, from.position[2]);
-      Object.assign(to, { distance, pitch, yaw: from.yaw });
+      to.yaw = from.yaw;
       to.keepAboveGround(Math.max(this.world.spacing * 0.05, 0.01 * to.distance));
     } else if (mode === 'orbit') {
       // Orbit around the ground point ahead, from where the eye is.

@@ -25,12 +25,9 @@ export class WalkCamera extends FlyCamera {
   move(seconds, move, fast) {
     const step = this.speed(fast) * seconds;
     const s = Math.sin(this.yaw), c = Math.cos(this.yaw);
-    this.position[0] += step * (move.forward * -s + move.right * c);
-    this.position[2] += step * (move.forward * -c - move.right * s);
-    // Stay on the field: walking off its edge would leave nothing under the feet.
-    this.position[0] = Math.min(Math.max(this.position[0], 0), this.world.extentX);
-    this.position[2] = Math.min(Math.max(this.position[2], 0), this.world.extentZ);
-    this.settle();
+    // Stay on the field (standAt): walking off its edge would leave nothing under the feet.
+    this.standAt(this.position[0] + step * (move.forward * -s + move.right * c),
+      this.position[2] + step * (move.forward * -c - move.right * s));
   }
 
   /** Puts the eye exactly eyeHeight above the floor under it (world.floor: field and drawn surface). */
