@@ -55,6 +55,10 @@ const char* Heightfield::setScale(const HeightfieldScale& scale) {
                         std::isfinite(scale.heightScale) && std::isfinite(scale.heightOffset);
     if (!finite) return "spacing, height scale and offset must be finite numbers";
     if (scale.spacingX <= 0.0 || scale.spacingY <= 0.0) return "sample spacing must be positive";
+    // Vertex positions are floats from which the mesh recovers lattice points (HexMesh::latticeAt):
+    // exact only while positions are normal floats, far inside this range.
+    if (std::min(scale.spacingX, scale.spacingY) < kMinSpacing || std::max(scale.spacingX, scale.spacingY) > kMaxSpacing)
+        return "sample spacing must be between 1e-6 m and 1e8 m";
     if (scale.heightScale == 0.0) return "height scale must not be zero";
     scale_ = scale;
     return nullptr;

@@ -20,6 +20,8 @@ size_t sampleBytes(SampleType type);
 /// Largest field the core accepts (samples per side). 65536 keeps every index math in 32 bits
 /// while allowing far more than a 4 GB WASM memory can hold.
 constexpr int32_t kMaxFieldSide = 65536;
+/// Sample spacing, metres: a micrometre (surface metrology) to 100,000 km (a coarse whole planet).
+constexpr double kMinSpacing = 1e-6, kMaxSpacing = 1e8;
 
 struct HeightfieldScale {
     double spacingX = 1.0;     // metres between columns

@@ -125,8 +125,6 @@ SlopeBox slopesUnder(const Heightfield& field, Embedding embedding, const Footpr
     const int32_t j0 = std::max(0, int32_t(std::floor(f.x0 / sx))), j1 = std::min(field.width() - 1, int32_t(std::ceil(f.x1 / sx)));
     const int32_t i0 = std::max(0, int32_t(std::floor(f.z0 / sy))), i1 = std::min(field.height() - 1, int32_t(std::ceil(f.z1 / sy)));
     if (embedding != Embedding::Exact || j1 <= j0 || i1 <= i0 || double(j1 - j0 + 1) * (i1 - i0 + 1) > kExactScanSamples) return box;
-    box.dxLow = box.dzLow = 1e30f;
-    box.dxHigh = box.dzHigh = -1e30f;
     for (int32_t i = i0; i <= i1; ++i)
         for (int32_t j = j0; j <= j1; ++j) {
             const float h = field.heightAt(j, i);
@@ -139,8 +137,7 @@ SlopeBox slopesUnder(const Heightfield& field, Embedding embedding, const Footpr
                 box.dzLow = std::min(box.dzLow, dz), box.dzHigh = std::max(box.dzHigh, dz);
             }
         }
-    box.known = true;
-    return box;
+    return box; // j1 > j0 and i1 > i0: both ranges hold a slope, so the box is known
 }
 
 CellError computeCellError(const Heightfield& field, Embedding embedding, const MinMaxPyramid& pyramid,

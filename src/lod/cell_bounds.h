@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "mesh/embedding.h"
 #include "field/heightfield.h"
@@ -47,8 +48,10 @@ Footprint footprintOf(const Heightfield& field, Embedding embedding, const CellS
 /// sample square, a superset). Unknown (never back-facing) for large cells and for the shifted
 /// embedding, whose stored surface is not the samples' triangulation.
 struct SlopeBox {
-    float dxLow = 0, dxHigh = 0, dzLow = 0, dzHigh = 0;
-    bool known = false;
+    // Unknown: an empty box (no flag, so a cache entry stays 40 bytes; refinement_cache.h).
+    float dxLow = std::numeric_limits<float>::infinity(), dxHigh = -std::numeric_limits<float>::infinity();
+    float dzLow = std::numeric_limits<float>::infinity(), dzHigh = -std::numeric_limits<float>::infinity();
+    bool known() const { return dxLow <= dxHigh && dzLow <= dzHigh; }
 };
 
 SlopeBox slopesUnder(const Heightfield& field, Embedding embedding, const Footprint& footprint);

@@ -2,7 +2,7 @@
 // levels [...]. If a hexagon is merged the refinement data of the higher level is kept, as
 // well, for a possible later refinement."
 //
-// hexlod keeps one entry per cell record (48 bytes): the cell's own bound (§5, cell_bounds.h)
+// hexlod keeps one entry per cell record (40 bytes): the cell's own bound (§5, cell_bounds.h)
 // and slope box, and its parent's bound, the cell a merge would make. The refiner carries them
 // across operations: a split keeps the split cell's own bound as the parent bound of the record
 // that stays, and a merge makes the parent bound the merged cell's own (refiner.cpp,
@@ -20,15 +20,16 @@ namespace hexlod {
 
 class RefinementCache {
 public:
-    static constexpr uint8_t kOwn = 1;    // own and ownSlopes are valid
-    static constexpr uint8_t kParent = 2; // parent is valid
+    /// A bound not computed yet: a negative error, so an entry needs no flags (40 bytes).
+    static constexpr CellError kUnknown{0.0f, 0.0f, -1.0f};
+    static bool known(const CellError& e) { return e.error >= 0.0f; }
 
     struct Entry {
-        CellError own;       // the cell's bound
-        SlopeBox ownSlopes;  // the slopes under it (back-face culling)
-        CellError parent;    // the bound of the cell a merge makes
-        uint8_t valid = 0;   // kOwn | kParent
+        CellError own = kUnknown;    // the cell's bound
+        SlopeBox ownSlopes;          // the slopes under it (back-face culling), valid with own
+        CellError parent = kUnknown; // the bound of the cell a merge makes
     };
+    static_assert(sizeof(Entry) == 40, "issue 12 counts the bytes of a cell");
 
     /// One entry per cell record: grows with the mesh's cell pool.
     void grow(size_t records) {
@@ -36,12 +37,12 @@ public:
         reserveForPool(entries_, records);
         entries_.resize(records);
     }
-    /// Every entry invalid (a new mesh).
-    void clear() { entries_.assign(entries_.size(), Entry{}); }
+    /// No entries (a new mesh): they grow again with its pool.
+    void clear() { releasePool(entries_); }
     /// The mesh renumbered its records (HexMesh::compact): entries follow their records.
     void renumber(const std::vector<int32_t>& map, size_t records) { renumberPool(entries_, map, records); }
     /// The record changed in a way the carry-over rules do not cover.
-    void invalidate(int32_t record) { entries_[size_t(record)].valid = 0; }
+    void invalidate(int32_t record) { entries_[size_t(record)] = Entry{}; }
 
     Entry& operator[](size_t record) { return entries_[record]; }
     const Entry& operator[](size_t record) const { return entries_[record]; }

@@ -59,8 +59,10 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     pyramid_.build(field);
     mesh.setChangeLog(0, &changes_);
     changes_.clear();
-    cache_.clear(); // every cached bound belongs to the old mesh
-    state_.assign(state_.size(), 0);
+    // Every cached bound, record and state belongs to the old mesh; noteChanges grows them again.
+    cache_.clear();
+    releasePool(records_);
+    releasePool(state_);
     currentTau_ = settings_.tau;
     last_ = {};
     pending_.clear(); // their vertices belong to the old mesh
@@ -190,21 +192,16 @@ void Refiner::retestChanged() {
     fresh_.clear();
 }
 
-const CellError& Refiner::cachedError(int32_t c, uint8_t bit, CellError& slot, const CellShape& shape) {
-    Cached& cached = cache_[size_t(c)];
-    if (!(cached.valid & bit)) {
-        slot = computeCellError(*field_, mesh_->embedding(), pyramid_, shape);
-        cached.valid |= bit;
-    }
+const CellError& Refiner::cachedError(CellError& slot, const CellShape& shape) {
+    if (!RefinementCache::known(slot)) slot = computeCellError(*field_, mesh_->embedding(), pyramid_, shape);
     return slot;
 }
 
 const Refiner::Cached& Refiner::ownBound(int32_t c, const Footprint& footprint) {
     Cached& cached = cache_[size_t(c)];
-    if (!(cached.valid & RefinementCache::kOwn)) {
+    if (!RefinementCache::known(cached.own)) {
         cached.own = computeCellError(*field_, mesh_->embedding(), pyramid_, shapeOfCell(*mesh_, c));
         cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), footprint);
-        cached.valid |= RefinementCache::kOwn;
     }
     return cached;
 }
@@ -255,7 +252,7 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
         if (z + radius < view_.nearPlane || z - radius > view_.farPlane) return {true, 0.0, 0.0};
     }
     double front = kForever; // how far the eye may move before a front-facing cell can turn its back
-    if (settings_.backfaceCulling && slopes && slopes->known) {
+    if (settings_.backfaceCulling && slopes && slopes->known()) {
         double back = kForever, frontFacing = -kForever;
         bool backFacing = true;
         for (double dx : {double(slopes->dxLow), double(slopes->dxHigh)})
@@ -352,7 +349,7 @@ bool Refiner::canRefine(int32_t c) const {
 // it breaks: all of them must pass, or the next refine pass would split c again.
 Refiner::Verdict Refiner::mergeVerdict(int32_t c, double& dist) {
     const CellShape parent = parentShapeOfCell(*mesh_, c);
-    Verdict all = judge(footprintOf(*field_, mesh_->embedding(), parent), cachedError(c, RefinementCache::kParent, cache_[size_t(c)].parent, parent),
+    Verdict all = judge(footprintOf(*field_, mesh_->embedding(), parent), cachedError(cache_[size_t(c)].parent, parent),
                         nullptr, true, dist);
     if (!all.pass) return all;
     const Hexagon& h = mesh_->cell(c);
@@ -467,7 +464,7 @@ bool Refiner::refineStep(int32_t c) {
     }
     CellError kept;
     CellShape keptShape;
-    const bool keep = step.kind == SplitStep::Split && (cache_[size_t(step.cell)].valid & RefinementCache::kOwn);
+    const bool keep = step.kind == SplitStep::Split && RefinementCache::known(cache_[size_t(step.cell)].own);
     if (keep) {
         kept = cache_[size_t(step.cell)].own;
         keptShape = shapeOfCell(*mesh_, step.cell);
@@ -476,7 +473,6 @@ bool Refiner::refineStep(int32_t c) {
     noteChanges();
     if (keep && mesh_->isLive(step.cell) && sameShape(parentShapeOfCell(*mesh_, step.cell), keptShape)) {
         cache_[size_t(step.cell)].parent = kept;
-        cache_[size_t(step.cell)].valid |= RefinementCache::kParent;
     }
     return true;
 }
@@ -486,7 +482,7 @@ bool Refiner::refineStep(int32_t c) {
 bool Refiner::mergeNow(int32_t c) {
     CellError kept;
     CellShape keptShape;
-    const bool keep = cache_[size_t(c)].valid & RefinementCache::kParent;
+    const bool keep = RefinementCache::known(cache_[size_t(c)].parent);
     if (keep) {
         kept = cache_[size_t(c)].parent;
         keptShape = parentShapeOfCell(*mesh_, c);
@@ -497,7 +493,6 @@ bool Refiner::mergeNow(int32_t c) {
         Cached& cached = cache_[size_t(c)];
         cached.own = kept;
         cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), footprintOf(*field_, mesh_->embedding(), keptShape));
-        cached.valid = RefinementCache::kOwn;
     }
     return true;
 }

@@ -130,7 +130,7 @@ private:
     }
 
     Verdict judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin, double& distOut) const;
-    const CellError& cachedError(int32_t cell, uint8_t bit, CellError& slot, const CellShape& shape);
+    const CellError& cachedError(CellError& slot, const CellShape& shape); // computes it when unknown
     const Cached& ownBound(int32_t cell, const Footprint& footprint);
     void noteChanges(bool collect = true); // collect: queue the changed cells for retestChanged
     void retestChanged();

@@ -16,7 +16,7 @@ double Refiner::achievedErrorPixels() const {
     for (int32_t c = 0; c < cells; ++c) {
         const Cached& cached = cache_[size_t(c)];
         // A cell not tested since it was made has no bound yet; the next update computes it.
-        if (!mesh_->isLive(c) || !(cached.valid & RefinementCache::kOwn)) continue;
+        if (!mesh_->isLive(c) || !RefinementCache::known(cached.own)) continue;
         glm::dvec3 center;
         double radius;
         boundingSphere(footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c)), cached.own, settings_.verticalScale, center, radius);

@@ -50,7 +50,7 @@ bool outsideFrustum(const View& view, const glm::dvec3& center, double radius) {
 }
 
 bool backFacing(const View& view, const glm::dvec3& center, double radius, const SlopeBox& slopes, double verticalScale) {
-    if (!slopes.known) return false;
+    if (!slopes.known()) return false;
     const glm::dvec3 v = center - view.eye;
     // v . n - radius * |n| is concave in the slope, so its smallest value over the box is at
     // one of the four corners.

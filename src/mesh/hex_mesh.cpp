@@ -13,6 +13,7 @@
 #include "mesh/pool_growth.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace hexlod {
@@ -71,16 +72,13 @@ int32_t HexMesh::allocateVertex(LatticePoint p, int32_t parentA, int32_t parentB
         v = freeVertices_.back();
         freeVertices_.pop_back();
     } else {
-        v = int32_t(vertexLattice_.size());
-        const size_t size = vertexLattice_.size() + 1;
-        reserveForPool(vertexLattice_, size), reserveForPool(vertices_, size);
-        reserveForPool(vertexParents_, size), reserveForPool(vertexLive_, size);
-        vertexLattice_.emplace_back();
+        v = int32_t(vertices_.size());
+        const size_t size = vertices_.size() + 1;
+        reserveForPool(vertices_, size), reserveForPool(vertexParents_, size), reserveForPool(vertexLive_, size);
         vertices_.emplace_back();
         vertexParents_.emplace_back();
         vertexLive_.emplace_back();
     }
-    vertexLattice_[size_t(v)] = p;
     StreamVertex& sv = vertices_[size_t(v)];
     sv.position = embedLatticePoint(*field_, embedding_, p);
     sv.morphFromHeight = sv.position.y;
@@ -124,7 +122,7 @@ void HexMesh::releaseFreedVertices() {
 bool HexMesh::wantsCompaction() const {
     // A quarter of a large pool unused; small pools are not worth a rewrite.
     constexpr size_t kLargePool = 4096;
-    const size_t cells = cells_.size(), vertices = vertexLattice_.size();
+    const size_t cells = cells_.size(), vertices = vertices_.size();
     return (cells >= kLargePool && 4 * size_t(liveCells_) < 3 * cells) ||
            (vertices >= kLargePool && 4 * size_t(liveVertices_) < 3 * vertices);
 }
@@ -135,9 +133,9 @@ void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& verte
     int32_t cells = 0;
     for (size_t c = 0; c < cells_.size(); ++c)
         if (cells_[c].level != kFreeLevel) cellMap[c] = cells++;
-    vertexMap.assign(vertexLattice_.size(), kNone);
+    vertexMap.assign(vertices_.size(), kNone);
     int32_t vertices = 0;
-    for (size_t v = 0; v < vertexLattice_.size(); ++v)
+    for (size_t v = 0; v < vertices_.size(); ++v)
         if (vertexLive_[v]) vertexMap[v] = vertices++;
     // Every reference to a cell or a vertex, renumbered; records move down in place.
     for (size_t c = 0; c < cells_.size(); ++c) {
@@ -157,7 +155,6 @@ void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& verte
     auto renumbered = [&](int32_t v) { return v == kNone ? kNone : vertexMap[size_t(v)]; };
     for (Parents& p : vertexParents_) p = {renumbered(p.a), renumbered(p.b), renumbered(p.across)};
     renumberPool(cells_, cellMap, size_t(cells));
-    renumberPool(vertexLattice_, vertexMap, size_t(vertices));
     renumberPool(vertices_, vertexMap, size_t(vertices));
     renumberPool(vertexParents_, vertexMap, size_t(vertices));
     renumberPool(vertexLive_, vertexMap, size_t(vertices));
@@ -200,6 +197,13 @@ void HexMesh::connect(int32_t e, int32_t f) {
 
 // --- Queries -------------------------------------------------------------------------------
 
+LatticePoint HexMesh::latticeAt(const glm::vec3& position) const {
+    const int32_t r = int32_t(std::lround(double(position.z) * rowsPerMetre_));
+    double column = double(position.x) * columnsPerMetre_;
+    if (embedding_ == Embedding::Shifted && (r & 1) != 0) column -= 0.5;
+    return {int32_t(std::lround(column)) - floorDiv2(r), r};
+}
+
 int32_t HexMesh::cellStep(int32_t c) const {
     const int32_t level = cells_[size_t(c)].level;
     return baseStep_ >> ((level + 1) / 2); // a semi-hexagon is half of a hexagon one level up
@@ -207,9 +211,8 @@ int32_t HexMesh::cellStep(int32_t c) const {
 
 LatticePoint HexMesh::cellCenter(int32_t c) const {
     const Hexagon& h = cells_[size_t(c)];
-    if (h.kind != CellKind::Semi) return vertexLattice_[size_t(h.vertex[0])];
-    return latticeMidpoint(vertexLattice_[size_t(h.vertex[h.firstVisible])],
-                           vertexLattice_[size_t(h.vertex[wrapSlot(h.firstVisible + 3)])]);
+    if (h.kind != CellKind::Semi) return vertexLattice(h.vertex[0]);
+    return latticeMidpoint(vertexLattice(h.vertex[h.firstVisible]), vertexLattice(h.vertex[wrapSlot(h.firstVisible + 3)]));
 }
 
 bool HexMesh::isLongEdge(int32_t e) const {
@@ -226,7 +229,7 @@ int32_t HexMesh::edgeEnd(int32_t e) const {
 
 void HexMesh::semiFanSlots(const Hexagon& h, int32_t slots[4]) const {
     const int32_t a = h.firstVisible;
-    auto at = [&](int32_t slot) { return vertexLattice_[size_t(h.vertex[wrapSlot(slot)])]; };
+    auto at = [&](int32_t slot) { return vertexLattice(h.vertex[wrapSlot(slot)]); };
     const int32_t start = semiFanFromSecondCorner(embedding_, at(a), at(a + 1), at(a + 2), at(a + 3)) ? 1 : 0;
     for (int32_t i = 0; i < 4; ++i) slots[i] = wrapSlot(a + (start + i) % 4);
 }
@@ -242,7 +245,6 @@ int64_t HexMesh::cellTriangles(const Hexagon& h) const {
 
 size_t HexMesh::memoryBytes() const {
     return cells_.capacity() * sizeof(Hexagon) +
-           vertexLattice_.capacity() * sizeof(LatticePoint) +
            vertices_.capacity() * sizeof(StreamVertex) + vertexParents_.capacity() * sizeof(Parents) +
            vertexLive_.capacity() + (freeVertices_.capacity() + freedVertices_.capacity()) * sizeof(int32_t) +
            (levelHead_.capacity() + levelTail_.capacity()) * sizeof(int32_t);
@@ -250,7 +252,7 @@ size_t HexMesh::memoryBytes() const {
 
 size_t HexMesh::liveMemoryBytes() const {
     return size_t(liveCells_) * sizeof(Hexagon) +
-           size_t(liveVertices_) * (sizeof(LatticePoint) + sizeof(StreamVertex) + sizeof(Parents) + 1) +
+           size_t(liveVertices_) * (sizeof(StreamVertex) + sizeof(Parents) + 1) +
            (levelHead_.size() + levelTail_.size()) * sizeof(int32_t);
 }
 
@@ -296,7 +298,7 @@ uint64_t HexMesh::hash() const {
             for (int32_t slot = 0; slot <= 6; ++slot) {
                 const int32_t v = cell.vertex[slot];
                 if (v == kNone) continue;
-                mix(latticeKey(vertexLattice_[size_t(v)]));
+                mix(latticeKey(vertexLattice(v)));
                 const glm::vec3& p = vertices_[size_t(v)].position;
                 uint32_t bits[3];
                 std::memcpy(bits, &p, sizeof(bits));
@@ -357,7 +359,7 @@ void HexMesh::splitUnchecked(int32_t c) {
     const CellSlots slots = slotsOf(h);
     const int32_t level = h.level;
     const int32_t half = cellStep(c) / 2;
-    const LatticePoint center = vertexLattice_[size_t(h.vertex[0])];
+    const LatticePoint center = vertexLattice(h.vertex[0]);
 
     int32_t newCorner[8], ring[8];
     std::fill(std::begin(ring), std::end(ring), kNone);
@@ -386,8 +388,7 @@ void HexMesh::splitUnchecked(int32_t c) {
         R.vertex[7] = R.vertex[1];
         ring[k] = r;
         if (R.kind == CellKind::BoundarySemi) { // allocateVertex does not touch the cell pool
-            const int32_t m = allocateVertex(latticeMidpoint(vertexLattice_[size_t(h.vertex[k])],
-                                                             vertexLattice_[size_t(h.vertex[k1])]),
+            const int32_t m = allocateVertex(latticeMidpoint(vertexLattice(h.vertex[k]), vertexLattice(h.vertex[k1])),
                                              h.vertex[k], h.vertex[k1]);
             setAcross(m, h.vertex[0], kNone); // the fan triangle (centre, k, k+1); outside is no surface
             cells_[size_t(r)].vertex[0] = m;
@@ -512,7 +513,7 @@ int32_t HexMesh::breakDiameterSlot(int32_t c) const {
     const Hexagon& h = cells_[size_t(c)];
     const int32_t parentStep = 2 * cellStep(c);
     for (int32_t k = 1; k <= 3; ++k) {
-        const LatticePoint p = vertexLattice_[size_t(h.vertex[k])];
+        const LatticePoint p = vertexLattice(h.vertex[k]);
         if (p.q % parentStep == 0 && p.r % parentStep == 0) return k;
     }
     return 1; // unreachable for a consistent mesh (checkInvariants verifies the lattice)

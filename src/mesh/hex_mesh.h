@@ -130,7 +130,7 @@ public:
     const Hexagon& cell(int32_t c) const { return cells_[size_t(c)]; }
     bool isLive(int32_t c) const { return c >= 0 && size_t(c) < cells_.size() && cells_[size_t(c)].level != kFreeLevel; }
     int32_t cellCapacity() const { return int32_t(cells_.size()); }
-    int32_t vertexCapacity() const { return int32_t(vertexLattice_.size()); }
+    int32_t vertexCapacity() const { return int32_t(vertices_.size()); }
     int32_t liveCells() const { return liveCells_; }
     int32_t liveVertices() const { return liveVertices_; }
     int32_t maxLevel() const { return maxLevel_; }
@@ -138,7 +138,14 @@ public:
     /// First cell of a level's list, and the next one after a cell (kNone at the end).
     int32_t firstOfLevel(int32_t level) const { return levelHead_[size_t(level)]; }
     int32_t nextInLevel(int32_t c) const { return cells_[size_t(c)].next; }
-    LatticePoint vertexLattice(int32_t v) const { return vertexLattice_[size_t(v)]; }
+    /// A vertex's lattice point. Not stored (issue 12: 8 bytes a vertex): recovered from the
+    /// position, which the embedding computed from it (see latticeAt).
+    LatticePoint vertexLattice(int32_t v) const { return latticeAt(vertices_[size_t(v)].position); }
+    /// The lattice point the embedding put at `position`: row r at z = r * spacingY and column j
+    /// at x = j * spacingX (half a sample further east on a shifted odd row), each a double
+    /// rounded to float, so rounding position / spacing gives r and j back exactly for
+    /// |r|, |j| < 2^22 (float's relative error 2^-24 times 2^22 is below half a sample).
+    LatticePoint latticeAt(const glm::vec3& position) const;
     const glm::vec3& vertexPosition(int32_t v) const { return vertices_[size_t(v)].position; }
     /// The vertex pool (free slots hold stale values), kStreamVertexWords floats a vertex with
     /// the position first: what the renderer uploads and the evaluator reads.
@@ -239,13 +246,13 @@ private:
     Embedding embedding_ = Embedding::Exact;
     int32_t baseStep_ = 1;
     int32_t maxLevel_ = 0;
+    double columnsPerMetre_ = 1.0, rowsPerMetre_ = 1.0; // latticeAt
 
     std::vector<Hexagon> cells_;
     int32_t freeCell_ = kNone;
     int32_t liveCells_ = 0;
     std::vector<int32_t> levelHead_, levelTail_;
 
-    std::vector<LatticePoint> vertexLattice_;
     struct Parents { int32_t a, b, across; };
     std::vector<StreamVertex> vertices_;
     std::vector<Parents> vertexParents_;

@@ -16,6 +16,7 @@
 #include <unordered_map>
 
 #include "mesh/hex_mesh.h"
+#include "mesh/pool_growth.h"
 
 namespace hexlod {
 
@@ -42,19 +43,20 @@ const char* HexMesh::reset(const Heightfield& field, Embedding embedding, int32_
     embedding_ = embedding;
     baseStep_ = baseStep;
     maxLevel_ = 0;
+    columnsPerMetre_ = 1.0 / field.scale().spacingX;
+    rowsPerMetre_ = 1.0 / field.scale().spacingY;
     for (int32_t s = baseStep; s > 1; s /= 2) maxLevel_ += 2;
 
-    cells_.clear();
+    releasePool(cells_);
     freeCell_ = kNone;
     liveCells_ = 0;
     levelHead_.assign(size_t(maxLevel_) + 1, kNone);
     levelTail_.assign(size_t(maxLevel_) + 1, kNone);
-    vertexLattice_.clear();
-    vertices_.clear();
-    vertexParents_.clear();
-    vertexLive_.clear();
-    freeVertices_.clear();
-    freedVertices_.clear();
+    releasePool(vertices_);
+    releasePool(vertexParents_);
+    releasePool(vertexLive_);
+    releasePool(freeVertices_);
+    releasePool(freedVertices_);
     liveVertices_ = 0;
     boundary_.clear();
     domainDoubleArea_ = 0;
@@ -123,14 +125,14 @@ const char* HexMesh::reset(const Heightfield& field, Embedding embedding, int32_
     forEachEdge([&](int32_t e, int32_t u, int32_t v) {
         const auto it = edgeFrom.find(edgeKey(v, u));
         if (it != edgeFrom.end()) connect(e, it->second);
-        else boundary_.emplace_back(vertexLattice_[size_t(u)], vertexLattice_[size_t(v)]);
+        else boundary_.emplace_back(vertexLattice(u), vertexLattice(v));
     });
 
     std::vector<uint32_t> triangles;
     appendTriangles(triangles);
     for (size_t t = 0; t < triangles.size(); t += 3) {
-        domainDoubleArea_ += latticeDoubleArea(vertexLattice_[triangles[t]], vertexLattice_[triangles[t + 1]],
-                                               vertexLattice_[triangles[t + 2]]);
+        domainDoubleArea_ += latticeDoubleArea(vertexLattice(int32_t(triangles[t])), vertexLattice(int32_t(triangles[t + 1])),
+                                               vertexLattice(int32_t(triangles[t + 2])));
     }
     return nullptr;
 }

@@ -99,7 +99,7 @@ const char* HexMesh::checkInvariants() const {
 
     // Vertices: the live ones are exactly those the cells use, at distinct lattice points,
     // placed by the embedding.
-    std::vector<uint8_t> used(vertexLattice_.size(), 0);
+    std::vector<uint8_t> used(vertices_.size(), 0);
     int64_t triangles = 0;
     for (int32_t c = 0; c < int32_t(cells_.size()); ++c) {
         if (!isLive(c)) continue;
@@ -122,7 +122,7 @@ const char* HexMesh::checkInvariants() const {
                 if (slot >= 1 && h.opposite[slot - 1] != kNone) return failure("cell %d: unused edge slot %d has a neighbour", c, slot);
                 continue;
             }
-            if (v < 0 || v >= int32_t(vertexLattice_.size()) || !vertexLive_[size_t(v)]) return failure("cell %d: slot %d holds dead vertex %d", c, slot, v);
+            if (v < 0 || v >= int32_t(vertices_.size()) || !vertexLive_[size_t(v)]) return failure("cell %d: slot %d holds dead vertex %d", c, slot, v);
             used[size_t(v)] = 1;
         }
         // Lattice geometry: corners at centre + step * direction; the centre is born at the
@@ -130,7 +130,7 @@ const char* HexMesh::checkInvariants() const {
         const LatticePoint centre = cellCenter(c);
         for (int32_t slot = 1; slot <= 6; ++slot) {
             if (h.vertex[slot] == kNone) continue;
-            if (vertexLattice_[size_t(h.vertex[slot])] != latticeAdd(centre, kDirections[slot - 1], step))
+            if (vertexLattice(h.vertex[slot]) != latticeAdd(centre, kDirections[slot - 1], step))
                 return failure("cell %d: corner %d is not at its lattice position", c, slot);
         }
         const int32_t born = 2 * birthResolution(centre, baseStep_);
@@ -139,20 +139,22 @@ const char* HexMesh::checkInvariants() const {
         triangles += cellTriangles(h);
     }
     if (triangles != triangles_) return failure("triangle count %lld, tracked %lld", (long long)triangles, (long long)triangles_);
-    KeySet points(vertexLattice_.size());
+    KeySet points(vertices_.size());
     int32_t liveVertices = 0, freeVertices = 0;
-    for (size_t v = 0; v < vertexLattice_.size(); ++v) {
+    for (size_t v = 0; v < vertices_.size(); ++v) {
         if (!vertexLive_[v]) { ++freeVertices; continue; }
         ++liveVertices;
         if (!used[v]) return failure("live vertex %zu is used by no cell", v);
-        if (!points.insert(latticeKey(vertexLattice_[v]))) return failure("two live vertices share lattice point (%d, %d)", vertexLattice_[v].q, vertexLattice_[v].r);
-        if (vertices_[v].position != embedLatticePoint(*field_, embedding_, vertexLattice_[v])) return failure("vertex %zu is not where the embedding puts it", v);
+        const LatticePoint point = vertexLattice(int32_t(v));
+        if (!points.insert(latticeKey(point))) return failure("two live vertices share lattice point (%d, %d)", point.q, point.r);
+        // The lattice point is recovered from the position: the round trip must be exact.
+        if (vertices_[v].position != embedLatticePoint(*field_, embedding_, point)) return failure("vertex %zu is not where the embedding puts it", v);
         // §7's blend starts at the midpoint of the parent edge: both ends live, p their midpoint.
         const Parents parents = vertexParents_[v];
         if (parents.a == kNone && parents.b == kNone) continue;
         if (parents.a == kNone || parents.b == kNone || !vertexLive_[size_t(parents.a)] || !vertexLive_[size_t(parents.b)])
             return failure("vertex %zu has a dead parent", v);
-        if (latticeMidpoint(vertexLattice_[size_t(parents.a)], vertexLattice_[size_t(parents.b)]) != vertexLattice_[v])
+        if (latticeMidpoint(vertexLattice(parents.a), vertexLattice(parents.b)) != point)
             return failure("vertex %zu is not the midpoint of its parents", v);
     }
     if (liveVertices != liveVertices_ || freeVertices != int32_t(freeVertices_.size() + freedVertices_.size()))
@@ -184,7 +186,7 @@ const char* HexMesh::checkInvariants() const {
     KeySet directed(tris.size());
     int64_t area = 0;
     for (size_t t = 0; t < tris.size(); t += 3) {
-        const int64_t a = latticeDoubleArea(vertexLattice_[tris[t]], vertexLattice_[tris[t + 1]], vertexLattice_[tris[t + 2]]);
+        const int64_t a = latticeDoubleArea(vertexLattice(int32_t(tris[t])), vertexLattice(int32_t(tris[t + 1])), vertexLattice(int32_t(tris[t + 2])));
         if (a <= 0) return failure("triangle %zu is degenerate or clockwise", t / 3);
         area += a;
         for (int k = 0; k < 3; ++k)
@@ -194,7 +196,7 @@ const char* HexMesh::checkInvariants() const {
     for (size_t t = 0; t < tris.size(); ++t) {
         const uint32_t u = tris[t], v = tris[t % 3 == 2 ? t - 2 : t + 1];
         if (directed.contains((uint64_t(v) << 32) | u)) continue;
-        const LatticePoint a = vertexLattice_[u], b = vertexLattice_[v];
+        const LatticePoint a = vertexLattice(int32_t(u)), b = vertexLattice(int32_t(v));
         bool onBoundary = false;
         for (const auto& [p, q] : boundary_) onBoundary = onBoundary || onSegment(a, b, p, q);
         if (!onBoundary) return failure("hanging node: edge (%d,%d)-(%d,%d) is used by one triangle inside the domain", a.q, a.r, b.q, b.r);

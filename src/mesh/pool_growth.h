@@ -15,8 +15,15 @@ namespace hexlod {
 template <typename T>
 void reserveForPool(std::vector<T>& pool, size_t size) {
     if (size <= pool.capacity()) return;
-    constexpr size_t kMinimumGrowth = 1024;
+    constexpr size_t kMinimumGrowth = 256;
     pool.reserve(std::max(size, pool.capacity() + pool.capacity() / 8 + kMinimumGrowth));
+}
+
+/// Empties a pool and gives its memory back (clear() keeps the capacity): a new mesh, perhaps of
+/// a much smaller field, starts from nothing rather than from the last mesh's peak.
+template <typename T>
+void releasePool(std::vector<T>& pool) {
+    std::vector<T>().swap(pool);
 }
 
 /// Moves element i of a per-record array to map[i] (negative: the record is gone) and keeps

@@ -24,6 +24,12 @@ void FanStream::attach(HexMesh& mesh) {
     }
     const double extent = std::max(glm::length(high - low), 1.0);
     normalScale_ = std::ldexp(1.0, int(std::floor(std::log2(std::ldexp(1.0, 57) / (extent * extent)))));
+    // A new mesh: nothing of the last one's peak stays allocated (rewriteAll and sync size these).
+    releasePool(indices_);
+    releasePool(normalSum_);
+    releasePool(vertexNormals_);
+    releasePool(vertexPending_);
+    releasePool(cellPending_);
     rewriteAll(mesh);
 }
 

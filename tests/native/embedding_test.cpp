@@ -72,6 +72,46 @@ TEST(Embedding, CoarseVerticesSitOnRealSamplesInBothEmbeddings) {
     }
 }
 
+// The mesh stores no lattice points (issue 12): it recovers them from the float positions the
+// embedding made of them, which must be exact for every point a mesh can have (fields up to
+// kMaxFieldSide a side, plus the lattice's overhang), at any accepted spacing.
+TEST(Embedding, EveryLatticePointComesBackFromItsPosition) {
+    auto field = Heightfield::create(9, 9, SampleType::F32, nullptr);
+    ASSERT_TRUE(field);
+    field->prepare();
+    const double spacings[] = {kMinSpacing, 1e-3, 0.5, 1.0, 30.87, 92.66, 1234.5678, 1e6, kMaxSpacing};
+    const int32_t reach = 2 * kMaxFieldSide + 5;
+    for (Embedding embedding : {Embedding::Shifted, Embedding::Exact}) {
+        for (double sx : spacings) {
+            for (double sy : {spacings[0], spacings[3], spacings[5], spacings[8]}) {
+                HeightfieldScale scale;
+                scale.spacingX = sx, scale.spacingY = sy;
+                ASSERT_EQ(field->setScale(scale), nullptr);
+                HexMesh mesh;
+                ASSERT_EQ(mesh.reset(*field, embedding), nullptr);
+                int32_t checked = 0;
+                for (int32_t r = -reach; r <= reach; r += 997) {
+                    for (int32_t q = -reach; q <= reach; q += 1009) {
+                        for (LatticePoint p : {LatticePoint{q, r}, LatticePoint{q + 1, r + 1}, LatticePoint{-q, reach}, LatticePoint{reach, -r}}) {
+                            const LatticePoint back = mesh.latticeAt(embedLatticePoint(*field, embedding, p));
+                            ASSERT_EQ(back, p) << "spacing " << sx << " x " << sy << " at (" << p.q << ", " << p.r << ")";
+                            ++checked;
+                        }
+                    }
+                }
+                EXPECT_GT(checked, 100000);
+            }
+        }
+    }
+    // Outside the accepted range the field refuses the spacing, so no mesh is built with it.
+    HeightfieldScale tiny;
+    tiny.spacingX = kMinSpacing / 2;
+    EXPECT_NE(field->setScale(tiny), nullptr);
+    HeightfieldScale huge;
+    huge.spacingY = kMaxSpacing * 2;
+    EXPECT_NE(field->setScale(huge), nullptr);
+}
+
 TEST(Embedding, ExactIsErrorFreeAtFullRefinementAndShiftedSmoothsOddRows) {
     for (const test::Fixture* f : {&test::kVolcano, &test::kJacksboro, &test::kGrandCanyon}) {
         auto field = test::loadFixture(*f);

@@ -270,7 +270,7 @@ TEST(HexMesh, PoolsGrowByAnEighthSoLittleOfTheirMemoryIsUnused) {
     ASSERT_NE(field, nullptr);
     HexMesh mesh;
     mesh.reset(*field, Embedding::Exact);
-    // Once the pools are past their first steps of 1024 records (13k to 57k cells here).
+    // Once the pools are past their first steps of 256 records (13k to 57k cells here).
     for (int32_t round = 1; round <= 5; ++round) {
         refineUniformly(mesh, 1);
         if (round < 4) continue;

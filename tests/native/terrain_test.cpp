@@ -47,6 +47,35 @@ TEST(Terrain, SettingsSurviveAMeshRebuildAndEveryRebuildStartsFromTheBase) {
     EXPECT_GT(terrain->memoryBytes(), 0u);
 }
 
+// Issue 12, pools sized well: a rebuilt mesh starts from the base mesh's few records, holding
+// none of the memory the refined mesh before it took.
+TEST(Terrain, ARebuiltMeshGivesTheLastMeshsMemoryBack) {
+    std::unique_ptr<Terrain> terrain = test::loadTerrain(test::kGrandCanyon);
+    ASSERT_NE(terrain, nullptr);
+    ASSERT_EQ(terrain->resetMesh(Embedding::Exact), nullptr);
+    const size_t baseBytes = terrain->mesh().memoryBytes() + terrain->stream().memoryBytes();
+    TerrainSettings settings = terrain->settings();
+    settings.lod.viewIndependent = true;
+    settings.lod.maxError = 1.0;
+    terrain->configure(settings);
+    while (terrain->updateLod().operations > 0) {}
+    terrain->syncStream();
+    const size_t refinedBytes = terrain->mesh().memoryBytes() + terrain->stream().memoryBytes();
+    const size_t refinedRefiner = terrain->refiner().memoryBytes();
+    ASSERT_GT(refinedBytes, 200 * baseBytes) << "a large mesh to give back";
+    for (Embedding embedding : {Embedding::Shifted, Embedding::Exact}) { // a rebuild for a new embedding
+        ASSERT_EQ(terrain->resetMesh(embedding), nullptr);
+        terrain->syncStream();
+        EXPECT_LE(terrain->mesh().memoryBytes() + terrain->stream().memoryBytes(), 4 * baseBytes); // base pools and logs
+        EXPECT_LT(terrain->refiner().memoryBytes(), refinedRefiner) << "per-cell records given back";
+    }
+    HeightfieldScale scale = terrain->field().scale();
+    scale.spacingY *= 1.5;
+    ASSERT_EQ(terrain->setScale(scale), nullptr); // a rebuild for new positions
+    terrain->syncStream();
+    EXPECT_LE(terrain->mesh().memoryBytes() + terrain->stream().memoryBytes(), 4 * baseBytes); // base pools and logs
+}
+
 // Issue 12, pools sized well: the pools never shrink by themselves, so after the mesh shrank
 // by a quarter the terrain renumbers it densely (Terrain::compact) and every consumer with it.
 // A compaction changes no cell and no vertex: the same mesh, the same blends under way, a
