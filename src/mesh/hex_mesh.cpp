@@ -265,7 +265,8 @@ size_t HexMesh::liveMemoryBytes() const {
 int32_t HexMesh::cellFan(const Hexagon& h, uint32_t out[8]) const {
     const int32_t* v = h.vertex;
     if (h.kind == CellKind::Full) {
-        for (int32_t slot = 0; slot <= 7; ++slot) out[slot] = uint32_t(v[slot]);
+        for (int32_t slot = 0; slot <= 6; ++slot) out[slot] = uint32_t(v[slot]);
+        out[7] = uint32_t(v[1]); // the fan closes at its first corner
         return 8;
     }
     if (h.kind == CellKind::BoundarySemi) { // §4.2: three-triangle half fan around the centre
@@ -391,7 +392,6 @@ void HexMesh::splitUnchecked(int32_t c) {
             R.kind = CellKind::Semi;
             R.level = uint8_t(level + 1);
         }
-        R.vertex[7] = R.vertex[1];
         ring[k] = r;
         if (R.kind == CellKind::BoundarySemi) { // allocateVertex does not touch the cell pool
             const int32_t m = allocateVertex(latticeMidpoint(vertexLattice(h.vertex[k]), vertexLattice(h.vertex[k1])),
@@ -407,7 +407,6 @@ void HexMesh::splitUnchecked(int32_t c) {
         const int32_t k = wrapSlot(slots.firstEdge + i);
         shrunk.vertex[k] = newCorner[k];
     }
-    shrunk.vertex[7] = shrunk.vertex[1];
     shrunk.splitCount = uint8_t(shrunk.splitCount + 1);
     for (int32_t i = 0; i < slots.edgeCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i);
@@ -462,7 +461,6 @@ void HexMesh::joinPair(int32_t keep, int32_t other) {
     k.vertex[0] = m;
     k.vertex[wrapSlot(a + 4)] = o.vertex[wrapSlot(a + 4)];
     k.vertex[wrapSlot(a + 5)] = o.vertex[wrapSlot(a + 5)];
-    k.vertex[7] = k.vertex[1];
     k.kind = CellKind::Full;
     k.firstVisible = 0;
     // The other half's three short edges become this hexagon's edges a+3 .. a+5.
@@ -543,7 +541,6 @@ void HexMesh::breakUnchecked(int32_t c) {
     h2.firstVisible = uint8_t(wrapSlot(k + 3));
     h2.level = uint8_t(j.level - 1);
     for (int32_t slot = k + 3; slot <= k + 6; ++slot) h2.vertex[wrapSlot(slot)] = j.vertex[wrapSlot(slot)];
-    h2.vertex[7] = h2.vertex[1];
     linkLevel(other);
     for (int32_t slot = k + 3; slot <= k + 5; ++slot) connect(makeEdge(other, wrapSlot(slot)), j.opposite[wrapSlot(slot) - 1]);
 
@@ -551,7 +548,6 @@ void HexMesh::breakUnchecked(int32_t c) {
     h1.vertex[0] = kNone;
     h1.vertex[wrapSlot(k + 4)] = kNone;
     h1.vertex[wrapSlot(k + 5)] = kNone;
-    h1.vertex[7] = h1.vertex[1];
     h1.opposite[wrapSlot(k + 4) - 1] = kNone;
     h1.opposite[wrapSlot(k + 5) - 1] = kNone;
     h1.kind = CellKind::Semi;
@@ -625,7 +621,6 @@ bool HexMesh::merge(int32_t c) {
         freeVertex(h.vertex[k]);
         merged.vertex[k] = outerCorner[k];
     }
-    merged.vertex[7] = merged.vertex[1];
     merged.splitCount = uint8_t(merged.splitCount - 1);
     setLevel(c, h.level - 2);
     ++counts_.merges;

@@ -12,8 +12,8 @@
 // three-triangle half fan around that centre, §4.2).
 //
 // Slots (§4.3): vertex[0] is the centre, vertex[1..6] the corners counter-clockwise with
-// corner k in lattice direction kDirections[k-1], vertex[7] a copy of vertex[1], so a full
-// hexagon's slots are its triangle-fan index list. A semi-hexagon keeps the slots of the whole
+// corner k in lattice direction kDirections[k-1]; a full hexagon's slots and corner 1 again are
+// its triangle-fan index list (cellFan). A semi-hexagon keeps the slots of the whole
 // hexagon it is half of: corners firstVisible .. firstVisible+3 (cyclically) are its own, the
 // rest are kNone. Edge slot k (1..6) runs from corner k to corner k+1; a semi's long edge (its
 // diameter, on the parent's edge) is stored in edge slot firstVisible+3 and runs from corner
@@ -35,7 +35,7 @@ namespace hexlod {
 constexpr int32_t kNone = -1;
 
 /// §4.3: the cell of a directed edge, and the next and previous edge around that cell (the
-/// slot arithmetic wraps 6 to 1 and maps the closing slot 7 to 2).
+/// slot arithmetic wraps 6 to 1).
 inline int32_t hexIdx(int32_t e) { return e / 8; }
 inline int32_t nextEdge(int32_t e) { return (e / 8) * 8 + ((e - (e / 8) * 8) % 6) + 1; }
 inline int32_t prevEdge(int32_t e) { return (e / 8) * 8 + ((e - (e / 8) * 8 + 4) % 6) + 1; }
@@ -47,7 +47,7 @@ inline int32_t wrapSlot(int32_t slot) { return (slot - 1) % 6 + 1; }
 enum class CellKind : uint8_t { Full = 0, Semi = 1, BoundarySemi = 2 };
 
 struct Hexagon {
-    int32_t vertex[8];     // §4.3 slots: centre, six corners, first corner again; kNone if absent
+    int32_t vertex[7];     // §4.3 slots: centre, six corners; kNone if absent
     int32_t opposite[6];   // opposite directed edge across edge slot k at [k-1]; kNone on the domain boundary or unused
     int32_t prev, next;    // §4.4: neighbours in the list of this level; next also chains free records
     uint8_t level;         // §4.4: even for full and boundary semi-hexagons, odd for semi-hexagons
@@ -55,6 +55,7 @@ struct Hexagon {
     CellKind kind;
     uint8_t firstVisible;  // semi-hexagons: first own corner slot (1..6); 0 for full hexagons
 };
+static_assert(sizeof(Hexagon) == 64, "issue 12 counts the bytes of a cell");
 
 /// One operation that a split needs first under the balance rule (§4.5), or the split itself.
 struct SplitStep {

@@ -100,7 +100,6 @@ const char* HexMesh::reset(const Heightfield& field, Embedding embedding, int32_
                 const int32_t v = vertexOf(latticeAdd(centre, kDirections[k - 1], S));
                 cells_[size_t(c)].vertex[k] = v;
             }
-            cells_[size_t(c)].vertex[7] = cells_[size_t(c)].vertex[1];
             linkLevel(c);
             triangles_ += cellTriangles(cells_[size_t(c)]);
         }

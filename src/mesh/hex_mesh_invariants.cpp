@@ -109,7 +109,6 @@ const char* HexMesh::checkInvariants() const {
         if (h.kind == CellKind::Semi && h.splitCount != 0) return failure("semi-hexagon %d has split counter %d", c, h.splitCount);
         if (h.kind == CellKind::Full && h.firstVisible != 0) return failure("full hexagon %d has firstVisible set", c);
         if (h.kind != CellKind::Full && (h.firstVisible < 1 || h.firstVisible > 6)) return failure("semi-hexagon %d has no firstVisible", c);
-        if (h.vertex[7] != h.vertex[1]) return failure("cell %d: slot 7 is not a copy of slot 1", c);
         if ((h.vertex[0] != kNone) != (h.kind != CellKind::Semi)) return failure("cell %d: centre presence does not match its kind", c);
         const int32_t step = cellStep(c);
         if (step < 1) return failure("cell %d of level %d is finer than the samples", c, h.level);
