@@ -2,34 +2,36 @@
 // levels [...]. If a hexagon is merged the refinement data of the higher level is kept, as
 // well, for a possible later refinement."
 //
-// hexlod keeps one entry per cell record (40 bytes): the cell's own bound (§5, cell_bounds.h)
-// and slope box, and its parent's bound, the cell a merge would make. The refiner carries them
-// across operations: a split keeps the split cell's own bound as the parent bound of the record
-// that stays, and a merge makes the parent bound the merged cell's own (refiner.cpp,
-// refineStep and mergeNow). Any other change of a record invalidates its entry; a bound is
-// recomputed from the samples only when a test needs it.
+// hexlod keeps one entry per cell record (20 bytes, packed_bounds.h): the cell's own bound
+// (§5, cell_bounds.h) and slope box, and its parent's bound, the cell a merge would make. The
+// refiner carries them across operations: a split keeps the split cell's own bound as the
+// parent bound of the record that stays, and a merge makes the parent bound the merged cell's
+// own (refiner.cpp, refineStep and mergeNow); carried bounds move packed, so they never loosen
+// on the way. Any other change of a record invalidates its entry; a bound is recomputed from
+// the samples only when a test needs it. What a test sees is always the unpacked bound, also
+// right after it was computed, so a decision does not depend on whether a bound was cached.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "lod/cell_bounds.h"
+#include "lod/packed_bounds.h"
 #include "mesh/pool_growth.h"
 
 namespace hexlod {
 
 class RefinementCache {
 public:
-    /// A bound not computed yet: a negative error, so an entry needs no flags (40 bytes).
-    static constexpr CellError kUnknown{0.0f, 0.0f, -1.0f};
-    static bool known(const CellError& e) { return e.error >= 0.0f; }
-
     struct Entry {
-        CellError own = kUnknown;    // the cell's bound
-        SlopeBox ownSlopes;          // the slopes under it (back-face culling), valid with own
-        CellError parent = kUnknown; // the bound of the cell a merge makes
+        PackedBound own;       // the cell's bound
+        PackedBound parent;    // the bound of the cell a merge makes
+        PackedSlopes ownSlopes; // the slopes under the cell (back-face culling), valid with own
     };
-    static_assert(sizeof(Entry) == 40, "issue 12 counts the bytes of a cell");
+    static_assert(sizeof(Entry) == 20, "issue 12 counts the bytes of a cell");
+
+    /// The field's height range, which the packed heights are steps of (before any entry).
+    void setHeightRange(float lowest, float highest) { packing_.setHeightRange(lowest, highest); }
 
     /// One entry per cell record: grows with the mesh's cell pool.
     void grow(size_t records) {
@@ -44,12 +46,35 @@ public:
     /// The record changed in a way the carry-over rules do not cover.
     void invalidate(int32_t record) { entries_[size_t(record)] = Entry{}; }
 
-    Entry& operator[](size_t record) { return entries_[record]; }
-    const Entry& operator[](size_t record) const { return entries_[record]; }
+    bool hasOwn(int32_t record) const { return BoundPacking::known(entries_[size_t(record)].own); }
+    bool hasParent(int32_t record) const { return BoundPacking::known(entries_[size_t(record)].parent); }
+    CellError own(int32_t record) const { return packing_.unpack(entries_[size_t(record)].own); }
+    CellError parent(int32_t record) const { return packing_.unpack(entries_[size_t(record)].parent); }
+    SlopeBox ownSlopes(int32_t record) const { return BoundPacking::unpack(entries_[size_t(record)].ownSlopes); }
+
+    void setOwn(int32_t record, const CellError& own, const SlopeBox& slopes) {
+        entries_[size_t(record)].own = packing_.pack(own);
+        entries_[size_t(record)].ownSlopes = BoundPacking::pack(slopes);
+    }
+    void setParent(int32_t record, const CellError& parent) { entries_[size_t(record)].parent = packing_.pack(parent); }
+
+    /// The carry-overs, packed as they are.
+    PackedBound packedOwn(int32_t record) const { return entries_[size_t(record)].own; }
+    PackedBound packedParent(int32_t record) const { return entries_[size_t(record)].parent; }
+    void setPackedParent(int32_t record, const PackedBound& parent) { entries_[size_t(record)].parent = parent; }
+    void setPackedOwn(int32_t record, const PackedBound& own, const SlopeBox& slopes) {
+        entries_[size_t(record)].own = own;
+        entries_[size_t(record)].ownSlopes = BoundPacking::pack(slopes);
+    }
+
+    /// A bound as the cache would give it back: what tests must use when they computed it.
+    CellError roundTrip(const CellError& e) const { return packing_.unpack(packing_.pack(e)); }
+
     size_t size() const { return entries_.size(); }
     size_t memoryBytes() const { return entries_.capacity() * sizeof(Entry); }
 
 private:
+    BoundPacking packing_;
     std::vector<Entry> entries_;
 };
 

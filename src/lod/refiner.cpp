@@ -61,6 +61,7 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     changes_.clear();
     // Every cached bound, record and state belongs to the old mesh; noteChanges grows them again.
     cache_.clear();
+    cache_.setHeightRange(field.minHeight(), field.maxHeight());
     releasePool(records_);
     releasePool(state_);
     currentTau_ = settings_.tau;
@@ -125,7 +126,7 @@ size_t Refiner::memoryBytes() const {
 }
 
 size_t Refiner::liveMemoryBytes() const {
-    return size_t(mesh_ ? mesh_->liveCells() : 0) * (sizeof(Cached) + sizeof(TestRecord) + 1) +
+    return size_t(mesh_ ? mesh_->liveCells() : 0) * (sizeof(RefinementCache::Entry) + sizeof(TestRecord) + 1) +
            pending_.size() * sizeof(PendingMerge) + pyramid_.memoryBytes();
 }
 
@@ -192,18 +193,16 @@ void Refiner::retestChanged() {
     fresh_.clear();
 }
 
-const CellError& Refiner::cachedError(CellError& slot, const CellShape& shape) {
-    if (!RefinementCache::known(slot)) slot = computeCellError(*field_, mesh_->embedding(), pyramid_, shape);
-    return slot;
+CellError Refiner::parentBound(int32_t c, const CellShape& parent) {
+    if (!cache_.hasParent(c)) cache_.setParent(c, computeCellError(*field_, mesh_->embedding(), pyramid_, parent));
+    return cache_.parent(c);
 }
 
-const Refiner::Cached& Refiner::ownBound(int32_t c, const Footprint& footprint) {
-    Cached& cached = cache_[size_t(c)];
-    if (!RefinementCache::known(cached.own)) {
-        cached.own = computeCellError(*field_, mesh_->embedding(), pyramid_, shapeOfCell(*mesh_, c));
-        cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), footprint);
-    }
-    return cached;
+Refiner::OwnBound Refiner::ownBound(int32_t c, const Footprint& footprint) {
+    if (!cache_.hasOwn(c))
+        cache_.setOwn(c, computeCellError(*field_, mesh_->embedding(), pyramid_, shapeOfCell(*mesh_, c)),
+                      slopesUnder(*field_, mesh_->embedding(), footprint));
+    return {cache_.own(c), cache_.ownSlopes(c)};
 }
 
 // The criteria of §5 for one bound (see view_criteria.h), and the margin of the verdict: how
@@ -349,7 +348,7 @@ bool Refiner::canRefine(int32_t c) const {
 // it breaks: all of them must pass, or the next refine pass would split c again.
 Refiner::Verdict Refiner::mergeVerdict(int32_t c, double& dist) {
     const CellShape parent = parentShapeOfCell(*mesh_, c);
-    Verdict all = judge(footprintOf(*field_, mesh_->embedding(), parent), cachedError(cache_[size_t(c)].parent, parent),
+    Verdict all = judge(footprintOf(*field_, mesh_->embedding(), parent), parentBound(c, parent),
                         nullptr, true, dist);
     if (!all.pass) return all;
     const Hexagon& h = mesh_->cell(c);
@@ -371,7 +370,9 @@ Refiner::Verdict Refiner::mergeVerdict(int32_t c, double& dist) {
         outer.step = mesh_->cellStep(n);
         double halfDist;
         const Verdict half = judge(footprintOf(*field_, mesh_->embedding(), outer),
-                                   computeCellError(*field_, mesh_->embedding(), pyramid_, outer), nullptr, true, halfDist);
+                                   // as the cache will give it back once the half is a cell of its own:
+                                   // a tighter bound here would merge what the next test splits again
+                                   cache_.roundTrip(computeCellError(*field_, mesh_->embedding(), pyramid_, outer)), nullptr, true, halfDist);
         if (!half.pass) {
             dist = halfDist;
             return half;
@@ -387,9 +388,9 @@ Refiner::Verdict Refiner::mergeVerdict(int32_t c, double& dist) {
 // Tests a cell's own bound and, for a merge candidate, its merge; sets its record and state.
 void Refiner::testCell(int32_t c) {
     const Footprint footprint = footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c));
-    const Cached& cached = ownBound(c, footprint);
+    const OwnBound bound = ownBound(c, footprint);
     double dist;
-    const Verdict own = judge(footprint, cached.own, &cached.ownSlopes, false, dist);
+    const Verdict own = judge(footprint, bound.error, &bound.slopes, false, dist);
     uint8_t& state = state_[size_t(c)];
     state &= uint8_t(kPending | kCancel);
     if (!own.pass && canRefine(c)) {
@@ -462,38 +463,34 @@ bool Refiner::refineStep(int32_t c) {
         if (!mesh_->canSplit(other)) return false;
         step = mesh_->firstStepToSplit(other);
     }
-    CellError kept;
+    PackedBound kept;
     CellShape keptShape;
-    const bool keep = step.kind == SplitStep::Split && RefinementCache::known(cache_[size_t(step.cell)].own);
+    const bool keep = step.kind == SplitStep::Split && cache_.hasOwn(step.cell);
     if (keep) {
-        kept = cache_[size_t(step.cell)].own;
+        kept = cache_.packedOwn(step.cell);
         keptShape = shapeOfCell(*mesh_, step.cell);
     }
     mesh_->applyStep(step);
     noteChanges();
-    if (keep && mesh_->isLive(step.cell) && sameShape(parentShapeOfCell(*mesh_, step.cell), keptShape)) {
-        cache_[size_t(step.cell)].parent = kept;
-    }
+    if (keep && mesh_->isLive(step.cell) && sameShape(parentShapeOfCell(*mesh_, step.cell), keptShape))
+        cache_.setPackedParent(step.cell, kept);
     return true;
 }
 
 // A merge turns the cell's record back into its parent (§4.6): the parent bound it cached is
 // its own bound now (§5.1).
 bool Refiner::mergeNow(int32_t c) {
-    CellError kept;
+    PackedBound kept;
     CellShape keptShape;
-    const bool keep = RefinementCache::known(cache_[size_t(c)].parent);
+    const bool keep = cache_.hasParent(c);
     if (keep) {
-        kept = cache_[size_t(c)].parent;
+        kept = cache_.packedParent(c);
         keptShape = parentShapeOfCell(*mesh_, c);
     }
     if (!mesh_->merge(c)) return false;
     noteChanges();
-    if (keep && sameShape(shapeOfCell(*mesh_, c), keptShape)) {
-        Cached& cached = cache_[size_t(c)];
-        cached.own = kept;
-        cached.ownSlopes = slopesUnder(*field_, mesh_->embedding(), footprintOf(*field_, mesh_->embedding(), keptShape));
-    }
+    if (keep && sameShape(shapeOfCell(*mesh_, c), keptShape))
+        cache_.setPackedOwn(c, kept, slopesUnder(*field_, mesh_->embedding(), footprintOf(*field_, mesh_->embedding(), keptShape)));
     return true;
 }
 

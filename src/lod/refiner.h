@@ -93,7 +93,10 @@ public:
 
 private:
     // §5.1: refinement data cached per cell record (refinement_cache.h).
-    using Cached = RefinementCache::Entry;
+    struct OwnBound {
+        CellError error;
+        SlopeBox slopes;
+    };
     // When a cell is next due, in the camera's odometers (travel_, turn_): due once
     // (travel_ - t0) + (turn_ - a0) * (dist + travel_ - t0) >= rho. t0, a0 rounded down,
     // dist (the eye's distance to the centre at the test) rounded up, rho (metres) rounded down.
@@ -130,8 +133,9 @@ private:
     }
 
     Verdict judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin, double& distOut) const;
-    const CellError& cachedError(CellError& slot, const CellShape& shape); // computes it when unknown
-    const Cached& ownBound(int32_t cell, const Footprint& footprint);
+    // The cached bounds (§5.1), computed when not cached; as the cache gives them back.
+    CellError parentBound(int32_t cell, const CellShape& parent);
+    OwnBound ownBound(int32_t cell, const Footprint& footprint);
     void noteChanges(bool collect = true); // collect: queue the changed cells for retestChanged
     void retestChanged();
     void testCell(int32_t cell);

@@ -14,17 +14,17 @@ double Refiner::achievedErrorPixels() const {
     double worst = 0.0;
     const int32_t cells = std::min(mesh_->cellCapacity(), int32_t(cache_.size()));
     for (int32_t c = 0; c < cells; ++c) {
-        const Cached& cached = cache_[size_t(c)];
         // A cell not tested since it was made has no bound yet; the next update computes it.
-        if (!mesh_->isLive(c) || !RefinementCache::known(cached.own)) continue;
+        if (!mesh_->isLive(c) || !cache_.hasOwn(c)) continue;
+        const CellError own = cache_.own(c);
         glm::dvec3 center;
         double radius;
-        boundingSphere(footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c)), cached.own, settings_.verticalScale, center, radius);
+        boundingSphere(footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c)), own, settings_.verticalScale, center, radius);
         // Cells that cannot be seen do not count: outside the (unwidened) frustum, or back-facing.
         if (settings_.culling && outsideFrustum(view_, center, radius)) continue;
-        if (settings_.backfaceCulling && backFacing(view_, center, radius, cached.ownSlopes, settings_.verticalScale))
+        if (settings_.backfaceCulling && backFacing(view_, center, radius, cache_.ownSlopes(c), settings_.verticalScale))
             continue;
-        worst = std::max(worst, projectedErrorPixels(view_, center, radius, double(cached.own.error) * settings_.verticalScale));
+        worst = std::max(worst, projectedErrorPixels(view_, center, radius, double(own.error) * settings_.verticalScale));
     }
     return worst;
 }

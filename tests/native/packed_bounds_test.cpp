@@ -1,0 +1,108 @@
+// The packed refinement data of the cache (src/lod/packed_bounds.h): half floats rounded to
+// the side asked for, and bounds that come back out of the cache still bounds, and tight.
+#include "lod/packed_bounds.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace hexlod;
+
+namespace {
+
+float fromBits(uint32_t bits) {
+    float f;
+    std::memcpy(&f, &bits, sizeof(f));
+    return f;
+}
+
+} // namespace
+
+TEST(PackedBounds, EveryHalfComesBackExactlyAndEveryFloatLandsBetweenItsTwoNeighbouringHalves) {
+    for (uint32_t h = 0; h <= 0xFFFFu; ++h) {
+        if (!half::isFinite(uint16_t(h))) continue;
+        const float x = half::toFloat(uint16_t(h));
+        // -0 comes back as +0's bits or its own; both are zero.
+        EXPECT_EQ(half::toFloat(half::rounded(x, true)), x) << std::hex << h;
+        EXPECT_EQ(half::toFloat(half::rounded(x, false)), x) << std::hex << h;
+    }
+    std::mt19937 random(12);
+    std::uniform_int_distribution<uint32_t> anyBits;
+    int32_t checked = 0;
+    for (int32_t k = 0; k < 2000000; ++k) {
+        const float x = fromBits(anyBits(random));
+        if (!std::isfinite(x)) continue;
+        const float down = half::toFloat(half::rounded(x, false)), up = half::toFloat(half::rounded(x, true));
+        ASSERT_LE(down, x) << x;
+        ASSERT_GE(up, x) << x;
+        if (std::abs(x) <= 65504.0f) {
+            // Neighbours: nothing representable lies strictly between them and x.
+            const uint16_t d = half::rounded(x, false), u = half::rounded(x, true);
+            if (down != up) {
+                const float next = half::toFloat(uint16_t(x > 0 ? d + 1 : d - 1)); // one step up from down
+                ASSERT_EQ(next, up) << x << " down " << std::hex << d << " up " << u;
+            }
+        } else {
+            ASSERT_TRUE(x > 0 ? std::isinf(up) : std::isinf(down)) << "past the range: infinity on the far side";
+        }
+        ++checked;
+    }
+    EXPECT_GT(checked, 1900000);
+}
+
+TEST(PackedBounds, ABoundComesBackNoTighterAndAtMostAStepLooser) {
+    BoundPacking packing;
+    for (auto [lowest, highest] : {std::pair{-10994.0f, 8848.0f}, std::pair{236.0f, 1076.0f}, std::pair{0.0f, 0.0f}, std::pair{5.0f, 5.5f}}) {
+        packing.setHeightRange(lowest, highest);
+        const double step = std::max(double(highest) - lowest, 0.0) / 65535.0;
+        std::mt19937 random(7);
+        std::uniform_real_distribution<float> height(lowest, highest);
+        std::uniform_real_distribution<double> exponent(-20.0, std::log2(std::max(double(highest) - lowest, 1e-6)));
+        for (int32_t k = 0; k < 200000; ++k) {
+            CellError e;
+            e.low = height(random), e.high = height(random);
+            if (e.low > e.high) std::swap(e.low, e.high);
+            // A flat field's cells have no error; others from a millionth of a metre to the range.
+            e.error = k % 10 == 0 || highest == lowest ? 0.0f : float(std::exp2(exponent(random)));
+            const PackedBound p = packing.pack(e);
+            ASSERT_TRUE(BoundPacking::known(p));
+            const CellError back = packing.unpack(p);
+            ASSERT_LE(back.low, e.low);
+            ASSERT_GE(back.high, e.high);
+            ASSERT_GE(back.error, e.error);
+            ASSERT_GE(back.low, e.low - step * 1.001 - 1e-3 * step);
+            ASSERT_LE(back.high, e.high + step * 1.001 + 1e-3 * step);
+            // A half's relative precision; below its normal range (errors under range * 2^-29) a
+            // fixed step of range * 2^-39.
+            const double range = double(highest) - lowest;
+            ASSERT_LE(back.error, e.error * (1.0 + 1.0 / 1024.0) + range * std::exp2(-38.0)) << e.error;
+            ASSERT_EQ(back.low, packing.unpack(packing.pack(back)).low) << "a bound that came back packs to itself";
+        }
+    }
+    EXPECT_FALSE(BoundPacking::known(PackedBound{})) << "a new entry is unknown";
+}
+
+TEST(PackedBounds, ASlopeBoxComesBackNoSmallerOrUnknown) {
+    SlopeBox unknown;
+    EXPECT_FALSE(BoundPacking::unpack(BoundPacking::pack(unknown)).known());
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> exponent(-12.0, 12.0);
+    std::uniform_int_distribution<int> sign(0, 1);
+    auto slope = [&] { return float((sign(random) ? -1.0 : 1.0) * std::exp2(exponent(random))); };
+    for (int32_t k = 0; k < 100000; ++k) {
+        SlopeBox box;
+        box.dxLow = slope(), box.dxHigh = slope(), box.dzLow = slope(), box.dzHigh = slope();
+        if (box.dxLow > box.dxHigh) std::swap(box.dxLow, box.dxHigh);
+        if (box.dzLow > box.dzHigh) std::swap(box.dzLow, box.dzHigh);
+        const SlopeBox back = BoundPacking::unpack(BoundPacking::pack(box));
+        ASSERT_TRUE(back.known());
+        ASSERT_LE(back.dxLow, box.dxLow);
+        ASSERT_GE(back.dxHigh, box.dxHigh);
+        ASSERT_LE(back.dzLow, box.dzLow);
+        ASSERT_GE(back.dzHigh, box.dzHigh);
+    }
+    SlopeBox cliff;
+    cliff.dxLow = -1.0f, cliff.dxHigh = 1e6f, cliff.dzLow = 0.0f, cliff.dzHigh = 0.5f;
+    EXPECT_FALSE(BoundPacking::unpack(BoundPacking::pack(cliff)).known()) << "steeper than a half can say: never culled";
+}
