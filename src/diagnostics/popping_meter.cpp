@@ -28,11 +28,27 @@ bool PoppingMeter::sameVertex(const HexMesh& mesh, int32_t v) const {
            previous_[size_t(v)].lattice == mesh.vertexLattice(v);
 }
 
+VertexParents PoppingMeter::parentsOf(const HexMesh& mesh, int32_t v) const {
+    VertexParents parents;
+    ParentPoints points;
+    if (!mesh.parentPoints(v, points)) return parents;
+    auto slotAt = [&](LatticePoint p) {
+        const auto it = slotAt_.find(latticeKey(p));
+        return it == slotAt_.end() ? kNone : it->second;
+    };
+    parents.a = slotAt(points.a);
+    parents.b = slotAt(points.b);
+    if (points.hasAcross) parents.across = slotAt(points.across);
+    if (parents.a == kNone || parents.b == kNone) return VertexParents{}; // never: parents are live
+    return parents;
+}
+
 // Where the previous frame's surface was at a vertex that may be new.
 glm::vec3 PoppingMeter::previousSurfaceAt(const HexMesh& mesh, const Geomorph& morph, int32_t v, int32_t depth) const {
     if (sameVertex(mesh, v)) return previous_[size_t(v)].drawn;
-    if (mesh.vertexParentA(v) == kNone || depth > 40) return morph.displayed(mesh.streamVertex(v));
-    return Geomorph::coarserSurface(mesh, v, [&](int32_t u) { return previousSurfaceAt(mesh, morph, u, depth + 1); });
+    const VertexParents parents = parentsOf(mesh, v);
+    if (parents.a == kNone || depth > 40) return morph.displayed(mesh.streamVertex(v));
+    return Geomorph::coarserSurface(mesh, v, parents, [&](int32_t u) { return previousSurfaceAt(mesh, morph, u, depth + 1); });
 }
 
 // Where this frame's surface is at a vertex slot of the previous frame that may be gone.
@@ -67,6 +83,9 @@ void PoppingMeter::renumber(const std::vector<int32_t>& vertexMap) {
         moved[size_t(to)] = seen;
     }
     previous_.swap(moved);
+    slotAt_.clear();
+    for (size_t v = 0; v < previous_.size(); ++v)
+        if (previous_[v].live) slotAt_[latticeKey(previous_[v].lattice)] = int32_t(v);
 }
 
 PoppingStats PoppingMeter::measure(const HexMesh& mesh, const Geomorph& morph, const View& view, double verticalScale) {
@@ -86,6 +105,16 @@ PoppingStats PoppingMeter::measure(const HexMesh& mesh, const Geomorph& morph, c
         stats.atX = x1, stats.atY = y1, stats.kind = kind;
         stats.atDepth = glm::dot(glm::dvec3(to.x, double(to.y) * verticalScale, to.z) - view.eye, view.forward);
     };
+    // The lattice point -> slot map follows the mesh to this frame: the slots whose vertex
+    // changed leave it, then the new ones enter (a point may move from one slot to another).
+    for (int32_t v = 0; v < int32_t(previous_.size()); ++v) {
+        const Seen& seen = previous_[size_t(v)];
+        if (!seen.live || sameVertex(mesh, v)) continue;
+        const auto it = slotAt_.find(latticeKey(seen.lattice));
+        if (it != slotAt_.end() && it->second == v) slotAt_.erase(it);
+    }
+    for (int32_t v = 0; v < slots; ++v)
+        if (mesh.isVertexLive(v) && !sameVertex(mesh, v)) slotAt_[latticeKey(mesh.vertexLattice(v))] = v;
     if (!first) {
         for (int32_t v = 0; v < slots; ++v) {
             const bool live = mesh.isVertexLive(v);
@@ -102,14 +131,15 @@ PoppingStats PoppingMeter::measure(const HexMesh& mesh, const Geomorph& morph, c
     previous_.resize(size_t(slots));
     for (int32_t v = 0; v < slots; ++v) {
         Seen& seen = previous_[size_t(v)];
+        const bool kept = sameVertex(mesh, v);
         seen.live = mesh.isVertexLive(v);
         if (!seen.live) continue;
-        seen.lattice = mesh.vertexLattice(v);
         seen.drawn = morph.displayed(mesh.streamVertex(v));
-        seen.parent[0] = mesh.vertexParentA(v);
-        seen.parent[1] = mesh.vertexParentB(v);
-        seen.parent[2] = mesh.vertexAcross(v);
-        if (seen.parent[0] != kNone) Geomorph::coarserWeights(mesh, v, seen.weight);
+        if (kept) continue; // its parents and their weights do not change while it lives
+        seen.lattice = mesh.vertexLattice(v);
+        const VertexParents parents = parentsOf(mesh, v);
+        seen.parent[0] = parents.a, seen.parent[1] = parents.b, seen.parent[2] = parents.across;
+        if (parents.a != kNone) Geomorph::coarserWeights(mesh, v, parents, seen.weight);
     }
     return stats;
 }

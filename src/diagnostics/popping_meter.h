@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "stream/geomorph.h"
@@ -32,7 +33,10 @@ class PoppingMeter {
 public:
     /// Compares the frame now drawn with the last measured one (nothing on the first call).
     PoppingStats measure(const HexMesh& mesh, const Geomorph& morph, const View& view, double verticalScale);
-    void reset() { previous_.clear(); }
+    void reset() {
+        previous_.clear();
+        slotAt_.clear();
+    }
     /// Keeps the last frame comparable across what the terrain did since: a new mesh (its
     /// epoch moved) starts again; one compaction (Terrain::renumberings moved by one) renumbers
     /// the last frame's records with Terrain::lastRenumbering; anything else starts again.
@@ -48,12 +52,17 @@ private:
         bool live;
     };
     bool sameVertex(const HexMesh& mesh, int32_t v) const;
+    // A live vertex's parents (HexMesh::parentPoints) as this frame's slots.
+    VertexParents parentsOf(const HexMesh& mesh, int32_t v) const;
     glm::vec3 previousSurfaceAt(const HexMesh& mesh, const Geomorph& morph, int32_t v, int32_t depth) const;
     glm::vec3 currentSurfaceAt(const HexMesh& mesh, const Geomorph& morph, int32_t v, int32_t depth) const;
 
     void renumber(const std::vector<int32_t>& vertexMap);
 
     std::vector<Seen> previous_;
+    // The slot of every live vertex's lattice point (latticeKey), kept in step with the mesh:
+    // the mesh stores no parents, the meter finds them by their lattice points.
+    std::unordered_map<uint64_t, int32_t> slotAt_;
     uint32_t meshEpoch_ = 0, renumberings_ = 0; // of the last frame's terrain
 };
 

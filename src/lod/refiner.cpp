@@ -504,7 +504,7 @@ bool Refiner::beginMerge(int32_t c) {
     mesh_->verticesFreedByMerge(c, freedScratch_);
     for (int32_t v : freedScratch_) {
         merge.vertices[merge.count++] = v;
-        morph_->blendOut(*mesh_, v);
+        morph_->blendOut(*mesh_, v, mesh_->parentsAround(v, c));
     }
     pending_.push_back(merge);
     state_[size_t(c)] |= kPending;
@@ -543,7 +543,8 @@ void Refiner::advancePendingMerges() {
             faded = true;
             for (int32_t k = 0; k < merge.count; ++k) {
                 const StreamVertex& v = mesh_->streamVertex(merge.vertices[k]);
-                if (!morph_->blendingOut(v)) morph_->blendOut(*mesh_, merge.vertices[k]); // reversed by a called-off merge
+                if (!morph_->blendingOut(v)) // reversed by a called-off merge
+                    morph_->blendOut(*mesh_, merge.vertices[k], mesh_->parentsAround(merge.vertices[k], merge.cell));
                 faded = faded && morph_->fadedOut(v);
             }
         }

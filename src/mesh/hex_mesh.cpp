@@ -66,7 +66,7 @@ void HexMesh::freeCell(int32_t c) {
     logChange(c);
 }
 
-int32_t HexMesh::allocateVertex(LatticePoint p, int32_t parentA, int32_t parentB) {
+int32_t HexMesh::allocateVertex(LatticePoint p, int32_t a, int32_t b, int32_t across1, int32_t across2) {
     int32_t v;
     if (!freeVertices_.empty()) {
         v = freeVertices_.back();
@@ -74,25 +74,23 @@ int32_t HexMesh::allocateVertex(LatticePoint p, int32_t parentA, int32_t parentB
     } else {
         v = int32_t(vertices_.size());
         const size_t size = vertices_.size() + 1;
-        reserveForPool(vertices_, size), reserveForPool(vertexParents_, size), reserveForPool(vertexLive_, size);
+        reserveForPool(vertices_, size), reserveForPool(vertexInfo_, size);
         vertices_.emplace_back();
-        vertexParents_.emplace_back();
-        vertexLive_.emplace_back();
+        vertexInfo_.emplace_back();
     }
     StreamVertex& sv = vertices_[size_t(v)];
     sv.position = embedLatticePoint(*field_, embedding_, p);
     sv.morphFromHeight = sv.position.y;
     sv.morphKey = 0.0f;
-    vertexParents_[size_t(v)] = {parentA, parentB, kNone};
-    vertexLive_[size_t(v)] = 1;
+    const int32_t across = a == kNone ? kNone : acrossOf(v, a, b, across1, across2);
+    vertexInfo_[size_t(v)] = uint8_t(kVertexLive | (across == kNone ? 0 : acrossCode(p, vertexLattice(across))));
     ++liveVertices_;
-    if (vertexLog_) vertexLog_->push_back(v);
+    if (vertexLog_) vertexLog_->insert(vertexLog_->end(), {v, a, b, across});
     return v;
 }
 
-void HexMesh::setAcross(int32_t v, int32_t candidate1, int32_t candidate2) {
-    const Parents& p = vertexParents_[size_t(v)];
-    const glm::vec3 a = vertices_[size_t(p.a)].position, b = vertices_[size_t(p.b)].position;
+int32_t HexMesh::acrossOf(int32_t v, int32_t parentA, int32_t parentB, int32_t candidate1, int32_t candidate2) const {
+    const glm::vec3 a = vertices_[size_t(parentA)].position, b = vertices_[size_t(parentB)].position;
     // Side of a ground-plane point relative to the edge a -> b, in double: exact for floats.
     auto side = [&](const glm::vec3& q) {
         const double cross = (double(b.x) - a.x) * (double(q.z) - a.z) - (double(b.z) - a.z) * (double(q.x) - a.x);
@@ -104,11 +102,69 @@ void HexMesh::setAcross(int32_t v, int32_t candidate1, int32_t candidate2) {
         for (int32_t c : {candidate1, candidate2})
             if (c != kNone && side(vertices_[size_t(c)].position) == own) across = c;
     }
-    vertexParents_[size_t(v)].across = across;
+    return across;
+}
+
+// Where a vertex's across parent can be, in steps of the step s it was made at: after a split,
+// the third corner of a coarser (step 2s) triangle on its parent edge (the second ring of
+// offsets); after a join, a corner of the semi-hexagon whose long edge it halves (the first).
+namespace {
+constexpr LatticePoint kAcrossOffsets[12] = {
+    {1, 0}, {1, -1}, {0, -1}, {-1, 0}, {-1, 1}, {0, 1},  // kDirections
+    {2, -1}, {1, -2}, {-1, -1}, {-2, 1}, {-1, 2}, {1, 1}, // kDirections[k] + kDirections[k + 1]
+};
+
+// The step a non-base vertex was made at: the lowest set bit of its coordinates.
+int32_t madeAtStep(LatticePoint p) {
+    const uint32_t bits = uint32_t(p.q) | uint32_t(p.r);
+    return int32_t(bits & (~bits + 1u));
+}
+} // namespace
+
+uint8_t HexMesh::acrossCode(LatticePoint p, LatticePoint across) {
+    const int32_t s = madeAtStep(p);
+    for (int32_t k = 0; k < 12; ++k)
+        if (latticeAdd(p, kAcrossOffsets[k], s) == across) return uint8_t(k + 1);
+    return 0; // never: checkInvariants finds the across parent missing
+}
+
+bool HexMesh::parentPoints(int32_t v, ParentPoints& out) const {
+    const LatticePoint p = vertexLattice(v);
+    const int32_t s = madeAtStep(p);
+    if (s == 0 || s >= baseStep_) return false; // on the base lattice: a base vertex
+    // p is the midpoint of a step-2s lattice edge p -+ s d: p/s is odd where d is.
+    const bool qOdd = (p.q & s) != 0, rOdd = (p.r & s) != 0;
+    const LatticePoint d = qOdd && rOdd ? LatticePoint{1, -1} : (qOdd ? LatticePoint{1, 0} : LatticePoint{0, 1});
+    out.a = latticeAdd(p, d, -s);
+    out.b = latticeAdd(p, d, s);
+    const int32_t code = vertexInfo_[size_t(v)] & kAcrossCode;
+    out.hasAcross = code != 0;
+    out.across = out.hasAcross ? latticeAdd(p, kAcrossOffsets[code - 1], s) : p;
+    return true;
+}
+
+VertexParents HexMesh::parentsAround(int32_t v, int32_t c) const {
+    VertexParents found;
+    ParentPoints points;
+    if (!parentPoints(v, points)) return found;
+    auto look = [&](const Hexagon& h) {
+        for (int32_t u : h.vertex) {
+            if (u == kNone) continue;
+            const LatticePoint p = vertexLattice(u);
+            if (p == points.a) found.a = u;
+            else if (p == points.b) found.b = u;
+            else if (points.hasAcross && p == points.across) found.across = u;
+        }
+    };
+    const Hexagon& h = cells_[size_t(c)];
+    look(h);
+    for (int32_t o : h.opposite)
+        if (o != kNone) look(cells_[size_t(hexIdx(o))]);
+    return found;
 }
 
 void HexMesh::freeVertex(int32_t v) {
-    vertexLive_[size_t(v)] = 0;
+    vertexInfo_[size_t(v)] = 0;
     (deferVertexReuse_ ? freedVertices_ : freeVertices_).push_back(v);
     --liveVertices_;
     if (vertexLog_) vertexLog_->push_back(~v);
@@ -136,7 +192,7 @@ void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& verte
     vertexMap.assign(vertices_.size(), kNone);
     int32_t vertices = 0;
     for (size_t v = 0; v < vertices_.size(); ++v)
-        if (vertexLive_[v]) vertexMap[v] = vertices++;
+        if (vertexInfo_[v] & kVertexLive) vertexMap[v] = vertices++;
     // Every reference to a cell or a vertex, renumbered; records move down in place.
     for (size_t c = 0; c < cells_.size(); ++c) {
         if (cellMap[c] == kNone) continue;
@@ -151,13 +207,9 @@ void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& verte
     for (std::vector<int32_t>* ends : {&levelHead_, &levelTail_})
         for (int32_t& c : *ends)
             if (c != kNone) c = cellMap[size_t(c)];
-    // A parent that is gone (never, for a live vertex's edge ends) reads as none.
-    auto renumbered = [&](int32_t v) { return v == kNone ? kNone : vertexMap[size_t(v)]; };
-    for (Parents& p : vertexParents_) p = {renumbered(p.a), renumbered(p.b), renumbered(p.across)};
     renumberPool(cells_, cellMap, size_t(cells));
     renumberPool(vertices_, vertexMap, size_t(vertices));
-    renumberPool(vertexParents_, vertexMap, size_t(vertices));
-    renumberPool(vertexLive_, vertexMap, size_t(vertices));
+    renumberPool(vertexInfo_, vertexMap, size_t(vertices)); // parents are lattice points: nothing to renumber
     freeCell_ = kNone;
     std::vector<int32_t>().swap(freeVertices_);
     std::vector<int32_t>().swap(freedVertices_);
@@ -251,14 +303,13 @@ int64_t HexMesh::cellTriangles(const Hexagon& h) const {
 
 size_t HexMesh::memoryBytes() const {
     return cells_.capacity() * sizeof(Hexagon) +
-           vertices_.capacity() * sizeof(StreamVertex) + vertexParents_.capacity() * sizeof(Parents) +
-           vertexLive_.capacity() + (freeVertices_.capacity() + freedVertices_.capacity()) * sizeof(int32_t) +
+           vertices_.capacity() * sizeof(StreamVertex) + vertexInfo_.capacity() + (freeVertices_.capacity() + freedVertices_.capacity()) * sizeof(int32_t) +
            (levelHead_.capacity() + levelTail_.capacity()) * sizeof(int32_t);
 }
 
 size_t HexMesh::liveMemoryBytes() const {
     return size_t(liveCells_) * sizeof(Hexagon) +
-           size_t(liveVertices_) * (sizeof(StreamVertex) + sizeof(Parents) + 1) +
+           size_t(liveVertices_) * (sizeof(StreamVertex) + 1) +
            (levelHead_.size() + levelTail_.size()) * sizeof(int32_t);
 }
 
@@ -372,9 +423,9 @@ void HexMesh::splitUnchecked(int32_t c) {
     std::fill(std::begin(ring), std::end(ring), kNone);
     for (int32_t i = 0; i < slots.cornerCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i);
-        newCorner[k] = allocateVertex(latticeAdd(center, kDirections[k - 1], half), h.vertex[0], h.vertex[k]);
-        // The spoke's two triangles in the fan: towards corner k-1 and corner k+1.
-        setAcross(newCorner[k], h.vertex[wrapSlot(k + 5)], h.vertex[wrapSlot(k + 1)]);
+        // Across: the spoke's two triangles in the fan, towards corner k-1 and corner k+1.
+        newCorner[k] = allocateVertex(latticeAdd(center, kDirections[k - 1], half), h.vertex[0], h.vertex[k],
+                                      h.vertex[wrapSlot(k + 5)], h.vertex[wrapSlot(k + 1)]);
     }
     for (int32_t i = 0; i < slots.edgeCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i), k1 = wrapSlot(k + 1);
@@ -394,9 +445,9 @@ void HexMesh::splitUnchecked(int32_t c) {
         }
         ring[k] = r;
         if (R.kind == CellKind::BoundarySemi) { // allocateVertex does not touch the cell pool
+            // Across: the fan triangle (centre, k, k+1); outside is no surface.
             const int32_t m = allocateVertex(latticeMidpoint(vertexLattice(h.vertex[k]), vertexLattice(h.vertex[k1])),
-                                             h.vertex[k], h.vertex[k1]);
-            setAcross(m, h.vertex[0], kNone); // the fan triangle (centre, k, k+1); outside is no surface
+                                             h.vertex[k], h.vertex[k1], h.vertex[0], kNone);
             cells_[size_t(r)].vertex[0] = m;
         }
         linkLevel(r);
@@ -455,8 +506,8 @@ void HexMesh::joinPair(int32_t keep, int32_t other) {
     const Hexagon o = cells_[size_t(other)];
     const int32_t a = cells_[size_t(keep)].firstVisible;
     const int32_t m = allocateVertex(cellCenter(keep), cells_[size_t(keep)].vertex[a], // the midpoint of the shared long edge
-                                     cells_[size_t(keep)].vertex[wrapSlot(a + 3)]);
-    setAcross(m, longEdgeFanCorner(cells_[size_t(keep)]), longEdgeFanCorner(o));
+                                     cells_[size_t(keep)].vertex[wrapSlot(a + 3)], longEdgeFanCorner(cells_[size_t(keep)]),
+                                     longEdgeFanCorner(o));
     Hexagon& k = cells_[size_t(keep)];
     k.vertex[0] = m;
     k.vertex[wrapSlot(a + 4)] = o.vertex[wrapSlot(a + 4)];
@@ -475,8 +526,7 @@ void HexMesh::joinPair(int32_t keep, int32_t other) {
 void HexMesh::joinBoundary(int32_t s) {
     const Hexagon& h = cells_[size_t(s)];
     const int32_t m = allocateVertex(cellCenter(s), h.vertex[h.firstVisible], // the midpoint of its long edge
-                                     h.vertex[wrapSlot(h.firstVisible + 3)]);
-    setAcross(m, longEdgeFanCorner(cells_[size_t(s)]), kNone);
+                                     h.vertex[wrapSlot(h.firstVisible + 3)], longEdgeFanCorner(cells_[size_t(s)]), kNone);
     cells_[size_t(s)].vertex[0] = m;
     cells_[size_t(s)].kind = CellKind::BoundarySemi;
     setLevel(s, cells_[size_t(s)].level + 1);

@@ -46,6 +46,20 @@ inline int32_t wrapSlot(int32_t slot) { return (slot - 1) % 6 + 1; }
 
 enum class CellKind : uint8_t { Full = 0, Semi = 1, BoundarySemi = 2 };
 
+/// §7: the parents of a vertex made by a split or a join, a and b the ends of the coarser edge
+/// whose midpoint it was made at (the blend starts there), and across the third corner of the
+/// coarser triangle on the side of that edge where the vertex lies in the ground plane (the
+/// exact embedding moves vertices off their parent edge by up to half a sample; kNone when it
+/// lies on the edge): the coarser surface under the vertex is in triangle (a, b, across). The
+/// same triangle is there again when a merge or break removes the vertex.
+struct VertexParents {
+    int32_t a = kNone, b = kNone, across = kNone;
+};
+struct ParentPoints {
+    LatticePoint a, b, across;
+    bool hasAcross = false;
+};
+
 struct Hexagon {
     int32_t vertex[7];     // §4.3 slots: centre, six corners; kNone if absent
     int32_t opposite[6];   // opposite directed edge across edge slot k at [k-1]; kNone on the domain boundary or unused
@@ -101,7 +115,8 @@ public:
     /// Records every cell an operation creates, changes or frees, into up to two logs (the
     /// refiner's caches and the fan stream); null: none. Slot 0 or 1.
     void setChangeLog(int32_t slot, std::vector<int32_t>* log) { changeLog_[slot] = log; }
-    /// Records every vertex an operation creates (v) or frees (~v), in order; null: none.
+    /// Records every vertex an operation creates, as v and its parents a, b, across
+    /// (VertexParents; kNone for a base vertex), or frees, as ~v; in order; null: none.
     void setVertexLog(std::vector<int32_t>* log) { vertexLog_ = log; }
     /// While on, freed vertex slots are not reused until releaseFreedVertices(): a consumer of
     /// the logs can still read the positions of the vertices the old cells used.
@@ -156,19 +171,20 @@ public:
     /// The renderer's part of a vertex (normal and blend) is written by FanStream and Geomorph.
     StreamVertex& streamVertex(int32_t v) { return vertices_[size_t(v)]; }
     const StreamVertex& streamVertex(int32_t v) const { return vertices_[size_t(v)]; }
-    /// The two ends of the coarser edge whose midpoint a vertex was created at (§7: the blend
-    /// starts there); kNone for the base mesh's vertices. `across` is the third corner of the
-    /// coarser triangle on the side of that edge where the vertex lies in the ground plane (the
-    /// exact embedding moves vertices off their parent edge by up to half a sample), or kNone
-    /// when the vertex lies on the edge; the coarser surface under the vertex is in triangle
-    /// (a, b, across). The same triangle is there again when a merge or break removes it.
-    int32_t vertexParentA(int32_t v) const { return vertexParents_[size_t(v)].a; }
-    int32_t vertexParentB(int32_t v) const { return vertexParents_[size_t(v)].b; }
-    int32_t vertexAcross(int32_t v) const { return vertexParents_[size_t(v)].across; }
+    /// §7's parents of a vertex (VertexParents) as lattice points; false for the base mesh's
+    /// vertices. Not stored (issue 12: 12 bytes a vertex): a vertex is the midpoint of a coarser
+    /// lattice edge, and its coordinates say which (their lowest set bit is the step s it was
+    /// made at, their parity at s the edge's direction); `across` is one of twelve lattice
+    /// offsets at step s, kept as a 4-bit code beside the vertex's live flag.
+    bool parentPoints(int32_t v, ParentPoints& out) const;
+    /// The parents as vertex indices, found among the vertices of `cell` and of the cells across
+    /// its edges, which hold the parents of every vertex merge(cell) frees (verticesFreedByMerge);
+    /// kNone where not found there.
+    VertexParents parentsAround(int32_t v, int32_t cell) const;
     /// Appends the vertices merge(cell) would free, forced breaks included. Call when
     /// canMerge(cell): the geomorph fades them out before the merge happens (§7).
     void verticesFreedByMerge(int32_t cell, std::vector<int32_t>& out) const;
-    bool isVertexLive(int32_t v) const { return vertexLive_[size_t(v)] != 0; }
+    bool isVertexLive(int32_t v) const { return (vertexInfo_[size_t(v)] & kVertexLive) != 0; }
     /// Lattice step of a cell: the distance from its (possibly virtual) centre to its corners.
     int32_t cellStep(int32_t c) const;
     /// The cell's centre on the lattice (a semi-hexagon's lies on its long edge).
@@ -226,9 +242,11 @@ private:
     friend class HexMeshInvariants;
     int32_t allocateCell();
     void freeCell(int32_t c);
-    int32_t allocateVertex(LatticePoint p, int32_t parentA, int32_t parentB);
-    /// Sets a new vertex's `across` (see vertexAcross): whichever candidate lies on its side.
-    void setAcross(int32_t v, int32_t candidate1, int32_t candidate2);
+    /// A new vertex at p, the midpoint of parents a and b; its `across` is whichever candidate
+    /// lies on its side of a -> b in the ground plane (VertexParents). kNone parents: a base vertex.
+    int32_t allocateVertex(LatticePoint p, int32_t a, int32_t b, int32_t across1, int32_t across2);
+    int32_t acrossOf(int32_t v, int32_t a, int32_t b, int32_t candidate1, int32_t candidate2) const;
+    static uint8_t acrossCode(LatticePoint p, LatticePoint across);
     /// The third corner of the semi-hexagon's fan triangle that holds its long edge.
     int32_t longEdgeFanCorner(const Hexagon& semi) const;
     void freeVertex(int32_t v);
@@ -254,10 +272,11 @@ private:
     int32_t liveCells_ = 0;
     std::vector<int32_t> levelHead_, levelTail_;
 
-    struct Parents { int32_t a, b, across; };
     std::vector<StreamVertex> vertices_;
-    std::vector<Parents> vertexParents_;
-    std::vector<uint8_t> vertexLive_;
+    // Per vertex: kVertexLive, and the code of its across parent (0: none, else 1 + an index of
+    // kAcrossOffsets in hex_mesh.cpp).
+    static constexpr uint8_t kVertexLive = 0x80, kAcrossCode = 0x0F;
+    std::vector<uint8_t> vertexInfo_;
     std::vector<int32_t> freeVertices_;
     std::vector<int32_t> freedVertices_; // freed while reuse is deferred
     bool deferVertexReuse_ = false;

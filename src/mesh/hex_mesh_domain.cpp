@@ -53,8 +53,7 @@ const char* HexMesh::reset(const Heightfield& field, Embedding embedding, int32_
     levelHead_.assign(size_t(maxLevel_) + 1, kNone);
     levelTail_.assign(size_t(maxLevel_) + 1, kNone);
     releasePool(vertices_);
-    releasePool(vertexParents_);
-    releasePool(vertexLive_);
+    releasePool(vertexInfo_);
     releasePool(freeVertices_);
     releasePool(freedVertices_);
     liveVertices_ = 0;
@@ -69,7 +68,7 @@ const char* HexMesh::reset(const Heightfield& field, Embedding embedding, int32_
     std::unordered_map<uint64_t, int32_t> vertexAt; // set-up only: shares corners between cells
     auto vertexOf = [&](LatticePoint p) {
         auto [it, inserted] = vertexAt.try_emplace(latticeKey(p), kNone);
-        if (inserted) it->second = allocateVertex(p, kNone, kNone);
+        if (inserted) it->second = allocateVertex(p, kNone, kNone, kNone, kNone);
         return it->second;
     };
 

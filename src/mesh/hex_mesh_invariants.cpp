@@ -121,7 +121,7 @@ const char* HexMesh::checkInvariants() const {
                 if (slot >= 1 && h.opposite[slot - 1] != kNone) return failure("cell %d: unused edge slot %d has a neighbour", c, slot);
                 continue;
             }
-            if (v < 0 || v >= int32_t(vertices_.size()) || !vertexLive_[size_t(v)]) return failure("cell %d: slot %d holds dead vertex %d", c, slot, v);
+            if (v < 0 || v >= int32_t(vertices_.size()) || !isVertexLive(v)) return failure("cell %d: slot %d holds dead vertex %d", c, slot, v);
             used[size_t(v)] = 1;
         }
         // Lattice geometry: corners at centre + step * direction; the centre is born at the
@@ -141,23 +141,28 @@ const char* HexMesh::checkInvariants() const {
     KeySet points(vertices_.size());
     int32_t liveVertices = 0, freeVertices = 0;
     for (size_t v = 0; v < vertices_.size(); ++v) {
-        if (!vertexLive_[v]) { ++freeVertices; continue; }
+        if (!isVertexLive(int32_t(v))) { ++freeVertices; continue; }
         ++liveVertices;
         if (!used[v]) return failure("live vertex %zu is used by no cell", v);
         const LatticePoint point = vertexLattice(int32_t(v));
         if (!points.insert(latticeKey(point))) return failure("two live vertices share lattice point (%d, %d)", point.q, point.r);
         // The lattice point is recovered from the position: the round trip must be exact.
         if (vertices_[v].position != embedLatticePoint(*field_, embedding_, point)) return failure("vertex %zu is not where the embedding puts it", v);
-        // §7's blend starts at the midpoint of the parent edge: both ends live, p their midpoint.
-        const Parents parents = vertexParents_[v];
-        if (parents.a == kNone && parents.b == kNone) continue;
-        if (parents.a == kNone || parents.b == kNone || !vertexLive_[size_t(parents.a)] || !vertexLive_[size_t(parents.b)])
-            return failure("vertex %zu has a dead parent", v);
-        if (latticeMidpoint(vertexLattice(parents.a), vertexLattice(parents.b)) != point)
-            return failure("vertex %zu is not the midpoint of its parents", v);
     }
     if (liveVertices != liveVertices_ || freeVertices != int32_t(freeVertices_.size() + freedVertices_.size()))
         return failure("vertex accounting is off");
+    // §7's blends start on the coarser surface under a vertex: its parents (derived from its
+    // lattice point and across code) are live vertices, and it is the midpoint of a and b.
+    for (size_t v = 0; v < vertices_.size(); ++v) {
+        ParentPoints parents;
+        if (!isVertexLive(int32_t(v)) || !parentPoints(int32_t(v), parents)) continue;
+        if (!points.contains(latticeKey(parents.a)) || !points.contains(latticeKey(parents.b)))
+            return failure("vertex %zu has a dead parent", v);
+        if (latticeMidpoint(parents.a, parents.b) != vertexLattice(int32_t(v)))
+            return failure("vertex %zu is not the midpoint of its parents", v);
+        if (parents.hasAcross && !points.contains(latticeKey(parents.across)))
+            return failure("vertex %zu has a dead across parent", v);
+    }
 
     // Edges: neighbour symmetry, and the balance rule (§4.5): no short edge of a semi-hexagon
     // carries the long edge of another semi-hexagon (they would be two levels apart).

@@ -184,9 +184,21 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
     for (int32_t c : changedCells_) cellPending_[size_t(c)] = 0;
     changedCells_.clear();
 
-    // New vertices blend in from their parent edges, in creation order (parents first).
-    for (int32_t entry : vertexLog_)
-        if (entry >= 0 && mesh.isVertexLive(entry)) morph.blendIn(mesh, entry);
+    // New vertices blend in from their parent edges, in creation order (parents first). The log
+    // holds v, a, b, across for a new vertex and ~v for a freed one (HexMesh::setVertexLog).
+    for (size_t i = 0; i < vertexLog_.size();) {
+        const int32_t v = vertexLog_[i];
+        if (v < 0) {
+            ++i;
+            continue;
+        }
+        const VertexParents parents{vertexLog_[i + 1], vertexLog_[i + 2], vertexLog_[i + 3]};
+        i += 4;
+        // Parents outlive their children and freed slots wait for releaseFreedVertices, so the
+        // logged parents of a vertex still live are the vertices they were.
+        if (!mesh.isVertexLive(v)) continue;
+        morph.blendIn(mesh, v, parents);
+    }
     vertexLog_.clear();
     for (int32_t v : morph.changedVertices()) markVertex(v);
     morph.changedVertices().clear();

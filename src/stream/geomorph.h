@@ -58,28 +58,28 @@ public:
         return {v.position.x, v.morphFromHeight + (v.position.y - v.morphFromHeight) * w, v.position.z};
     }
 
-    /// Weights of a vertex over its parents a, b and across (HexMesh::vertexAcross) such that
-    /// their weighted ground-plane position is the vertex's: the coarser surface under it is
-    /// the same weighted sum of their positions. (0.5, 0.5, 0) on the parent edge.
-    static void coarserWeights(const HexMesh& mesh, int32_t v, float w[3]);
-    /// The coarser surface under vertex v, with `drawn(u)` where vertex u is drawn.
+    /// Weights of a vertex over its parents a, b and across (VertexParents) such that their
+    /// weighted ground-plane position is the vertex's: the coarser surface under it is the same
+    /// weighted sum of their positions. (0.5, 0.5, 0) on the parent edge or without across.
+    static void coarserWeights(const HexMesh& mesh, int32_t v, const VertexParents& parents, float w[3]);
+    /// The coarser surface under vertex v, with `drawn(u)` where vertex u is drawn. Needs a and b.
     template <typename Drawn>
-    static glm::vec3 coarserSurface(const HexMesh& mesh, int32_t v, Drawn&& drawn) {
+    static glm::vec3 coarserSurface(const HexMesh& mesh, int32_t v, const VertexParents& parents, Drawn&& drawn) {
         float w[3];
-        coarserWeights(mesh, v, w);
-        const int32_t across = mesh.vertexAcross(v);
-        glm::vec3 p = w[0] * drawn(mesh.vertexParentA(v)) + w[1] * drawn(mesh.vertexParentB(v));
-        if (w[2] != 0.0f) p += w[2] * drawn(across);
+        coarserWeights(mesh, v, parents, w);
+        glm::vec3 p = w[0] * drawn(parents.a) + w[1] * drawn(parents.b);
+        if (w[2] != 0.0f) p += w[2] * drawn(parents.across);
         return p;
     }
 
-    /// A vertex the mesh just created: blends in from the coarser surface under it as drawn
-    /// now. With geomorphing off it appears at once; morphFromHeight still records the start (the
-    /// popping meter measures the jump from there).
-    void blendIn(HexMesh& mesh, int32_t v);
+    /// A vertex the mesh just created, with its parents: blends in from the coarser surface
+    /// under it as drawn now. With geomorphing off it appears at once; morphFromHeight still
+    /// records the start (the popping meter measures the jump from there).
+    void blendIn(HexMesh& mesh, int32_t v, const VertexParents& parents);
     /// A vertex a merge will free: blends back to the coarser surface under it, continuing
-    /// from where it is drawn now. Not yet blending out; kNone parents are ignored.
-    void blendOut(HexMesh& mesh, int32_t v);
+    /// from where it is drawn now. Not yet blending out; without parents a and b it has no
+    /// coarser surface to go to (a base vertex) and stays.
+    void blendOut(HexMesh& mesh, int32_t v, const VertexParents& parents);
     /// Reverses a blend-out (the merge was called off), continuing from where it is drawn.
     void cancelBlendOut(HexMesh& mesh, int32_t v);
     bool blendingOut(const StreamVertex& v) const { return v.morphKey < 0.0f; }
@@ -90,7 +90,7 @@ public:
     std::vector<int32_t>& changedVertices() { return changed_; }
 
 private:
-    float coarserHeightNow(const HexMesh& mesh, int32_t v) const;
+    float coarserHeightNow(const HexMesh& mesh, int32_t v, const VertexParents& parents) const;
 
     int32_t frames_ = 0;
     uint32_t frame_ = kFirstFrame;

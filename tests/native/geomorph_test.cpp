@@ -12,6 +12,7 @@
 
 #include "stream/fan_stream.h"
 #include "fixture.h"
+#include "hex_mesh_util.h"
 #include "diagnostics/popping_meter.h"
 #include "lod/refiner.h"
 
@@ -74,16 +75,19 @@ TEST(Geomorph, NewVerticesStartOnTheirParentEdgeAndArriveAfterNFrames) {
     lod.frame(views[0]);
     // The vertices of the first frame's splits, as drawn in that frame.
     std::vector<int32_t> born;
+    const test::ParentFinder parentsOf(lod.mesh);
     for (int32_t v = 0; v < lod.mesh.vertexCapacity(); ++v) {
-        if (!lod.mesh.isVertexLive(v) || lod.mesh.vertexParentA(v) == kNone) continue;
+        if (!lod.mesh.isVertexLive(v)) continue;
+        const VertexParents parents = parentsOf(v);
+        if (parents.a == kNone) continue;
         const StreamVertex& sv = lod.mesh.streamVertex(v);
         ASSERT_EQ(lod.morph.weight(sv), 0.0f) << "a new vertex is drawn on the coarser surface in its first frame";
-        const glm::vec3 below = Geomorph::coarserSurface(lod.mesh, v, [&](int32_t u) { return lod.morph.displayed(lod.mesh.streamVertex(u)); });
+        const glm::vec3 below = Geomorph::coarserSurface(lod.mesh, v, parents, [&](int32_t u) { return lod.morph.displayed(lod.mesh.streamVertex(u)); });
         ASSERT_LT(std::abs(lod.morph.displayed(sv).y - below.y), 1e-3f) << "it starts on the coarser surface";
         ASSERT_LT(std::abs(below.x - sv.position.x) + std::abs(below.z - sv.position.z), 1e-2f)
             << "which lies straight below or above it: the blend is vertical, so a start height is enough";
         float w[3];
-        Geomorph::coarserWeights(lod.mesh, v, w);
+        Geomorph::coarserWeights(lod.mesh, v, parents, w);
         for (float weight : w) ASSERT_GE(weight, -1e-4f) << "the coarser triangle holds it";
         born.push_back(v);
     }
@@ -124,9 +128,11 @@ TEST(Geomorph, MergesFreeOnlyFadedVerticesAndEveryBlendFinishes) {
         refiner.setView(views[std::min(i, views.size() - 1)]); // then hold still at the end
         const UpdateStats stats = refiner.update();
         mergesDeferred += refiner.pendingMerges();
-        for (int32_t entry : log) {
-            if (entry >= 0) {
-                if (mesh.isVertexLive(entry)) morph.blendIn(mesh, entry);
+        for (size_t k = 0; k < log.size(); ++k) {
+            const int32_t entry = log[k];
+            if (entry >= 0) { // v, a, b, across
+                if (mesh.isVertexLive(entry)) morph.blendIn(mesh, entry, {log[k + 1], log[k + 2], log[k + 3]});
+                k += 3;
                 continue;
             }
             ++freed;

@@ -206,6 +206,15 @@ int64_t randomOperations(HexMesh& mesh, uint32_t seed, int32_t operations, int32
         const int32_t o = mesh.cell(c).opposite[wrapSlot(mesh.cell(c).firstVisible + 3) - 1];
         return o == kNone || mesh.isLongEdge(o);
     };
+    // §7's parents as the operations made them (the vertex log: v, a, b, across or ~v), to
+    // compare with what the mesh derives from lattice points (it stores none).
+    std::vector<int32_t> log;
+    std::unordered_map<int32_t, VertexParents> madeWith;
+    mesh.setVertexLog(&log);
+    auto sameParents = [](const VertexParents& x, const VertexParents& y) {
+        const bool ends = (x.a == y.a && x.b == y.b) || (x.a == y.b && x.b == y.a);
+        return ends && x.across == y.across;
+    };
     int64_t applied = 0;
     for (int32_t n = 0; n < operations; ++n) {
         const uint32_t roll = random() % 100;
@@ -218,12 +227,44 @@ int64_t randomOperations(HexMesh& mesh, uint32_t seed, int32_t operations, int32
             const bool applies = op == 0 ? mesh.canSplit(c) : op == 1 ? mesh.canMerge(c) : op == 2 ? mesh.canBreak(c) : joinable(c);
             if (applies) break;
         }
+        if (op == 1 && mesh.canMerge(c)) { // the geomorph fades these out, towards their parents found here
+            std::vector<int32_t> freed;
+            mesh.verticesFreedByMerge(c, freed);
+            const test::ParentFinder parentsOf(mesh);
+            for (int32_t v : freed) {
+                const VertexParents around = mesh.parentsAround(v, c), everywhere = parentsOf(v);
+                if (around.a == kNone || !sameParents(around, everywhere)) {
+                    ADD_FAILURE() << "seed " << seed << " operation " << n << ": the parents of vertex " << v << " freed by merging " << c
+                                  << " are not around it";
+                    return applied;
+                }
+            }
+        }
         const bool done = op == 0 ? mesh.split(c) : op == 1 ? mesh.merge(c) : op == 2 ? mesh.breakHexagon(c) : mesh.join(c);
         applied += done;
         const char* problem = mesh.checkInvariants();
         if (problem) {
             ADD_FAILURE() << "seed " << seed << " operation " << n << " (" << op << " on cell " << c << "): " << problem;
             return applied;
+        }
+        for (size_t k = 0; k < log.size(); ++k) {
+            if (log[k] < 0) {
+                madeWith.erase(~log[k]);
+                continue;
+            }
+            madeWith[log[k]] = {log[k + 1], log[k + 2], log[k + 3]};
+            k += 3;
+        }
+        log.clear();
+        if (n % 16 == 0 || op == 1) {
+            const test::ParentFinder parentsOf(mesh);
+            for (const auto& [v, parents] : madeWith) {
+                if (!mesh.isVertexLive(v) || parents.a == kNone) continue;
+                if (!sameParents(parentsOf(v), parents)) {
+                    ADD_FAILURE() << "seed " << seed << " operation " << n << ": vertex " << v << " derives other parents than it was made with";
+                    return applied;
+                }
+            }
         }
     }
     return applied;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <unordered_map>
 #include <vector>
 
 #include "mesh/hex_mesh.h"
@@ -33,6 +34,32 @@ inline std::vector<LatticeTriangle> latticeTriangles(const HexMesh& mesh) {
     std::sort(out.begin(), out.end());
     return out;
 }
+
+// Every live vertex's parents by a search over the whole mesh (the mesh finds them only around
+// a cell, HexMesh::parentsAround): kNone for a base vertex, or where a parent is missing.
+class ParentFinder {
+public:
+    explicit ParentFinder(const HexMesh& mesh) : mesh_(mesh) {
+        for (int32_t v = 0; v < mesh.vertexCapacity(); ++v)
+            if (mesh.isVertexLive(v)) at_[latticeKey(mesh.vertexLattice(v))] = v;
+    }
+    VertexParents operator()(int32_t v) const {
+        VertexParents found;
+        ParentPoints points;
+        if (!mesh_.parentPoints(v, points)) return found;
+        auto slot = [&](LatticePoint p) {
+            const auto it = at_.find(latticeKey(p));
+            return it == at_.end() ? kNone : it->second;
+        };
+        found.a = slot(points.a), found.b = slot(points.b);
+        if (points.hasAcross) found.across = slot(points.across);
+        return found;
+    }
+
+private:
+    const HexMesh& mesh_;
+    std::unordered_map<uint64_t, int32_t> at_;
+};
 
 inline LatticePoint fromKey(uint64_t key) { return {int32_t(uint32_t(key >> 32)), int32_t(uint32_t(key))}; }
 
