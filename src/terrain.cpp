@@ -60,7 +60,7 @@ UpdateStats Terrain::updateLod() {
 }
 
 void Terrain::compact() {
-    std::vector<int32_t> cellMap; // a rare event: the mesh shrank by a quarter
+    std::vector<int32_t> cellMap; // a rare event: the mesh shrank by an eighth
     mesh_.compact(cellMap, renumbering_);
     refiner_.renumber(cellMap, renumbering_);
     morph_.changedVertices().clear(); // the stream's rewrite uploads every vertex

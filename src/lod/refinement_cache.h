@@ -33,10 +33,10 @@ public:
     /// The field's height range, which the packed heights are steps of (before any entry).
     void setHeightRange(float lowest, float highest) { packing_.setHeightRange(lowest, highest); }
 
-    /// One entry per cell record: grows with the mesh's cell pool.
-    void grow(size_t records) {
+    /// One entry per cell record: grows with the mesh's cell pool (of `room` records).
+    void grow(size_t records, size_t room) {
         if (entries_.size() >= records) return;
-        reserveForPool(entries_, records);
+        reserveLikePool(entries_, records, room);
         entries_.resize(records);
     }
     /// No entries (a new mesh): they grow again with its pool.

@@ -162,8 +162,9 @@ void Refiner::rebaseOdometers() {
 void Refiner::noteChanges(bool collect) {
     const size_t capacity = size_t(mesh_->cellCapacity());
     if (cache_.size() < capacity) { // grows with the pool
-        cache_.grow(capacity);
-        reserveForPool(records_, capacity), reserveForPool(state_, capacity);
+        const size_t room = mesh_->cellPoolRoom();
+        cache_.grow(capacity, room);
+        reserveLikePool(records_, capacity, room), reserveLikePool(state_, capacity, room);
         records_.resize(capacity);
         state_.resize(capacity, 0);
     }

@@ -176,11 +176,11 @@ void HexMesh::releaseFreedVertices() {
 }
 
 bool HexMesh::wantsCompaction() const {
-    // A quarter of a large pool unused; small pools are not worth a rewrite.
+    // An eighth of a large pool unused; small pools are not worth a rewrite.
     constexpr size_t kLargePool = 4096;
     const size_t cells = cells_.size(), vertices = vertices_.size();
-    return (cells >= kLargePool && 4 * size_t(liveCells_) < 3 * cells) ||
-           (vertices >= kLargePool && 4 * size_t(liveVertices_) < 3 * vertices);
+    return (cells >= kLargePool && 8 * size_t(liveCells_) < 7 * cells) ||
+           (vertices >= kLargePool && 8 * size_t(liveVertices_) < 7 * vertices);
 }
 
 void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& vertexMap) {

@@ -147,6 +147,10 @@ public:
     bool isLive(int32_t c) const { return c >= 0 && size_t(c) < cells_.size() && cells_[size_t(c)].level != kFreeLevel; }
     int32_t cellCapacity() const { return int32_t(cells_.size()); }
     int32_t vertexCapacity() const { return int32_t(vertices_.size()); }
+    /// The room the pools have (records allocated, used or not): per-record arrays of other
+    /// parts reserve as much (reserveLikePool).
+    size_t cellPoolRoom() const { return cells_.capacity(); }
+    size_t vertexPoolRoom() const { return vertices_.capacity(); }
     int32_t liveCells() const { return liveCells_; }
     int32_t liveVertices() const { return liveVertices_; }
     int32_t maxLevel() const { return maxLevel_; }

@@ -20,6 +20,15 @@ void reserveForPool(std::vector<T>& pool, size_t size) {
     pool.reserve(std::max(size, pool.capacity() + pool.capacity() / 16 + kMinimumGrowth));
 }
 
+/// Makes room for `size` elements in an array that keeps one element per record of a pool
+/// (the refiner's caches, the stream's slots): as much room as the pool has, so the two grow
+/// together and the array adds no unused share of its own.
+template <typename T>
+void reserveLikePool(std::vector<T>& perRecord, size_t size, size_t poolCapacity) {
+    if (size <= perRecord.capacity()) return;
+    perRecord.reserve(std::max(size, poolCapacity));
+}
+
 /// Empties a pool and gives its memory back (clear() keeps the capacity): a new mesh, perhaps of
 /// a much smaller field, starts from nothing rather than from the last mesh's peak.
 template <typename T>

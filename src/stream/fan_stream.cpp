@@ -55,9 +55,9 @@ void FanStream::setNormals(bool on) {
 // Sums the face normals of every slot as it stands (what the renderer draws now); the next
 // sync then moves the sums with the changes, as it always does.
 void FanStream::rebuildNormals(HexMesh& mesh) {
-    reserveForPool(normalSum_, size_t(mesh.vertexCapacity()));
+    reserveLikePool(normalSum_, size_t(mesh.vertexCapacity()), mesh.vertexPoolRoom());
     normalSum_.assign(size_t(mesh.vertexCapacity()), glm::i64vec3(0));
-    reserveForPool(vertexNormals_, size_t(mesh.vertexCapacity()));
+    reserveLikePool(vertexNormals_, size_t(mesh.vertexCapacity()), mesh.vertexPoolRoom());
     vertexNormals_.assign(size_t(mesh.vertexCapacity()), PackedNormal{});
     if (vertexPending_.size() < normalSum_.size()) vertexPending_.resize(normalSum_.size(), 0);
     const size_t slots = indices_.size() / size_t(slotSize());
@@ -149,24 +149,25 @@ void FanStream::writeSlot(const HexMesh& mesh, int32_t c) {
 void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
     // The pools may have grown: new slots start empty, new vertices with zero sums.
     const size_t cells = size_t(mesh.cellCapacity()), vertices = size_t(mesh.vertexCapacity());
+    const size_t cellRoom = mesh.cellPoolRoom(), vertexRoom = mesh.vertexPoolRoom();
     if (indices_.size() < cells * size_t(slotSize())) {
-        reserveForPool(indices_, cells * size_t(slotSize()));
+        reserveLikePool(indices_, cells * size_t(slotSize()), cellRoom * size_t(slotSize()));
         indices_.resize(cells * size_t(slotSize()), kRestartIndex);
     }
     if (normals_ && normalSum_.size() < vertices) {
-        reserveForPool(normalSum_, vertices);
+        reserveLikePool(normalSum_, vertices, vertexRoom);
         normalSum_.resize(vertices, glm::i64vec3(0));
     }
     if (normals_ && vertexNormals_.size() < vertices) {
-        reserveForPool(vertexNormals_, vertices);
+        reserveLikePool(vertexNormals_, vertices, vertexRoom);
         vertexNormals_.resize(vertices, PackedNormal{});
     }
     if (vertexPending_.size() < vertices) {
-        reserveForPool(vertexPending_, vertices);
+        reserveLikePool(vertexPending_, vertices, vertexRoom);
         vertexPending_.resize(vertices, 0);
     }
     if (cellPending_.size() < cells) {
-        reserveForPool(cellPending_, cells);
+        reserveLikePool(cellPending_, cells, cellRoom);
         cellPending_.resize(cells, 0);
     }
 
