@@ -29,16 +29,10 @@ bool PoppingMeter::sameVertex(const HexMesh& mesh, int32_t v) const {
 }
 
 VertexParents PoppingMeter::parentsOf(const HexMesh& mesh, int32_t v) const {
-    VertexParents parents;
-    ParentPoints points;
-    if (!mesh.parentPoints(v, points)) return parents;
-    auto slotAt = [&](LatticePoint p) {
+    const VertexParents parents = mesh.parentsBy(v, [&](LatticePoint p) {
         const auto it = slotAt_.find(latticeKey(p));
         return it == slotAt_.end() ? kNone : it->second;
-    };
-    parents.a = slotAt(points.a);
-    parents.b = slotAt(points.b);
-    if (points.hasAcross) parents.across = slotAt(points.across);
+    });
     if (parents.a == kNone || parents.b == kNone) return VertexParents{}; // never: parents are live
     return parents;
 }

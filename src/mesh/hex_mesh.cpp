@@ -144,23 +144,18 @@ bool HexMesh::parentPoints(int32_t v, ParentPoints& out) const {
 }
 
 VertexParents HexMesh::parentsAround(int32_t v, int32_t c) const {
-    VertexParents found;
-    ParentPoints points;
-    if (!parentPoints(v, points)) return found;
-    auto look = [&](const Hexagon& h) {
-        for (int32_t u : h.vertex) {
-            if (u == kNone) continue;
-            const LatticePoint p = vertexLattice(u);
-            if (p == points.a) found.a = u;
-            else if (p == points.b) found.b = u;
-            else if (points.hasAcross && p == points.across) found.across = u;
-        }
-    };
     const Hexagon& h = cells_[size_t(c)];
-    look(h);
-    for (int32_t o : h.opposite)
-        if (o != kNone) look(cells_[size_t(hexIdx(o))]);
-    return found;
+    return parentsBy(v, [&](LatticePoint p) {
+        auto in = [&](const Hexagon& cell) {
+            for (int32_t u : cell.vertex)
+                if (u != kNone && vertexLattice(u) == p) return u;
+            return kNone;
+        };
+        int32_t u = in(h);
+        for (int32_t k = 0; k < 6 && u == kNone; ++k)
+            if (h.opposite[k] != kNone) u = in(cells_[size_t(hexIdx(h.opposite[k]))]);
+        return u;
+    });
 }
 
 void HexMesh::freeVertex(int32_t v) {

@@ -181,6 +181,18 @@ public:
     /// made at, their parity at s the edge's direction); `across` is one of twelve lattice
     /// offsets at step s, kept as a 4-bit code beside the vertex's live flag.
     bool parentPoints(int32_t v, ParentPoints& out) const;
+    /// The parents as vertex indices, `slotOf(LatticePoint)` giving the live vertex at a lattice
+    /// point or kNone; all kNone for a base vertex.
+    template <typename SlotOf>
+    VertexParents parentsBy(int32_t v, SlotOf&& slotOf) const {
+        VertexParents found;
+        ParentPoints points;
+        if (!parentPoints(v, points)) return found;
+        found.a = slotOf(points.a);
+        found.b = slotOf(points.b);
+        if (points.hasAcross) found.across = slotOf(points.across);
+        return found;
+    }
     /// The parents as vertex indices, found among the vertices of `cell` and of the cells across
     /// its edges, which hold the parents of every vertex merge(cell) frees (verticesFreedByMerge);
     /// kNone where not found there.

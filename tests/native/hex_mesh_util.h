@@ -44,16 +44,10 @@ public:
             if (mesh.isVertexLive(v)) at_[latticeKey(mesh.vertexLattice(v))] = v;
     }
     VertexParents operator()(int32_t v) const {
-        VertexParents found;
-        ParentPoints points;
-        if (!mesh_.parentPoints(v, points)) return found;
-        auto slot = [&](LatticePoint p) {
+        return mesh_.parentsBy(v, [&](LatticePoint p) {
             const auto it = at_.find(latticeKey(p));
             return it == at_.end() ? kNone : it->second;
-        };
-        found.a = slot(points.a), found.b = slot(points.b);
-        if (points.hasAcross) found.across = slot(points.across);
-        return found;
+        });
     }
 
 private:
