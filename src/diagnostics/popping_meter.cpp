@@ -24,8 +24,11 @@ bool project(const View& view, const glm::vec3& p, double verticalScale, double&
 } // namespace
 
 bool PoppingMeter::sameVertex(const HexMesh& mesh, int32_t v) const {
-    return size_t(v) < previous_.size() && previous_[size_t(v)].live && mesh.isVertexLive(v) &&
-           previous_[size_t(v)].lattice == mesh.vertexLattice(v);
+    if (size_t(v) >= previous_.size() || !previous_[size_t(v)].live || !mesh.isVertexLive(v)) return false;
+    // The same lattice point is the same ground position (the mesh derives one from the other),
+    // and blends are vertical: comparing x and z is comparing lattice points, without deriving them.
+    const glm::vec3& was = previous_[size_t(v)].drawn, & is = mesh.vertexPosition(v);
+    return was.x == is.x && was.z == is.z;
 }
 
 VertexParents PoppingMeter::parentsOf(const HexMesh& mesh, int32_t v) const {
