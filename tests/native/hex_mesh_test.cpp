@@ -305,7 +305,7 @@ TEST(HexMesh, RandomOperationSequencesKeepEveryInvariantAfterEveryOperation) {
     EXPECT_GT(applied, total / 3); // most tiny domains cannot split at all
 }
 
-// Issue 12 counts memory at allocated capacity: the pools grow by an eighth, not by doubling.
+// Issue 12 counts memory at allocated capacity: the pools grow by a sixteenth, not by doubling.
 TEST(HexMesh, PoolsGrowByASixteenthSoLittleOfTheirMemoryIsUnused) {
     auto field = test::loadFixture(test::kJacksboro);
     ASSERT_NE(field, nullptr);
