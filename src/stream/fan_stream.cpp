@@ -59,7 +59,7 @@ void FanStream::rebuildNormals(HexMesh& mesh) {
     normalSum_.assign(size_t(mesh.vertexCapacity()), glm::i64vec3(0));
     reserveLikePool(vertexNormals_, size_t(mesh.vertexCapacity()), mesh.vertexPoolRoom());
     vertexNormals_.assign(size_t(mesh.vertexCapacity()), PackedNormal{});
-    if (vertexPending_.size() < normalSum_.size()) vertexPending_.resize(normalSum_.size(), 0);
+    if (vertexPending_.size() < normalSum_.size()) vertexPending_.resize(normalSum_.size(), false);
     const size_t slots = indices_.size() / size_t(slotSize());
     for (size_t c = 0; c < slots; ++c) accumulate(mesh, indices_.data() + c * size_t(slotSize()), +1);
     finishNormals(mesh);
@@ -72,8 +72,8 @@ void FanStream::renumbered(HexMesh& mesh) {
     std::vector<uint32_t>().swap(indices_);
     std::vector<glm::i64vec3>().swap(normalSum_);
     std::vector<PackedNormal>().swap(vertexNormals_);
-    std::vector<uint8_t>().swap(cellPending_);
-    std::vector<uint8_t>().swap(vertexPending_);
+    std::vector<bool>().swap(cellPending_);
+    std::vector<bool>().swap(vertexPending_);
     std::vector<uint8_t>().swap(dirtyVertices_.marked);
     std::vector<uint8_t>().swap(dirtyIndices_.marked);
     dirtyVertices_.list.clear();
@@ -109,7 +109,7 @@ void FanStream::forEachTriangle(const uint32_t* slot, Visit&& visit) const {
 
 void FanStream::markVertex(int32_t v) {
     if (vertexPending_[size_t(v)]) return;
-    vertexPending_[size_t(v)] = 1;
+    vertexPending_[size_t(v)] = true;
     touchedVertices_.push_back(v);
 }
 
@@ -164,17 +164,17 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
     }
     if (vertexPending_.size() < vertices) {
         reserveLikePool(vertexPending_, vertices, vertexRoom);
-        vertexPending_.resize(vertices, 0);
+        vertexPending_.resize(vertices, false);
     }
     if (cellPending_.size() < cells) {
         reserveLikePool(cellPending_, cells, cellRoom);
-        cellPending_.resize(cells, 0);
+        cellPending_.resize(cells, false);
     }
 
     bool wrote = false;
     for (int32_t c : changedCells_) {
         if (cellPending_[size_t(c)]) continue;
-        cellPending_[size_t(c)] = 1;
+        cellPending_[size_t(c)] = true;
         const uint32_t* slot = indices_.data() + size_t(c) * size_t(slotSize());
         accumulate(mesh, slot, -1); // its old triangles: their vertices still hold their positions
         writeSlot(mesh, c);
@@ -182,7 +182,7 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
         dirtyIndices_.mark(c);
         wrote = true;
     }
-    for (int32_t c : changedCells_) cellPending_[size_t(c)] = 0;
+    for (int32_t c : changedCells_) cellPending_[size_t(c)] = false;
     changedCells_.clear();
 
     // New vertices blend in from their parent edges, in creation order (parents first). The log
@@ -219,7 +219,7 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
 
 void FanStream::finishNormals(HexMesh& mesh) {
     for (int32_t v : touchedVertices_) {
-        vertexPending_[size_t(v)] = 0;
+        vertexPending_[size_t(v)] = false;
         dirtyVertices_.mark(v);
         if (!normals_ || !mesh.isVertexLive(v)) continue; // a freed vertex's sum is back to exactly zero
         const glm::dvec3 n(normalSum_[size_t(v)]);
@@ -316,7 +316,7 @@ size_t FanStream::memoryBytes() const {
     return indices_.capacity() * sizeof(uint32_t) + normalSum_.capacity() * sizeof(glm::i64vec3) +
            vertexNormals_.capacity() * sizeof(PackedNormal) +
            (changedCells_.capacity() + vertexLog_.capacity() + touchedVertices_.capacity()) * sizeof(int32_t) +
-           cellPending_.capacity() + vertexPending_.capacity() + dirtyVertices_.marked.capacity() + dirtyIndices_.marked.capacity() +
+           (cellPending_.capacity() + vertexPending_.capacity()) / 8 + dirtyVertices_.marked.capacity() + dirtyIndices_.marked.capacity() +
            (dirtyVertices_.list.capacity() + dirtyIndices_.list.capacity()) * sizeof(int32_t) +
            (vertexRanges_.capacity() + indexRanges_.capacity()) * sizeof(ElementRange) +
            (levelIndices_.capacity() + outline_.capacity()) * sizeof(uint32_t) + levelOffsets_.capacity() * sizeof(int32_t);
