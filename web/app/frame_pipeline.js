@@ -124,6 +124,14 @@ export class FramePipeline {
     state.eye = eye;
   }
 
+  /** A new terrain is shown: until its first frame, nothing has converged and nothing is drawn. */
+  forgetFigures() {
+    this.lodFigures.converged = false;
+    this.meshFigures.triangles = 0;
+    this.state.converged = false;
+    this.state.triangles = 0;
+  }
+
   // The frame's figures as tests read them, in objects made once.
   publish(stats) {
     const { state } = this, lod = this.lodFigures, mesh = this.meshFigures;

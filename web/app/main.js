@@ -149,6 +149,7 @@ async function main() {
     renderer.invalidate();
     owner.adopt('cellSize', terrain.spacingX);
     panel.setCellSizeRange(terrain.spacingX);
+    pipeline.forgetFigures(); // the last terrain's "converged" and triangles do not describe this one
     state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
       minHeight: terrain.minHeight, maxHeight: terrain.maxHeight };
     hud.setTerrain(field, terrain, loaded.loadMs);
