@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "mesh/hex_mesh_refine.h"
+#include "mesh/pool_growth.h"
 #include "stream/drawn_surface.h"
 
 namespace hexlod {
@@ -53,7 +54,7 @@ void Terrain::configure(const TerrainSettings& settings) {
 }
 
 UpdateStats Terrain::updateLod() {
-    if (!renumbering_.empty()) std::vector<int32_t>().swap(renumbering_);
+    if (!renumbering_.empty()) releasePool(renumbering_);
     // Between frames: the stream has applied every change, the refiner is between updates.
     if (compactPools_ && mesh_.wantsCompaction()) compact();
     return refiner_.update();

@@ -707,10 +707,11 @@ UpdateStats Refiner::update() {
     }
     heap_.clear();
     // Work lists that a large update (the first refinement of a mesh, a jump) grew give it back.
-    trimExcess(heap_, frameListRoom(size_t(mesh_->liveCells())));
-    trimExcess(mergeList_, frameListRoom(size_t(mesh_->liveCells())));
-    trimExcess(fresh_, frameListRoom(size_t(mesh_->liveCells())));
-    trimExcess(changes_, frameListRoom(size_t(mesh_->liveCells())));
+    const size_t room = frameListRoom(size_t(mesh_->liveCells()));
+    trimExcess(heap_, room);
+    trimExcess(mergeList_, room);
+    trimExcess(fresh_, room);
+    trimExcess(changes_, room);
     last_.operations = operations_;
     last_.splits = int32_t(mesh_->counts().splits - before.splits);
     last_.merges = int32_t(mesh_->counts().merges - before.merges);

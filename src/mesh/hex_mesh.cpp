@@ -109,10 +109,12 @@ int32_t HexMesh::acrossOf(int32_t v, int32_t parentA, int32_t parentB, int32_t c
 // the third corner of a coarser (step 2s) triangle on its parent edge (the second ring of
 // offsets); after a join, a corner of the semi-hexagon whose long edge it halves (the first).
 namespace {
-constexpr LatticePoint kAcrossOffsets[12] = {
-    {1, 0}, {1, -1}, {0, -1}, {-1, 0}, {-1, 1}, {0, 1},  // kDirections
-    {2, -1}, {1, -2}, {-1, -1}, {-2, 1}, {-1, 2}, {1, 1}, // kDirections[k] + kDirections[k + 1]
-};
+// Offset k of the twelve (k < 6: kDirections[k]; then kDirections[k] + kDirections[k + 1]).
+constexpr int32_t kAcrossOffsets = 12;
+LatticePoint acrossOffset(int32_t k) {
+    if (k < 6) return kDirections[k];
+    return latticeAdd(kDirections[k - 6], kDirections[(k - 5) % 6], 1);
+}
 
 // The step a non-base vertex was made at: the lowest set bit of its coordinates.
 int32_t madeAtStep(LatticePoint p) {
@@ -123,8 +125,8 @@ int32_t madeAtStep(LatticePoint p) {
 
 uint8_t HexMesh::acrossCode(LatticePoint p, LatticePoint across) {
     const int32_t s = madeAtStep(p);
-    for (int32_t k = 0; k < 12; ++k)
-        if (latticeAdd(p, kAcrossOffsets[k], s) == across) return uint8_t(k + 1);
+    for (int32_t k = 0; k < kAcrossOffsets; ++k)
+        if (latticeAdd(p, acrossOffset(k), s) == across) return uint8_t(k + 1);
     return 0; // never: checkInvariants finds the across parent missing
 }
 
@@ -139,7 +141,7 @@ bool HexMesh::parentPoints(int32_t v, ParentPoints& out) const {
     out.b = latticeAdd(p, d, s);
     const int32_t code = vertexInfo_[size_t(v)] & kAcrossCode;
     out.hasAcross = code != 0;
-    out.across = out.hasAcross ? latticeAdd(p, kAcrossOffsets[code - 1], s) : p;
+    out.across = out.hasAcross ? latticeAdd(p, acrossOffset(code - 1), s) : p;
     return true;
 }
 
@@ -206,8 +208,8 @@ void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& verte
     renumberPool(vertices_, vertexMap, size_t(vertices));
     renumberPool(vertexInfo_, vertexMap, size_t(vertices)); // parents are lattice points: nothing to renumber
     freeCell_ = kNone;
-    std::vector<int32_t>().swap(freeVertices_);
-    std::vector<int32_t>().swap(freedVertices_);
+    releasePool(freeVertices_);
+    releasePool(freedVertices_);
 }
 
 void HexMesh::linkLevel(int32_t c) {

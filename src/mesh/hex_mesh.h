@@ -290,7 +290,7 @@ private:
 
     std::vector<StreamVertex> vertices_;
     // Per vertex: kVertexLive, and the code of its across parent (0: none, else 1 + an index of
-    // kAcrossOffsets in hex_mesh.cpp).
+    // acrossOffset in hex_mesh.cpp).
     static constexpr uint8_t kVertexLive = 0x80, kAcrossCode = 0x0F;
     std::vector<uint8_t> vertexInfo_;
     std::vector<int32_t> freeVertices_;

@@ -24,13 +24,23 @@ void FanStream::attach(HexMesh& mesh) {
     }
     const double extent = std::max(glm::length(high - low), 1.0);
     normalScale_ = std::ldexp(1.0, int(std::floor(std::log2(std::ldexp(1.0, 57) / (extent * extent)))));
-    // A new mesh: nothing of the last one's peak stays allocated (rewriteAll and sync size these).
+    releaseArrays(); // a new mesh: nothing of the last one's peak stays allocated
+    rewriteAll(mesh);
+}
+
+// Empties the per-record arrays and dirty state, giving their memory back, so that the rewrite
+// that follows allocates them at the mesh's sizes (rewriteAll and sync size them).
+void FanStream::releaseArrays() {
     releasePool(indices_);
     releasePool(normalSum_);
     releasePool(vertexNormals_);
-    releasePool(vertexPending_);
     releasePool(cellPending_);
-    rewriteAll(mesh);
+    releasePool(vertexPending_);
+    releasePool(dirtyVertices_.marked);
+    releasePool(dirtyIndices_.marked);
+    dirtyVertices_.list.clear();
+    dirtyIndices_.list.clear();
+    touchedVertices_.clear();
 }
 
 void FanStream::setLayout(IndexLayout layout) {
@@ -45,8 +55,8 @@ void FanStream::setNormals(bool on) {
     if (!on) {
         // The point of turning them off: give the memory back (shrink_to_fit does nothing in
         // libstdc++ without exceptions).
-        std::vector<glm::i64vec3>().swap(normalSum_);
-        std::vector<PackedNormal>().swap(vertexNormals_);
+        releasePool(normalSum_);
+        releasePool(vertexNormals_);
         return;
     }
     if (mesh_) rebuildNormals(*mesh_);
@@ -68,17 +78,7 @@ void FanStream::rebuildNormals(HexMesh& mesh) {
 }
 
 void FanStream::renumbered(HexMesh& mesh) {
-    // Emptied first, so that the rewrite allocates them at the compacted sizes.
-    std::vector<uint32_t>().swap(indices_);
-    std::vector<glm::i64vec3>().swap(normalSum_);
-    std::vector<PackedNormal>().swap(vertexNormals_);
-    std::vector<bool>().swap(cellPending_);
-    std::vector<bool>().swap(vertexPending_);
-    std::vector<uint8_t>().swap(dirtyVertices_.marked);
-    std::vector<uint8_t>().swap(dirtyIndices_.marked);
-    dirtyVertices_.list.clear();
-    dirtyIndices_.list.clear();
-    touchedVertices_.clear();
+    releaseArrays(); // the rewrite allocates them at the compacted sizes
     rewriteAll(mesh);
 }
 
@@ -210,10 +210,11 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
     mesh.releaseFreedVertices(); // every slot that used them has been rewritten
     // A sync after a large change (a new mesh refined in one go) leaves its logs far larger than
     // frames need: that memory goes back (issue 12 counts memory at capacity).
+    const size_t vertexListRoom = frameListRoom(size_t(mesh.liveVertices()));
     trimExcess(changedCells_, frameListRoom(size_t(mesh.liveCells())));
-    trimExcess(vertexLog_, frameListRoom(size_t(mesh.liveVertices())));
-    trimExcess(touchedVertices_, frameListRoom(size_t(mesh.liveVertices())));
-    trimExcess(morph.changedVertices(), frameListRoom(size_t(mesh.liveVertices())));
+    trimExcess(vertexLog_, vertexListRoom);
+    trimExcess(touchedVertices_, vertexListRoom);
+    trimExcess(morph.changedVertices(), vertexListRoom);
     if (wrote) ++version_;
 }
 
@@ -288,7 +289,7 @@ void FanStream::buildLevelView(const HexMesh& mesh, bool outline) {
     levelIndices_.clear();
     levelOffsets_.clear();
     outline_.clear();
-    if (!outline) std::vector<uint32_t>().swap(outline_); // its memory only while it is shown (not shrink_to_fit: see setNormals)
+    if (!outline) releasePool(outline_); // its memory only while it is shown (not shrink_to_fit: see setNormals)
     for (int32_t level = 0; level <= mesh.maxLevel(); ++level) {
         levelOffsets_.push_back(int32_t(levelIndices_.size()));
         for (int32_t c = mesh.firstOfLevel(level); c != kNone; c = mesh.nextInLevel(c)) {

@@ -111,6 +111,7 @@ private:
     void forEachTriangle(const uint32_t* slot, Visit&& visit) const;
     void accumulate(const HexMesh& mesh, const uint32_t* slot, int64_t sign);
     void markVertex(int32_t v);
+    void releaseArrays();
     void finishNormals(HexMesh& mesh);
     void rebuildNormals(HexMesh& mesh);
     struct DirtySet {
