@@ -41,16 +41,18 @@ int32_t HexMesh::allocateCell() {
     } else {
         c = int32_t(cells_.size());
         reserveForPool(cells_, cells_.size() + 1);
+        reserveLikePool(fans_, (cells_.size() + 1) * kCellFanSlot, cells_.capacity() * kCellFanSlot);
         cells_.emplace_back();
+        fans_.resize(cells_.size() * kCellFanSlot, kRestartIndex);
     }
     Hexagon& h = cells_[size_t(c)];
-    std::fill(std::begin(h.vertex), std::end(h.vertex), kNone);
     std::fill(std::begin(h.opposite), std::end(h.opposite), kNone);
     h.prev = h.next = kNone;
     h.level = 0;
     h.splitCount = 0;
     h.kind = CellKind::Full;
     h.firstVisible = 0;
+    h.fanFromSecond = 0;
     ++liveCells_;
     logChange(c);
     return c;
@@ -60,6 +62,7 @@ void HexMesh::freeCell(int32_t c) {
     Hexagon& h = cells_[size_t(c)];
     h.level = kFreeLevel;
     h.next = freeCell_;
+    std::fill_n(fans_.begin() + ptrdiff_t(c) * kCellFanSlot, kCellFanSlot, kRestartIndex); // draws nothing
     h.prev = kNone;
     freeCell_ = c;
     --liveCells_;
@@ -148,14 +151,17 @@ bool HexMesh::parentPoints(int32_t v, ParentPoints& out) const {
 VertexParents HexMesh::parentsAround(int32_t v, int32_t c) const {
     const Hexagon& h = cells_[size_t(c)];
     return parentsBy(v, [&](LatticePoint p) {
-        auto in = [&](const Hexagon& cell) {
-            for (int32_t u : cell.vertex)
+        auto in = [&](int32_t cell) {
+            const uint32_t* fan = cellFan(cell);
+            for (int32_t i = 0; i < kCellFanSlot; ++i) {
+                const int32_t u = int32_t(fan[i]);
                 if (u != kNone && vertexLattice(u) == p) return u;
+            }
             return kNone;
         };
-        int32_t u = in(h);
+        int32_t u = in(c);
         for (int32_t k = 0; k < 6 && u == kNone; ++k)
-            if (h.opposite[k] != kNone) u = in(cells_[size_t(hexIdx(h.opposite[k]))]);
+            if (h.opposite[k] != kNone) u = in(hexIdx(h.opposite[k]));
         return u;
     });
 }
@@ -194,8 +200,10 @@ void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& verte
     for (size_t c = 0; c < cells_.size(); ++c) {
         if (cellMap[c] == kNone) continue;
         Hexagon& h = cells_[c];
-        for (int32_t& v : h.vertex)
-            if (v != kNone) v = vertexMap[size_t(v)];
+        uint32_t* fan = fans_.data() + c * kCellFanSlot;
+        for (int32_t i = 0; i < kCellFanSlot; ++i)
+            if (fan[i] != kRestartIndex) fan[i] = uint32_t(vertexMap[fan[i]]);
+        std::copy_n(fan, kCellFanSlot, fans_.begin() + ptrdiff_t(cellMap[c]) * kCellFanSlot); // downwards: in place
         for (int32_t& o : h.opposite)
             if (o != kNone) o = makeEdge(cellMap[size_t(hexIdx(o))], edgeSlot(o));
         if (h.prev != kNone) h.prev = cellMap[size_t(h.prev)];
@@ -205,6 +213,8 @@ void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& verte
         for (int32_t& c : *ends)
             if (c != kNone) c = cellMap[size_t(c)];
     renumberPool(cells_, cellMap, size_t(cells));
+    fans_.resize(size_t(cells) * kCellFanSlot);
+    std::vector<uint32_t>(fans_.begin(), fans_.end()).swap(fans_); // capacity == size
     renumberPool(vertices_, vertexMap, size_t(vertices));
     renumberPool(vertexInfo_, vertexMap, size_t(vertices)); // parents are lattice points: nothing to renumber
     freeCell_ = kNone;
@@ -266,8 +276,8 @@ int32_t HexMesh::cellStep(int32_t c) const {
 
 LatticePoint HexMesh::cellCenter(int32_t c) const {
     const Hexagon& h = cells_[size_t(c)];
-    if (h.kind != CellKind::Semi) return vertexLattice(h.vertex[0]);
-    return latticeMidpoint(vertexLattice(h.vertex[h.firstVisible]), vertexLattice(h.vertex[wrapSlot(h.firstVisible + 3)]));
+    if (h.kind != CellKind::Semi) return vertexLattice(int32_t(cellFan(c)[0]));
+    return latticeMidpoint(vertexLattice(cornerVertex(c, h.firstVisible)), vertexLattice(cornerVertex(c, wrapSlot(h.firstVisible + 3))));
 }
 
 bool HexMesh::isLongEdge(int32_t e) const {
@@ -278,15 +288,52 @@ bool HexMesh::isLongEdge(int32_t e) const {
 int32_t HexMesh::edgeEnd(int32_t e) const {
     const Hexagon& h = cells_[size_t(hexIdx(e))];
     const int32_t slot = edgeSlot(e);
-    if (h.kind != CellKind::Full && slot == wrapSlot(h.firstVisible + 3)) return h.vertex[h.firstVisible];
-    return h.vertex[wrapSlot(slot + 1)];
+    if (h.kind != CellKind::Full && slot == wrapSlot(h.firstVisible + 3)) return cornerVertex(hexIdx(e), h.firstVisible);
+    return cornerVertex(hexIdx(e), wrapSlot(slot + 1));
 }
 
-void HexMesh::semiFanSlots(const Hexagon& h, int32_t slots[4]) const {
+// The fan of a semi-hexagon lists its own corners a .. a+3 from corner a, or from a+1 when
+// fanFromSecond: own corner i (slot a+i) sits at fan position i - fanFromSecond, cyclically.
+int32_t HexMesh::cornerVertex(int32_t c, int32_t slot) const {
+    const Hexagon& h = cells_[size_t(c)];
+    const uint32_t* fan = cellFan(c);
+    if (h.kind == CellKind::Full) return int32_t(fan[slot]);
+    if (slot == 0) return h.kind == CellKind::BoundarySemi ? int32_t(fan[0]) : kNone;
+    const int32_t own = (slot - h.firstVisible + 6) % 6;
+    if (own > 3) return kNone;
+    if (h.kind == CellKind::BoundarySemi) return int32_t(fan[1 + own]);
+    return int32_t(fan[(own + 4 - h.fanFromSecond) % 4]);
+}
+
+CellCorners HexMesh::corners(int32_t c) const {
+    CellCorners out;
+    for (int32_t slot = 0; slot <= 6; ++slot) out.vertex[slot] = cornerVertex(c, slot);
+    return out;
+}
+
+void HexMesh::setCorners(int32_t c, const CellCorners& corners) {
+    Hexagon& h = cells_[size_t(c)];
+    uint32_t* fan = fans_.data() + size_t(c) * kCellFanSlot;
+    std::fill_n(fan, kCellFanSlot, kRestartIndex);
+    const int32_t* v = corners.vertex;
     const int32_t a = h.firstVisible;
-    auto at = [&](int32_t slot) { return vertexLattice(h.vertex[wrapSlot(slot)]); };
-    const int32_t start = semiFanFromSecondCorner(embedding_, at(a), at(a + 1), at(a + 2), at(a + 3)) ? 1 : 0;
-    for (int32_t i = 0; i < 4; ++i) slots[i] = wrapSlot(a + (start + i) % 4);
+    switch (h.kind) {
+        case CellKind::Full:
+            for (int32_t slot = 0; slot <= 6; ++slot) fan[slot] = uint32_t(v[slot]);
+            fan[7] = uint32_t(v[1]); // the fan closes at its first corner
+            break;
+        case CellKind::BoundarySemi: // §4.2: three-triangle half fan around the centre
+            fan[0] = uint32_t(v[0]);
+            for (int32_t i = 0; i < 4; ++i) fan[1 + i] = uint32_t(v[wrapSlot(a + i)]);
+            break;
+        case CellKind::Semi: { // §7: the fixed rule for the "arbitrary corner"
+            auto at = [&](int32_t slot) { return vertexLattice(v[wrapSlot(slot)]); };
+            const int32_t start = semiFanFromSecondCorner(embedding_, at(a), at(a + 1), at(a + 2), at(a + 3)) ? 1 : 0;
+            h.fanFromSecond = uint8_t(start);
+            for (int32_t i = 0; i < 4; ++i) fan[i] = uint32_t(v[wrapSlot(a + (start + i) % 4)]);
+            break;
+        }
+    }
 }
 
 int64_t HexMesh::cellTriangles(const Hexagon& h) const {
@@ -299,40 +346,22 @@ int64_t HexMesh::cellTriangles(const Hexagon& h) const {
 }
 
 size_t HexMesh::memoryBytes() const {
-    return cells_.capacity() * sizeof(Hexagon) +
+    return cells_.capacity() * sizeof(Hexagon) + fans_.capacity() * sizeof(uint32_t) +
            vertices_.capacity() * sizeof(StreamVertex) + vertexInfo_.capacity() + (freeVertices_.capacity() + freedVertices_.capacity()) * sizeof(int32_t) +
            (levelHead_.capacity() + levelTail_.capacity()) * sizeof(int32_t);
 }
 
 size_t HexMesh::liveMemoryBytes() const {
-    return size_t(liveCells_) * sizeof(Hexagon) +
+    return size_t(liveCells_) * (sizeof(Hexagon) + kCellFanSlot * sizeof(uint32_t)) +
            size_t(liveVertices_) * (sizeof(StreamVertex) + 1) +
            (levelHead_.size() + levelTail_.size()) * sizeof(int32_t);
-}
-
-int32_t HexMesh::cellFan(const Hexagon& h, uint32_t out[8]) const {
-    const int32_t* v = h.vertex;
-    if (h.kind == CellKind::Full) {
-        for (int32_t slot = 0; slot <= 6; ++slot) out[slot] = uint32_t(v[slot]);
-        out[7] = uint32_t(v[1]); // the fan closes at its first corner
-        return 8;
-    }
-    if (h.kind == CellKind::BoundarySemi) { // §4.2: three-triangle half fan around the centre
-        out[0] = uint32_t(v[0]);
-        for (int32_t i = 0; i < 4; ++i) out[1 + i] = uint32_t(v[wrapSlot(h.firstVisible + i)]);
-        return 5;
-    }
-    int32_t slots[4];
-    semiFanSlots(h, slots); // §7: the fixed rule for the "arbitrary corner"
-    for (int32_t i = 0; i < 4; ++i) out[i] = uint32_t(v[slots[i]]);
-    return 4;
 }
 
 void HexMesh::appendTriangles(std::vector<uint32_t>& out) const {
     for (int32_t level = 0; level <= maxLevel_; ++level) {
         for (int32_t c = levelHead_[size_t(level)]; c != kNone; c = cells_[size_t(c)].next) {
-            uint32_t fan[8];
-            const int32_t n = cellFan(cells_[size_t(c)], fan);
+            const uint32_t* fan = cellFan(c);
+            const int32_t n = fanLength(cells_[size_t(c)]);
             for (int32_t k = 1; k + 1 < n; ++k) out.insert(out.end(), {fan[0], fan[k], fan[k + 1]});
         }
     }
@@ -350,8 +379,9 @@ uint64_t HexMesh::hash() const {
                 for (int byte = 0; byte < 8; ++byte, value >>= 8) h = (h ^ (value & 0xFF)) * 1099511628211ull;
             };
             mix(uint64_t(cell.level) | uint64_t(cell.kind) << 8 | uint64_t(cell.splitCount) << 16 | uint64_t(cell.firstVisible) << 24);
+            const CellCorners corners = this->corners(c);
             for (int32_t slot = 0; slot <= 6; ++slot) {
-                const int32_t v = cell.vertex[slot];
+                const int32_t v = corners.vertex[slot];
                 if (v == kNone) continue;
                 mix(latticeKey(vertexLattice(v)));
                 const glm::vec3& p = vertices_[size_t(v)].position;
@@ -411,28 +441,31 @@ void HexMesh::applyStep(const SplitStep& step) {
 
 void HexMesh::splitUnchecked(int32_t c) {
     const Hexagon h = cells_[size_t(c)]; // a copy: the pool may grow below
+    const CellCorners hv = corners(c);
     const CellSlots slots = slotsOf(h);
     const int32_t level = h.level;
     const int32_t half = cellStep(c) / 2;
-    const LatticePoint center = vertexLattice(h.vertex[0]);
+    const LatticePoint center = vertexLattice(hv.vertex[0]);
 
     int32_t newCorner[8], ring[8];
     std::fill(std::begin(ring), std::end(ring), kNone);
     for (int32_t i = 0; i < slots.cornerCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i);
         // Across: the spoke's two triangles in the fan, towards corner k-1 and corner k+1.
-        newCorner[k] = allocateVertex(latticeAdd(center, kDirections[k - 1], half), h.vertex[0], h.vertex[k],
-                                      h.vertex[wrapSlot(k + 5)], h.vertex[wrapSlot(k + 1)]);
+        newCorner[k] = allocateVertex(latticeAdd(center, kDirections[k - 1], half), hv.vertex[0], hv.vertex[k],
+                                      hv.vertex[wrapSlot(k + 5)], hv.vertex[wrapSlot(k + 1)]);
     }
     for (int32_t i = 0; i < slots.edgeCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i), k1 = wrapSlot(k + 1);
         const int32_t r = allocateCell();
         Hexagon& R = cells_[size_t(r)];
         R.firstVisible = uint8_t(wrapSlot(k + 2));
-        R.vertex[wrapSlot(k + 2)] = h.vertex[k1];
-        R.vertex[wrapSlot(k + 3)] = newCorner[k1];
-        R.vertex[wrapSlot(k + 4)] = newCorner[k];
-        R.vertex[wrapSlot(k + 5)] = h.vertex[k];
+        CellCorners rv;
+        std::fill(std::begin(rv.vertex), std::end(rv.vertex), kNone);
+        rv.vertex[wrapSlot(k + 2)] = hv.vertex[k1];
+        rv.vertex[wrapSlot(k + 3)] = newCorner[k1];
+        rv.vertex[wrapSlot(k + 4)] = newCorner[k];
+        rv.vertex[wrapSlot(k + 5)] = hv.vertex[k];
         if (h.opposite[k - 1] == kNone) { // §4.2: on the domain boundary the semi keeps a centre
             R.kind = CellKind::BoundarySemi;
             R.level = uint8_t(level + 2);
@@ -443,19 +476,20 @@ void HexMesh::splitUnchecked(int32_t c) {
         ring[k] = r;
         if (R.kind == CellKind::BoundarySemi) { // allocateVertex does not touch the cell pool
             // Across: the fan triangle (centre, k, k+1); outside is no surface.
-            const int32_t m = allocateVertex(latticeMidpoint(vertexLattice(h.vertex[k]), vertexLattice(h.vertex[k1])),
-                                             h.vertex[k], h.vertex[k1], h.vertex[0], kNone);
-            cells_[size_t(r)].vertex[0] = m;
+            rv.vertex[0] = allocateVertex(latticeMidpoint(vertexLattice(hv.vertex[k]), vertexLattice(hv.vertex[k1])),
+                                          hv.vertex[k], hv.vertex[k1], hv.vertex[0], kNone);
         }
+        setCorners(r, rv);
         linkLevel(r);
         triangles_ += cellTriangles(cells_[size_t(r)]);
     }
-    Hexagon& shrunk = cells_[size_t(c)];
+    CellCorners shrunk = hv;
     for (int32_t i = 0; i < slots.cornerCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i);
         shrunk.vertex[k] = newCorner[k];
     }
-    shrunk.splitCount = uint8_t(shrunk.splitCount + 1);
+    setCorners(c, shrunk);
+    cells_[size_t(c)].splitCount = uint8_t(h.splitCount + 1);
     for (int32_t i = 0; i < slots.edgeCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i);
         const int32_t r = ring[k];
@@ -490,27 +524,27 @@ bool HexMesh::join(int32_t s) {
     return true;
 }
 
-int32_t HexMesh::longEdgeFanCorner(const Hexagon& semi) const {
+int32_t HexMesh::longEdgeFanCorner(int32_t semi) const {
     // The fan (q0; q1, q2, q3) has triangles (q0, q1, q2) and (q0, q2, q3); the long edge joins
     // corners a and a+3, so its triangle's third corner is a+2 when fanning from a, else a+1.
-    int32_t slots[4];
-    semiFanSlots(semi, slots);
-    const int32_t a = semi.firstVisible;
-    return semi.vertex[slots[0] == a ? wrapSlot(a + 2) : wrapSlot(a + 1)];
+    const Hexagon& h = cells_[size_t(semi)];
+    return cornerVertex(semi, wrapSlot(h.firstVisible + (h.fanFromSecond ? 1 : 2)));
 }
 
 void HexMesh::joinPair(int32_t keep, int32_t other) {
     const Hexagon o = cells_[size_t(other)];
+    const CellCorners ov = corners(other);
+    CellCorners kv = corners(keep);
     const int32_t a = cells_[size_t(keep)].firstVisible;
-    const int32_t m = allocateVertex(cellCenter(keep), cells_[size_t(keep)].vertex[a], // the midpoint of the shared long edge
-                                     cells_[size_t(keep)].vertex[wrapSlot(a + 3)], longEdgeFanCorner(cells_[size_t(keep)]),
-                                     longEdgeFanCorner(o));
+    kv.vertex[0] = allocateVertex(cellCenter(keep), kv.vertex[a], kv.vertex[wrapSlot(a + 3)], // the midpoint of the shared long edge
+                                  longEdgeFanCorner(keep), longEdgeFanCorner(other));
+    kv.vertex[wrapSlot(a + 4)] = ov.vertex[wrapSlot(a + 4)];
+    kv.vertex[wrapSlot(a + 5)] = ov.vertex[wrapSlot(a + 5)];
     Hexagon& k = cells_[size_t(keep)];
-    k.vertex[0] = m;
-    k.vertex[wrapSlot(a + 4)] = o.vertex[wrapSlot(a + 4)];
-    k.vertex[wrapSlot(a + 5)] = o.vertex[wrapSlot(a + 5)];
     k.kind = CellKind::Full;
     k.firstVisible = 0;
+    k.fanFromSecond = 0;
+    setCorners(keep, kv);
     // The other half's three short edges become this hexagon's edges a+3 .. a+5.
     for (int32_t slot = a + 3; slot <= a + 5; ++slot) connect(makeEdge(keep, wrapSlot(slot)), o.opposite[wrapSlot(slot) - 1]);
     setLevel(keep, k.level + 1);
@@ -521,11 +555,13 @@ void HexMesh::joinPair(int32_t keep, int32_t other) {
 }
 
 void HexMesh::joinBoundary(int32_t s) {
-    const Hexagon& h = cells_[size_t(s)];
-    const int32_t m = allocateVertex(cellCenter(s), h.vertex[h.firstVisible], // the midpoint of its long edge
-                                     h.vertex[wrapSlot(h.firstVisible + 3)], longEdgeFanCorner(cells_[size_t(s)]), kNone);
-    cells_[size_t(s)].vertex[0] = m;
+    CellCorners sv = corners(s);
+    const int32_t a = cells_[size_t(s)].firstVisible;
+    sv.vertex[0] = allocateVertex(cellCenter(s), sv.vertex[a], sv.vertex[wrapSlot(a + 3)], // the midpoint of its long edge
+                                  longEdgeFanCorner(s), kNone);
     cells_[size_t(s)].kind = CellKind::BoundarySemi;
+    cells_[size_t(s)].fanFromSecond = 0;
+    setCorners(s, sv);
     setLevel(s, cells_[size_t(s)].level + 1);
     triangles_ += 1;
     ++counts_.joins;
@@ -561,10 +597,9 @@ bool HexMesh::breakHexagon(int32_t c) {
 int32_t HexMesh::breakDiameterSlot(int32_t c) const {
     // The hexagon was joined along its parent's edge: the one diameter whose two corners are
     // vertices of the parent resolution (step 2s).
-    const Hexagon& h = cells_[size_t(c)];
     const int32_t parentStep = 2 * cellStep(c);
     for (int32_t k = 1; k <= 3; ++k) {
-        const LatticePoint p = vertexLattice(h.vertex[k]);
+        const LatticePoint p = vertexLattice(cornerVertex(c, k));
         if (p.q % parentStep == 0 && p.r % parentStep == 0) return k;
     }
     return 1; // unreachable for a consistent mesh (checkInvariants verifies the lattice)
@@ -572,10 +607,13 @@ int32_t HexMesh::breakDiameterSlot(int32_t c) const {
 
 void HexMesh::breakUnchecked(int32_t c) {
     const Hexagon j = cells_[size_t(c)];
+    const CellCorners jv = corners(c);
     if (j.kind == CellKind::BoundarySemi) { // back to a semi-hexagon whose long edge is the boundary
-        freeVertex(j.vertex[0]);
-        cells_[size_t(c)].vertex[0] = kNone;
+        freeVertex(jv.vertex[0]);
+        CellCorners semi = jv;
+        semi.vertex[0] = kNone;
         cells_[size_t(c)].kind = CellKind::Semi;
+        setCorners(c, semi);
         setLevel(c, j.level - 1);
         triangles_ -= 1;
         ++counts_.breaks;
@@ -587,20 +625,25 @@ void HexMesh::breakUnchecked(int32_t c) {
     h2.kind = CellKind::Semi;
     h2.firstVisible = uint8_t(wrapSlot(k + 3));
     h2.level = uint8_t(j.level - 1);
-    for (int32_t slot = k + 3; slot <= k + 6; ++slot) h2.vertex[wrapSlot(slot)] = j.vertex[wrapSlot(slot)];
+    CellCorners v2;
+    std::fill(std::begin(v2.vertex), std::end(v2.vertex), kNone);
+    for (int32_t slot = k + 3; slot <= k + 6; ++slot) v2.vertex[wrapSlot(slot)] = jv.vertex[wrapSlot(slot)];
+    setCorners(other, v2);
     linkLevel(other);
     for (int32_t slot = k + 3; slot <= k + 5; ++slot) connect(makeEdge(other, wrapSlot(slot)), j.opposite[wrapSlot(slot) - 1]);
 
     Hexagon& h1 = cells_[size_t(c)];
-    h1.vertex[0] = kNone;
-    h1.vertex[wrapSlot(k + 4)] = kNone;
-    h1.vertex[wrapSlot(k + 5)] = kNone;
+    CellCorners v1 = jv;
+    v1.vertex[0] = kNone;
+    v1.vertex[wrapSlot(k + 4)] = kNone;
+    v1.vertex[wrapSlot(k + 5)] = kNone;
     h1.opposite[wrapSlot(k + 4) - 1] = kNone;
     h1.opposite[wrapSlot(k + 5) - 1] = kNone;
     h1.kind = CellKind::Semi;
     h1.firstVisible = uint8_t(k);
+    setCorners(c, v1);
     connect(makeEdge(c, wrapSlot(k + 3)), makeEdge(other, k)); // the two long edges
-    freeVertex(j.vertex[0]);
+    freeVertex(jv.vertex[0]);
     setLevel(c, j.level - 1);
     triangles_ -= 2;
     ++counts_.breaks;
@@ -633,10 +676,10 @@ void HexMesh::verticesFreedByMerge(int32_t c, std::vector<int32_t>& out) const {
     const Hexagon& h = cells_[size_t(c)];
     const CellSlots slots = slotsOf(h);
     for (int32_t i = 0; i < slots.edgeCount; ++i) { // the centres of the ring cells merge breaks first
-        const Hexagon& n = cells_[size_t(hexIdx(h.opposite[wrapSlot(slots.firstEdge + i) - 1]))];
-        if (n.kind != CellKind::Semi) out.push_back(n.vertex[0]);
+        const int32_t n = hexIdx(h.opposite[wrapSlot(slots.firstEdge + i) - 1]);
+        if (cells_[size_t(n)].kind != CellKind::Semi) out.push_back(int32_t(cellFan(n)[0]));
     }
-    for (int32_t i = 0; i < slots.cornerCount; ++i) out.push_back(h.vertex[wrapSlot(slots.firstEdge + i)]);
+    for (int32_t i = 0; i < slots.cornerCount; ++i) out.push_back(cornerVertex(c, wrapSlot(slots.firstEdge + i)));
 }
 
 bool HexMesh::merge(int32_t c) {
@@ -647,13 +690,13 @@ bool HexMesh::merge(int32_t c) {
         if (cells_[size_t(n)].kind != CellKind::Semi) breakUnchecked(n);
     }
     const Hexagon h = cells_[size_t(c)];
+    const CellCorners hv = corners(c);
     int32_t ring[8], outerCorner[8];
     for (int32_t i = 0; i < slots.edgeCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i);
         ring[k] = hexIdx(h.opposite[k - 1]);
-        const Hexagon& r = cells_[size_t(ring[k])];
-        outerCorner[k] = r.vertex[wrapSlot(k + 5)];
-        outerCorner[wrapSlot(k + 1)] = r.vertex[wrapSlot(k + 2)];
+        outerCorner[k] = cornerVertex(ring[k], wrapSlot(k + 5));
+        outerCorner[wrapSlot(k + 1)] = cornerVertex(ring[k], wrapSlot(k + 2));
     }
     for (int32_t i = 0; i < slots.edgeCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i);
@@ -662,13 +705,14 @@ bool HexMesh::merge(int32_t c) {
         freeCell(ring[k]);
         triangles_ -= 2;
     }
-    Hexagon& merged = cells_[size_t(c)];
+    CellCorners merged = hv;
     for (int32_t i = 0; i < slots.cornerCount; ++i) {
         const int32_t k = wrapSlot(slots.firstEdge + i);
-        freeVertex(h.vertex[k]);
+        freeVertex(hv.vertex[k]);
         merged.vertex[k] = outerCorner[k];
     }
-    merged.splitCount = uint8_t(merged.splitCount - 1);
+    setCorners(c, merged);
+    cells_[size_t(c)].splitCount = uint8_t(h.splitCount - 1);
     setLevel(c, h.level - 2);
     ++counts_.merges;
     return true;

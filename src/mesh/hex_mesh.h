@@ -11,11 +11,20 @@
 // (even level: half of a hexagon whose centre lies on the domain boundary, drawn as a
 // three-triangle half fan around that centre, §4.2).
 //
-// Slots (§4.3): vertex[0] is the centre, vertex[1..6] the corners counter-clockwise with
-// corner k in lattice direction kDirections[k-1]; a full hexagon's slots and corner 1 again are
-// its triangle-fan index list (cellFan). A semi-hexagon keeps the slots of the whole
-// hexagon it is half of: corners firstVisible .. firstVisible+3 (cyclically) are its own, the
-// rest are kNone. Edge slot k (1..6) runs from corner k to corner k+1; a semi's long edge (its
+// Slots (§4.3): slot 0 is the centre, slots 1..6 the corners counter-clockwise with
+// corner k in lattice direction kDirections[k-1] (CellCorners). A semi-hexagon keeps the slots
+// of the whole hexagon it is half of: corners firstVisible .. firstVisible+3 (cyclically) are
+// its own, the rest are kNone.
+//
+// A cell's vertices are stored once, as its triangle fan (§7), in a table of kCellFanSlot
+// indices a cell that the renderer draws as it is (TRIANGLE_FAN with primitive restart):
+//   full hexagon:          centre, six corners, corner 1 again, restart
+//   boundary semi-hexagon: centre, corners firstVisible .. firstVisible+3, restart (§4.2)
+//   interior semi-hexagon: its four corners from the fixed-rule corner, restart
+//   free record:           restart
+// so the slots are decoded from the fan (corners(), cornerVertex()), and an operation writes a
+// cell's fan when it changes the cell (issue 12: the record no longer holds a second copy of
+// the vertices, 28 bytes a cell). Edge slot k (1..6) runs from corner k to corner k+1; a semi's long edge (its
 // diameter, on the parent's edge) is stored in edge slot firstVisible+3 and runs from corner
 // firstVisible+3 back to corner firstVisible. Directed edges are numbered e = 8*cell + slot.
 #pragma once
@@ -60,16 +69,27 @@ struct ParentPoints {
     bool hasAcross = false;
 };
 
+/// A cell's vertices by slot (§4.3): [0] the centre, [1..6] the corners; kNone if absent.
+/// Decoded from the cell's fan (HexMesh::corners), changed, and written back (setCorners).
+struct CellCorners {
+    int32_t vertex[7];
+};
+
+/// Indices a cell's fan takes in the fan table: centre, six corners, corner 1 again, restart.
+constexpr int32_t kCellFanSlot = 9;
+/// WebGL2's fixed primitive-restart index; the fan table's filler (kNone as unsigned).
+constexpr uint32_t kRestartIndex = 0xFFFFFFFFu;
+
 struct Hexagon {
-    int32_t vertex[7];     // §4.3 slots: centre, six corners; kNone if absent
     int32_t opposite[6];   // opposite directed edge across edge slot k at [k-1]; kNone on the domain boundary or unused
     int32_t prev, next;    // §4.4: neighbours in the list of this level; next also chains free records
     uint8_t level;         // §4.4: even for full and boundary semi-hexagons, odd for semi-hexagons
     uint8_t splitCount;    // §4.6: splits of this record not yet undone by a merge
     CellKind kind;
-    uint8_t firstVisible;  // semi-hexagons: first own corner slot (1..6); 0 for full hexagons
+    uint8_t firstVisible : 4;  // semi-hexagons: first own corner slot (1..6); 0 for full hexagons
+    uint8_t fanFromSecond : 1; // interior semi-hexagons: the fan starts at corner firstVisible+1 (semiFanFromSecondCorner)
 };
-static_assert(sizeof(Hexagon) == 64, "issue 12 counts the bytes of a cell");
+static_assert(sizeof(Hexagon) == 36, "issue 12 counts the bytes of a cell");
 
 /// One operation that a split needs first under the balance rule (§4.5), or the split itself.
 struct SplitStep {
@@ -226,19 +246,21 @@ public:
     /// semi-hexagons as the two-triangle fan from their first own corner (a fixed rule).
     void appendTriangles(std::vector<uint32_t>& indices) const;
 
-    /// The cell's triangle fan (§7) as vertex indices into `out`, returning its length: a full
-    /// hexagon's centre, six corners and first corner again (8); a boundary semi-hexagon's
-    /// centre and four corners (5); an interior semi-hexagon's four corners from the fixed-rule
-    /// corner (4). appendTriangles and the fan stream both expand this.
-    int32_t cellFan(const Hexagon& h, uint32_t out[8]) const;
-
-    /// A semi-hexagon's two-triangle fan as its four own corner slots in fan order: a, a+1,
-    /// a+2, a+3, or a+1, a+2, a+3, a when the fixed rule fans from the second corner
-    /// (see semiFanFromSecondCorner).
-    void semiFanSlots(const Hexagon& h, int32_t slots[4]) const;
+    /// The cell's triangle fan (§7): kCellFanSlot vertex indices, fanLength(c) of them used, the
+    /// rest restarts (see the layout at the top). appendTriangles and the fan stream expand it.
+    const uint32_t* cellFan(int32_t c) const { return fans_.data() + size_t(c) * kCellFanSlot; }
+    /// 8 for a full hexagon, 5 for a boundary semi-hexagon, 4 for an interior one.
+    static int32_t fanLength(const Hexagon& h) { return h.kind == CellKind::Full ? 8 : h.kind == CellKind::BoundarySemi ? 5 : 4; }
+    /// Every cell's fan, kCellFanSlot indices a cell record (free ones all restarts): what the
+    /// renderer draws in the fans layout.
+    const std::vector<uint32_t>& fanTable() const { return fans_; }
+    /// The cell's vertices by slot, decoded from its fan.
+    CellCorners corners(int32_t c) const;
+    /// The vertex in one slot of a cell (kNone if absent).
+    int32_t cornerVertex(int32_t c, int32_t slot) const;
 
     /// Start and end vertex of a directed edge (a semi's long edge ends at its first corner).
-    int32_t edgeStart(int32_t e) const { return cells_[size_t(hexIdx(e))].vertex[edgeSlot(e)]; }
+    int32_t edgeStart(int32_t e) const { return cornerVertex(hexIdx(e), edgeSlot(e)); }
     int32_t edgeEnd(int32_t e) const;
     /// Whether the edge is the long edge of a semi-hexagon.
     bool isLongEdge(int32_t e) const;
@@ -264,7 +286,7 @@ private:
     int32_t acrossOf(int32_t v, int32_t a, int32_t b, int32_t candidate1, int32_t candidate2) const;
     static uint8_t acrossCode(LatticePoint p, LatticePoint across);
     /// The third corner of the semi-hexagon's fan triangle that holds its long edge.
-    int32_t longEdgeFanCorner(const Hexagon& semi) const;
+    int32_t longEdgeFanCorner(int32_t semi) const;
     void freeVertex(int32_t v);
     void linkLevel(int32_t c);
     void unlinkLevel(int32_t c);
@@ -276,6 +298,10 @@ private:
     void joinBoundary(int32_t semi);
     void breakUnchecked(int32_t cell);
     int64_t cellTriangles(const Hexagon& h) const;
+    /// Writes a cell's fan from its vertices by slot, after its kind and firstVisible are set
+    /// (an interior semi-hexagon's fan corner follows the fixed rule of §7).
+    void setCorners(int32_t c, const CellCorners& corners);
+    const char* checkFan(int32_t c, const CellCorners& corners) const; // hex_mesh_invariants.cpp
 
     const Heightfield* field_ = nullptr;
     Embedding embedding_ = Embedding::Exact;
@@ -284,6 +310,7 @@ private:
     double columnsPerMetre_ = 1.0, rowsPerMetre_ = 1.0; // latticeAt
 
     std::vector<Hexagon> cells_;
+    std::vector<uint32_t> fans_; // kCellFanSlot a cell record: the cells' vertices, as their fans
     int32_t freeCell_ = kNone;
     int32_t liveCells_ = 0;
     std::vector<int32_t> levelHead_, levelTail_;

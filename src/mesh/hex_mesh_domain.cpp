@@ -48,6 +48,7 @@ const char* HexMesh::reset(const Heightfield& field, Embedding embedding, int32_
     for (int32_t s = baseStep; s > 1; s /= 2) maxLevel_ += 2;
 
     releasePool(cells_);
+    releasePool(fans_);
     freeCell_ = kNone;
     liveCells_ = 0;
     levelHead_.assign(size_t(maxLevel_) + 1, kNone);
@@ -93,12 +94,14 @@ const char* HexMesh::reset(const Heightfield& field, Embedding embedding, int32_
             }
             const int32_t first = h.kind == CellKind::Full ? 1 : h.firstVisible;
             const int32_t corners = h.kind == CellKind::Full ? 6 : 4;
-            cells_[size_t(c)].vertex[0] = vertexOf(centre);
+            CellCorners vertices;
+            std::fill(std::begin(vertices.vertex), std::end(vertices.vertex), kNone);
+            vertices.vertex[0] = vertexOf(centre);
             for (int32_t i = 0; i < corners; ++i) {
                 const int32_t k = wrapSlot(first + i);
-                const int32_t v = vertexOf(latticeAdd(centre, kDirections[k - 1], S));
-                cells_[size_t(c)].vertex[k] = v;
+                vertices.vertex[k] = vertexOf(latticeAdd(centre, kDirections[k - 1], S));
             }
+            setCorners(c, vertices);
             linkLevel(c);
             triangles_ += cellTriangles(cells_[size_t(c)]);
         }

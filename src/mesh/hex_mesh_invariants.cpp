@@ -72,7 +72,26 @@ inline const char* failure(const char* text) { return text; }
 
 } // namespace
 
+// The fan table (hex_mesh.h): a live cell's fan is its fixed-rule fan, padded with restarts.
+const char* HexMesh::checkFan(int32_t c, const CellCorners& corners) const {
+    const Hexagon& h = cells_[size_t(c)];
+    const uint32_t* fan = cellFan(c);
+    for (int32_t i = fanLength(h); i < kCellFanSlot; ++i)
+        if (fan[i] != kRestartIndex) return failure("cell %d: fan entry %d past its fan is not a restart", c, i);
+    if (h.kind == CellKind::Full && fan[7] != fan[1]) return failure("hexagon %d: the fan does not close at its first corner", c);
+    if (h.kind == CellKind::Semi) {
+        const int32_t a = h.firstVisible;
+        auto at = [&](int32_t slot) { return vertexLattice(corners.vertex[wrapSlot(slot)]); };
+        if (h.fanFromSecond != semiFanFromSecondCorner(embedding_, at(a), at(a + 1), at(a + 2), at(a + 3)))
+            return failure("semi-hexagon %d: the fan does not start at the fixed rule's corner", c);
+    } else if (h.fanFromSecond) {
+        return failure("cell %d: fanFromSecond set on a whole or boundary cell", c);
+    }
+    return nullptr;
+}
+
 const char* HexMesh::checkInvariants() const {
+    if (fans_.size() != cells_.size() * kCellFanSlot) return failure("the fan table has %zu entries for %zu cells", fans_.size(), cells_.size());
     // Pools and level lists (§4.4): every live cell is in the list of its level exactly once,
     // and live plus free records account for the whole pool.
     std::vector<uint8_t> listed(cells_.size(), 0);
@@ -93,6 +112,8 @@ const char* HexMesh::checkInvariants() const {
     int32_t freeCount = 0;
     for (int32_t c = freeCell_; c != kNone; c = cells_[size_t(c)].next) {
         if (isLive(c)) return failure("live cell %d is on the free list", c);
+        for (int32_t i = 0; i < kCellFanSlot; ++i)
+            if (cellFan(c)[i] != kRestartIndex) return failure("free cell %d draws: its fan is not all restarts", c);
         if (++freeCount > int32_t(cells_.size())) return failure("the free list of cells loops");
     }
     if (freeCount + liveCells_ != int32_t(cells_.size())) return failure("cell accounting: %d free + %d live != %zu", freeCount, liveCells_, cells_.size());
@@ -109,13 +130,15 @@ const char* HexMesh::checkInvariants() const {
         if (h.kind == CellKind::Semi && h.splitCount != 0) return failure("semi-hexagon %d has split counter %d", c, h.splitCount);
         if (h.kind == CellKind::Full && h.firstVisible != 0) return failure("full hexagon %d has firstVisible set", c);
         if (h.kind != CellKind::Full && (h.firstVisible < 1 || h.firstVisible > 6)) return failure("semi-hexagon %d has no firstVisible", c);
-        if ((h.vertex[0] != kNone) != (h.kind != CellKind::Semi)) return failure("cell %d: centre presence does not match its kind", c);
+        const CellCorners hv = corners(c);
+        if ((hv.vertex[0] != kNone) != (h.kind != CellKind::Semi)) return failure("cell %d: centre presence does not match its kind", c);
+        if (const char* fault = checkFan(c, hv)) return fault;
         const int32_t step = cellStep(c);
         if (step < 1) return failure("cell %d of level %d is finer than the samples", c, h.level);
         for (int32_t slot = 0; slot <= 6; ++slot) {
             const bool own = slot == 0 ? h.kind != CellKind::Semi
                                        : h.kind == CellKind::Full || wrapSlot(slot - h.firstVisible + 6 + 1) <= 4;
-            const int32_t v = h.vertex[slot];
+            const int32_t v = hv.vertex[slot];
             if (!own) {
                 if (v != kNone) return failure("cell %d: slot %d should be empty", c, slot);
                 if (slot >= 1 && h.opposite[slot - 1] != kNone) return failure("cell %d: unused edge slot %d has a neighbour", c, slot);
@@ -128,8 +151,8 @@ const char* HexMesh::checkInvariants() const {
         // level the counters say (level - 2 * splits for whole cells, level + 1 for semis).
         const LatticePoint centre = cellCenter(c);
         for (int32_t slot = 1; slot <= 6; ++slot) {
-            if (h.vertex[slot] == kNone) continue;
-            if (vertexLattice(h.vertex[slot]) != latticeAdd(centre, kDirections[slot - 1], step))
+            if (hv.vertex[slot] == kNone) continue;
+            if (vertexLattice(hv.vertex[slot]) != latticeAdd(centre, kDirections[slot - 1], step))
                 return failure("cell %d: corner %d is not at its lattice position", c, slot);
         }
         const int32_t born = 2 * birthResolution(centre, baseStep_);
@@ -174,7 +197,7 @@ const char* HexMesh::checkInvariants() const {
             const int32_t o = h.opposite[slot - 1];
             if (h.kind == CellKind::BoundarySemi && slot == wrapSlot(h.firstVisible + 3) && o != kNone)
                 return failure("boundary semi-hexagon %d has a neighbour across the domain boundary", c);
-            if (h.vertex[slot] == kNone || o == kNone) continue;
+            if (cornerVertex(c, slot) == kNone || o == kNone) continue;
             if (!isLive(hexIdx(o))) return failure("edge %d faces a free cell", e);
             if (cells_[size_t(hexIdx(o))].opposite[edgeSlot(o) - 1] != e) return failure("edge %d: neighbour symmetry broken", e);
             if (edgeStart(o) != edgeEnd(e) || edgeEnd(o) != edgeStart(e)) return failure("edge %d and its opposite do not share endpoints", e);

@@ -25,8 +25,9 @@ int64_t refineNear(HexMesh& mesh, double x, double z, double radius, int32_t rou
     std::vector<int32_t> cells;
     auto centre = [&](int32_t c) {
         const Hexagon& h = mesh.cell(c);
-        if (h.kind != CellKind::Semi) return mesh.vertexPosition(h.vertex[0]);
-        return 0.5f * (mesh.vertexPosition(h.vertex[h.firstVisible]) + mesh.vertexPosition(h.vertex[wrapSlot(h.firstVisible + 3)]));
+        if (h.kind != CellKind::Semi) return mesh.vertexPosition(mesh.cornerVertex(c, 0));
+        return 0.5f * (mesh.vertexPosition(mesh.cornerVertex(c, h.firstVisible)) +
+                       mesh.vertexPosition(mesh.cornerVertex(c, wrapSlot(h.firstVisible + 3))));
     };
     for (int32_t round = 0; round < rounds; ++round) {
         cells.clear();

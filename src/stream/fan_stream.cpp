@@ -57,6 +57,7 @@ void FanStream::setNormals(bool on) {
         // libstdc++ without exceptions).
         releasePool(normalSum_);
         releasePool(vertexNormals_);
+        if (!keepsSlots()) releasePool(indices_); // the fans' last state was kept for the normals only
         return;
     }
     if (mesh_) rebuildNormals(*mesh_);
@@ -70,6 +71,10 @@ void FanStream::rebuildNormals(HexMesh& mesh) {
     reserveLikePool(vertexNormals_, size_t(mesh.vertexCapacity()), mesh.vertexPoolRoom());
     vertexNormals_.assign(size_t(mesh.vertexCapacity()), PackedNormal{});
     if (vertexPending_.size() < normalSum_.size()) vertexPending_.resize(normalSum_.size(), false);
+    if (layout_ == IndexLayout::Fans) { // from now on the fans' last state is kept (keepsSlots)
+        reserveLikePool(indices_, mesh.fanTable().size(), mesh.cellPoolRoom() * size_t(kFanSlot));
+        indices_.assign(mesh.fanTable().begin(), mesh.fanTable().end());
+    }
     const size_t slots = indices_.size() / size_t(slotSize());
     for (size_t c = 0; c < slots; ++c) accumulate(mesh, indices_.data() + c * size_t(slotSize()), +1);
     finishNormals(mesh);
@@ -83,7 +88,8 @@ void FanStream::renumbered(HexMesh& mesh) {
 }
 
 void FanStream::rewriteAll(HexMesh& mesh) {
-    indices_.assign(size_t(mesh.cellCapacity()) * size_t(slotSize()), kRestartIndex);
+    if (keepsSlots()) indices_.assign(size_t(mesh.cellCapacity()) * size_t(slotSize()), kRestartIndex);
+    else releasePool(indices_);
     if (normals_) {
         normalSum_.assign(size_t(mesh.vertexCapacity()), glm::i64vec3(0));
         vertexNormals_.assign(size_t(mesh.vertexCapacity()), PackedNormal{});
@@ -129,16 +135,18 @@ void FanStream::accumulate(const HexMesh& mesh, const uint32_t* slot, int64_t si
     });
 }
 
+// Brings the kept slot of a cell (keepsSlots) in step with the mesh's fan.
 void FanStream::writeSlot(const HexMesh& mesh, int32_t c) {
+    if (!keepsSlots()) return;
     uint32_t* slot = indices_.data() + size_t(c) * size_t(slotSize());
-    std::fill(slot, slot + slotSize(), kRestartIndex);
-    if (!mesh.isLive(c)) return;
-    uint32_t fan[8];
-    const int32_t n = mesh.cellFan(mesh.cell(c), fan);
+    const uint32_t* fan = mesh.cellFan(c);
     if (layout_ == IndexLayout::Fans) {
-        std::copy(fan, fan + n, slot);
+        std::copy_n(fan, kFanSlot, slot); // a free cell's fan is all restarts
         return;
     }
+    std::fill(slot, slot + slotSize(), kRestartIndex);
+    if (!mesh.isLive(c)) return;
+    const int32_t n = HexMesh::fanLength(mesh.cell(c));
     for (int32_t k = 1; k + 1 < n; ++k) {
         slot[3 * (k - 1)] = fan[0];
         slot[3 * (k - 1) + 1] = fan[k];
@@ -150,7 +158,7 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
     // The pools may have grown: new slots start empty, new vertices with zero sums.
     const size_t cells = size_t(mesh.cellCapacity()), vertices = size_t(mesh.vertexCapacity());
     const size_t cellRoom = mesh.cellPoolRoom(), vertexRoom = mesh.vertexPoolRoom();
-    if (indices_.size() < cells * size_t(slotSize())) {
+    if (keepsSlots() && indices_.size() < cells * size_t(slotSize())) {
         reserveLikePool(indices_, cells * size_t(slotSize()), cellRoom * size_t(slotSize()));
         indices_.resize(cells * size_t(slotSize()), kRestartIndex);
     }
@@ -175,10 +183,14 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
     for (int32_t c : changedCells_) {
         if (cellPending_[size_t(c)]) continue;
         cellPending_[size_t(c)] = true;
-        const uint32_t* slot = indices_.data() + size_t(c) * size_t(slotSize());
-        accumulate(mesh, slot, -1); // its old triangles: their vertices still hold their positions
-        writeSlot(mesh, c);
-        accumulate(mesh, slot, +1);
+        if (keepsSlots()) {
+            const uint32_t* slot = indices_.data() + size_t(c) * size_t(slotSize());
+            accumulate(mesh, slot, -1); // its old triangles: their vertices still hold their positions
+            writeSlot(mesh, c);
+            accumulate(mesh, slot, +1);
+        } else {
+            accumulate(mesh, mesh.cellFan(c), +1); // marks the vertices it draws
+        }
         dirtyIndices_.mark(c);
         wrote = true;
     }
@@ -294,14 +306,13 @@ void FanStream::buildLevelView(const HexMesh& mesh, bool outline) {
         levelOffsets_.push_back(int32_t(levelIndices_.size()));
         for (int32_t c = mesh.firstOfLevel(level); c != kNone; c = mesh.nextInLevel(c)) {
             const Hexagon& h = mesh.cell(c);
-            uint32_t fan[8];
-            const int32_t n = mesh.cellFan(h, fan);
-            levelIndices_.insert(levelIndices_.end(), fan, fan + n);
+            const uint32_t* fan = mesh.cellFan(c);
+            levelIndices_.insert(levelIndices_.end(), fan, fan + HexMesh::fanLength(h));
             levelIndices_.push_back(kRestartIndex);
             if (!outline) continue;
             // Each cell edge once, from the cell with the lower index (or alone).
             for (int32_t slot = 1; slot <= 6; ++slot) {
-                if (h.vertex[slot] == kNone) continue;
+                if (mesh.cornerVertex(c, slot) == kNone) continue;
                 const int32_t o = h.opposite[slot - 1];
                 if (o != kNone && hexIdx(o) < c) continue;
                 const int32_t e = makeEdge(c, slot);
@@ -325,7 +336,7 @@ size_t FanStream::memoryBytes() const {
 
 size_t FanStream::liveMemoryBytes() const {
     if (!mesh_) return 0;
-    return size_t(mesh_->liveCells()) * size_t(slotSize()) * sizeof(uint32_t) +
+    return (keepsSlots() ? size_t(mesh_->liveCells()) * size_t(slotSize()) * sizeof(uint32_t) : 0) +
            (normals_ ? size_t(mesh_->liveVertices()) * (sizeof(glm::i64vec3) + sizeof(PackedNormal)) : 0);
 }
 

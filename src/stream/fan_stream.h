@@ -1,16 +1,15 @@
 // FanStream: the index arrays the renderer uploads (paper §7), kept in step with the mesh
-// incrementally. The vertex array is the mesh's own pool of StreamVertex (vertex data exists
-// once); this class writes its normals and keeps the indices.
+// incrementally. The vertex array is the mesh's own pool of StreamVertex, and the fans are the
+// mesh's own fan table (vertex data and cell vertices exist once); this class writes the
+// normals, tracks what changed, and keeps the triangle list when that layout is chosen.
 //
-// Every cell record owns a fixed slot of the index array, so an operation rewrites only the
+// Every cell record owns a fixed slot of the index array, so an operation changes only the
 // slots of the cells it changed:
-//   Fans layout (9 indices a cell), drawn as TRIANGLE_FAN with primitive restart:
-//     full hexagon:          centre, six corners, first corner again, restart
-//     boundary semi-hexagon: centre, its four corners, restart            (3 triangles, §4.2)
-//     interior semi-hexagon: its four corners from the fixed-rule corner, restart (2 triangles)
-//     free record / padding: restart
+//   Fans layout (9 indices a cell), drawn as TRIANGLE_FAN with primitive restart: the mesh's
+//     fan table itself (HexMesh::fanTable, its layout in hex_mesh.h), nothing copied.
 //   Triangles layout (18 indices a cell): the same triangles as an indexed list, padded with
-//     restart indices (which end no triangle: WebGL2 always restarts at 0xFFFFFFFF).
+//     restart indices (which end no triangle: WebGL2 always restarts at 0xFFFFFFFF); this
+//     class writes it from the fans.
 //
 // Normals (§7, "averaged from the adjacent triangles of the current mesh") are sums of face
 // normals kept per vertex in 64-bit fixed point: an operation subtracts the triangles of the
@@ -33,8 +32,6 @@
 
 namespace hexlod {
 
-constexpr uint32_t kRestartIndex = 0xFFFFFFFFu; // WebGL2's fixed primitive-restart index
-
 enum class IndexLayout : int32_t { Fans = 0, Triangles = 1 };
 
 /// A run of array elements [first, first + count) to upload.
@@ -44,7 +41,7 @@ struct ElementRange {
 
 class FanStream {
 public:
-    static constexpr int32_t kFanSlot = 9;
+    static constexpr int32_t kFanSlot = kCellFanSlot;
     static constexpr int32_t kTriangleSlot = 18;
 
     /// Starts following `mesh` (until the next attach): sets its change logs and deferred vertex
@@ -75,9 +72,10 @@ public:
     /// Allocates nothing unless the pools grew.
     void sync(HexMesh& mesh, Geomorph& morph);
 
-    const std::vector<uint32_t>& indices() const { return indices_; }
+    /// The index array to draw: the mesh's fan table, or the triangle list.
+    const std::vector<uint32_t>& indices() const { return layout_ == IndexLayout::Fans ? mesh_->fanTable() : indices_; }
     /// Indices to draw: the slots of every cell record the pool has (free ones are restarts).
-    int32_t indexCount() const { return int32_t(indices_.size()); }
+    int32_t indexCount() const { return mesh_ ? int32_t(indices().size()) : 0; }
     uint32_t version() const { return version_; }
     /// Dirty ranges since the last acknowledge(), in vertices and in indices.
     const std::vector<ElementRange>& dirtyVertices();
@@ -107,6 +105,9 @@ private:
 
     void rewriteAll(HexMesh& mesh);
     void writeSlot(const HexMesh& mesh, int32_t cell);
+    /// Whether indices_ is kept: the triangle list, or in the fans layout with normals on, the
+    /// fans as last synced (their old triangles' normals are subtracted when a cell changes).
+    bool keepsSlots() const { return layout_ == IndexLayout::Triangles || normals_; }
     template <typename Visit>
     void forEachTriangle(const uint32_t* slot, Visit&& visit) const;
     void accumulate(const HexMesh& mesh, const uint32_t* slot, int64_t sign);
@@ -126,7 +127,7 @@ private:
     IndexLayout layout_ = IndexLayout::Fans;
     bool normals_ = true;
     HexMesh* mesh_ = nullptr;
-    std::vector<uint32_t> indices_;
+    std::vector<uint32_t> indices_; // see keepsSlots
     std::vector<glm::i64vec3> normalSum_; // per vertex, fixed point (see normalScale_)
     struct PackedNormal {
         int16_t xyz[4] = {0, 32767, 0, 0}; // snorm16 x, y, z and 0; up until written

@@ -267,7 +267,7 @@ TEST(FanStream, OutlineHasEveryCellEdgeOnceAndOnlyWhenAskedFor) {
     for (int32_t level = 0; level <= mesh.maxLevel(); ++level)
         for (int32_t c = mesh.firstOfLevel(level); c != kNone; c = mesh.nextInLevel(c))
             for (int32_t slot = 1; slot <= 6; ++slot) {
-                if (mesh.cell(c).vertex[slot] == kNone) continue;
+                if (mesh.cornerVertex(c, slot) == kNone) continue;
                 ++cellEdges;
                 shared += mesh.cell(c).opposite[slot - 1] != kNone;
             }

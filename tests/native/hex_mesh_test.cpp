@@ -124,8 +124,8 @@ int32_t cellHoldingCornerPoint(const HexMesh& mesh) {
             const Hexagon& h = mesh.cell(c);
             if (h.kind == CellKind::Full) return c;
             // Half hexagons: the point must lie on their side of the diameter.
-            const LatticePoint a = mesh.vertexLattice(h.vertex[wrapSlot(h.firstVisible + 3)]);
-            const LatticePoint b = mesh.vertexLattice(h.vertex[h.firstVisible]);
+            const LatticePoint a = mesh.vertexLattice(mesh.cornerVertex(c, wrapSlot(h.firstVisible + 3)));
+            const LatticePoint b = mesh.vertexLattice(mesh.cornerVertex(c, h.firstVisible));
             if (latticeDoubleArea({3 * a.q, 3 * a.r}, {3 * b.q, 3 * b.r}, p3) > 0) return c;
         }
     return kNone;
