@@ -1,7 +1,8 @@
 // The page as a user opens it: the default terrain appears, drawn with WebGL2, with no errors.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { startViewer, openPage, outDir, pixelStats, skyFromTop } from './harness.js';
+import { decode } from 'fast-png';
+import { startViewer, openPage, outDir, pixelStats, skyFromTop, pageReady, nextFrame } from './harness.js';
 
 let viewer;
 before(async () => { viewer = await startViewer(); });
@@ -53,6 +54,40 @@ test('a person\'s page (no automation) publishes no test API and still draws the
   assert.equal(await page.evaluate(() => typeof window.hexlod), 'undefined', 'window.hexlod is for tests only');
   const stats = pixelStats(await page.screenshot({ path: `${outDir}/viewer-person.png` }));
   assert.ok(stats.colours > 200 && stats.luminanceStd > 12, `the terrain is drawn: ${JSON.stringify(stats)}`);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('the paper\'s fans, drawn straight from the mesh\'s fan table, give the triangle list\'s picture', async () => {
+  // The fans layout uploads HexMesh's own fan table (a cell's vertices are stored there and
+  // nowhere else); the list is written by the stream from it. Same mesh, same pixels.
+  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?budget=40`, { width: 480, height: 300 });
+  await pageReady(page);
+  await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; }, null,
+    { timeout: 240000, polling: 200 });
+  for (let k = 0; k < 10; ++k) await nextFrame(page); // every blend (8 frames) has ended
+  const draw = async (layout) => {
+    await page.evaluate((l) => window.hexlod.setLayout(l), layout);
+    await nextFrame(page);
+    const triangles = await page.evaluate(() => window.hexlod.triangles);
+    const png = await page.screenshot({ path: `${outDir}/viewer-layout-${layout}.png` });
+    return { triangles, png, image: decode(png) };
+  };
+  const list = await draw('triangles'), fans = await draw('fans'), listAgain = await draw('triangles');
+  const differing = (a, b) => {
+    let count = 0;
+    for (let k = 0; k < a.data.length; k += a.channels) {
+      const d = Math.abs(a.data[k] - b.data[k]) + Math.abs(a.data[k + 1] - b.data[k + 1]) + Math.abs(a.data[k + 2] - b.data[k + 2]);
+      if (d > 24) count += 1;
+    }
+    return count / (a.width * a.height);
+  };
+  assert.equal(differing(list.image, listAgain.image), 0, 'the view did not hold still between the layouts');
+  assert.equal(fans.triangles, list.triangles);
+  const stats = pixelStats(fans.png);
+  assert.ok(stats.colours > 200 && stats.luminanceStd > 12, `the fans draw the terrain: ${JSON.stringify(stats)}`);
+  const share = differing(list.image, fans.image);
+  assert.ok(share < 0.002, `${(100 * share).toFixed(2)} % of the pixels differ between fans and list`);
   assert.deepEqual(problems, []);
   await page.close();
 });
