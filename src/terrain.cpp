@@ -55,13 +55,17 @@ void Terrain::configure(const TerrainSettings& settings) {
 
 UpdateStats Terrain::updateLod() {
     if (!renumbering_.empty()) releasePool(renumbering_);
-    // Between frames: the stream has applied every change, the refiner is between updates.
-    if (compactPools_ && mesh_.wantsCompaction()) compact();
     return refiner_.update();
 }
 
+void Terrain::syncStream() {
+    stream_.sync(mesh_, morph_);
+    // Now the stream has applied every change and the refiner is between updates.
+    if (compactPools_ && mesh_.wantsCompaction()) compact();
+}
+
 void Terrain::compact() {
-    std::vector<int32_t> cellMap; // a rare event: the mesh shrank by an eighth
+    std::vector<int32_t> cellMap; // a rare event: the mesh shrank by a sixteenth
     mesh_.compact(cellMap, renumbering_);
     refiner_.renumber(cellMap, renumbering_);
     morph_.changedVertices().clear(); // the stream's rewrite uploads every vertex

@@ -4,7 +4,7 @@
 // and the tests drive the core through this class instead of wiring the pieces by hand.
 //
 // Allocation happens when the terrain is created, when the mesh is (re)built, when a pool grows
-// and when the pools are compacted after the mesh shrank by an eighth; a frame (setView,
+// and when the pools are compacted after the mesh shrank by a sixteenth; a frame (setView,
 // updateLod, syncStream) allocates nothing else.
 #pragma once
 
@@ -27,7 +27,7 @@ struct TerrainSettings {
     int32_t morphFrames = 0;                // geomorph blend length in LOD updates (0: off, at most Geomorph::kMaxFrames)
     IndexLayout layout = IndexLayout::Fans; // how the stream writes each cell's slot
     bool normals = true;                    // whether the stream keeps the vertex normals
-    bool compactPools = true;               // give the pools' free records back when the mesh shrank by an eighth
+    bool compactPools = true;               // give the pools' free records back when the mesh shrank by a sixteenth
 };
 
 class Terrain {
@@ -64,17 +64,19 @@ public:
 
     // One frame, in this order: the camera, one budgeted refinement step (§6), the stream (§7).
     void setView(const View& view) { refiner_.setView(view); }
-    /// First gives the pools' free records back when the mesh shrank by an eighth (compact()).
     UpdateStats updateLod();
-    void syncStream() { stream_.sync(mesh_, morph_); }
+    /// Applies the frame's changes to the stream, then gives the pools' free records back when
+    /// the mesh shrank by a sixteenth (compact()): memory held between frames is what the mesh
+    /// needs, not what it needed a frame ago.
+    void syncStream();
     /// Renumbers the mesh densely and every consumer with it, giving the pools' free records
-    /// back. updateLod does it (with compactPools) when the mesh shrank by an eighth; call it
-    /// between frames only.
+    /// back. syncStream does it (with compactPools) when the mesh shrank by a sixteenth; call it
+    /// between frames only, after syncStream.
     void compact();
     /// Counts compactions: state kept per vertex number outside the terrain (a popping meter)
     /// renumbers itself with lastRenumbering() when this moved.
     uint32_t renumberings() const { return renumberings_; }
-    /// Old -> new vertex numbers of the compaction at the start of this frame's updateLod
+    /// Old -> new vertex numbers of the compaction at the end of this frame's syncStream
     /// (kNone: freed); kept until the next updateLod.
     const std::vector<int32_t>& lastRenumbering() const { return renumbering_; }
     /// The refiner converged and no merge waits for its vertices to fade out (§7), so the

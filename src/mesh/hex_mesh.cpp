@@ -179,11 +179,13 @@ void HexMesh::releaseFreedVertices() {
 }
 
 bool HexMesh::wantsCompaction() const {
-    // An eighth of a large pool unused; small pools are not worth a rewrite.
+    // A sixteenth of a large pool unused (issue 12 counts memory at capacity: with growth by a
+    // sixteenth, a pool holds at most about an eighth more than it uses); small pools are not
+    // worth a rewrite.
     constexpr size_t kLargePool = 4096;
     const size_t cells = cells_.size(), vertices = vertices_.size();
-    return (cells >= kLargePool && 8 * size_t(liveCells_) < 7 * cells) ||
-           (vertices >= kLargePool && 8 * size_t(liveVertices_) < 7 * vertices);
+    return (cells >= kLargePool && 16 * size_t(liveCells_) < 15 * cells) ||
+           (vertices >= kLargePool && 16 * size_t(liveVertices_) < 15 * vertices);
 }
 
 void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& vertexMap) {

@@ -3,7 +3,8 @@
 // per drawn triangle at allocated capacity: std::vector doubles, so up to half of a pool could
 // sit unused. Growing by a sixteenth keeps the unused share under about 6 %, with reallocations
 // still geometric (amortised O(1) per element: each element is moved 16 times on average over
-// the pool's growth), so no operation allocates on average.
+// the pool's growth), so no operation allocates on average. The minimum step (64 records) only
+// keeps a small pool from reallocating on every few records.
 #pragma once
 
 #include <algorithm>
@@ -16,7 +17,7 @@ namespace hexlod {
 template <typename T>
 void reserveForPool(std::vector<T>& pool, size_t size) {
     if (size <= pool.capacity()) return;
-    constexpr size_t kMinimumGrowth = 256;
+    constexpr size_t kMinimumGrowth = 64;
     pool.reserve(std::max(size, pool.capacity() + pool.capacity() / 16 + kMinimumGrowth));
 }
 
