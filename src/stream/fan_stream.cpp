@@ -38,8 +38,8 @@ void FanStream::releaseArrays() {
     releasePool(vertexPending_);
     releasePool(dirtyVertices_.marked);
     releasePool(dirtyIndices_.marked);
-    dirtyVertices_.list.clear();
-    dirtyIndices_.list.clear();
+    releasePool(dirtyVertices_.list);
+    releasePool(dirtyIndices_.list);
     touchedVertices_.clear();
 }
 
@@ -249,7 +249,11 @@ void FanStream::finishNormals(HexMesh& mesh) {
 
 void FanStream::DirtySet::mark(int32_t element) {
     const size_t block = size_t(element >> kBlockShift);
-    if (block >= marked.size()) marked.resize(block + 1, 0); // the pools grew
+    if (block >= marked.size()) {
+        marked.resize(block + 1, 0); // the pools grew
+        // The list holds a block at most once: room for every block, no doubling past that.
+        list.reserve(marked.capacity());
+    }
     if (marked[block]) return;
     marked[block] = 1;
     list.push_back(int32_t(block));
