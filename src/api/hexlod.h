@@ -131,7 +131,8 @@ typedef struct hexlod_camera {
  * Indices: a fixed slot per cell record: HEXLOD_LAYOUT_FANS, 9 indices (a triangle fan then
  * 0xFFFFFFFF; full hexagon: centre, six corners, first corner; boundary semi-hexagon: centre,
  * four corners; interior semi-hexagon: four corners from the fixed-rule corner; the rest of the
- * slot and free records: 0xFFFFFFFF), drawn as TRIANGLE_FAN with primitive restart; or
+ * slot and free records: 0xFFFFFFFF), drawn as TRIANGLE_FAN with primitive restart (this is the
+ * mesh's own table of cell vertices, so its pointer moves with the cell pool); or
  * HEXLOD_LAYOUT_TRIANGLES, 18 indices (the same triangles as a list, padded with 0xFFFFFFFF).
  * Dirty ranges: what changed since the last hexlod_terrain_acknowledge, as (first, count) pairs
  * of int32: vertex slots and indices. */
