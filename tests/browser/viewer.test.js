@@ -63,6 +63,8 @@ test('the paper\'s fans, drawn straight from the mesh\'s fan table, give the tri
   // nowhere else); the list is written by the stream from it. Same mesh, same pixels.
   const { page, problems } = await openPage(viewer.browser, `${viewer.url}?budget=40`, { width: 480, height: 300 });
   await pageReady(page);
+  // Only the terrain: the HUD's figures (fps, times) change from frame to frame.
+  await page.addStyleTag({ content: '#hud, #side, #drop-hint, #status { display: none !important; }' });
   await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; }, null,
     { timeout: 240000, polling: 200 });
   for (let k = 0; k < 10; ++k) await nextFrame(page); // every blend (8 frames) has ended
