@@ -30,7 +30,7 @@ int32_t shapeTriangles(const Heightfield& field, Embedding embedding, const Cell
     }
     auto lattice = [&](int32_t slot) { return latticeAdd(shape.center, kDirections[wrapSlot(slot) - 1], shape.step); };
     const int32_t start = semiFanFromSecondCorner(embedding, lattice(a), lattice(a + 1), lattice(a + 2), lattice(a + 3)) ? 1 : 0;
-    auto fan = [&](int32_t i) { return corner(a + (start + i) % 4); }; // as HexMesh::semiFanSlots
+    auto fan = [&](int32_t i) { return corner(a + (start + i) % 4); }; // as HexMesh::setCorners
     out[0] = {fan(0), fan(1), fan(2)};
     out[1] = {fan(0), fan(2), fan(3)};
     return 2;

@@ -24,9 +24,11 @@
 //   free record:           restart
 // so the slots are decoded from the fan (corners(), cornerVertex()), and an operation writes a
 // cell's fan when it changes the cell (issue 12: the record no longer holds a second copy of
-// the vertices, 28 bytes a cell). Edge slot k (1..6) runs from corner k to corner k+1; a semi's long edge (its
-// diameter, on the parent's edge) is stored in edge slot firstVisible+3 and runs from corner
-// firstVisible+3 back to corner firstVisible. Directed edges are numbered e = 8*cell + slot.
+// the vertices, 28 bytes a cell).
+//
+// Edge slot k (1..6) runs from corner k to corner k+1; a semi's long edge (its diameter, on the
+// parent's edge) is stored in edge slot firstVisible+3 and runs from corner firstVisible+3 back
+// to corner firstVisible. Directed edges are numbered e = 8*cell + slot.
 #pragma once
 
 #include <cstdint>
