@@ -205,7 +205,6 @@ void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& verte
         uint32_t* fan = fans_.data() + c * kCellFanSlot;
         for (int32_t i = 0; i < kCellFanSlot; ++i)
             if (fan[i] != kRestartIndex) fan[i] = uint32_t(vertexMap[fan[i]]);
-        std::copy_n(fan, kCellFanSlot, fans_.begin() + ptrdiff_t(cellMap[c]) * kCellFanSlot); // downwards: in place
         for (int32_t& o : h.opposite)
             if (o != kNone) o = makeEdge(cellMap[size_t(hexIdx(o))], edgeSlot(o));
         if (h.prev != kNone) h.prev = cellMap[size_t(h.prev)];
@@ -215,8 +214,7 @@ void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& verte
         for (int32_t& c : *ends)
             if (c != kNone) c = cellMap[size_t(c)];
     renumberPool(cells_, cellMap, size_t(cells));
-    fans_.resize(size_t(cells) * kCellFanSlot);
-    std::vector<uint32_t>(fans_.begin(), fans_.end()).swap(fans_); // capacity == size
+    renumberPool(fans_, cellMap, size_t(cells), kCellFanSlot);
     renumberPool(vertices_, vertexMap, size_t(vertices));
     renumberPool(vertexInfo_, vertexMap, size_t(vertices)); // parents are lattice points: nothing to renumber
     freeCell_ = kNone;
@@ -313,12 +311,19 @@ CellCorners HexMesh::corners(int32_t c) const {
     return out;
 }
 
+bool HexMesh::semiFanFromSecond(const CellCorners& corners, int32_t first) const {
+    auto at = [&](int32_t slot) { return vertexLattice(corners.vertex[wrapSlot(slot)]); };
+    return semiFanFromSecondCorner(embedding_, at(first), at(first + 1), at(first + 2), at(first + 3));
+}
+
+// Also sets fanFromSecond, which only an interior semi-hexagon's fan uses.
 void HexMesh::setCorners(int32_t c, const CellCorners& corners) {
     Hexagon& h = cells_[size_t(c)];
     uint32_t* fan = fans_.data() + size_t(c) * kCellFanSlot;
     std::fill_n(fan, kCellFanSlot, kRestartIndex);
     const int32_t* v = corners.vertex;
     const int32_t a = h.firstVisible;
+    h.fanFromSecond = 0;
     switch (h.kind) {
         case CellKind::Full:
             for (int32_t slot = 0; slot <= 6; ++slot) fan[slot] = uint32_t(v[slot]);
@@ -329,8 +334,7 @@ void HexMesh::setCorners(int32_t c, const CellCorners& corners) {
             for (int32_t i = 0; i < 4; ++i) fan[1 + i] = uint32_t(v[wrapSlot(a + i)]);
             break;
         case CellKind::Semi: { // §7: the fixed rule for the "arbitrary corner"
-            auto at = [&](int32_t slot) { return vertexLattice(v[wrapSlot(slot)]); };
-            const int32_t start = semiFanFromSecondCorner(embedding_, at(a), at(a + 1), at(a + 2), at(a + 3)) ? 1 : 0;
+            const int32_t start = semiFanFromSecond(corners, a) ? 1 : 0;
             h.fanFromSecond = uint8_t(start);
             for (int32_t i = 0; i < 4; ++i) fan[i] = uint32_t(v[wrapSlot(a + (start + i) % 4)]);
             break;
@@ -463,7 +467,6 @@ void HexMesh::splitUnchecked(int32_t c) {
         Hexagon& R = cells_[size_t(r)];
         R.firstVisible = uint8_t(wrapSlot(k + 2));
         CellCorners rv;
-        std::fill(std::begin(rv.vertex), std::end(rv.vertex), kNone);
         rv.vertex[wrapSlot(k + 2)] = hv.vertex[k1];
         rv.vertex[wrapSlot(k + 3)] = newCorner[k1];
         rv.vertex[wrapSlot(k + 4)] = newCorner[k];
@@ -545,7 +548,6 @@ void HexMesh::joinPair(int32_t keep, int32_t other) {
     Hexagon& k = cells_[size_t(keep)];
     k.kind = CellKind::Full;
     k.firstVisible = 0;
-    k.fanFromSecond = 0;
     setCorners(keep, kv);
     // The other half's three short edges become this hexagon's edges a+3 .. a+5.
     for (int32_t slot = a + 3; slot <= a + 5; ++slot) connect(makeEdge(keep, wrapSlot(slot)), o.opposite[wrapSlot(slot) - 1]);
@@ -562,7 +564,6 @@ void HexMesh::joinBoundary(int32_t s) {
     sv.vertex[0] = allocateVertex(cellCenter(s), sv.vertex[a], sv.vertex[wrapSlot(a + 3)], // the midpoint of its long edge
                                   longEdgeFanCorner(s), kNone);
     cells_[size_t(s)].kind = CellKind::BoundarySemi;
-    cells_[size_t(s)].fanFromSecond = 0;
     setCorners(s, sv);
     setLevel(s, cells_[size_t(s)].level + 1);
     triangles_ += 1;
@@ -628,7 +629,6 @@ void HexMesh::breakUnchecked(int32_t c) {
     h2.firstVisible = uint8_t(wrapSlot(k + 3));
     h2.level = uint8_t(j.level - 1);
     CellCorners v2;
-    std::fill(std::begin(v2.vertex), std::end(v2.vertex), kNone);
     for (int32_t slot = k + 3; slot <= k + 6; ++slot) v2.vertex[wrapSlot(slot)] = jv.vertex[wrapSlot(slot)];
     setCorners(other, v2);
     linkLevel(other);

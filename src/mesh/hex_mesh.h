@@ -74,7 +74,7 @@ struct ParentPoints {
 /// A cell's vertices by slot (§4.3): [0] the centre, [1..6] the corners; kNone if absent.
 /// Decoded from the cell's fan (HexMesh::corners), changed, and written back (setCorners).
 struct CellCorners {
-    int32_t vertex[7];
+    int32_t vertex[7] = {kNone, kNone, kNone, kNone, kNone, kNone, kNone};
 };
 
 /// Indices a cell's fan takes in the fan table: centre, six corners, corner 1 again, restart.
@@ -303,6 +303,9 @@ private:
     /// Writes a cell's fan from its vertices by slot, after its kind and firstVisible are set
     /// (an interior semi-hexagon's fan corner follows the fixed rule of §7).
     void setCorners(int32_t c, const CellCorners& corners);
+    /// §7's fixed rule for a semi-hexagon whose own corners start at slot `first`: whether its
+    /// fan starts at the second corner (semiFanFromSecondCorner on their lattice points).
+    bool semiFanFromSecond(const CellCorners& corners, int32_t first) const;
     const char* checkFan(int32_t c, const CellCorners& corners) const; // hex_mesh_invariants.cpp
 
     const Heightfield* field_ = nullptr;

@@ -95,7 +95,6 @@ const char* HexMesh::reset(const Heightfield& field, Embedding embedding, int32_
             const int32_t first = h.kind == CellKind::Full ? 1 : h.firstVisible;
             const int32_t corners = h.kind == CellKind::Full ? 6 : 4;
             CellCorners vertices;
-            std::fill(std::begin(vertices.vertex), std::end(vertices.vertex), kNone);
             vertices.vertex[0] = vertexOf(centre);
             for (int32_t i = 0; i < corners; ++i) {
                 const int32_t k = wrapSlot(first + i);

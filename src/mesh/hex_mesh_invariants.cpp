@@ -80,9 +80,7 @@ const char* HexMesh::checkFan(int32_t c, const CellCorners& corners) const {
         if (fan[i] != kRestartIndex) return failure("cell %d: fan entry %d past its fan is not a restart", c, i);
     if (h.kind == CellKind::Full && fan[7] != fan[1]) return failure("hexagon %d: the fan does not close at its first corner", c);
     if (h.kind == CellKind::Semi) {
-        const int32_t a = h.firstVisible;
-        auto at = [&](int32_t slot) { return vertexLattice(corners.vertex[wrapSlot(slot)]); };
-        if (h.fanFromSecond != semiFanFromSecondCorner(embedding_, at(a), at(a + 1), at(a + 2), at(a + 3)))
+        if (h.fanFromSecond != semiFanFromSecond(corners, h.firstVisible))
             return failure("semi-hexagon %d: the fan does not start at the fixed rule's corner", c);
     } else if (h.fanFromSecond) {
         return failure("cell %d: fanFromSecond set on a whole or boundary cell", c);

@@ -37,17 +37,18 @@ void releasePool(std::vector<T>& pool) {
     std::vector<T>().swap(pool);
 }
 
-/// Moves element i of a per-record array to map[i] (negative: the record is gone) and keeps
-/// `size` elements, giving the rest of the memory back. The map is increasing on the records it
-/// keeps (HexMesh::compact), so the moves go downwards and can be made in place.
+/// Moves record i of a per-record array (`perRecord` elements each) to map[i] (negative: the
+/// record is gone) and keeps `size` records, giving the rest of the memory back. The map is
+/// increasing on the records it keeps (HexMesh::compact), so the moves go downwards and can be
+/// made in place.
 template <typename T>
-void renumberPool(std::vector<T>& pool, const std::vector<int32_t>& map, size_t size) {
-    const size_t n = std::min(pool.size(), map.size());
+void renumberPool(std::vector<T>& pool, const std::vector<int32_t>& map, size_t size, size_t perRecord = 1) {
+    const size_t n = std::min(pool.size() / perRecord, map.size());
     for (size_t i = 0; i < n; ++i)
-        if (map[i] >= 0) pool[size_t(map[i])] = pool[i];
-    pool.resize(std::min(pool.size(), size));
+        if (map[i] >= 0) std::copy_n(pool.begin() + ptrdiff_t(i * perRecord), perRecord, pool.begin() + ptrdiff_t(size_t(map[i]) * perRecord));
+    pool.resize(std::min(pool.size(), size * perRecord));
     std::vector<T>(pool.begin(), pool.end()).swap(pool); // capacity == size
-    pool.resize(size);
+    pool.resize(size * perRecord);
 }
 
 /// What a frame's logs and work lists keep between frames: room for changes to an eighth of the
