@@ -2,6 +2,7 @@
 // Dachsbacher, Greiner, VMV 2005), §6, with the criteria of §5 (view_criteria.h) and the
 // cached refinement data of §5.1. See refiner.h for the order of work and the margins.
 #include "lod/refiner.h"
+#include "lod/float_rounding.h"
 #include "mesh/pool_growth.h"
 
 #include <algorithm>
@@ -18,18 +19,6 @@ constexpr double kForever = 1e30; // a margin no camera uses up (a verdict that 
 // How far the far plane may come closer before every cell is due (cells far away are often
 // near the far plane: a loose factor would leave their merge tests without margins).
 constexpr double kFarShrink = 15.0 / 16.0;
-
-float roundedDown(double x) {
-    float f = float(x);
-    if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-    return f;
-}
-
-float roundedUp(double x) {
-    float f = float(x);
-    if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-    return f;
-}
 
 // The largest margin in (0, cap] found to hold by bisection (the test is monotone: a
 // verdict that holds within m holds within anything less), 0 when none. Six evaluations at most.
@@ -71,11 +60,7 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
 }
 
 void Refiner::setView(const View& view) {
-    if (haveView_) {
-        travel_ += glm::length(view.eye - view_.eye);
-        const glm::dvec3 dr = view.right - view_.right, du = view.up - view_.up, df = view.forward - view_.forward;
-        turn_ += std::sqrt(glm::dot(dr, dr) + glm::dot(du, du) + glm::dot(df, df));
-    }
+    if (haveView_) odometers_.move(view_, view);
     const bool sameShapeOfView = haveView_ && view.tanHalfX == view_.tanHalfX && view.tanHalfY == view_.tanHalfY &&
                                  view.pixelsPerTangent == view_.pixelsPerTangent;
     // Margins of failing merge tests assume near <= 2 nearRef_ and far >= kFarShrink * farRef_ (judge()).
@@ -120,14 +105,14 @@ void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<in
 }
 
 size_t Refiner::memoryBytes() const {
-    return cache_.memoryBytes() + records_.capacity() * sizeof(TestRecord) + state_.capacity() +
+    return cache_.memoryBytes() + records_.capacity() * sizeof(TestRecord) + state_.capacity() + CameraOdometers::memoryBytes() +
            (changes_.capacity() + fresh_.capacity() + freedScratch_.capacity() + mergeList_.capacity()) * sizeof(int32_t) +
            heap_.capacity() * sizeof(Candidate) + pending_.capacity() * sizeof(PendingMerge) + pyramid_.memoryBytes();
 }
 
 size_t Refiner::liveMemoryBytes() const {
     return size_t(mesh_ ? mesh_->liveCells() : 0) * (sizeof(RefinementCache::Entry) + sizeof(TestRecord) + 1) +
-           pending_.size() * sizeof(PendingMerge) + pyramid_.memoryBytes();
+           pending_.size() * sizeof(PendingMerge) + pyramid_.memoryBytes() + CameraOdometers::memoryBytes();
 }
 
 void Refiner::invalidateAll() {
@@ -146,17 +131,6 @@ void Refiner::checkSettings() {
     checked_ = s;
     checkedTau_ = tau();
     settingsChecked_ = true;
-}
-
-// Keeps the odometers small, so that the records' floats keep their resolution.
-void Refiner::rebaseOdometers() {
-    if (travel_ < 65536.0 && turn_ < 64.0) return;
-    for (TestRecord& r : records_) {
-        r.t0 = roundedDown(double(r.t0) - travel_);
-        r.a0 = roundedDown(double(r.a0) - turn_);
-    }
-    travel_ = 0.0;
-    turn_ = 0.0;
 }
 
 void Refiner::noteChanges(bool collect) {
@@ -178,9 +152,16 @@ void Refiner::noteChanges(bool collect) {
 }
 
 // Tests the cells the last operations created or changed (they are due), and the blocked
-// merge candidates next to them: what blocked a merge (a ring cell that could not be broken)
-// is a neighbour, and changes with the operation that unblocks it.
+// merge candidates that the change may have unblocked. A merge is blocked by a ring cell that
+// cannot be broken (HexMesh::canMerge): one that is not a plain joined hexagon of the same
+// level, a neighbour, which changes with the operation that unblocks it; or one that a finer
+// semi-hexagon rests its long edge on, two cells away, which changes when that semi-hexagon
+// is joined or merged away. A merge test does not depend on the view to find that out, so
+// blocked cells culled by a side plane may keep that plane's long margin.
 void Refiner::retestChanged() {
+    auto retestIfUnblocked = [&](int32_t n) {
+        if ((state_[size_t(n)] & kBlocked) && mesh_->isLive(n) && mesh_->canMerge(n)) testCell(n);
+    };
     for (size_t k = 0; k < fresh_.size(); ++k) {
         const int32_t c = fresh_[k];
         if (!mesh_->isLive(c)) continue;
@@ -188,7 +169,11 @@ void Refiner::retestChanged() {
         for (int32_t o : mesh_->cell(c).opposite) {
             if (o == kNone) continue;
             const int32_t n = hexIdx(o);
-            if ((state_[size_t(n)] & kBlocked) && mesh_->isLive(n) && mesh_->canMerge(n)) testCell(n);
+            retestIfUnblocked(n);
+            const Hexagon& ring = mesh_->cell(n);
+            if (ring.kind != CellKind::Full || ring.splitCount != 0) continue; // not a ring cell a merge breaks
+            for (int32_t across : ring.opposite)
+                if (across != kNone && hexIdx(across) != c) retestIfUnblocked(hexIdx(across));
         }
     }
     fresh_.clear();
@@ -244,11 +229,13 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
         const double slack[4] = {(view_.tanHalfX * z - x) / sx + radius, (view_.tanHalfX * z + x) / sx + radius,
                                  (view_.tanHalfY * z - y) / sy + radius, (view_.tanHalfY * z + y) / sy + radius};
         double outside = 0.0;
-        for (double s : slack) {
-            inside = std::min(inside, s);
-            outside = std::max(outside, -s);
+        int32_t culledBy = 0;
+        for (int32_t p = 0; p < 4; ++p) {
+            inside = std::min(inside, slack[p]);
+            if (-slack[p] > outside) outside = -slack[p], culledBy = p;
         }
-        if (outside > 0.0) return {true, 0.0, outside};
+        // Culled until the centre comes back across that plane: the plane's odometer.
+        if (outside > 0.0) return {true, 0.0, outside, Odometer(int32_t(Odometer::RightPlane) + culledBy)};
         if (z + radius < view_.nearPlane || z - radius > view_.farPlane) return {true, 0.0, 0.0};
     }
     double front = kForever; // how far the eye may move before a front-facing cell can turn its back
@@ -326,13 +313,29 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
     return v;
 }
 
-void Refiner::setRecord(int32_t c, double margin, double dist) {
+void Refiner::tighten(Verdict& into, const Verdict& other) {
+    if (other.margin >= kForever) return;
+    if (into.margin >= kForever) {
+        into.margin = other.margin, into.odometer = other.odometer;
+        return;
+    }
+    if (into.odometer != other.odometer) into.odometer = Odometer::Travel;
+    into.margin = std::min(into.margin, other.margin);
+}
+
+void Refiner::setRecord(int32_t c, double margin, Odometer odometer, double dist) {
     TestRecord& r = records_[size_t(c)];
-    r.t0 = roundedDown(travel_);
-    r.a0 = roundedDown(turn_);
+    r.stamp = odometers_.stamp();
+    r.odometer = uint32_t(odometer);
     r.dist = float(dist); // already rounded up by judge()
-    r.rho = margin >= kForever ? std::numeric_limits<float>::max() : roundedDown(margin);
-    if (r.rho < 0.0f) r.rho = 0.0f;
+    r.rho = margin >= kForever ? std::numeric_limits<float>::max() : CameraOdometers::storedMargin(std::max(0.0, margin));
+}
+
+// Re-stamps a record that is not due before its stamp gets too old (CameraOdometers::renewed).
+void Refiner::renew(TestRecord& r) const {
+    const CameraOdometers::Renewed renewed = odometers_.renewed(r.stamp, Odometer(r.odometer), r.dist, r.rho);
+    r.dist = renewed.dist, r.rho = renewed.rho;
+    r.stamp = odometers_.stamp();
 }
 
 // Whether a step could refine the cell: false at the finest level (the split cannot happen,
@@ -380,7 +383,7 @@ Refiner::Verdict Refiner::mergeVerdict(int32_t c, double& dist) {
         }
         // One record for all: the smallest margin, checked with the largest distance (a turn
         // then moves each centre by at most the record's allowance; see testCell).
-        all.margin = std::min(all.margin, half.margin);
+        tighten(all, half);
         dist = std::max(dist, halfDist);
     }
     return all;
@@ -402,7 +405,8 @@ void Refiner::testCell(int32_t c) {
         if (state & kPending) state |= kCancel;
         return;
     }
-    double margin = own.pass ? own.margin : kForever; // failing at the finest level: nothing to do, whatever the view
+    Verdict record = own;
+    if (!own.pass) record.margin = kForever; // failing at the finest level: nothing to do, whatever the view
     const Hexagon& h = mesh_->cell(c);
     if (h.kind != CellKind::Semi && h.splitCount > 0) {
         // The cheap structural check first: a blocked merge is not worth its criteria.
@@ -425,11 +429,11 @@ void Refiner::testCell(int32_t c) {
             // Not due means (travel) + (turn) * (D + travel) < rho for D >= every tested centre's
             // distance at the test: each centre moved less than rho <= its margin, and the view
             // turned by less than rho / D <= margin / its distance, as judge() assumed.
-            margin = std::min(margin, merge.margin);
+            tighten(record, merge);
             dist = std::max(dist, mergeDist);
         }
     }
-    setRecord(c, margin, dist);
+    setRecord(c, record.margin, record.odometer, dist);
 }
 
 bool Refiner::outOfBudget(double share) {
@@ -603,11 +607,11 @@ bool Refiner::sweep() {
                 return false;
             }
         }
-        const TestRecord& r = records_[size_t(c)];
-        const double moved = travel_ - double(r.t0);
-        const bool due = moved + (turn_ - double(r.a0)) * (double(r.dist) + moved) >= double(r.rho);
+        TestRecord& r = records_[size_t(c)];
+        const bool due = odometers_.usedUp(r.stamp, Odometer(r.odometer), r.dist, r.rho); // rho < 0: due
         const uint8_t state = state_[size_t(c)];
         if (!due) {
+            if (odometers_.age(r.stamp) >= CameraOdometers::kHistory / 2) renew(r);
             if (state & kWanted) mergeList_.push_back(c); // queued before, the budget ran out
                 continue;
         }
@@ -685,7 +689,7 @@ UpdateStats Refiner::update() {
     bool converged = false;
     noteChanges(false); // changed outside an operation of ours: their records are due
     checkSettings();
-    rebaseOdometers();
+    if (odometers_.beginUpdate()) invalidateAll(); // stamps wrapped: no record can be read back
     heap_.clear();
     mergeList_.clear();
     if (morph_) morph_->advance(); // one frame per update

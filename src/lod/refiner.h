@@ -10,9 +10,10 @@
 //
 // Deferred re-testing: each test leaves a margin per cell, the distance the cell's centre may
 // move in view space (eye travel plus the turn of the view times the cell's distance) before
-// the test's verdict can change; a compact record per cell (16 bytes, swept in index order)
-// says when the camera has used it up. The margins are bounds (see judge()), so a mesh that
-// passed stays within tau until its cells are due.
+// the test's verdict can change; a compact record per cell (12 bytes, swept in index order)
+// says when the camera has used it up. A cell culled by a side plane counts only the eye's
+// movement towards that plane's inside (camera_odometers.h). The margins are bounds (see
+// judge()), so a mesh that passed stays within tau until its cells are due.
 //
 // With geomorphing (§7), a merge first fades out the vertices it will free and happens in the
 // update where they have faded; it is called off if the mesh or the view no longer allow it.
@@ -24,6 +25,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "lod/camera_odometers.h"
 #include "lod/cell_bounds.h"
 #include "lod/refinement_cache.h"
 #include "stream/geomorph.h"
@@ -97,13 +99,17 @@ private:
         CellError error;
         SlopeBox slopes;
     };
-    // When a cell is next due, in the camera's odometers (travel_, turn_): due once
-    // (travel_ - t0) + (turn_ - a0) * (dist + travel_ - t0) >= rho. t0, a0 rounded down,
-    // dist (the eye's distance to the centre at the test) rounded up, rho (metres) rounded down.
-    // rho < 0: due now.
+    // When a cell is next due: once the camera has used up the margin rho (metres, rounded
+    // down) on the record's odometer since the update `stamp`, for a centre at distance dist
+    // (rounded up) at the test (CameraOdometers::used). rho < 0: due now.
     struct TestRecord {
-        float t0 = 0, a0 = 0, dist = 0, rho = -1;
+        uint32_t stamp : CameraOdometers::kStampBits;
+        uint32_t odometer : 3; // an Odometer
+        float dist;
+        float rho;
+        TestRecord() : stamp(0), odometer(0), dist(0.0f), rho(-1.0f) {}
     };
+    static_assert(sizeof(TestRecord) == 12, "issue 12 counts the bytes of a cell");
     enum State : uint8_t {
         kFailing = 1,  // its own test failed: waiting for a refining step
         kWanted = 2,   // its merge is wanted (not started yet)
@@ -116,7 +122,11 @@ private:
         bool pass = true;
         double pixels = 0.0; // projected error (0 when culled)
         double margin = 0.0; // metres of view-space movement of the centre during which it cannot change
+        Odometer odometer = Odometer::Travel; // what measures that movement
     };
+    // Two verdicts in one record: the smaller margin, on the odometer both are measured by
+    // (any plane's odometer runs behind the travel, so the travel bounds both otherwise).
+    static void tighten(Verdict& into, const Verdict& other);
     // A merge started under geomorphing: the vertices it frees, fading out (§7).
     struct PendingMerge {
         int32_t cell;
@@ -140,10 +150,10 @@ private:
     void retestChanged();
     void testCell(int32_t cell);
     Verdict mergeVerdict(int32_t cell, double& dist);
-    void setRecord(int32_t cell, double margin, double dist);
+    void setRecord(int32_t cell, double margin, Odometer odometer, double dist);
+    void renew(TestRecord& record) const;
     void invalidateAll();
     void checkSettings();
-    void rebaseOdometers();
     bool canRefine(int32_t cell) const;
     bool refineStep(int32_t cell);   // one operation towards refining the cell; false if none
     bool beginMerge(int32_t cell);   // merges now, or starts fading out (then false)
@@ -175,9 +185,8 @@ private:
     std::vector<int32_t> freedScratch_;
     double currentTau_ = 1.0;
 
-    // The camera's odometers: metres travelled by the eye, and the summed turn of the view
-    // basis (Frobenius norm of each change, a bound on the rotation's operator norm).
-    double travel_ = 0.0, turn_ = 0.0;
+    // How far the camera moved and turned, which the records' margins are measured by.
+    CameraOdometers odometers_;
     bool haveView_ = false;
     double nearRef_ = 0.0, farRef_ = 0.0; // near and far planes when every cell was last made due
     // The settings the records were computed for.

@@ -442,3 +442,24 @@ TEST(Refiner, AnOperationBudgetGivesTheSameMeshEveryRun) {
     EXPECT_EQ(first, run());
     std::printf("agree: ops-budget-flight-grandcanyon %016llx\n", (unsigned long long)first);
 }
+
+// Issue 12: a verdict holds for the view it was made for, so a camera that stands still costs
+// no criteria evaluations once the mesh has converged, culled cells and cells at a margin of 0
+// included.
+TEST(Refiner, ACameraThatStandsStillCostsNoTests) {
+    auto field = test::loadFixture(test::kGrandCanyon);
+    ASSERT_NE(field, nullptr);
+    Lod lod(*field, Embedding::Exact);
+    const Camera cam = lowOblique(*field, 300.0);
+    lod.refiner.setView(viewOf(cam));
+    ASSERT_GT(converge(lod.refiner), 0);
+    const uint64_t hash = lod.mesh.hash();
+    for (int32_t frame = 0; frame < 3; ++frame) {
+        lod.refiner.setView(viewOf(cam));
+        const UpdateStats stats = lod.refiner.update();
+        EXPECT_TRUE(stats.converged);
+        EXPECT_EQ(stats.cellsTested, 0) << "frame " << frame;
+        EXPECT_EQ(stats.operations, 0) << "frame " << frame;
+    }
+    EXPECT_EQ(lod.mesh.hash(), hash);
+}

@@ -1,0 +1,145 @@
+// The camera's odometers (issue 12, deferred re-testing): a margin measured on an odometer is
+// a bound on the view-space movement of a centre, also after a record is renewed, and a side
+// plane's odometer leaves the cells beside a camera that flies forward alone.
+#include "lod/camera_odometers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+using namespace hexlod;
+
+namespace {
+
+View viewAt(const glm::dvec3& eye, double yaw, double pitch) {
+    View v;
+    v.eye = eye;
+    v.forward = {std::cos(pitch) * std::sin(yaw), -std::sin(pitch), -std::cos(pitch) * std::cos(yaw)};
+    v.right = glm::normalize(glm::cross(v.forward, glm::dvec3(0, 1, 0)));
+    v.up = glm::cross(v.right, v.forward);
+    v.tanHalfY = 0.57735026918962573;
+    v.tanHalfX = v.tanHalfY * 16.0 / 9.0;
+    return v;
+}
+
+// The slacks of the four side planes for a sphere, in Refiner::judge's order (negative: the
+// sphere lies outside that plane).
+void slacks(const View& v, const glm::dvec3& c, double radius, double out[4]) {
+    const glm::dvec3 d = c - v.eye;
+    const double x = glm::dot(d, v.right), y = glm::dot(d, v.up), z = glm::dot(d, v.forward);
+    const double sx = std::sqrt(1.0 + v.tanHalfX * v.tanHalfX), sy = std::sqrt(1.0 + v.tanHalfY * v.tanHalfY);
+    out[0] = (v.tanHalfX * z - x) / sx + radius, out[1] = (v.tanHalfX * z + x) / sx + radius;
+    out[2] = (v.tanHalfY * z - y) / sy + radius, out[3] = (v.tanHalfY * z + y) / sy + radius;
+}
+
+struct Record {
+    uint32_t stamp = 0;
+    Odometer odometer = Odometer::Travel;
+    float dist = 0.0f, rho = -1.0f;
+    int32_t plane = -1; // culled by this plane; -1: inside every side plane
+};
+
+struct Flight {
+    double forward, sideways, climb, turn; // metres and radians a frame (random share added)
+};
+
+// Flies `frames` frames, testing the spheres whose records are used up as the refiner does, and
+// checks that every verdict still holds while its record is not. Returns the number of tests.
+// planes false: every margin on the travel odometer, as before the side planes had their own.
+int64_t fly(const Flight& flight, int32_t frames, uint32_t seed, bool planes = true) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    std::vector<glm::dvec3> centres;
+    std::vector<double> radii;
+    for (int32_t i = 0; i < 3000; ++i) {
+        centres.push_back({6000.0 * unit(rng), 300.0 * unit(rng) - 300.0, -6000.0 * (unit(rng) + 1.0) + 2000.0});
+        radii.push_back(40.0 * (unit(rng) + 1.0));
+    }
+    std::vector<Record> records(centres.size());
+    CameraOdometers odometers;
+    glm::dvec3 eye(0.0, 0.0, 0.0);
+    double yaw = 0.0, pitch = 0.17;
+    View view = viewAt(eye, yaw, pitch);
+    int64_t tests = 0;
+    for (int32_t frame = 0; frame < frames; ++frame) {
+        if (frame > 0) {
+            const View next = viewAt(eye, yaw, pitch);
+            odometers.move(view, next);
+            view = next;
+        }
+        EXPECT_FALSE(odometers.beginUpdate());
+        for (size_t i = 0; i < centres.size(); ++i) {
+            Record& r = records[i];
+            double s[4];
+            slacks(view, centres[i], radii[i], s);
+            if (!odometers.usedUp(r.stamp, r.odometer, r.dist, r.rho)) {
+                const bool holds = r.plane >= 0 ? s[r.plane] < 0.0 : std::min({s[0], s[1], s[2], s[3]}) >= 0.0;
+                if (!holds) {
+                    ADD_FAILURE() << (r.plane >= 0 ? "culled by a plane until its margin is used up" : "inside while its margin lasts")
+                                  << ": sphere " << i << ", frame " << frame;
+                    return -1;
+                }
+                if (odometers.age(r.stamp) >= CameraOdometers::kHistory / 2) {
+                    const CameraOdometers::Renewed renewed = odometers.renewed(r.stamp, r.odometer, r.dist, r.rho);
+                    r.dist = renewed.dist, r.rho = renewed.rho, r.stamp = odometers.stamp();
+                }
+                continue;
+            }
+            ++tests; // as Refiner::judge: the plane the sphere lies furthest outside, or the slack inside
+            double outside = 0.0, inside = 1e30;
+            r.plane = -1;
+            for (int32_t p = 0; p < 4; ++p) {
+                inside = std::min(inside, s[p]);
+                if (-s[p] > outside) outside = -s[p], r.plane = p;
+            }
+            r.odometer = r.plane >= 0 && planes ? Odometer(int32_t(Odometer::RightPlane) + r.plane) : Odometer::Travel;
+            r.stamp = odometers.stamp();
+            r.dist = float(glm::length(centres[i] - view.eye) + 1.0); // rounded up, loosely
+            r.rho = CameraOdometers::storedMargin(r.plane >= 0 ? outside : inside);
+        }
+        eye += glm::dvec3(std::sin(yaw), 0.0, -std::cos(yaw)) * (flight.forward * (1.0 + 0.5 * unit(rng))) +
+               glm::dvec3(std::cos(yaw), 0.0, std::sin(yaw)) * (flight.sideways * unit(rng)) + glm::dvec3(0, flight.climb * unit(rng), 0);
+        yaw += flight.turn * unit(rng);
+        pitch += 0.2 * flight.turn * unit(rng);
+    }
+    return tests;
+}
+
+} // namespace
+
+TEST(CameraOdometers, AVerdictHoldsUntilItsOdometerUsesUpTheMarginAlsoAfterRenewals) {
+    // Long enough that records are renewed (age kHistory / 2) and older stamps come round.
+    const int32_t frames = int32_t(CameraOdometers::kHistory) * 2 + 40;
+    fly({30.0, 10.0, 5.0, 0.0}, frames, 1);      // forward with sway and climb, no turn
+    fly({30.0, 10.0, 5.0, 0.004}, frames, 2);    // and turning
+    fly({0.0, 40.0, 20.0, 0.01}, frames, 3);     // sideways and turning
+    fly({-30.0, 0.0, 0.0, 0.0}, frames, 4);      // backwards
+}
+
+TEST(CameraOdometers, FlyingForwardLeavesTheCellsBesideTheViewAlone) {
+    // Straight ahead with a little sway: the cells outside a side plane move further out.
+    const Flight forward{30.0, 3.0, 2.0, 0.0};
+    const int64_t withPlanes = fly(forward, 200, 5), travelOnly = fly(forward, 200, 5, false);
+    std::printf("tests over 200 frames of 3000 spheres flying forward: %lld with the planes' odometers, %lld on travel alone\n",
+                (long long)withPlanes, (long long)travelOnly);
+    ASSERT_GT(withPlanes, 0);
+    EXPECT_LT(2 * withPlanes, travelOnly);
+}
+
+TEST(CameraOdometers, AStillCameraUsesNoMargin) {
+    CameraOdometers odometers;
+    const View view = viewAt({0, 0, 0}, 0.3, 0.2);
+    odometers.beginUpdate();
+    const uint32_t stamp = odometers.stamp();
+    for (int32_t frame = 0; frame < 10; ++frame) {
+        odometers.move(view, view);
+        odometers.beginUpdate();
+        EXPECT_FALSE(odometers.usedUp(stamp, Odometer::Travel, 1000.0f, 0.0f)) << "a margin of 0 holds while nothing moves";
+        EXPECT_TRUE(odometers.usedUp(stamp, Odometer::Travel, 1000.0f, -1.0f)) << "rho < 0: due";
+    }
+}
