@@ -426,9 +426,11 @@ void Refiner::testCell(int32_t c) {
                 state |= kCancel;
             }
             // One record for both tests: the smaller margin, checked with the larger distance.
-            // Not due means (travel) + (turn) * (D + travel) < rho for D >= every tested centre's
-            // distance at the test: each centre moved less than rho <= its margin, and the view
-            // turned by less than rho / D <= margin / its distance, as judge() assumed.
+            // Not due means (movement on the record's odometer) + (turn) * (D + travel) < rho for
+            // D >= every tested centre's distance at the test: each centre moved less than
+            // rho <= its margin, and the view turned by less than rho / D <= margin / its
+            // distance, as judge() assumed. A plane's odometer only when every verdict is a cull
+            // by that plane (tighten).
             tighten(record, merge);
             dist = std::max(dist, mergeDist);
         }

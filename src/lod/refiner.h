@@ -113,7 +113,7 @@ private:
     enum State : uint8_t {
         kFailing = 1,  // its own test failed: waiting for a refining step
         kWanted = 2,   // its merge is wanted (not started yet)
-        kBlocked = 4,  // a merge candidate that canMerge refused: checked again every update
+        kBlocked = 4,  // a merge candidate that canMerge refused: tested again when a cell that can unblock it changes
         kPending = 8,  // a merge of this record is fading its vertices out
         kCancel = 16,  // the pending merge is no longer wanted
     };
