@@ -20,6 +20,7 @@
 #include <limits>
 
 #include "lod/cell_bounds.h"
+#include "lod/float_rounding.h"
 
 namespace hexlod {
 
@@ -112,7 +113,7 @@ public:
         PackedBound p;
         p.low = heightCode(e.low, false);
         p.high = heightCode(e.high, true);
-        p.error = half::rounded(scaledUp(double(e.error) * errorScale_), true);
+        p.error = half::rounded(roundedUp(double(e.error) * errorScale_), true);
         return p;
     }
 
@@ -120,7 +121,7 @@ public:
         CellError e;
         e.low = decoded(p.low, false);
         e.high = decoded(p.high, true);
-        e.error = floatAtLeast(double(half::toFloat(p.error)) / errorScale_);
+        e.error = roundedUp(double(half::toFloat(p.error)) / errorScale_);
         return e;
     }
 
@@ -146,7 +147,7 @@ private:
     double height(uint16_t code) const { return lowest_ + double(code) * step_; }
 
     // The decoded height of a code, as a float on the side of the bound.
-    float decoded(uint16_t code, bool up) const { return up ? floatAtLeast(height(code)) : floatAtMost(height(code)); }
+    float decoded(uint16_t code, bool up) const { return up ? roundedUp(height(code)) : roundedDown(height(code)); }
 
     // The largest code whose decoded height is at or below h (up: the smallest at or above),
     // clamped to the range. Found from the nearest step and checked against the decoded floats,
@@ -163,17 +164,6 @@ private:
         }
         return uint16_t(code);
     }
-
-    // The float at or above (at or below) a double.
-    static float floatAtLeast(double v) {
-        const float f = float(v);
-        return double(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-    }
-    static float floatAtMost(double v) {
-        const float f = float(v);
-        return double(f) > v ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-    }
-    static float scaledUp(double v) { return floatAtLeast(v); }
 
     double lowest_ = 0.0, step_ = 1.0, errorScale_ = 1.0;
 };
