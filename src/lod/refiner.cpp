@@ -531,7 +531,10 @@ void Refiner::callOff(const PendingMerge& merge) {
         if (merge.vertices[i] != kNone && mesh_->isVertexLive(merge.vertices[i])) morph_->cancelBlendOut(*mesh_, merge.vertices[i]);
     if (merge.cell == kNone) return; // its record is gone (renumber)
     state_[size_t(merge.cell)] &= uint8_t(~(kPending | kCancel));
-    records_[size_t(merge.cell)].rho = -1.0f; // its merge test again at the next sweep
+    // Due, and tested again in this update (retestChanged follows advancePendingMerges): an
+    // update that called a merge off must not report converged before its cell's test.
+    records_[size_t(merge.cell)].rho = -1.0f;
+    fresh_.push_back(merge.cell);
 }
 
 // The fading merges: called off when the mesh around them changed or their record's re-test
