@@ -180,8 +180,8 @@ void HexMesh::releaseFreedVertices() {
 
 bool HexMesh::wantsCompaction() const {
     // A sixteenth of a large pool unused (issue 12 counts memory at capacity: with growth by a
-    // sixteenth, a pool holds at most about an eighth more than it uses); small pools are not
-    // worth a rewrite.
+    // thirty-second, a pool holds at most about a tenth more than it uses); small pools are not
+    // worth a rewrite, and each compaction rewrites and uploads the whole stream.
     constexpr size_t kLargePool = 4096;
     const size_t cells = cells_.size(), vertices = vertices_.size();
     return (cells >= kLargePool && 16 * size_t(liveCells_) < 15 * cells) ||

@@ -305,8 +305,8 @@ TEST(HexMesh, RandomOperationSequencesKeepEveryInvariantAfterEveryOperation) {
     EXPECT_GT(applied, total / 3); // most tiny domains cannot split at all
 }
 
-// Issue 12 counts memory at allocated capacity: the pools grow by a sixteenth, not by doubling.
-TEST(HexMesh, PoolsGrowByASixteenthSoLittleOfTheirMemoryIsUnused) {
+// Issue 12 counts memory at allocated capacity: the pools grow by a thirty-second, not by doubling.
+TEST(HexMesh, PoolsGrowByAThirtySecondSoLittleOfTheirMemoryIsUnused) {
     auto field = test::loadFixture(test::kJacksboro);
     ASSERT_NE(field, nullptr);
     HexMesh mesh;
@@ -316,7 +316,7 @@ TEST(HexMesh, PoolsGrowByASixteenthSoLittleOfTheirMemoryIsUnused) {
         refineUniformly(mesh, 1);
         if (round < 4) continue;
         const double ratio = double(mesh.memoryBytes()) / double(mesh.liveMemoryBytes());
-        EXPECT_LE(ratio, 1.07) << "round " << round << ": " << mesh.liveCells() << " cells";
+        EXPECT_LE(ratio, 1.035) << "round " << round << ": " << mesh.liveCells() << " cells";
         EXPECT_GE(ratio, 1.0) << "round " << round;
     }
 }
