@@ -4,7 +4,8 @@
 //   hexlod_bench FILE.f32 WIDTH HEIGHT [SPACING_X_M SPACING_Y_M]
 //   hexlod_bench FILE.f32 WIDTH HEIGHT SPACING_X_M SPACING_Y_M --flight CAMERAS.txt
 //                [--tau PX] [--budget-ms MS] [--budget-ops N] [--viewport WxH] [--tan-half-fov T]
-//                [--morph-frames N] [--start-converged] [--measure-error] [--no-backface] [--no-normals] [--verbose]
+//                [--morph-frames N] [--start-converged] [--measure-error] [--no-backface] [--no-normals] [--floor]
+//                [--verbose]
 //
 // Without --flight: for both lattice embeddings (paper §4.7), the time to refine uniformly to
 // the finest level, the triangles and bytes per triangle of the mesh structures, the time to
@@ -16,6 +17,9 @@
 // `hexlod bench` does). --measure-error bounds, after each frame's update, the largest screen
 // error of the drawn mesh: the §5 bound of every live cell recomputed from the samples
 // (independent of the refiner's caches), culled cells left out; frames within tau count.
+// --floor also times, per frame, only what any update must do for the operations the refiner
+// performed: the operations themselves on a copy of the mesh and the bounds of the new cells
+// (update_floor.h), in ms per million triangles, beside the update's own figure.
 #include <algorithm>
 #include <array>
 #include <memory>
@@ -28,6 +32,8 @@
 #include <time.h>
 
 #include <glm/geometric.hpp>
+
+#include "update_floor.h"
 
 #include "diagnostics/error_evaluator.h"
 #include "stream/fan_stream.h"
@@ -112,11 +118,11 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
     const char* path = nullptr;
     double tau = 1.0, budgetMs = 0.0, tanHalfFov = 0.57735026918962573, width = 1920, height = 1080;
     int32_t budgetOps = 0, morphFrames = 0;
-    bool startConverged = false, measureError = false, backface = true, verbose = false, normals = true;
+    bool startConverged = false, measureError = false, backface = true, verbose = false, normals = true, floor = false;
     for (int k = 6; k < argc; ++k) {
         const std::string flag = argv[k];
-        if (flag == "--verbose") {
-            verbose = true;
+        if (flag == "--verbose" || flag == "--floor") {
+            (flag == "--verbose" ? verbose : floor) = true;
             continue;
         }
         if (flag == "--no-normals") { // as the viewer runs while it lights from the field's normals
@@ -185,8 +191,11 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
     if (measureError) pyramid.build(field);
     hexlod::PoppingMeter popping;
     std::vector<double> updateMs, streamMs, triangles, splits, merges, jumps, tested, convergedMsPerMillion, screenError,
-        liveBytes, capacityBytes, convergedCpuMsPerMillion;
+        liveBytes, capacityBytes, convergedCpuMsPerMillion, floorMsPerMillion, floorOperationsMsPerMillion, newShapes;
+    std::unique_ptr<hexlod::bench::UpdateFloor> updateFloor;
+    if (floor) updateFloor = std::make_unique<hexlod::bench::UpdateFloor>(mesh, field, backface);
     for (const auto& cam : cameras) {
+        const uint32_t renumberingsBefore = terrain.renumberings();
         hexlod::View view;
         if (!viewOf(cam, view)) return fail("degenerate camera in ", path);
         terrain.setView(view);
@@ -196,6 +205,13 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
         const auto start = std::chrono::steady_clock::now();
         terrain.syncStream();
         streamMs.push_back(msSince(start));
+        if (updateFloor) {
+            const hexlod::bench::UpdateFloor::Frame f = updateFloor->frame(terrain.renumberings() != renumberingsBefore);
+            const double mtri = double(mesh.triangleCount()) / 1e6;
+            floorMsPerMillion.push_back((f.operationsMs + f.boundsMs) / mtri);
+            floorOperationsMsPerMillion.push_back(f.operationsMs / mtri);
+            newShapes.push_back(f.newShapes);
+        }
         popping.follow(terrain.meshEpoch(), terrain.renumberings(), terrain.lastRenumbering()); // a compaction renumbers vertices
         jumps.push_back(popping.measure(mesh, morph, view, 1.0).maxJumpPx);
         updateMs.push_back(stats.milliseconds);
@@ -232,6 +248,12 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
                 percentile(convergedMsPerMillion, 0.95));
     std::printf("  the same in thread CPU time: p50 %.3f p95 %.3f\n", percentile(convergedCpuMsPerMillion, 0.5),
                 percentile(convergedCpuMsPerMillion, 0.95));
+    if (updateFloor && !updateFloor->matchesMesh()) return fail("--floor: the copy of the mesh is not the mesh after the flight", nullptr);
+    if (updateFloor)
+        std::printf("  floor (the same operations and the bounds of new cells, nothing judged): ms per million triangles p50 %.3f "
+                    "p95 %.3f; operations alone p50 %.3f p95 %.3f; new cells bounded per frame p50 %.0f\n",
+                    percentile(floorMsPerMillion, 0.5), percentile(floorMsPerMillion, 0.95), percentile(floorOperationsMsPerMillion, 0.5),
+                    percentile(floorOperationsMsPerMillion, 0.95), percentile(newShapes, 0.5));
     if (measureError) {
         size_t within = 0;
         for (double px : screenError) within += px <= tau * (1.0 + 1e-9) ? 1 : 0;

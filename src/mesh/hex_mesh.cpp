@@ -438,10 +438,21 @@ SplitStep HexMesh::firstStepToSplit(int32_t c) const {
 }
 
 void HexMesh::applyStep(const SplitStep& step) {
+    logOperation(MeshOperation::Kind(step.kind), step.cell, step.other);
     switch (step.kind) {
         case SplitStep::Split: splitUnchecked(step.cell); break;
         case SplitStep::JoinPair: joinPair(step.cell, step.other); break;
         case SplitStep::JoinBoundary: joinBoundary(step.cell); break;
+    }
+}
+
+void HexMesh::replay(const MeshOperation& operation) {
+    switch (operation.kind) {
+        case MeshOperation::Split: applyStep({SplitStep::Split, operation.cell, kNone}); break;
+        case MeshOperation::JoinPair: applyStep({SplitStep::JoinPair, operation.cell, operation.other}); break;
+        case MeshOperation::JoinBoundary: applyStep({SplitStep::JoinBoundary, operation.cell, kNone}); break;
+        case MeshOperation::Merge: merge(operation.cell); break;
+        case MeshOperation::Break: breakHexagon(operation.cell); break;
     }
 }
 
@@ -521,10 +532,12 @@ bool HexMesh::join(int32_t s) {
     if (!isLive(s) || cells_[size_t(s)].kind != CellKind::Semi) return false;
     const int32_t o = cells_[size_t(s)].opposite[wrapSlot(cells_[size_t(s)].firstVisible + 3) - 1];
     if (o == kNone) {
+        logOperation(MeshOperation::JoinBoundary, s);
         joinBoundary(s);
         return true;
     }
     if (!isLongEdge(o)) return false; // the cell across is whole: only its split can join s
+    logOperation(MeshOperation::JoinPair, s, hexIdx(o));
     joinPair(s, hexIdx(o));
     return true;
 }
@@ -593,6 +606,7 @@ bool HexMesh::canBreak(int32_t c) const {
 
 bool HexMesh::breakHexagon(int32_t c) {
     if (!canBreak(c)) return false;
+    logOperation(MeshOperation::Break, c);
     breakUnchecked(c);
     return true;
 }
@@ -686,6 +700,7 @@ void HexMesh::verticesFreedByMerge(int32_t c, std::vector<int32_t>& out) const {
 
 bool HexMesh::merge(int32_t c) {
     if (!canMerge(c)) return false;
+    logOperation(MeshOperation::Merge, c);
     const CellSlots slots = slotsOf(cells_[size_t(c)]);
     for (int32_t i = 0; i < slots.edgeCount; ++i) {
         const int32_t n = hexIdx(cells_[size_t(c)].opposite[wrapSlot(slots.firstEdge + i) - 1]);

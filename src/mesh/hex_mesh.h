@@ -100,6 +100,17 @@ struct SplitStep {
     int32_t other = kNone; // JoinPair: the semi-hexagon across its long edge
 };
 
+/// One operation as a caller asked for it (HexMesh::setOperationLog), to perform it again on a
+/// copy of the mesh in the same state (HexMesh::replay).
+struct MeshOperation {
+    enum Kind : uint8_t { Split, JoinPair, JoinBoundary, Merge, Break } kind = Split;
+    int32_t cell = kNone;
+    int32_t other = kNone; // JoinPair: the semi-hexagon across the long edge
+};
+static_assert(int(MeshOperation::Split) == int(SplitStep::Split) && int(MeshOperation::JoinPair) == int(SplitStep::JoinPair) &&
+                  int(MeshOperation::JoinBoundary) == int(SplitStep::JoinBoundary),
+              "applyStep logs a step's kind as it is");
+
 /// Counts of the operations a call performed, for tests and the refinement loop.
 struct OperationCounts {
     int64_t splits = 0, joins = 0, merges = 0, breaks = 0;
@@ -137,6 +148,13 @@ public:
     /// Records every cell an operation creates, changes or frees, into up to two logs (the
     /// refiner's caches and the fan stream); null: none. Slot 0 or 1.
     void setChangeLog(int32_t slot, std::vector<int32_t>* log) { changeLog_[slot] = log; }
+    /// Records the operations that callers perform (applyStep, join, merge, breakHexagon; a
+    /// split as the steps it took), in order, so that a benchmark can time them alone on a copy
+    /// of the mesh (replay); null: none.
+    void setOperationLog(std::vector<MeshOperation>* log) { operationLog_ = log; }
+    /// Performs a logged operation again; on a copy of the mesh in the state the log began in,
+    /// every cell gets the number it got there.
+    void replay(const MeshOperation& operation);
     /// Records every vertex an operation creates, as v and its parents a, b, across
     /// (VertexParents; kNone for a base vertex), or frees, as ~v; in order; null: none.
     void setVertexLog(std::vector<int32_t>* log) { vertexLog_ = log; }
@@ -336,6 +354,10 @@ private:
     OperationCounts counts_;
     std::vector<int32_t>* changeLog_[2] = {nullptr, nullptr};
     std::vector<int32_t>* vertexLog_ = nullptr;
+    std::vector<MeshOperation>* operationLog_ = nullptr;
+    void logOperation(MeshOperation::Kind kind, int32_t cell, int32_t other = kNone) {
+        if (operationLog_) operationLog_->push_back({kind, cell, other});
+    }
     void logChange(int32_t c) {
         for (std::vector<int32_t>* log : changeLog_)
             if (log) log->push_back(c);

@@ -305,6 +305,36 @@ TEST(HexMesh, RandomOperationSequencesKeepEveryInvariantAfterEveryOperation) {
     EXPECT_GT(applied, total / 3); // most tiny domains cannot split at all
 }
 
+// The benchmark's floor (bench/native/update_floor.h) times a flight's operations again on a
+// copy of the mesh: the log must hold every operation callers make, splits as their steps.
+TEST(HexMesh, LoggedOperationsReplayedOnACopyMakeTheSameMesh) {
+    auto field = test::cropFixture(test::kGrandCanyon, 200, 180, 71, 50);
+    ASSERT_NE(field, nullptr);
+    HexMesh mesh;
+    mesh.reset(*field, Embedding::Exact);
+    refineUniformly(mesh, 2);
+    HexMesh copy = mesh;
+    std::vector<MeshOperation> log;
+    mesh.setOperationLog(&log);
+    randomOperations(mesh, 7, 3000, 300);
+    mesh.setOperationLog(nullptr);
+    ASSERT_GT(log.size(), 1000u);
+    int32_t kinds[5] = {};
+    for (const MeshOperation& op : log) ++kinds[op.kind];
+    EXPECT_GT(kinds[MeshOperation::Split], 0);
+    EXPECT_GT(kinds[MeshOperation::Merge], 0);
+    EXPECT_GT(kinds[MeshOperation::Break], 0);
+    EXPECT_GT(kinds[MeshOperation::JoinPair] + kinds[MeshOperation::JoinBoundary], 0);
+    for (const MeshOperation& op : log) copy.replay(op);
+    EXPECT_EQ(copy.hash(), mesh.hash());
+    EXPECT_EQ(copy.liveCells(), mesh.liveCells());
+    EXPECT_EQ(copy.triangleCount(), mesh.triangleCount());
+    for (int32_t c = 0; c < mesh.cellCapacity(); ++c) {
+        ASSERT_EQ(copy.isLive(c), mesh.isLive(c)) << "cell " << c;
+        if (mesh.isLive(c)) ASSERT_EQ(copy.cell(c).level, mesh.cell(c).level) << "cell " << c;
+    }
+}
+
 // Issue 12 counts memory at allocated capacity: the pools grow by a thirty-second, not by doubling.
 TEST(HexMesh, PoolsGrowByAThirtySecondSoLittleOfTheirMemoryIsUnused) {
     auto field = test::loadFixture(test::kJacksboro);
