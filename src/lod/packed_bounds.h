@@ -91,9 +91,17 @@ struct PackedBound {
     uint16_t low = 0, high = 0, error = half::kNaN;
 };
 
-/// A SlopeBox in 8 bytes of half floats; dxLow kNaN: unknown.
+/// A SlopeBox in 8 bytes of half floats; dxLow kNaN: unknown (never back-facing), and not
+/// computed yet when dxHigh is kNotComputed too.
 struct PackedSlopes {
+    static constexpr uint16_t kNotComputed = 0;
     uint16_t dxLow = half::kNaN, dxHigh = half::kNaN, dzLow = half::kNaN, dzHigh = half::kNaN;
+    static PackedSlopes notComputed() {
+        PackedSlopes p;
+        p.dxHigh = kNotComputed;
+        return p;
+    }
+    bool computed() const { return !(dxLow == half::kNaN && dxHigh == kNotComputed); }
 };
 
 /// Packs and unpacks against one field's height range (set before use).

@@ -26,7 +26,7 @@ public:
     struct Entry {
         PackedBound own;       // the cell's bound
         PackedBound parent;    // the bound of the cell a merge makes
-        PackedSlopes ownSlopes; // the slopes under the cell (back-face culling), valid with own
+        PackedSlopes ownSlopes; // the slopes under the cell (back-face culling): computed when a test needs them
     };
     static_assert(sizeof(Entry) == 20, "issue 12 counts the bytes of a cell");
 
@@ -50,21 +50,25 @@ public:
     bool hasParent(int32_t record) const { return BoundPacking::known(entries_[size_t(record)].parent); }
     CellError own(int32_t record) const { return packing_.unpack(entries_[size_t(record)].own); }
     CellError parent(int32_t record) const { return packing_.unpack(entries_[size_t(record)].parent); }
+    /// Unknown (never back-facing) when not computed yet.
     SlopeBox ownSlopes(int32_t record) const { return BoundPacking::unpack(entries_[size_t(record)].ownSlopes); }
+    bool hasOwnSlopes(int32_t record) const { return entries_[size_t(record)].ownSlopes.computed(); }
 
-    void setOwn(int32_t record, const CellError& own, const SlopeBox& slopes) {
+    /// The own bound; its slopes are not computed yet.
+    void setOwn(int32_t record, const CellError& own) {
         entries_[size_t(record)].own = packing_.pack(own);
-        entries_[size_t(record)].ownSlopes = BoundPacking::pack(slopes);
+        entries_[size_t(record)].ownSlopes = PackedSlopes::notComputed();
     }
+    void setOwnSlopes(int32_t record, const SlopeBox& slopes) { entries_[size_t(record)].ownSlopes = BoundPacking::pack(slopes); }
     void setParent(int32_t record, const CellError& parent) { entries_[size_t(record)].parent = packing_.pack(parent); }
 
     /// The carry-overs, packed as they are.
     PackedBound packedOwn(int32_t record) const { return entries_[size_t(record)].own; }
     PackedBound packedParent(int32_t record) const { return entries_[size_t(record)].parent; }
     void setPackedParent(int32_t record, const PackedBound& parent) { entries_[size_t(record)].parent = parent; }
-    void setPackedOwn(int32_t record, const PackedBound& own, const SlopeBox& slopes) {
+    void setPackedOwn(int32_t record, const PackedBound& own) {
         entries_[size_t(record)].own = own;
-        entries_[size_t(record)].ownSlopes = BoundPacking::pack(slopes);
+        entries_[size_t(record)].ownSlopes = PackedSlopes::notComputed();
     }
 
     /// A bound as the cache would give it back: what tests must use when they computed it.

@@ -184,11 +184,14 @@ CellError Refiner::parentBound(int32_t c, const CellShape& parent) {
     return cache_.parent(c);
 }
 
-Refiner::OwnBound Refiner::ownBound(int32_t c, const Footprint& footprint) {
-    if (!cache_.hasOwn(c))
-        cache_.setOwn(c, computeCellError(*field_, mesh_->embedding(), pyramid_, shapeOfCell(*mesh_, c)),
-                      slopesUnder(*field_, mesh_->embedding(), footprint));
-    return {cache_.own(c), cache_.ownSlopes(c)};
+CellError Refiner::ownBound(int32_t c) {
+    if (!cache_.hasOwn(c)) cache_.setOwn(c, computeCellError(*field_, mesh_->embedding(), pyramid_, shapeOfCell(*mesh_, c)));
+    return cache_.own(c);
+}
+
+SlopeBox Refiner::ownSlopes(int32_t c, const Footprint& footprint) {
+    if (!cache_.hasOwnSlopes(c)) cache_.setOwnSlopes(c, slopesUnder(*field_, mesh_->embedding(), footprint));
+    return cache_.ownSlopes(c);
 }
 
 // The criteria of §5 for one bound (see view_criteria.h), and the margin of the verdict: how
@@ -392,9 +395,16 @@ Refiner::Verdict Refiner::mergeVerdict(int32_t c, double& dist) {
 // Tests a cell's own bound and, for a merge candidate, its merge; sets its record and state.
 void Refiner::testCell(int32_t c) {
     const Footprint footprint = footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c));
-    const OwnBound bound = ownBound(c, footprint);
+    const CellError bound = ownBound(c);
     double dist;
-    const Verdict own = judge(footprint, bound.error, &bound.slopes, false, dist);
+    // The slopes only when the error fails (§5's cone of normals can only rescue a failing
+    // cell; a passing one keeps its error margin): a scan of its samples, computed when first needed.
+    SlopeBox slopes = cache_.ownSlopes(c);
+    Verdict own = judge(footprint, bound, &slopes, false, dist);
+    if (!own.pass && settings_.backfaceCulling && !cache_.hasOwnSlopes(c)) {
+        slopes = ownSlopes(c, footprint);
+        if (slopes.known()) own = judge(footprint, bound, &slopes, false, dist);
+    }
     uint8_t& state = state_[size_t(c)];
     state &= uint8_t(kPending | kCancel);
     if (!own.pass && canRefine(c)) {
@@ -496,8 +506,7 @@ bool Refiner::mergeNow(int32_t c) {
     }
     if (!mesh_->merge(c)) return false;
     noteChanges();
-    if (keep && sameShape(shapeOfCell(*mesh_, c), keptShape))
-        cache_.setPackedOwn(c, kept, slopesUnder(*field_, mesh_->embedding(), footprintOf(*field_, mesh_->embedding(), keptShape)));
+    if (keep && sameShape(shapeOfCell(*mesh_, c), keptShape)) cache_.setPackedOwn(c, kept);
     return true;
 }
 

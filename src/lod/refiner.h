@@ -94,11 +94,6 @@ public:
     double achievedErrorPixels() const;
 
 private:
-    // §5.1: refinement data cached per cell record (refinement_cache.h).
-    struct OwnBound {
-        CellError error;
-        SlopeBox slopes;
-    };
     // When a cell is next due: once the camera has used up the margin rho (metres, rounded
     // down) on the record's odometer since the update `stamp`, for a centre at distance dist
     // (rounded up) at the test (CameraOdometers::used). rho < 0: due now.
@@ -145,7 +140,8 @@ private:
     Verdict judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin, double& distOut) const;
     // The cached bounds (§5.1), computed when not cached; as the cache gives them back.
     CellError parentBound(int32_t cell, const CellShape& parent);
-    OwnBound ownBound(int32_t cell, const Footprint& footprint);
+    CellError ownBound(int32_t cell);
+    SlopeBox ownSlopes(int32_t cell, const Footprint& footprint); // computed when a test first needs them
     void noteChanges(bool collect = true); // collect: queue the changed cells for retestChanged
     void retestChanged();
     void testCell(int32_t cell);

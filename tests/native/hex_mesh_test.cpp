@@ -331,7 +331,9 @@ TEST(HexMesh, LoggedOperationsReplayedOnACopyMakeTheSameMesh) {
     EXPECT_EQ(copy.triangleCount(), mesh.triangleCount());
     for (int32_t c = 0; c < mesh.cellCapacity(); ++c) {
         ASSERT_EQ(copy.isLive(c), mesh.isLive(c)) << "cell " << c;
-        if (mesh.isLive(c)) ASSERT_EQ(copy.cell(c).level, mesh.cell(c).level) << "cell " << c;
+        if (mesh.isLive(c)) {
+            ASSERT_EQ(copy.cell(c).level, mesh.cell(c).level) << "cell " << c;
+        }
     }
 }
 

@@ -106,3 +106,22 @@ TEST(PackedBounds, ASlopeBoxComesBackNoSmallerOrUnknown) {
     cliff.dxLow = -1.0f, cliff.dxHigh = 1e6f, cliff.dzLow = 0.0f, cliff.dzHigh = 0.5f;
     EXPECT_FALSE(BoundPacking::unpack(BoundPacking::pack(cliff)).known()) << "steeper than a half can say: never culled";
 }
+
+// The refiner scans a cell's slopes only when a test needs them: an entry tells a box not
+// computed yet from every packed box, the unknown ones included, and reads it as unknown.
+TEST(PackedBounds, SlopesNotComputedYetDifferFromEveryPackedBox) {
+    EXPECT_FALSE(PackedSlopes::notComputed().computed());
+    EXPECT_FALSE(BoundPacking::unpack(PackedSlopes::notComputed()).known()) << "never culled before they are computed";
+    EXPECT_TRUE(BoundPacking::pack(SlopeBox{}).computed()) << "unknown (a large cell) is an answer, not a question";
+    SlopeBox flat;
+    flat.dxLow = flat.dxHigh = flat.dzLow = flat.dzHigh = 0.0f;
+    EXPECT_TRUE(BoundPacking::pack(flat).computed());
+    std::mt19937 random(5);
+    std::uniform_real_distribution<float> slope(-4.0f, 4.0f);
+    for (int32_t k = 0; k < 10000; ++k) {
+        SlopeBox box;
+        box.dxLow = slope(random), box.dxHigh = box.dxLow + std::abs(slope(random));
+        box.dzLow = slope(random), box.dzHigh = box.dzLow + std::abs(slope(random));
+        ASSERT_TRUE(BoundPacking::pack(box).computed()) << k;
+    }
+}
