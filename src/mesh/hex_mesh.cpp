@@ -69,6 +69,11 @@ void HexMesh::freeCell(int32_t c) {
     logChange(c);
 }
 
+void HexMesh::reserveRecords(size_t cells, size_t vertices) {
+    if (cells > cells_.capacity()) cells_.reserve(cells), fans_.reserve(cells * kCellFanSlot);
+    if (vertices > vertices_.capacity()) vertices_.reserve(vertices), vertexInfo_.reserve(vertices);
+}
+
 int32_t HexMesh::allocateVertex(LatticePoint p, int32_t a, int32_t b, int32_t across1, int32_t across2) {
     int32_t v;
     if (!freeVertices_.empty()) {

@@ -191,6 +191,10 @@ public:
     /// parts reserve as much (reserveLikePool).
     size_t cellPoolRoom() const { return cells_.capacity(); }
     size_t vertexPoolRoom() const { return vertices_.capacity(); }
+    /// Room for this many cell and vertex records at once, for a caller that knows how far a
+    /// run of operations will grow the mesh (refineUniformly): the pools then grow in one step
+    /// instead of many small ones, each a copy (pool_growth.h).
+    void reserveRecords(size_t cells, size_t vertices);
     int32_t liveCells() const { return liveCells_; }
     int32_t liveVertices() const { return liveVertices_; }
     int32_t maxLevel() const { return maxLevel_; }

@@ -337,6 +337,24 @@ TEST(HexMesh, LoggedOperationsReplayedOnACopyMakeTheSameMesh) {
     }
 }
 
+// A round of uniform splits knows it about quadruples the mesh: the pools take one step for it
+// (HexMesh::reserveRecords) rather than a copy of everything every thirty-second of growth.
+TEST(HexMesh, UniformRefinementGrowsThePoolsOnceARound) {
+    auto field = test::loadFixture(test::kJacksboro);
+    ASSERT_NE(field, nullptr);
+    HexMesh mesh;
+    mesh.reset(*field, Embedding::Exact);
+    refineUniformly(mesh, 3);
+    for (int32_t round = 4; round <= 5; ++round) {
+        const size_t cells = size_t(mesh.liveCells()), vertices = size_t(mesh.liveVertices());
+        refineUniformly(mesh, 1);
+        EXPECT_EQ(mesh.cellPoolRoom(), 4 * cells) << "round " << round;
+        EXPECT_EQ(mesh.vertexPoolRoom(), 4 * vertices) << "round " << round;
+        EXPECT_LE(size_t(mesh.liveCells()), 4 * cells);
+        EXPECT_LE(size_t(mesh.liveVertices()), 4 * vertices);
+    }
+}
+
 // Issue 12 counts memory at allocated capacity: the pools grow by a thirty-second, not by doubling.
 TEST(HexMesh, PoolsGrowByAThirtySecondSoLittleOfTheirMemoryIsUnused) {
     auto field = test::loadFixture(test::kJacksboro);
