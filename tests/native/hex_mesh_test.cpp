@@ -337,36 +337,22 @@ TEST(HexMesh, LoggedOperationsReplayedOnACopyMakeTheSameMesh) {
     }
 }
 
-// A round of uniform splits knows it about quadruples the mesh: the pools take one step for it
-// (HexMesh::reserveRecords) rather than a copy of everything every thirty-second of growth.
-TEST(HexMesh, UniformRefinementGrowsThePoolsOnceARound) {
+// A round of uniform splits about quadruples the mesh: the pools take one step for it
+// (HexMesh::reserveRecords), not a copy of everything every thirty-second of growth, and the
+// step leaves little unused (issue 12 counts memory at allocated capacity).
+TEST(HexMesh, UniformRefinementTakesOnePoolStepARoundAndLeavesLittleUnused) {
     auto field = test::loadFixture(test::kJacksboro);
     ASSERT_NE(field, nullptr);
     HexMesh mesh;
     mesh.reset(*field, Embedding::Exact);
     refineUniformly(mesh, 3);
-    for (int32_t round = 4; round <= 5; ++round) {
+    for (int32_t round = 4; round <= 5; ++round) { // 13k to 57k cells
         const size_t cells = size_t(mesh.liveCells()), vertices = size_t(mesh.liveVertices());
         refineUniformly(mesh, 1);
         EXPECT_EQ(mesh.cellPoolRoom(), 4 * cells) << "round " << round;
         EXPECT_EQ(mesh.vertexPoolRoom(), 4 * vertices) << "round " << round;
-        EXPECT_LE(size_t(mesh.liveCells()), 4 * cells);
-        EXPECT_LE(size_t(mesh.liveVertices()), 4 * vertices);
-    }
-}
-
-// Issue 12 counts memory at allocated capacity: the pools grow by a thirty-second, not by doubling.
-TEST(HexMesh, PoolsGrowByAThirtySecondSoLittleOfTheirMemoryIsUnused) {
-    auto field = test::loadFixture(test::kJacksboro);
-    ASSERT_NE(field, nullptr);
-    HexMesh mesh;
-    mesh.reset(*field, Embedding::Exact);
-    // Once the pools are past their first steps of 256 records (13k to 57k cells here).
-    for (int32_t round = 1; round <= 5; ++round) {
-        refineUniformly(mesh, 1);
-        if (round < 4) continue;
         const double ratio = double(mesh.memoryBytes()) / double(mesh.liveMemoryBytes());
-        EXPECT_LE(ratio, 1.035) << "round " << round << ": " << mesh.liveCells() << " cells";
+        EXPECT_LE(ratio, 1.02) << "round " << round << ": " << mesh.liveCells() << " cells";
         EXPECT_GE(ratio, 1.0) << "round " << round;
     }
 }
