@@ -33,6 +33,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "bench_clock.h"
 #include "update_floor.h"
 
 #include "diagnostics/error_evaluator.h"
@@ -48,9 +49,7 @@
 
 namespace {
 
-double msSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
+using hexlod::bench::msSince;
 
 int fail(const char* what, const char* detail) {
     std::fprintf(stderr, "hexlod_bench: %s%s\n", what, detail ? detail : "");
@@ -118,11 +117,11 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
     const char* path = nullptr;
     double tau = 1.0, budgetMs = 0.0, tanHalfFov = 0.57735026918962573, width = 1920, height = 1080;
     int32_t budgetOps = 0, morphFrames = 0;
-    bool startConverged = false, measureError = false, backface = true, verbose = false, normals = true, floor = false;
+    bool startConverged = false, measureError = false, backface = true, verbose = false, normals = true, measureFloor = false;
     for (int k = 6; k < argc; ++k) {
         const std::string flag = argv[k];
         if (flag == "--verbose" || flag == "--floor") {
-            (flag == "--verbose" ? verbose : floor) = true;
+            (flag == "--verbose" ? verbose : measureFloor) = true;
             continue;
         }
         if (flag == "--no-normals") { // as the viewer runs while it lights from the field's normals
@@ -193,7 +192,7 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
     std::vector<double> updateMs, streamMs, triangles, splits, merges, jumps, tested, convergedMsPerMillion, screenError,
         liveBytes, capacityBytes, convergedCpuMsPerMillion, floorMsPerMillion, floorOperationsMsPerMillion, newShapes;
     std::unique_ptr<hexlod::bench::UpdateFloor> updateFloor;
-    if (floor) updateFloor = std::make_unique<hexlod::bench::UpdateFloor>(mesh, field, backface);
+    if (measureFloor) updateFloor = std::make_unique<hexlod::bench::UpdateFloor>(mesh, field, backface);
     for (const auto& cam : cameras) {
         const uint32_t renumberingsBefore = terrain.renumberings();
         hexlod::View view;

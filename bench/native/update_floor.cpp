@@ -1,15 +1,11 @@
 // See update_floor.h.
 #include "update_floor.h"
 
-#include <chrono>
+#include "bench_clock.h"
 
 namespace hexlod::bench {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 // A cell's shape as one key (lattice coordinates stay within 2^24 for every field hexlod opens).
 uint64_t shapeKey(const CellShape& s) {
@@ -52,7 +48,6 @@ UpdateFloor::Frame UpdateFloor::frame(bool compacted) {
     const auto start = std::chrono::steady_clock::now();
     for (const MeshOperation& op : operations_) copy_.replay(op);
     f.operationsMs = msSince(start);
-    f.operations = int32_t(operations_.size());
     operations_.clear();
     // Unchecked steps on a copy that went its own way could break it: stop at the first frame
     // whose triangles differ (matchesMesh says so).

@@ -30,7 +30,7 @@ public:
 
     struct Frame {
         double operationsMs = 0.0, boundsMs = 0.0;
-        int32_t operations = 0, newShapes = 0;
+        int32_t newShapes = 0;
     };
     /// After the refiner's update: the same operations and the new cells' bounds, timed.
     /// `compacted`: the terrain compacted its pools since the last frame (the copy does too,
@@ -51,7 +51,7 @@ private:
     MinMaxPyramid pyramid_;
     bool slopes_;
     std::vector<MeshOperation> operations_;
-    std::vector<int32_t> changed_, fresh_, cellMap_, vertexMap_;
+    std::vector<int32_t> changed_, cellMap_, vertexMap_;
     std::vector<CellShape> shapes_;
     struct ShapeHash {
         size_t operator()(uint64_t key) const { return size_t(key * 0x9E3779B97F4A7C15ull >> 17); }

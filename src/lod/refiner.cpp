@@ -627,7 +627,7 @@ bool Refiner::sweep() {
         if (!due) {
             if (odometers_.age(r.stamp) >= CameraOdometers::kHistory / 2) renew(r);
             if (state & kWanted) mergeList_.push_back(c); // queued before, the budget ran out
-                continue;
+            continue;
         }
         if (!mesh_->isLive(c)) continue;
         ++visits_;
