@@ -43,6 +43,7 @@ public:
     int32_t height() const { return height_; }
     SampleType type() const { return type_; }
     void* samples() { return samples_.get(); }
+    const void* samples() const { return samples_.get(); }
     size_t sampleCount() const { return size_t(width_) * size_t(height_); }
     size_t byteSize() const { return sampleCount() * sampleBytes(type_); }
 

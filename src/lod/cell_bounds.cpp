@@ -36,6 +36,39 @@ int32_t shapeTriangles(const Heightfield& field, Embedding embedding, const Cell
     return 2;
 }
 
+// One edge of a triangle on the ground, for finding where each sample row crosses it.
+struct GroundEdge {
+    double zLow, zHigh;   // rows within these (a hair wider) cross the edge
+    double xLow, xHigh;   // the edge's x extent: a crossing never lies outside it
+    double x0, z0, dxdz;  // x = x0 + (z - z0) * dxdz; dxdz unused for an edge along a row
+    bool alongRow;
+};
+
+GroundEdge groundEdge(const glm::vec3& a, const glm::vec3& b, double rowEps) {
+    const double za = a.z, zb = b.z, xa = a.x, xb = b.x;
+    return {std::min(za, zb) - rowEps, std::max(za, zb) + rowEps, std::min(xa, xb), std::max(xa, xb),
+            xa, za, za == zb ? 0.0 : (xb - xa) / (zb - za), za == zb};
+}
+
+// The samples of one row between columns j0 and j1 against the plane h = c - kx (x - ax):
+// the largest distance above and below it and the samples' range. One loop per sample type,
+// with the plane linear along the row, keeps the per-sample work to a few multiply-adds.
+template <typename Sample>
+void scanRow(const Sample* row, int32_t j0, int32_t j1, double sx, double heightScale, double heightOffset, double c,
+             double kx, double ax, double& above, double& below, float& low, float& high) {
+    for (int32_t j = j0; j <= j1; ++j) {
+        // Sample positions rounded as a vertex on the sample stores them (embedding.cpp), so
+        // a sample under a vertex has no error from position rounding.
+        const double x = float(j * sx);
+        const float h = float(double(row[j]) * heightScale + heightOffset); // Heightfield::heightAt
+        const double d = h - (c - kx * (x - ax));
+        above = std::max(above, d);
+        below = std::min(below, d);
+        low = std::min(low, h);
+        high = std::max(high, h);
+    }
+}
+
 // Scans the samples inside one triangle: the largest |sample - plane| and the sample range.
 // The exact embedding is measured against the original samples; the shifted one against the
 // field it stores (§4.7: odd rows half a sample east, heights interpolated), which is what
@@ -48,47 +81,65 @@ void scanTriangle(const Heightfield& field, Embedding embedding, const Triangle&
     const double ny = uz * vx - ux * vz; // y of (u x v): twice the ground area
     if (std::abs(ny) < 1e-12) return;
     const double nx = uy * vz - uz * vy, nz = ux * vy - uy * vx;
+    const double kx = nx / ny, kz = nz / ny; // the plane: h = ay - kx (x - ax) - kz (z - az)
     // Samples within a hair of an edge belong to both triangles: none may fall between cells.
     const double eps = 1e-4;
     const double zMin = std::min({double(t.a.z), double(t.b.z), double(t.c.z)});
     const double zMax = std::max({double(t.a.z), double(t.b.z), double(t.c.z)});
     const int32_t i0 = std::max(0, int32_t(std::ceil(zMin / sy - eps)));
     const int32_t i1 = std::min(field.height() - 1, int32_t(std::floor(zMax / sy + eps)));
-    const glm::vec3* p[3] = {&t.a, &t.b, &t.c};
+    const GroundEdge edges[3] = {groundEdge(t.a, t.b, eps * sy), groundEdge(t.b, t.c, eps * sy), groundEdge(t.c, t.a, eps * sy)};
+    const HeightfieldScale& scale = field.scale();
+    double above = -1e300, below = 1e300;
     for (int32_t i = i0; i <= i1; ++i) {
-        // Sample positions rounded as a vertex on the sample stores them (embedding.cpp), so
-        // a sample under a vertex has no error from position rounding.
         const double z = float(i * sy);
         double xl = 1e300, xr = -1e300;
-        for (int k = 0; k < 3; ++k) {
-            const glm::vec3& e0 = *p[k];
-            const glm::vec3& e1 = *p[(k + 1) % 3];
-            const double za = e0.z, zb = e1.z;
-            if (z < std::min(za, zb) - eps * sy || z > std::max(za, zb) + eps * sy) continue;
-            if (za == zb) {
-                xl = std::min({xl, double(e0.x), double(e1.x)});
-                xr = std::max({xr, double(e0.x), double(e1.x)});
+        for (const GroundEdge& e : edges) {
+            if (z < e.zLow || z > e.zHigh) continue;
+            if (e.alongRow) {
+                xl = std::min(xl, e.xLow), xr = std::max(xr, e.xHigh);
                 continue;
             }
-            const double s = std::clamp((z - za) / (zb - za), 0.0, 1.0);
-            const double x = e0.x + s * (double(e1.x) - e0.x);
-            xl = std::min(xl, x);
-            xr = std::max(xr, x);
+            const double x = std::clamp(e.x0 + (z - e.z0) * e.dxdz, e.xLow, e.xHigh);
+            xl = std::min(xl, x), xr = std::max(xr, x);
         }
         if (xl > xr) continue;
-        const bool shifted = embedding == Embedding::Shifted && (i & 1) != 0;
-        const double shift = shifted ? 0.5 : 0.0;
-        const int32_t j0 = std::max(0, int32_t(std::ceil(xl / sx - shift - eps)));
-        const int32_t j1 = std::min(field.width() - 1, int32_t(std::floor(xr / sx - shift + eps)));
-        for (int32_t j = j0; j <= j1; ++j) {
-            const double x = float((j + shift) * sx);
-            const double plane = ay - (nx * (x - ax) + nz * (z - az)) / ny;
-            const float h = shifted ? 0.5f * (field.heightClamped(j, i) + field.heightClamped(j + 1, i)) : field.heightAt(j, i);
-            error = std::max(error, std::abs(h - plane));
-            low = std::min(low, h);
-            high = std::max(high, h);
+        const double c = ay - kz * (z - az);
+        if (embedding == Embedding::Shifted && (i & 1) != 0) {
+            const int32_t j0 = std::max(0, int32_t(std::ceil(xl / sx - 0.5 - eps)));
+            const int32_t j1 = std::min(field.width() - 1, int32_t(std::floor(xr / sx - 0.5 + eps)));
+            for (int32_t j = j0; j <= j1; ++j) {
+                const double x = float((j + 0.5) * sx);
+                const float h = 0.5f * (field.heightClamped(j, i) + field.heightClamped(j + 1, i));
+                const double d = h - (c - kx * (x - ax));
+                above = std::max(above, d), below = std::min(below, d);
+                low = std::min(low, h), high = std::max(high, h);
+            }
+            continue;
+        }
+        const int32_t j0 = std::max(0, int32_t(std::ceil(xl / sx - eps)));
+        const int32_t j1 = std::min(field.width() - 1, int32_t(std::floor(xr / sx + eps)));
+        const size_t rowStart = size_t(i) * size_t(field.width());
+        switch (field.type()) {
+            case SampleType::U8:
+                scanRow(static_cast<const uint8_t*>(field.samples()) + rowStart, j0, j1, sx, scale.heightScale,
+                        scale.heightOffset, c, kx, ax, above, below, low, high);
+                break;
+            case SampleType::U16:
+                scanRow(static_cast<const uint16_t*>(field.samples()) + rowStart, j0, j1, sx, scale.heightScale,
+                        scale.heightOffset, c, kx, ax, above, below, low, high);
+                break;
+            case SampleType::I16:
+                scanRow(static_cast<const int16_t*>(field.samples()) + rowStart, j0, j1, sx, scale.heightScale,
+                        scale.heightOffset, c, kx, ax, above, below, low, high);
+                break;
+            case SampleType::F32:
+                scanRow(static_cast<const float*>(field.samples()) + rowStart, j0, j1, sx, scale.heightScale,
+                        scale.heightOffset, c, kx, ax, above, below, low, high);
+                break;
         }
     }
+    error = std::max({error, above, -below});
 }
 
 } // namespace
