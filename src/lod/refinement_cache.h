@@ -42,7 +42,7 @@ public:
     /// No entries (a new mesh): they grow again with its pool.
     void clear() { releasePool(entries_); }
     /// The mesh renumbered its records (HexMesh::compact): entries follow their records.
-    void renumber(const std::vector<int32_t>& map, size_t records) { renumberPool(entries_, map, records); }
+    void renumber(const std::vector<int32_t>& map, size_t records, size_t room) { renumberPool(entries_, map, records, room); }
     /// The record changed in a way the carry-over rules do not cover.
     void invalidate(int32_t record) { entries_[size_t(record)] = Entry{}; }
 

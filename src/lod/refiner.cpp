@@ -81,9 +81,10 @@ void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<in
         }
     }
     sweepCursor_ = cursor;
-    cache_.renumber(cellMap, cells);
-    renumberPool(records_, cellMap, cells);
-    renumberPool(state_, cellMap, cells);
+    const size_t room = mesh_->cellPoolRoom(); // the records' arrays keep the pool's room
+    cache_.renumber(cellMap, cells, room);
+    renumberPool(records_, cellMap, cells, room);
+    renumberPool(state_, cellMap, cells, room);
     // A merge whose cell or vertex is gone (the mesh changed around it in the last update) keeps
     // kNone for it: the next update calls it off, as it would have without the renumbering.
     for (PendingMerge& merge : pending_) {

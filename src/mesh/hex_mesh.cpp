@@ -218,10 +218,11 @@ void HexMesh::compact(std::vector<int32_t>& cellMap, std::vector<int32_t>& verte
     for (std::vector<int32_t>* ends : {&levelHead_, &levelTail_})
         for (int32_t& c : *ends)
             if (c != kNone) c = cellMap[size_t(c)];
-    renumberPool(cells_, cellMap, size_t(cells));
-    renumberPool(fans_, cellMap, size_t(cells), kCellFanSlot);
-    renumberPool(vertices_, vertexMap, size_t(vertices));
-    renumberPool(vertexInfo_, vertexMap, size_t(vertices)); // parents are lattice points: nothing to renumber
+    const size_t cellRoom = roomAfterCompaction(size_t(cells)), vertexRoom = roomAfterCompaction(size_t(vertices));
+    renumberPool(cells_, cellMap, size_t(cells), cellRoom);
+    renumberPool(fans_, cellMap, size_t(cells), cellRoom, kCellFanSlot);
+    renumberPool(vertices_, vertexMap, size_t(vertices), vertexRoom);
+    renumberPool(vertexInfo_, vertexMap, size_t(vertices), vertexRoom); // parents are lattice points: nothing to renumber
     freeCell_ = kNone;
     releasePool(freeVertices_);
     releasePool(freedVertices_);

@@ -16,13 +16,20 @@
 
 namespace hexlod {
 
+/// The smallest growth of a pool, records: keeps a small pool from reallocating every few records.
+constexpr size_t kMinimumPoolGrowth = 64;
+
 /// Makes room for `size` elements in `pool`, growing its capacity by at least a thirty-second.
 template <typename T>
 void reserveForPool(std::vector<T>& pool, size_t size) {
     if (size <= pool.capacity()) return;
-    constexpr size_t kMinimumGrowth = 64;
-    pool.reserve(std::max(size, pool.capacity() + pool.capacity() / 32 + kMinimumGrowth));
+    pool.reserve(std::max(size, pool.capacity() + pool.capacity() / 32 + kMinimumPoolGrowth));
 }
+
+/// The room a pool of `size` records keeps after a compaction: one growth step. A shrinking
+/// mesh still splits where the camera goes; with no room left, the first split after each
+/// compaction copied every pool (and faulted in fresh pages for it).
+inline size_t roomAfterCompaction(size_t size) { return size + size / 32 + kMinimumPoolGrowth; }
 
 /// Makes room for `size` elements in an array that keeps one element per record of a pool
 /// (the refiner's caches, the stream's slots): as much room as the pool has, so the two grow
@@ -41,17 +48,19 @@ void releasePool(std::vector<T>& pool) {
 }
 
 /// Moves record i of a per-record array (`perRecord` elements each) to map[i] (negative: the
-/// record is gone) and keeps `size` records, giving the rest of the memory back. The map is
-/// increasing on the records it keeps (HexMesh::compact), so the moves go downwards and can be
-/// made in place.
+/// record is gone) and keeps `size` records in room for `room` (roomAfterCompaction), giving
+/// the rest of the memory back. The map is increasing on the records it keeps
+/// (HexMesh::compact), so the moves go downwards and can be made in place.
 template <typename T>
-void renumberPool(std::vector<T>& pool, const std::vector<int32_t>& map, size_t size, size_t perRecord = 1) {
+void renumberPool(std::vector<T>& pool, const std::vector<int32_t>& map, size_t size, size_t room, size_t perRecord = 1) {
     const size_t n = std::min(pool.size() / perRecord, map.size());
     for (size_t i = 0; i < n; ++i)
         if (map[i] >= 0) std::copy_n(pool.begin() + ptrdiff_t(i * perRecord), perRecord, pool.begin() + ptrdiff_t(size_t(map[i]) * perRecord));
-    pool.resize(std::min(pool.size(), size * perRecord));
-    std::vector<T>(pool.begin(), pool.end()).swap(pool); // capacity == size
-    pool.resize(size * perRecord);
+    std::vector<T> kept;
+    kept.reserve(std::max(room, size) * perRecord);
+    kept.assign(pool.begin(), pool.begin() + ptrdiff_t(std::min(pool.size(), size * perRecord)));
+    kept.resize(size * perRecord);
+    pool.swap(kept);
 }
 
 /// What a frame's logs and work lists keep between frames: room for changes to an eighth of the

@@ -88,9 +88,15 @@ void FanStream::renumbered(HexMesh& mesh) {
 }
 
 void FanStream::rewriteAll(HexMesh& mesh) {
-    if (keepsSlots()) indices_.assign(size_t(mesh.cellCapacity()) * size_t(slotSize()), kRestartIndex);
-    else releasePool(indices_);
+    // As much room as the mesh's pools keep (a compaction leaves them one growth step).
+    if (keepsSlots()) {
+        indices_.reserve(mesh.cellPoolRoom() * size_t(slotSize()));
+        indices_.assign(size_t(mesh.cellCapacity()) * size_t(slotSize()), kRestartIndex);
+    } else {
+        releasePool(indices_);
+    }
     if (normals_) {
+        normalSum_.reserve(mesh.vertexPoolRoom()), vertexNormals_.reserve(mesh.vertexPoolRoom());
         normalSum_.assign(size_t(mesh.vertexCapacity()), glm::i64vec3(0));
         vertexNormals_.assign(size_t(mesh.vertexCapacity()), PackedNormal{});
     }

@@ -44,3 +44,27 @@ TEST(PoolGrowth, AListGrownByOneLargeEventGivesTheExcessBackOnceDrained) {
     EXPECT_GE(list.capacity(), kept);
     EXPECT_EQ(frameListRoom(100), 256u) << "small meshes keep 256 entries";
 }
+
+TEST(PoolGrowth, ACompactedPoolKeepsOneGrowthStepSoTheNextRecordsDoNotReallocate) {
+    // 10,000 records, every third one gone: the rest move down in order.
+    std::vector<int32_t> pool(10000), map(10000);
+    int32_t kept = 0;
+    for (int32_t i = 0; i < 10000; ++i) {
+        pool[size_t(i)] = i;
+        map[size_t(i)] = i % 3 == 0 ? -1 : kept++;
+    }
+    const size_t room = roomAfterCompaction(size_t(kept));
+    EXPECT_EQ(room, size_t(kept) + size_t(kept) / 32 + 64);
+    renumberPool(pool, map, size_t(kept), room);
+    ASSERT_EQ(pool.size(), size_t(kept));
+    EXPECT_EQ(pool.capacity(), room) << "one growth step, not all the old memory and not none";
+    for (int32_t i = 0, k = 0; i < 10000; ++i)
+        if (i % 3 != 0) ASSERT_EQ(pool[size_t(k++)], i);
+    // A shrinking mesh still splits: the records of a few splits fit without a copy.
+    const int32_t* storage = pool.data();
+    for (int32_t i = 0; i < 200; ++i) {
+        reserveForPool(pool, pool.size() + 1);
+        pool.push_back(i);
+    }
+    EXPECT_EQ(pool.data(), storage);
+}
