@@ -353,12 +353,14 @@ bool Refiner::canRefine(int32_t c) const {
 }
 
 // A merge of c draws c's parent, and the outer halves of the joined hexagons in c's ring that
-// it breaks: all of them must pass, or the next refine pass would split c again.
-Refiner::Verdict Refiner::mergeVerdict(int32_t c, double& dist) {
+// it breaks: all of them must pass, or the next refine pass would split c again. The parent
+// first (parentVerdict), then the halves (halvesVerdict) of a merge that canMerge allows.
+Refiner::Verdict Refiner::parentVerdict(int32_t c, double& dist) {
     const CellShape parent = parentShapeOfCell(*mesh_, c);
-    Verdict all = judge(footprintOf(*field_, mesh_->embedding(), parent), parentBound(c, parent),
-                        nullptr, true, dist);
-    if (!all.pass) return all;
+    return judge(footprintOf(*field_, mesh_->embedding(), parent), parentBound(c, parent), nullptr, true, dist);
+}
+
+Refiner::Verdict Refiner::halvesVerdict(int32_t c, Verdict all, double& dist) {
     const Hexagon& h = mesh_->cell(c);
     const int32_t first = h.kind == CellKind::Full ? 1 : h.firstVisible;
     const int32_t edges = h.kind == CellKind::Full ? 6 : 3;
@@ -420,12 +422,21 @@ void Refiner::testCell(int32_t c) {
     if (!own.pass) record.margin = kForever; // failing at the finest level: nothing to do, whatever the view
     const Hexagon& h = mesh_->cell(c);
     if (h.kind != CellKind::Semi && h.splitCount > 0) {
-        // The cheap structural check first: a blocked merge is not worth its criteria.
-        if (!(state & kPending) && !mesh_->canMerge(c)) {
+        // The parent's test before the structural check when its bound is cached: most merge
+        // tests fail there, and canMerge reads up to 36 cells around c. A parent bound not
+        // cached yet is a scan of its samples: a blocked merge is not worth it.
+        const bool pending = state & kPending;
+        bool blocked = !pending && !cache_.hasParent(c) && !mesh_->canMerge(c);
+        double mergeDist = 0.0;
+        Verdict merge;
+        if (!blocked) {
+            merge = parentVerdict(c, mergeDist);
+            blocked = merge.pass && !pending && !mesh_->canMerge(c);
+            if (merge.pass && !blocked) merge = halvesVerdict(c, merge, mergeDist);
+        }
+        if (blocked) {
             state |= kBlocked;
         } else {
-            double mergeDist;
-            const Verdict merge = mergeVerdict(c, mergeDist);
             if (merge.pass) {
                 if (state & kPending) {
                     // still wanted: it completes once faded

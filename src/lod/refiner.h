@@ -145,7 +145,8 @@ private:
     void noteChanges(bool collect = true); // collect: queue the changed cells for retestChanged
     void retestChanged();
     void testCell(int32_t cell);
-    Verdict mergeVerdict(int32_t cell, double& dist);
+    Verdict parentVerdict(int32_t cell, double& dist);
+    Verdict halvesVerdict(int32_t cell, Verdict parent, double& dist);
     void setRecord(int32_t cell, double margin, Odometer odometer, double dist);
     void renew(TestRecord& record) const;
     void invalidateAll();
