@@ -6,7 +6,9 @@
 // (§5, cell_bounds.h) and slope box, and its parent's bound, the cell a merge would make. The
 // refiner carries them across operations: a split keeps the split cell's own bound as the
 // parent bound of the record that stays, and a merge makes the parent bound the merged cell's
-// own (refiner.cpp, refineStep and mergeNow); carried bounds move packed, so they never loosen
+// own (refiner.cpp, refineStep and mergeNow), and a joined hexagon's slot keeps the half a merge
+// test bounded, which the merge then makes the own bound of that semi-hexagon; carried bounds
+// move packed, so they never loosen
 // on the way. Any other change of a record invalidates its entry; a bound is recomputed from
 // the samples only when a test needs it. What a test sees is always the unpacked bound, also
 // right after it was computed, so a decision does not depend on whether a bound was cached.
@@ -69,6 +71,28 @@ public:
     void setPackedOwn(int32_t record, const PackedBound& own) {
         entries_[size_t(record)].own = own;
         entries_[size_t(record)].ownSlopes = PackedSlopes::notComputed();
+    }
+
+    /// A joined hexagon (split counter 0) has no parent to cache: its parent slot keeps the bound
+    /// of one of its halves instead, the semi-hexagon that a merge of the cell across from it
+    /// would leave (Refiner::halvesVerdict), so a merge test that comes back to it does not scan
+    /// the half again. The error's sign bit (errors are never negative) tells which half: 0 the
+    /// one from the break diameter's first corner, 1 the other. Any change of the hexagon
+    /// (a split gives it a split counter) invalidates the entry like every change.
+    bool hasHalf(int32_t record, int32_t which) const {
+        const PackedBound& b = entries_[size_t(record)].parent;
+        return BoundPacking::known(b) && (b.error >> 15) == uint16_t(which);
+    }
+    CellError half(int32_t record) const { return packing_.unpack(packedHalf(record)); }
+    PackedBound packedHalf(int32_t record) const {
+        PackedBound b = entries_[size_t(record)].parent;
+        b.error &= 0x7FFFu;
+        return b;
+    }
+    void setHalf(int32_t record, int32_t which, const CellError& half) {
+        PackedBound b = packing_.pack(half);
+        b.error = uint16_t(b.error | uint16_t(which) << 15);
+        entries_[size_t(record)].parent = b;
     }
 
     /// A bound as the cache would give it back: what tests must use when they computed it.

@@ -360,10 +360,12 @@ Refiner::Verdict Refiner::parentVerdict(int32_t c, double& dist) {
     return judge(footprintOf(*field_, mesh_->embedding(), parent), parentBound(c, parent), nullptr, true, dist);
 }
 
-Refiner::Verdict Refiner::halvesVerdict(int32_t c, Verdict all, double& dist) {
+// The joined hexagons in c's ring that a merge of c breaks, each with the half it leaves.
+int32_t Refiner::ringHalves(int32_t c, RingHalf out[6]) const {
     const Hexagon& h = mesh_->cell(c);
     const int32_t first = h.kind == CellKind::Full ? 1 : h.firstVisible;
     const int32_t edges = h.kind == CellKind::Full ? 6 : 3;
+    int32_t count = 0;
     for (int32_t i = 0; i < edges; ++i) {
         const int32_t o = h.opposite[wrapSlot(first + i) - 1];
         if (o == kNone) continue;
@@ -372,17 +374,28 @@ Refiner::Verdict Refiner::halvesVerdict(int32_t c, Verdict all, double& dist) {
         if (ring.kind != CellKind::Full || ring.splitCount != 0) continue; // a semi or a boundary cell: removed
         const int32_t k = mesh_->breakDiameterSlot(n);
         const bool facingFirstHalf = wrapSlot(edgeSlot(o) - k + 7) <= 3; // edge slots k, k+1, k+2
-        const int32_t outerHalf = facingFirstHalf ? 1 : 0;
-        CellShape outer;
-        outer.kind = CellKind::Semi;
-        outer.firstVisible = outerHalf == 0 ? k : wrapSlot(k + 3);
-        outer.center = mesh_->cellCenter(n);
-        outer.step = mesh_->cellStep(n);
+        RingHalf& half = out[count++];
+        half.ringCell = n;
+        half.which = facingFirstHalf ? 1 : 0;
+        half.shape.kind = CellKind::Semi;
+        half.shape.firstVisible = half.which == 0 ? k : wrapSlot(k + 3);
+        half.shape.center = mesh_->cellCenter(n);
+        half.shape.step = mesh_->cellStep(n);
+    }
+    return count;
+}
+
+Refiner::Verdict Refiner::halvesVerdict(int32_t c, Verdict all, double& dist) {
+    RingHalf halves[6];
+    const int32_t count = ringHalves(c, halves);
+    for (int32_t i = 0; i < count; ++i) {
+        const RingHalf& outer = halves[i];
+        // As the cache gives it back (also once the half is a cell of its own): a tighter bound
+        // here would merge what the next test splits again.
+        if (!cache_.hasHalf(outer.ringCell, outer.which))
+            cache_.setHalf(outer.ringCell, outer.which, computeCellError(*field_, mesh_->embedding(), pyramid_, outer.shape));
         double halfDist;
-        const Verdict half = judge(footprintOf(*field_, mesh_->embedding(), outer),
-                                   // as the cache will give it back once the half is a cell of its own:
-                                   // a tighter bound here would merge what the next test splits again
-                                   cache_.roundTrip(computeCellError(*field_, mesh_->embedding(), pyramid_, outer)), nullptr, true, halfDist);
+        const Verdict half = judge(footprintOf(*field_, mesh_->embedding(), outer.shape), cache_.half(outer.ringCell), nullptr, true, halfDist);
         if (!half.pass) {
             dist = halfDist;
             return half;
@@ -507,18 +520,30 @@ bool Refiner::refineStep(int32_t c) {
 }
 
 // A merge turns the cell's record back into its parent (§4.6): the parent bound it cached is
-// its own bound now (§5.1).
+// its own bound now (§5.1), and the half its merge test bounded in each broken ring hexagon is
+// the own bound of the semi-hexagon that half becomes.
 bool Refiner::mergeNow(int32_t c) {
-    PackedBound kept;
-    CellShape keptShape;
-    const bool keep = cache_.hasParent(c);
-    if (keep) {
-        kept = cache_.packedParent(c);
-        keptShape = parentShapeOfCell(*mesh_, c);
-    }
+    struct Kept {
+        CellShape shape;
+        PackedBound bound;
+    } kept[7];
+    int32_t count = 0;
+    if (cache_.hasParent(c)) kept[count++] = {parentShapeOfCell(*mesh_, c), cache_.packedParent(c)};
+    RingHalf halves[6];
+    const int32_t ring = ringHalves(c, halves);
+    for (int32_t i = 0; i < ring; ++i)
+        if (cache_.hasHalf(halves[i].ringCell, halves[i].which)) kept[count++] = {halves[i].shape, cache_.packedHalf(halves[i].ringCell)};
+    const size_t firstChanged = fresh_.size();
     if (!mesh_->merge(c)) return false;
     noteChanges();
-    if (keep && sameShape(shapeOfCell(*mesh_, c), keptShape)) cache_.setPackedOwn(c, kept);
+    if (count == 0) return true;
+    for (size_t i = firstChanged; i < fresh_.size(); ++i) {
+        const int32_t r = fresh_[i];
+        if (!mesh_->isLive(r)) continue;
+        const CellShape shape = shapeOfCell(*mesh_, r);
+        for (int32_t k = 0; k < count; ++k)
+            if (sameShape(shape, kept[k].shape)) cache_.setPackedOwn(r, kept[k].bound);
+    }
     return true;
 }
 

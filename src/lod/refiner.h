@@ -147,6 +147,13 @@ private:
     void testCell(int32_t cell);
     Verdict parentVerdict(int32_t cell, double& dist);
     Verdict halvesVerdict(int32_t cell, Verdict parent, double& dist);
+    // A joined hexagon in a merge candidate's ring that its merge breaks, and the half it leaves.
+    struct RingHalf {
+        int32_t ringCell;
+        int32_t which; // RefinementCache::hasHalf
+        CellShape shape;
+    };
+    int32_t ringHalves(int32_t cell, RingHalf out[6]) const;
     void setRecord(int32_t cell, double margin, Odometer odometer, double dist);
     void renew(TestRecord& record) const;
     void invalidateAll();

@@ -1,6 +1,7 @@
 // The packed refinement data of the cache (src/lod/packed_bounds.h): half floats rounded to
 // the side asked for, and bounds that come back out of the cache still bounds, and tight.
 #include "lod/packed_bounds.h"
+#include "lod/refinement_cache.h"
 
 #include <gtest/gtest.h>
 
@@ -123,5 +124,30 @@ TEST(PackedBounds, SlopesNotComputedYetDifferFromEveryPackedBox) {
         box.dxLow = slope(random), box.dxHigh = box.dxLow + std::abs(slope(random));
         box.dzLow = slope(random), box.dzHigh = box.dzLow + std::abs(slope(random));
         ASSERT_TRUE(BoundPacking::pack(box).computed()) << k;
+    }
+}
+
+// A joined hexagon's parent slot keeps one of its halves (RefinementCache::setHalf): the half
+// comes back as a bound packed alone would, and only for the half it was stored for.
+TEST(PackedBounds, AHalfInTheParentSlotComesBackAsTheCacheGivesABoundAndOnlyForItsSide) {
+    RefinementCache cache;
+    cache.setHeightRange(-400.0f, 8848.0f);
+    cache.grow(4, 4);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> height(-400.0f, 8848.0f), error(0.0f, 3000.0f);
+    for (int32_t trial = 0; trial < 2000; ++trial) {
+        const int32_t which = trial & 1;
+        const float a = height(random), b = height(random);
+        const CellError e{std::min(a, b), std::max(a, b), trial % 7 == 0 ? 0.0f : error(random)};
+        cache.invalidate(2);
+        EXPECT_FALSE(cache.hasHalf(2, 0) || cache.hasHalf(2, 1));
+        cache.setHalf(2, which, e);
+        ASSERT_TRUE(cache.hasHalf(2, which));
+        ASSERT_FALSE(cache.hasHalf(2, 1 - which)) << "the other half is not the one stored";
+        const CellError back = cache.half(2), expected = cache.roundTrip(e);
+        ASSERT_EQ(back.low, expected.low);
+        ASSERT_EQ(back.high, expected.high);
+        ASSERT_EQ(back.error, expected.error) << "the side's bit must not reach the error";
+        ASSERT_GE(back.error, 0.0f);
     }
 }
