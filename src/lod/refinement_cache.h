@@ -6,12 +6,12 @@
 // (§5, cell_bounds.h) and slope box, and its parent's bound, the cell a merge would make. The
 // refiner carries them across operations: a split keeps the split cell's own bound as the
 // parent bound of the record that stays, and a merge makes the parent bound the merged cell's
-// own (refiner.cpp, refineStep and mergeNow), and a joined hexagon's slot keeps the half a merge
-// test bounded, which the merge then makes the own bound of that semi-hexagon; carried bounds
-// move packed, so they never loosen
-// on the way. Any other change of a record invalidates its entry; a bound is recomputed from
-// the samples only when a test needs it. What a test sees is always the unpacked bound, also
-// right after it was computed, so a decision does not depend on whether a bound was cached.
+// own (refiner.cpp, refineStep and mergeNow); a joined hexagon's slot keeps the half a merge
+// test bounded, which the merge then makes the own bound of that semi-hexagon. Carried bounds
+// move packed, so they never loosen on the way. Any other change of a record invalidates its
+// entry; a bound is recomputed from the samples only when a test needs it. What a test sees
+// is always the unpacked bound, also right after it was computed, so a decision does not
+// depend on whether a bound was cached.
 #pragma once
 
 #include <cstdint>
