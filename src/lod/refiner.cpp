@@ -66,6 +66,8 @@ void Refiner::setView(const View& view) {
     // Margins of failing merge tests assume near <= 2 nearRef_ and far >= kFarShrink * farRef_ (judge()).
     const bool planesMoved = view.nearPlane > 2.0 * nearRef_ || view.farPlane < kFarShrink * farRef_;
     view_ = view;
+    planeNormX_ = std::sqrt(1.0 + view.tanHalfX * view.tanHalfX);
+    planeNormY_ = std::sqrt(1.0 + view.tanHalfY * view.tanHalfY);
     haveView_ = true;
     if (!sameShapeOfView || planesMoved) invalidateAll();
 }
@@ -229,7 +231,7 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
     const double x = glm::dot(d, view_.right), y = glm::dot(d, view_.up), z = glm::dot(d, view_.forward);
     double inside = kForever; // smallest slack inside the side planes
     if (settings_.culling) {
-        const double sx = std::sqrt(1.0 + view_.tanHalfX * view_.tanHalfX), sy = std::sqrt(1.0 + view_.tanHalfY * view_.tanHalfY);
+        const double sx = planeNormX_, sy = planeNormY_;
         const double slack[4] = {(view_.tanHalfX * z - x) / sx + radius, (view_.tanHalfX * z + x) / sx + radius,
                                  (view_.tanHalfY * z - y) / sy + radius, (view_.tanHalfY * z + y) / sy + radius};
         double outside = 0.0;
@@ -268,28 +270,25 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
     }
     const double ux = view_.right.y, uy = view_.up.y, uz = view_.forward.y;
     if (v.pass) {
-        // Upper bound of the projected error over every view within margin m.
+        // Upper bound of the projected error over every view within margin m (the sum of the
+        // two squares is largest where each is: the corner maximum of projectedErrorPixels).
         auto upper = [&](double m) {
             const double zLow = z - radius - m;
             if (!(zLow > 0.0)) return kForever;
-            const double r = radius + m, zHigh = z + r;
+            const double r = radius + m, toLow = 1.0 / zLow, toHigh = 1.0 / (z + r);
             auto range = [&](double c, double& lo, double& hi) {
                 const double a = c - r, b = c + r;
-                lo = a < 0.0 ? a / zLow : a / zHigh;
-                hi = b > 0.0 ? b / zLow : b / zHigh;
+                lo = a * (a < 0.0 ? toLow : toHigh);
+                hi = b * (b > 0.0 ? toLow : toHigh);
             };
             double xLo, xHi, yLo, yHi;
             range(x, xLo, xHi);
             range(y, yLo, yHi);
-            double g = 0.0;
-            for (double tx : {xLo, xHi})
-                for (double ty : {yLo, yHi}) {
-                    const double px = ux - tx * uz, py = uy - ty * uz;
-                    g = std::max(g, px * px + py * py);
-                }
+            const double gx = std::max((ux - xLo * uz) * (ux - xLo * uz), (ux - xHi * uz) * (ux - xHi * uz));
+            const double gy = std::max((uy - yLo * uz) * (uy - yLo * uz), (uy - yHi * uz) * (uy - yHi * uz));
             const double tMax2 = std::max(xLo * xLo, xHi * xHi) + std::max(yLo * yLo, yHi * yHi);
             const double turn = dist > 0.0 ? m / dist : kForever;
-            return view_.pixelsPerTangent * error * (std::sqrt(g) + turn * std::sqrt(1.0 + tMax2)) / zLow;
+            return view_.pixelsPerTangent * error * (std::sqrt(gx + gy) + turn * std::sqrt(1.0 + tMax2)) * toLow;
         };
         v.margin = largestMargin((z - radius) * (1.0 - v.pixels / t), [&](double m) { return upper(m) <= t; });
         return v;
@@ -300,12 +299,14 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
     const double tcx = x / z, tcy = y / z;
     const double pcx = ux - tcx * uz, pcy = uy - tcy * uz;
     const double pc = std::sqrt(pcx * pcx + pcy * pcy);
+    const double tangentSpeed = std::sqrt((1.0 + std::abs(tcx)) * (1.0 + std::abs(tcx)) + (1.0 + std::abs(tcy)) * (1.0 + std::abs(tcy)));
+    const double tangent = std::sqrt(tcx * tcx + tcy * tcy);
     auto lower = [&](double m) {
         // The centre stays in front of the near plane (its screen tangent is then in the box
         // the bound maximises over), and the sphere short of the far plane when culling.
         if (z - m < 2.0 * nearRef_ || (settings_.culling && z - radius + m > kFarShrink * farRef_)) return 0.0;
-        const double dt = m * std::sqrt((1.0 + std::abs(tcx)) * (1.0 + std::abs(tcx)) + (1.0 + std::abs(tcy)) * (1.0 + std::abs(tcy))) / (z - m);
-        const double tc = std::sqrt(tcx * tcx + tcy * tcy) + dt;
+        const double dt = m * tangentSpeed / (z - m);
+        const double tc = tangent + dt;
         const double turn = dist > 0.0 ? m / dist : kForever;
         const double g = pc - std::abs(uz) * dt - turn * std::sqrt(1.0 + tc * tc);
         return g > 0.0 ? view_.pixelsPerTangent * error * g / std::max(z - radius + m, 2.0 * nearRef_) : 0.0;

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -178,6 +179,7 @@ private:
     MinMaxPyramid pyramid_;
     RefinerSettings settings_;
     View view_;
+    double planeNormX_ = std::sqrt(2.0), planeNormY_ = std::sqrt(2.0); // |(1, tanHalf)|: the side planes' normals, per view
     RefinementCache cache_;
     std::vector<TestRecord> records_;
     std::vector<uint8_t> state_;

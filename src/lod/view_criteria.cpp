@@ -77,15 +77,12 @@ double projectedErrorPixels(const View& view, const glm::dvec3& center, double r
     tangentRange(x, xLo, xHi);
     tangentRange(y, yLo, yHi);
     // World up in view coordinates; the Jacobian of (X/Z, Y/Z) times it is
-    // (ux - tx * uz, uy - ty * uz) / Z, whose length is convex in (tx, ty): largest at a corner.
+    // (ux - tx * uz, uy - ty * uz) / Z, whose length is convex in (tx, ty): largest at a corner,
+    // the one where each of its two squares is largest.
     const double ux = view.right.y, uy = view.up.y, uz = view.forward.y;
-    double g = 0.0;
-    for (double tx : {xLo, xHi})
-        for (double ty : {yLo, yHi}) {
-            const double px = ux - tx * uz, py = uy - ty * uz;
-            g = std::max(g, px * px + py * py);
-        }
-    return view.pixelsPerTangent * verticalError * std::sqrt(g) / zMin;
+    const double gx = std::max((ux - xLo * uz) * (ux - xLo * uz), (ux - xHi * uz) * (ux - xHi * uz));
+    const double gy = std::max((uy - yLo * uz) * (uy - yLo * uz), (uy - yHi * uz) * (uy - yHi * uz));
+    return view.pixelsPerTangent * verticalError * std::sqrt(gx + gy) / zMin;
 }
 
 } // namespace hexlod
