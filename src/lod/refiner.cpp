@@ -667,7 +667,12 @@ bool Refiner::sweep() {
             if (state & kWanted) mergeList_.push_back(c); // queued before, the budget ran out
             continue;
         }
-        if (!mesh_->isLive(c)) continue;
+        if (!mesh_->isLive(c)) {
+            // A free record: parked until an operation reuses it (noteChanges makes it due), so
+            // later sweeps do not read the cell pool for it.
+            r.rho = std::numeric_limits<float>::max();
+            continue;
+        }
         ++visits_;
         testCell(c);
     }
