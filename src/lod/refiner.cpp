@@ -646,35 +646,51 @@ void Refiner::restart() {
 // failing cells and wanted merges. One sweep is a full circle over the records, starting where
 // the last one stopped; with a time budget it takes at most half of it, so that refining gets
 // the rest. False when the budget stopped it (the cursor keeps the place).
+//
+// The records go by in chunks: first the chunk's due cells are found, then tested, each a few
+// places ahead of its test asking for the cell's records (a due cell is a few in a hundred, so
+// each test began with cache misses on the cell, its fan, its bound and its centre vertex).
 bool Refiner::sweep() {
     const int32_t end = int32_t(records_.size());
     const double halfBudget = 0.5 * settings_.budgetMs;
     const int32_t begin = sweepCursor_ < end ? sweepCursor_ : 0;
-    for (int32_t k = 0; k < end; ++k) {
-        const int32_t c = begin + k < end ? begin + k : begin + k - end;
-        if ((k & 255) == 255 && settings_.budgetMs > 0.0 && progressed()) {
+    auto recordAt = [&](int32_t k) { return begin + k < end ? begin + k : begin + k - end; };
+    constexpr int32_t kChunk = 256, kAhead = 4;
+    int32_t due[kChunk];
+    for (int32_t chunk = 0; chunk < end; chunk += kChunk) {
+        if (chunk > 0 && settings_.budgetMs > 0.0 && progressed()) {
             const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
             if (ms >= halfBudget) {
-                sweepCursor_ = c;
+                sweepCursor_ = recordAt(chunk);
                 return false;
             }
         }
-        TestRecord& r = records_[size_t(c)];
-        const bool due = odometers_.usedUp(r.stamp, Odometer(r.odometer), r.dist, r.rho); // rho < 0: due
-        const uint8_t state = state_[size_t(c)];
-        if (!due) {
+        int32_t count = 0;
+        for (int32_t k = chunk; k < std::min(end, chunk + kChunk); ++k) {
+            const int32_t c = recordAt(k);
+            TestRecord& r = records_[size_t(c)];
+            if (odometers_.usedUp(r.stamp, Odometer(r.odometer), r.dist, r.rho)) { // rho < 0: due
+                due[count++] = c;
+                continue;
+            }
             if (odometers_.age(r.stamp) >= CameraOdometers::kHistory / 2) renew(r);
-            if (state & kWanted) mergeList_.push_back(c); // queued before, the budget ran out
-            continue;
+            if (state_[size_t(c)] & kWanted) mergeList_.push_back(c); // queued before, the budget ran out
         }
-        if (!mesh_->isLive(c)) {
-            // A free record: parked until an operation reuses it (noteChanges makes it due), so
-            // later sweeps do not read the cell pool for it.
-            r.rho = std::numeric_limits<float>::max();
-            continue;
+        for (int32_t i = 0; i < count; ++i) {
+            if (i + kAhead < count) {
+                mesh_->prefetchCell(due[i + kAhead]);
+                cache_.prefetch(due[i + kAhead]);
+            }
+            const int32_t c = due[i];
+            if (!mesh_->isLive(c)) {
+                // A free record: parked until an operation reuses it (noteChanges makes it due),
+                // so later sweeps do not read the cell pool for it.
+                records_[size_t(c)].rho = std::numeric_limits<float>::max();
+                continue;
+            }
+            ++visits_;
+            testCell(c);
         }
-        ++visits_;
-        testCell(c);
     }
     sweepCursor_ = begin;
     return true;

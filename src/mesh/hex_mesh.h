@@ -249,6 +249,11 @@ public:
     int32_t cellStep(int32_t c) const;
     /// The cell's centre on the lattice (a semi-hexagon's lies on its long edge).
     LatticePoint cellCenter(int32_t c) const;
+    /// Asks for a cell's record and fan ahead of their use (a hint; nothing changes).
+    void prefetchCell(int32_t c) const {
+        __builtin_prefetch(&cells_[size_t(c)]);
+        __builtin_prefetch(fans_.data() + size_t(c) * kCellFanSlot);
+    }
     const OperationCounts& counts() const { return counts_; }
     Embedding embedding() const { return embedding_; }
     /// Number of triangles drawn: 6 per full hexagon, 3 per boundary, 2 per interior semi.
