@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace hexlod {
@@ -56,15 +57,48 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     currentTau_ = settings_.tau;
     last_ = {};
     pending_.clear(); // their vertices belong to the old mesh
+    dataBoxKnown_ = false;
     restart();
+}
+
+// The farthest any cell's sphere centre can be from the eye: the corners of the box of the
+// mesh's vertices (the base mesh's, which every finer vertex lies among) and the field's
+// heights, a metre wider. Every bound's heights lie in the field's range (refinement_cache.h
+// rounds them outwards by less than that metre).
+double Refiner::farthestData(const glm::dvec3& eye) {
+    if (!dataBoxKnown_) {
+        dataLow_ = glm::dvec3(std::numeric_limits<double>::max());
+        dataHigh_ = glm::dvec3(-std::numeric_limits<double>::max());
+        for (int32_t v = 0; v < mesh_->vertexCapacity(); ++v) {
+            if (!mesh_->isVertexLive(v)) continue;
+            const glm::dvec3 p(mesh_->vertexPosition(v));
+            dataLow_ = glm::min(dataLow_, p), dataHigh_ = glm::max(dataHigh_, p);
+        }
+        dataLow_.y = field_->minHeight(), dataHigh_.y = field_->maxHeight();
+        dataLow_ -= glm::dvec3(1.0), dataHigh_ += glm::dvec3(1.0);
+        dataBoxKnown_ = true;
+    }
+    const double scale = settings_.verticalScale;
+    double farthest = 0.0;
+    for (double x : {dataLow_.x, dataHigh_.x})
+        for (double y : {dataLow_.y * scale - 1.0, dataHigh_.y * scale + 1.0})
+            for (double z : {dataLow_.z, dataHigh_.z}) farthest = std::max(farthest, glm::length(glm::dvec3(x, y, z) - eye));
+    return farthest;
 }
 
 void Refiner::setView(const View& view) {
     if (haveView_) odometers_.move(view_, view);
     const bool sameShapeOfView = haveView_ && view.tanHalfX == view_.tanHalfX && view.tanHalfY == view_.tanHalfY &&
                                  view.pixelsPerTangent == view_.pixelsPerTangent;
-    // Margins of failing merge tests assume near <= 2 nearRef_ and far >= kFarShrink * farRef_ (judge()).
-    const bool planesMoved = view.nearPlane > 2.0 * nearRef_ || view.farPlane < kFarShrink * farRef_;
+    // Margins of failing merge tests assume near <= 2 nearRef_, and a far plane that culls no
+    // cell in any view since (one beyond all the data: the viewer's and the command line's
+    // are) or, else, far >= kFarShrink * farRef_ (judge()). Without the first, a camera flying
+    // towards the middle of the field would make every cell due each time far shrank by a
+    // sixteenth.
+    const bool farCovers = mesh_ && view.farPlane >= farthestData(view.eye);
+    const bool farMoved = !farCovers && (farCoversData_ || view.farPlane < kFarShrink * farRef_);
+    const bool planesMoved = view.nearPlane > 2.0 * nearRef_ || farMoved;
+    farCoversData_ = farCovers;
     view_ = view;
     planeNormX_ = std::sqrt(1.0 + view.tanHalfX * view.tanHalfX);
     planeNormY_ = std::sqrt(1.0 + view.tanHalfY * view.tanHalfY);
@@ -209,7 +243,8 @@ SlopeBox Refiner::ownSlopes(int32_t c, const Footprint& footprint) {
 //  - failing (asked for with failMargin, for merge tests): a margin that keeps the sphere
 //    inside the side planes and the far plane, not back-facing, and a lower bound of the
 //    projected error (at the centre's screen tangent, the nearest depth at most
-//    max(z - r + m, 2 nearRef_)) above tau, given near <= 2 nearRef_ and far >= kFarShrink farRef_.
+//    max(z - r + m, 2 nearRef_)) above tau, given near <= 2 nearRef_ and far >= kFarShrink farRef_
+//    (or a far plane beyond all the data, setView).
 // Without a margin known, 0: the cell is due at the next update.
 Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin,
                                 double& distOut) const {
@@ -304,7 +339,7 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
     auto lower = [&](double m) {
         // The centre stays in front of the near plane (its screen tangent is then in the box
         // the bound maximises over), and the sphere short of the far plane when culling.
-        if (z - m < 2.0 * nearRef_ || (settings_.culling && z - radius + m > kFarShrink * farRef_)) return 0.0;
+        if (z - m < 2.0 * nearRef_ || (settings_.culling && !farCoversData_ && z - radius + m > kFarShrink * farRef_)) return 0.0;
         const double dt = m * tangentSpeed / (z - m);
         const double tc = tangent + dt;
         const double turn = dist > 0.0 ? m / dist : kForever;

@@ -463,3 +463,35 @@ TEST(Refiner, ACameraThatStandsStillCostsNoTests) {
     }
     EXPECT_EQ(lod.mesh.hash(), hash);
 }
+
+// The viewer's far plane follows the farthest corner of the data, so it shrinks as the camera
+// flies towards the middle of the field. While it lies beyond all the data it culls no cell,
+// and its shrinking must not make every cell due (it did each time it shrank by a sixteenth:
+// a frame of 22,000 tests every 35 frames on the Grand Canyon at 50 m a frame). A far plane
+// that cuts through the data does.
+TEST(Refiner, AFarPlaneBeyondAllTheDataShrinksWithoutMakingEveryCellDue) {
+    auto field = test::loadFixture(test::kGrandCanyon);
+    ASSERT_NE(field, nullptr);
+    Lod lod(*field, Embedding::Exact);
+    Camera cam = lowOblique(*field, 300.0);
+    lod.refiner.setView(viewOf(cam));
+    ASSERT_GT(converge(lod.refiner), 0);
+    const double extentX = (field->width() - 1) * field->scale().spacingX, extentZ = (field->height() - 1) * field->scale().spacingY;
+    double farthest = 0.0;
+    for (double x : {0.0, extentX})
+        for (double z : {0.0, extentZ})
+            for (double y : {double(field->minHeight()), double(field->maxHeight())})
+                farthest = std::max(farthest, glm::length(glm::dvec3(x, y, z) - cam.eye));
+    for (double factor : {2.0, 1.5, 1.2, 1.1}) { // each step shrinks it by more than a sixteenth
+        cam.farPlane = farthest * factor;
+        lod.refiner.setView(viewOf(cam));
+        const UpdateStats stats = lod.refiner.update();
+        EXPECT_EQ(stats.cellsTested, 0) << "far plane at " << factor << " times the farthest data";
+        EXPECT_EQ(stats.operations, 0);
+    }
+    cam.farPlane = 0.5 * farthest; // culls the far part of the field: every verdict may change
+    lod.refiner.setView(viewOf(cam));
+    const UpdateStats cut = lod.refiner.update();
+    EXPECT_GE(cut.cellsTested, lod.mesh.liveCells());
+    EXPECT_GT(cut.operations, 0) << "the cells beyond the far plane merge";
+}
