@@ -164,10 +164,19 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
     settings.lod.backfaceCulling = backface;
     settings.normals = normals;
     terrain.configure(settings);
+    // Near and far planes as `hexlod bench` sets them (bin/cli_common.js, cameraFor): far ten
+    // times the farthest corner of the field's box.
+    const double extentX = double(field.width() - 1) * field.scale().spacingX, extentZ = double(field.height() - 1) * field.scale().spacingY;
     auto viewOf = [&](const std::array<double, 6>& cam, hexlod::View& view) {
         const glm::dvec3 eye(cam[0], cam[1], cam[2]), target(cam[3], cam[4], cam[5]);
         const double distance = glm::length(target - eye);
-        return hexlod::makeView(eye, target, {0, 1, 0}, tanHalfFov, width / height, height, std::max(0.5, distance * 1e-4), distance * 1e3, view);
+        double farthest = 0.0;
+        for (double x : {0.0, extentX})
+            for (double z : {0.0, extentZ})
+                for (double y : {double(field.minHeight()), double(field.maxHeight())})
+                    farthest = std::max(farthest, glm::length(glm::dvec3(x, y, z) - eye));
+        return hexlod::makeView(eye, target, {0, 1, 0}, tanHalfFov, width / height, height, std::max(0.1, distance / 1e4),
+                                10.0 * std::max({farthest, distance, 1.0}), view);
     };
     if (startConverged) {
         hexlod::View view;
