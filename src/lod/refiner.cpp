@@ -9,7 +9,6 @@
 #include <cmath>
 #include <limits>
 
-#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace hexlod {
@@ -57,33 +56,21 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     currentTau_ = settings_.tau;
     last_ = {};
     pending_.clear(); // their vertices belong to the old mesh
-    dataBoxKnown_ = false;
     restart();
 }
 
-// The farthest any cell's sphere centre can be from the eye: the corners of the box of the
-// mesh's vertices (the base mesh's, which every finer vertex lies among) and the field's
-// heights, a metre wider. Every bound's heights lie in the field's range (refinement_cache.h
-// rounds them outwards by less than that metre).
-double Refiner::farthestData(const glm::dvec3& eye) {
-    if (!dataBoxKnown_) {
-        dataLow_ = glm::dvec3(std::numeric_limits<double>::max());
-        dataHigh_ = glm::dvec3(-std::numeric_limits<double>::max());
-        for (int32_t v = 0; v < mesh_->vertexCapacity(); ++v) {
-            if (!mesh_->isVertexLive(v)) continue;
-            const glm::dvec3 p(mesh_->vertexPosition(v));
-            dataLow_ = glm::min(dataLow_, p), dataHigh_ = glm::max(dataHigh_, p);
-        }
-        dataLow_.y = field_->minHeight(), dataHigh_.y = field_->maxHeight();
-        dataLow_ -= glm::dvec3(1.0), dataHigh_ += glm::dvec3(1.0);
-        dataBoxKnown_ = true;
-    }
+// The farthest point of the field's box (its samples' columns, rows and height range) from the
+// eye. Every cell that can fail a test has samples under it, so its bounding box, and its
+// sphere, holds a point of that box: a far plane at least this far culls no such cell. A hair
+// more covers the rounding of spheres and distances.
+double Refiner::farthestData(const glm::dvec3& eye) const {
+    const double x1 = double(field_->width() - 1) * field_->scale().spacingX, z1 = double(field_->height() - 1) * field_->scale().spacingY;
     const double scale = settings_.verticalScale;
     double farthest = 0.0;
-    for (double x : {dataLow_.x, dataHigh_.x})
-        for (double y : {dataLow_.y * scale - 1.0, dataHigh_.y * scale + 1.0})
-            for (double z : {dataLow_.z, dataHigh_.z}) farthest = std::max(farthest, glm::length(glm::dvec3(x, y, z) - eye));
-    return farthest;
+    for (double x : {0.0, x1})
+        for (double y : {double(field_->minHeight()) * scale, double(field_->maxHeight()) * scale})
+            for (double z : {0.0, z1}) farthest = std::max(farthest, glm::length(glm::dvec3(x, y, z) - eye));
+    return farthest * (1.0 + 1e-6) + 1e-3;
 }
 
 void Refiner::setView(const View& view) {
@@ -95,7 +82,7 @@ void Refiner::setView(const View& view) {
     // are) or, else, far >= kFarShrink * farRef_ (judge()). Without the first, a camera flying
     // towards the middle of the field would make every cell due each time far shrank by a
     // sixteenth.
-    const bool farCovers = mesh_ && view.farPlane >= farthestData(view.eye);
+    const bool farCovers = field_ && view.farPlane >= farthestData(view.eye);
     const bool farMoved = !farCovers && (farCoversData_ || view.farPlane < kFarShrink * farRef_);
     const bool planesMoved = view.nearPlane > 2.0 * nearRef_ || farMoved;
     farCoversData_ = farCovers;

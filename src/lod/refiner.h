@@ -195,10 +195,8 @@ private:
     CameraOdometers odometers_;
     bool haveView_ = false;
     double nearRef_ = 0.0, farRef_ = 0.0; // near and far planes when every cell was last made due
-    bool farCoversData_ = false;           // the far plane lies beyond every cell in every view since farRef_
-    bool dataBoxKnown_ = false;
-    glm::dvec3 dataLow_{0.0}, dataHigh_{0.0}; // the box every cell's sphere centre lies in (unscaled heights)
-    double farthestData(const glm::dvec3& eye);
+    bool farCoversData_ = false;           // the far plane culled no cell with samples in any view since farRef_
+    double farthestData(const glm::dvec3& eye) const;
     // The settings the records were computed for.
     RefinerSettings checked_;
     double checkedTau_ = 0.0;
