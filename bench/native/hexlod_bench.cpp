@@ -117,7 +117,8 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
     const char* path = nullptr;
     double tau = 1.0, budgetMs = 0.0, tanHalfFov = 0.57735026918962573, width = 1920, height = 1080;
     int32_t budgetOps = 0, morphFrames = 0;
-    bool startConverged = false, measureError = false, backface = true, verbose = false, normals = true, measureFloor = false;
+    bool startConverged = false, measureError = false, backface = true, verbose = false, normals = true, measureFloor = false,
+         viewerPlanes = false;
     for (int k = 6; k < argc; ++k) {
         const std::string flag = argv[k];
         if (flag == "--verbose" || flag == "--floor") {
@@ -126,6 +127,10 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
         }
         if (flag == "--no-normals") { // as the viewer runs while it lights from the field's normals
             normals = false;
+            continue;
+        }
+        if (flag == "--viewer-planes") {
+            viewerPlanes = true;
             continue;
         }
         if (flag == "--start-converged" || flag == "--measure-error" || flag == "--no-backface") {
@@ -167,6 +172,8 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
     // Near and far planes as `hexlod bench` sets them (bin/cli_common.js, cameraFor): far ten
     // times the farthest corner of the field's box.
     const double extentX = double(field.width() - 1) * field.scale().spacingX, extentZ = double(field.height() - 1) * field.scale().spacingY;
+    // With --viewer-planes, the planes the page's fly camera sets (web/cameras/clip_planes.js):
+    // near at 0.3 times the height above the ground, far just past the farthest corner.
     auto viewOf = [&](const std::array<double, 6>& cam, hexlod::View& view) {
         const glm::dvec3 eye(cam[0], cam[1], cam[2]), target(cam[3], cam[4], cam[5]);
         const double distance = glm::length(target - eye);
@@ -175,6 +182,13 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
             for (double z : {0.0, extentZ})
                 for (double y : {double(field.minHeight()), double(field.maxHeight())})
                     farthest = std::max(farthest, glm::length(glm::dvec3(x, y, z) - eye));
+        if (viewerPlanes) {
+            const bool inside = eye.x >= 0.0 && eye.z >= 0.0 && eye.x <= extentX && eye.z <= extentZ;
+            const double clearance = eye.y - (inside ? double(field.heightAtPosition(eye.x, eye.z)) : double(field.maxHeight()));
+            const double far = farthest * 1.05 + 1.0;
+            const double near = std::max(far / 1e6, 0.3 * std::max(clearance, 0.0));
+            return hexlod::makeView(eye, target, {0, 1, 0}, tanHalfFov, width / height, height, near, std::max(far, near * 10.0), view);
+        }
         return hexlod::makeView(eye, target, {0, 1, 0}, tanHalfFov, width / height, height, std::max(0.1, distance / 1e4),
                                 10.0 * std::max({farthest, distance, 1.0}), view);
     };
