@@ -5,7 +5,7 @@
 //   hexlod_bench FILE.f32 WIDTH HEIGHT SPACING_X_M SPACING_Y_M --flight CAMERAS.txt
 //                [--tau PX] [--budget-ms MS] [--budget-ops N] [--viewport WxH] [--tan-half-fov T]
 //                [--morph-frames N] [--start-converged] [--measure-error] [--no-backface] [--no-normals] [--floor]
-//                [--verbose]
+//                [--viewer-planes] [--verbose]
 //
 // Without --flight: for both lattice embeddings (paper §4.7), the time to refine uniformly to
 // the finest level, the triangles and bytes per triangle of the mesh structures, the time to
@@ -20,6 +20,8 @@
 // --floor also times, per frame, only what any update must do for the operations the refiner
 // performed: the operations themselves on a copy of the mesh and the bounds of the new cells
 // (update_floor.h), in ms per million triangles, beside the update's own figure.
+// The near and far planes are those of `hexlod bench` (bin/cli_common.js); --viewer-planes
+// uses the page's fly camera's instead (web/cameras/clip_planes.js).
 #include <algorithm>
 #include <array>
 #include <memory>
