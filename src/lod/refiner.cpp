@@ -56,6 +56,9 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     currentTau_ = settings_.tau;
     last_ = {};
     pending_.clear(); // their vertices belong to the old mesh
+    // A depth far below any sample spacing: merge tests bound the error at the sphere's
+    // nearest depth, this close to the eye at the closest.
+    mergeNearest_ = 1e-3 * std::min(field.scale().spacingX, field.scale().spacingY);
     restart();
 }
 
@@ -77,14 +80,13 @@ void Refiner::setView(const View& view) {
     if (haveView_) odometers_.move(view_, view);
     const bool sameShapeOfView = haveView_ && view.tanHalfX == view_.tanHalfX && view.tanHalfY == view_.tanHalfY &&
                                  view.pixelsPerTangent == view_.pixelsPerTangent;
-    // Margins of failing merge tests assume near <= 2 nearRef_, and a far plane that culls no
-    // cell in any view since (one beyond all the data: the viewer's and the command line's
-    // are) or, else, far >= kFarShrink * farRef_ (judge()). Without the first, a camera flying
-    // towards the middle of the field would make every cell due each time far shrank by a
-    // sixteenth.
+    // Margins of failing merge tests assume a far plane that culls no cell with samples in any
+    // view since (one beyond the field: the page's and the command line's are) or, else, far
+    // >= kFarShrink * farRef_ (judge()). Without the first, a camera flying towards the middle
+    // of the field would make every cell due each time far shrank by a sixteenth. They do not
+    // depend on the near plane (judge()).
     const bool farCovers = field_ && view.farPlane >= farthestData(view.eye);
-    const bool farMoved = !farCovers && (farCoversData_ || view.farPlane < kFarShrink * farRef_);
-    const bool planesMoved = view.nearPlane > 2.0 * nearRef_ || farMoved;
+    const bool planesMoved = !farCovers && (farCoversData_ || view.farPlane < kFarShrink * farRef_);
     farCoversData_ = farCovers;
     view_ = view;
     planeNormX_ = std::sqrt(1.0 + view.tanHalfX * view.tanHalfX);
@@ -141,7 +143,6 @@ size_t Refiner::liveMemoryBytes() const {
 
 void Refiner::invalidateAll() {
     for (TestRecord& r : records_) r.rho = -1.0f;
-    nearRef_ = view_.nearPlane;
     farRef_ = view_.farPlane;
 }
 
@@ -230,8 +231,8 @@ SlopeBox Refiner::ownSlopes(int32_t c, const Footprint& footprint) {
 //  - failing (asked for with failMargin, for merge tests): a margin that keeps the sphere
 //    inside the side planes and the far plane, not back-facing, and a lower bound of the
 //    projected error (at the centre's screen tangent, the nearest depth at most
-//    max(z - r + m, 2 nearRef_)) above tau, given near <= 2 nearRef_ and far >= kFarShrink farRef_
-//    (or a far plane beyond all the data, setView).
+//    max(z - r + m, mergeNearest_): merge tests do not use the near plane) above tau, given
+//    far >= kFarShrink farRef_ (or a far plane beyond the field, setView).
 // Without a margin known, 0: the cell is due at the next update.
 Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin,
                                 double& distOut) const {
@@ -264,7 +265,8 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
         }
         // Culled until the centre comes back across that plane: the plane's odometer.
         if (outside > 0.0) return {true, 0.0, outside, Odometer(int32_t(Odometer::RightPlane) + culledBy)};
-        if (z + radius < view_.nearPlane || z - radius > view_.farPlane) return {true, 0.0, 0.0};
+        // In front of the near plane: an own test only (merge tests do not use the near plane).
+        if ((!failMargin && z + radius < view_.nearPlane) || z - radius > view_.farPlane) return {true, 0.0, 0.0};
     }
     double front = kForever; // how far the eye may move before a front-facing cell can turn its back
     if (settings_.backfaceCulling && slopes && slopes->known()) {
@@ -283,7 +285,12 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
         front = frontFacing;
     }
     const double error = double(e.error) * settings_.verticalScale;
-    v.pixels = projectedErrorPixels(view_, center, radius, error);
+    // A merge test bounds the error at the sphere's nearest depth however close to the eye, not
+    // at the near plane: its verdict, and the margin of a failing one, then hold whatever near
+    // plane later views have (the page's follows the height above the ground). It is the
+    // stricter test, so a merge it allows is not split again by the own test.
+    const double nearest = failMargin ? mergeNearest_ : view_.nearPlane;
+    v.pixels = projectedErrorPixels(view_, center, radius, error, nearest);
     const double t = tau();
     v.pass = !(v.pixels > t);
     if (error <= 0.0) {
@@ -324,16 +331,16 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
     const double tangentSpeed = std::sqrt((1.0 + std::abs(tcx)) * (1.0 + std::abs(tcx)) + (1.0 + std::abs(tcy)) * (1.0 + std::abs(tcy)));
     const double tangent = std::sqrt(tcx * tcx + tcy * tcy);
     auto lower = [&](double m) {
-        // The centre stays in front of the near plane (its screen tangent is then in the box
-        // the bound maximises over), and the sphere short of the far plane when culling.
-        if (z - m < 2.0 * nearRef_ || (settings_.culling && !farCoversData_ && z - radius + m > kFarShrink * farRef_)) return 0.0;
+        // The centre stays in front of the eye (its screen tangent is then in the box the bound
+        // maximises over), and the sphere short of the far plane when culling.
+        if (z - m < mergeNearest_ || (settings_.culling && !farCoversData_ && z - radius + m > kFarShrink * farRef_)) return 0.0;
         const double dt = m * tangentSpeed / (z - m);
         const double tc = tangent + dt;
         const double turn = dist > 0.0 ? m / dist : kForever;
         const double g = pc - std::abs(uz) * dt - turn * std::sqrt(1.0 + tc * tc);
-        return g > 0.0 ? view_.pixelsPerTangent * error * g / std::max(z - radius + m, 2.0 * nearRef_) : 0.0;
+        return g > 0.0 ? view_.pixelsPerTangent * error * g / std::max(z - radius + m, mergeNearest_) : 0.0;
     };
-    const double atCenter = view_.pixelsPerTangent * error * pc / std::max(z - radius, view_.nearPlane);
+    const double atCenter = view_.pixelsPerTangent * error * pc / std::max(z - radius, mergeNearest_);
     // Strictly inside the side planes and in front: a margin just below those slacks.
     const double cap = std::min({(z - radius) * (atCenter / t - 1.0), 0.999 * inside, 0.999 * front});
     v.margin = largestMargin(cap, [&](double m) { return lower(m) > t; });

@@ -194,7 +194,8 @@ private:
     // How far the camera moved and turned, which the records' margins are measured by.
     CameraOdometers odometers_;
     bool haveView_ = false;
-    double nearRef_ = 0.0, farRef_ = 0.0; // near and far planes when every cell was last made due
+    double farRef_ = 0.0;                 // the far plane when every cell was last made due
+    double mergeNearest_ = 1e-9;          // the smallest depth a merge test's bound uses (judge())
     bool farCoversData_ = false;           // the far plane culled no cell with samples in any view since farRef_
     double farthestData(const glm::dvec3& eye) const;
     // The settings the records were computed for.

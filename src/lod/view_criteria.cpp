@@ -63,10 +63,14 @@ bool backFacing(const View& view, const glm::dvec3& center, double radius, const
 }
 
 double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError) {
+    return projectedErrorPixels(view, center, radius, verticalError, view.nearPlane);
+}
+
+double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError, double nearest) {
     if (verticalError <= 0.0) return 0.0;
     const glm::dvec3 d = center - view.eye;
     const double x = glm::dot(d, view.right), y = glm::dot(d, view.up), z = glm::dot(d, view.forward);
-    const double zMin = std::max(z - radius, view.nearPlane), zMax = std::max(z + radius, zMin);
+    const double zMin = std::max(z - radius, nearest), zMax = std::max(z + radius, zMin);
     // Range of the screen tangents X/Z and Y/Z over the sphere (with depths in [zMin, zMax]).
     auto tangentRange = [&](double c, double& lo, double& hi) {
         const double a = c - radius, b = c + radius;

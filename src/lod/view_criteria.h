@@ -41,9 +41,11 @@ bool backFacing(const View& view, const glm::dvec3& center, double radius, const
 /// drawn surface above or below it (§5, third test, made a bound):
 ///   a vertical segment of length e = error * verticalScale inside the sphere projects to at
 ///   most pixelsPerTangent * e * g / Zmin pixels, where Zmin is the sphere's nearest depth
-///   (depth minus radius, at least the near plane) and g the largest length of the projected
+///   (depth minus radius, at least the near plane or `nearest`) and g the largest length of the projected
 ///   up vector over the sphere's range of screen tangents (1 looking level, 0 looking straight
 ///   down at the cell's centre): the projection's Jacobian applied to the world's up vector.
+/// `nearest`: the smallest depth Zmin may take (the view's near plane unless given).
 double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError);
+double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError, double nearest);
 
 } // namespace hexlod

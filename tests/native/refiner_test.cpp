@@ -495,3 +495,28 @@ TEST(Refiner, AFarPlaneBeyondAllTheDataShrinksWithoutMakingEveryCellDue) {
     EXPECT_GE(cut.cellsTested, lod.mesh.liveCells());
     EXPECT_GT(cut.operations, 0) << "the cells beyond the far plane merge";
 }
+
+// The page's near plane follows the height above the ground (0.3 times it). Merge tests do not
+// use it, so no margin depends on it: a near plane moving out makes no cell due (it made every
+// cell due each time it doubled), and the mesh stays within tau of every sample in view.
+TEST(Refiner, ANearPlaneMovingOutMakesNoCellDueAndTheMeshStaysWithinTau) {
+    auto field = test::loadFixture(test::kGrandCanyon);
+    ASSERT_NE(field, nullptr);
+    Lod lod(*field, Embedding::Exact);
+    lod.refiner.settings().backfaceCulling = false; // every sample in the frustum counts
+    Camera cam = lowOblique(*field, 300.0);
+    cam.nearPlane = 1.0;
+    lod.refiner.setView(viewOf(cam));
+    ASSERT_GT(converge(lod.refiner), 0);
+    for (double near : {4.0, 16.0, 64.0, 90.0}) {
+        cam.nearPlane = near;
+        lod.refiner.setView(viewOf(cam));
+        const UpdateStats stats = lod.refiner.update();
+        EXPECT_EQ(stats.cellsTested, 0) << "near plane at " << near << " m";
+        EXPECT_TRUE(stats.converged);
+        const BoundCheck check = checkTauBound(lod.mesh, *field, cam, 1.0);
+        EXPECT_GT(check.samplesInView, 0);
+        EXPECT_EQ(check.uncovered, 0);
+        EXPECT_LE(check.worstPixels, 1.0 + 1e-6) << "near plane at " << near << " m";
+    }
+}
