@@ -21,11 +21,12 @@ constexpr double kForever = 1e30; // a margin no camera uses up (a verdict that 
 constexpr double kFarShrink = 15.0 / 16.0;
 
 // The largest margin in (0, cap] found to hold by bisection (the test is monotone: a
-// verdict that holds within m holds within anything less), 0 when none. Six evaluations at most.
+// verdict that holds within m holds within anything less), 0 when none. Six evaluations at most;
+// five when the cap is known not to hold (tryCap false).
 template <typename Holds>
-double largestMargin(double cap, Holds&& holds) {
+double largestMargin(double cap, Holds&& holds, bool tryCap = true) {
     if (!(cap > 0.0)) return 0.0;
-    if (cap < kForever && holds(cap)) return cap;
+    if (tryCap && cap < kForever && holds(cap)) return cap;
     double lo = 0.0, hi = std::min(cap, 1e12);
     for (int32_t k = 0; k < 5; ++k) {
         const double m = 0.5 * (lo + hi);
@@ -319,7 +320,9 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
             const double turn = dist > 0.0 ? m / dist : kForever;
             return view_.pixelsPerTangent * error * (std::sqrt(gx + gy) + turn * std::sqrt(1.0 + tMax2)) * toLow;
         };
-        v.margin = largestMargin((z - radius) * (1.0 - v.pixels / t), [&](double m) { return upper(m) <= t; });
+        // At that cap the depth alone has used up the room the error had below tau, so the bound
+        // there (its other terms only grow with m) is above tau: no need to try it.
+        v.margin = largestMargin((z - radius) * (1.0 - v.pixels / t), [&](double m) { return upper(m) <= t; }, false);
         return v;
     }
     if (!failMargin) return v;
