@@ -345,8 +345,11 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
     };
     const double atCenter = view_.pixelsPerTangent * error * pc / std::max(z - radius, mergeNearest_);
     // Strictly inside the side planes and in front: a margin just below those slacks.
-    const double cap = std::min({(z - radius) * (atCenter / t - 1.0), 0.999 * inside, 0.999 * front});
-    v.margin = largestMargin(cap, [&](double m) { return lower(m) > t; });
+    // As in the passing case, the bound at the first of these caps is not above tau: only a
+    // cap set by a side plane or the back faces is worth trying.
+    const double depthCap = (z - radius) * (atCenter / t - 1.0);
+    const double cap = std::min({depthCap, 0.999 * inside, 0.999 * front});
+    v.margin = largestMargin(cap, [&](double m) { return lower(m) > t; }, cap < depthCap);
     return v;
 }
 
