@@ -120,23 +120,14 @@ void scanTriangle(const Heightfield& field, Embedding embedding, const Triangle&
         const int32_t j0 = std::max(0, int32_t(std::ceil(xl / sx - eps)));
         const int32_t j1 = std::min(field.width() - 1, int32_t(std::floor(xr / sx + eps)));
         const size_t rowStart = size_t(i) * size_t(field.width());
+        auto scan = [&](const auto* samples) {
+            scanRow(samples + rowStart, j0, j1, sx, scale.heightScale, scale.heightOffset, c, kx, ax, above, below, low, high);
+        };
         switch (field.type()) {
-            case SampleType::U8:
-                scanRow(static_cast<const uint8_t*>(field.samples()) + rowStart, j0, j1, sx, scale.heightScale,
-                        scale.heightOffset, c, kx, ax, above, below, low, high);
-                break;
-            case SampleType::U16:
-                scanRow(static_cast<const uint16_t*>(field.samples()) + rowStart, j0, j1, sx, scale.heightScale,
-                        scale.heightOffset, c, kx, ax, above, below, low, high);
-                break;
-            case SampleType::I16:
-                scanRow(static_cast<const int16_t*>(field.samples()) + rowStart, j0, j1, sx, scale.heightScale,
-                        scale.heightOffset, c, kx, ax, above, below, low, high);
-                break;
-            case SampleType::F32:
-                scanRow(static_cast<const float*>(field.samples()) + rowStart, j0, j1, sx, scale.heightScale,
-                        scale.heightOffset, c, kx, ax, above, below, low, high);
-                break;
+            case SampleType::U8: scan(static_cast<const uint8_t*>(field.samples())); break;
+            case SampleType::U16: scan(static_cast<const uint16_t*>(field.samples())); break;
+            case SampleType::I16: scan(static_cast<const int16_t*>(field.samples())); break;
+            case SampleType::F32: scan(static_cast<const float*>(field.samples())); break;
         }
     }
     error = std::max({error, above, -below});
