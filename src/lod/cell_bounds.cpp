@@ -36,6 +36,18 @@ int32_t shapeTriangles(const Heightfield& field, Embedding embedding, const Cell
     return 2;
 }
 
+// Ceiling and floor of a value well inside the int32 range: the truncation, moved by one when
+// it went the wrong way (without SSE4.1 the library's rounding is a long sequence; a row's span
+// needs two of them).
+int32_t ceilToInt(double v) {
+    const int32_t t = int32_t(v);
+    return t + (double(t) < v ? 1 : 0);
+}
+int32_t floorToInt(double v) {
+    const int32_t t = int32_t(v);
+    return t - (double(t) > v ? 1 : 0);
+}
+
 // One edge of a triangle on the ground, for finding where each sample row crosses it.
 struct GroundEdge {
     double zLow, zHigh;   // rows within these (a hair wider) cross the edge
@@ -90,6 +102,7 @@ void scanTriangle(const Heightfield& field, Embedding embedding, const Triangle&
     const int32_t i1 = std::min(field.height() - 1, int32_t(std::floor(zMax / sy + eps)));
     const GroundEdge edges[3] = {groundEdge(t.a, t.b, eps * sy), groundEdge(t.b, t.c, eps * sy), groundEdge(t.c, t.a, eps * sy)};
     const HeightfieldScale& scale = field.scale();
+    const double toColumns = 1.0 / sx; // each row's span in columns: a multiplication, not a division
     double above = -1e300, below = 1e300;
     for (int32_t i = i0; i <= i1; ++i) {
         const double z = float(i * sy);
@@ -117,8 +130,8 @@ void scanTriangle(const Heightfield& field, Embedding embedding, const Triangle&
             }
             continue;
         }
-        const int32_t j0 = std::max(0, int32_t(std::ceil(xl / sx - eps)));
-        const int32_t j1 = std::min(field.width() - 1, int32_t(std::floor(xr / sx + eps)));
+        const int32_t j0 = std::max(0, ceilToInt(xl * toColumns - eps));
+        const int32_t j1 = std::min(field.width() - 1, floorToInt(xr * toColumns + eps));
         const size_t rowStart = size_t(i) * size_t(field.width());
         auto scan = [&](const auto* samples) {
             scanRow(samples + rowStart, j0, j1, sx, scale.heightScale, scale.heightOffset, c, kx, ax, above, below, low, high);
