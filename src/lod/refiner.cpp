@@ -21,14 +21,16 @@ constexpr double kForever = 1e30; // a margin no camera uses up (a verdict that 
 constexpr double kFarShrink = 15.0 / 16.0;
 
 // The largest margin in (0, cap] found to hold by bisection (the test is monotone: a
-// verdict that holds within m holds within anything less), 0 when none. Six evaluations at most;
-// five when the cap is known not to hold (tryCap false).
+// verdict that holds within m holds within anything less), 0 when none, to an eighth of the
+// cap. Four evaluations at most; three when the cap is known not to hold (tryCap false). A
+// finer search costs more than the re-tests its longer margins save: on the Grand Canyon at
+// 50 m a frame, 5 steps test 918 cells a frame, 3 steps 967, in 8 % less time; 2 steps 1,098.
 template <typename Holds>
 double largestMargin(double cap, Holds&& holds, bool tryCap = true) {
     if (!(cap > 0.0)) return 0.0;
     if (tryCap && cap < kForever && holds(cap)) return cap;
     double lo = 0.0, hi = std::min(cap, 1e12);
-    for (int32_t k = 0; k < 5; ++k) {
+    for (int32_t k = 0; k < 3; ++k) {
         const double m = 0.5 * (lo + hi);
         if (holds(m)) lo = m;
         else hi = m;
