@@ -1,6 +1,8 @@
 // Refinement data of paper §5 (Fig. 10), cached per §5.1; see cell_bounds.h.
 #include "lod/cell_bounds.h"
 
+#include "lod/float_rounding.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -215,7 +217,7 @@ CellError computeCellError(const Heightfield& field, Embedding embedding, const 
         double error = 0.0;
         for (int32_t t = 0; t < count; ++t) scanTriangle(field, embedding, triangles[t], error, e.low, e.high);
         // Rounded up to the next float: the bound must not shrink in the conversion.
-        e.error = std::nextafter(float(error), 1e30f);
+        e.error = nextUp(float(error));
     } else {
         // The drawn surface stays within its vertices' heights, the samples within the
         // pyramid's range over the footprint: their distance is bounded by the larger gap.

@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <random>
+#include <vector>
 
 using namespace hexlod;
 
@@ -149,5 +152,30 @@ TEST(PackedBounds, AHalfInTheParentSlotComesBackAsTheCacheGivesABoundAndOnlyForI
         ASSERT_EQ(back.high, expected.high);
         ASSERT_EQ(back.error, expected.error) << "the side's bit must not reach the error";
         ASSERT_GE(back.error, 0.0f);
+    }
+}
+
+// nextUp and nextDown (float_rounding.h) step by the bits as std::nextafter does, for every
+// sign, zeros, subnormals, the largest finite floats and the infinities.
+TEST(PackedBounds, NextUpAndNextDownAreStdNextafter) {
+    const float inf = std::numeric_limits<float>::infinity();
+    std::vector<float> values = {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::denorm_min(),
+                                 std::numeric_limits<float>::min(), std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
+                                 1.0f, -1.0f, inf, -inf};
+    std::mt19937 random(11);
+    for (int32_t k = 0; k < 100000; ++k) {
+        const uint32_t bits = uint32_t(random());
+        const float f = fromBits(bits);
+        if (std::isfinite(f)) values.push_back(f);
+    }
+    for (float f : values) {
+        if (f != inf) {
+            const float up = nextUp(f), expected = std::nextafter(f, inf);
+            ASSERT_EQ(std::memcmp(&up, &expected, sizeof(float)), 0) << f;
+        }
+        if (f != -inf) {
+            const float down = nextDown(f), expected = std::nextafter(f, -inf);
+            ASSERT_EQ(std::memcmp(&down, &expected, sizeof(float)), 0) << f;
+        }
     }
 }
