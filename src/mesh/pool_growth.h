@@ -16,20 +16,21 @@
 
 namespace hexlod {
 
-/// The smallest growth of a pool, records: keeps a small pool from reallocating every few records.
-constexpr size_t kMinimumPoolGrowth = 64;
+/// One growth step of a pool of `records`: a thirty-second more, and at least 64 records, which
+/// keeps a small pool from reallocating every few records.
+inline size_t grownByOneStep(size_t records) { return records + records / 32 + 64; }
 
-/// Makes room for `size` elements in `pool`, growing its capacity by at least a thirty-second.
+/// Makes room for `size` elements in `pool`, growing its capacity by at least one step.
 template <typename T>
 void reserveForPool(std::vector<T>& pool, size_t size) {
     if (size <= pool.capacity()) return;
-    pool.reserve(std::max(size, pool.capacity() + pool.capacity() / 32 + kMinimumPoolGrowth));
+    pool.reserve(std::max(size, grownByOneStep(pool.capacity())));
 }
 
 /// The room a pool of `size` records keeps after a compaction: one growth step. A shrinking
 /// mesh still splits where the camera goes; with no room left, the first split after each
 /// compaction copied every pool (and faulted in fresh pages for it).
-inline size_t roomAfterCompaction(size_t size) { return size + size / 32 + kMinimumPoolGrowth; }
+inline size_t roomAfterCompaction(size_t size) { return grownByOneStep(size); }
 
 /// Makes room for `size` elements in an array that keeps one element per record of a pool
 /// (the refiner's caches, the stream's slots): as much room as the pool has, so the two grow
