@@ -95,9 +95,6 @@ public:
         entries_[size_t(record)].parent = b;
     }
 
-    /// A bound as the cache would give it back: what tests must use when they computed it.
-    CellError roundTrip(const CellError& e) const { return packing_.unpack(packing_.pack(e)); }
-
     /// Asks for a record's entry ahead of its use (a hint; nothing changes).
     void prefetch(int32_t record) const { __builtin_prefetch(&entries_[size_t(record)]); }
 
