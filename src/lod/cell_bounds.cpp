@@ -121,8 +121,8 @@ void scanTriangle(const Heightfield& field, Embedding embedding, const Triangle&
         if (xl > xr) continue;
         const double c = ay - kz * (z - az);
         if (embedding == Embedding::Shifted && (i & 1) != 0) {
-            const int32_t j0 = std::max(0, int32_t(std::ceil(xl / sx - 0.5 - eps)));
-            const int32_t j1 = std::min(field.width() - 1, int32_t(std::floor(xr / sx - 0.5 + eps)));
+            const int32_t j0 = std::max(0, ceilToInt(xl * toColumns - 0.5 - eps));
+            const int32_t j1 = std::min(field.width() - 1, floorToInt(xr * toColumns - 0.5 + eps));
             for (int32_t j = j0; j <= j1; ++j) {
                 const double x = float((j + 0.5) * sx);
                 const float h = 0.5f * (field.heightClamped(j, i) + field.heightClamped(j + 1, i));
