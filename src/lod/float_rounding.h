@@ -34,4 +34,23 @@ inline float roundedUp(double x) {
     return f;
 }
 
+/// A non-negative float in 16 bits: its upper half (the bfloat16 format: the float's exponent,
+/// 7 bits of mantissa), rounded up or down; for figures that need range more than precision.
+inline uint16_t halfBitsUp(float f) {
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof(bits));
+    return uint16_t((bits >> 16) + ((bits & 0xFFFFu) != 0 ? 1u : 0u));
+}
+inline uint16_t halfBitsDown(float f) {
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof(bits));
+    return uint16_t(bits >> 16);
+}
+inline float fromHalfBits(uint16_t half) {
+    const uint32_t bits = uint32_t(half) << 16;
+    float f;
+    std::memcpy(&f, &bits, sizeof(f));
+    return f;
+}
+
 } // namespace hexlod

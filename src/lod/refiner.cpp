@@ -365,19 +365,41 @@ void Refiner::tighten(Verdict& into, const Verdict& other) {
     into.margin = std::min(into.margin, other.margin);
 }
 
-void Refiner::setRecord(int32_t c, double margin, Odometer odometer, double dist) {
+namespace {
+// A margin as a record keeps it (CameraOdometers::storedMargin; kForever as the largest float).
+float recordMargin(double margin) {
+    return margin >= kForever ? std::numeric_limits<float>::max() : CameraOdometers::storedMargin(std::max(0.0, margin));
+}
+} // namespace
+
+// ownMargin: of margin, the own test's (on the same odometer, which runs at least as fast as
+// the own test's own odometer: tighten()).
+void Refiner::setRecord(int32_t c, double margin, Odometer odometer, double dist, double ownMargin) {
     TestRecord& r = records_[size_t(c)];
     r.stamp = odometers_.stamp();
     r.odometer = uint32_t(odometer);
-    r.dist = float(dist); // already rounded up by judge()
-    r.rho = margin >= kForever ? std::numeric_limits<float>::max() : CameraOdometers::storedMargin(std::max(0.0, margin));
+    r.dist16 = halfBitsUp(roundedUp(dist));
+    r.rho = recordMargin(margin);
+    r.ownRho16 = halfBitsDown(recordMargin(ownMargin));
 }
 
 // Re-stamps a record that is not due before its stamp gets too old (CameraOdometers::renewed).
 void Refiner::renew(TestRecord& r) const {
-    const CameraOdometers::Renewed renewed = odometers_.renewed(r.stamp, Odometer(r.odometer), r.dist, r.rho);
-    r.dist = renewed.dist, r.rho = renewed.rho;
+    const CameraOdometers::Renewed renewed = odometers_.renewed(r.stamp, Odometer(r.odometer), r.dist(), r.rho);
+    const CameraOdometers::Renewed own = odometers_.renewed(r.stamp, Odometer(r.odometer), r.dist(), r.ownRho());
+    r.dist16 = halfBitsUp(renewed.dist), r.rho = renewed.rho;
+    r.ownRho16 = halfBitsDown(own.rho);
     r.stamp = odometers_.stamp();
+}
+
+// Whether a due record's own verdict still holds (its own margin is not used up; the record
+// was not made due by a change), and how much of it is left.
+bool Refiner::ownHolds(const TestRecord& r, HeldOwn& held) const {
+    if (!(r.rho >= 0.0f) || r.ownRho16 == 0) return false;
+    const CameraOdometers::Renewed own = odometers_.renewed(r.stamp, Odometer(r.odometer), r.dist(), r.ownRho());
+    if (!(own.rho > 0.0f)) return false;
+    held = {own.rho >= std::numeric_limits<float>::max() ? kForever : double(own.rho), double(own.dist)};
+    return true;
 }
 
 // Whether a step could refine the cell: false at the finest level (the split cannot happen,
@@ -447,17 +469,26 @@ Refiner::Verdict Refiner::halvesVerdict(int32_t c, Verdict all, double& dist) {
 }
 
 // Tests a cell's own bound and, for a merge candidate, its merge; sets its record and state.
-void Refiner::testCell(int32_t c) {
-    const Footprint footprint = footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c));
-    const CellError bound = ownBound(c);
+void Refiner::testCell(int32_t c, const HeldOwn* held) {
     double dist;
-    // The slopes only when the error fails (§5's cone of normals can only rescue a failing
-    // cell; a passing one keeps its error margin): a scan of its samples, computed when first needed.
-    SlopeBox slopes = cache_.ownSlopes(c);
-    Verdict own = judge(footprint, bound, &slopes, false, dist);
-    if (!own.pass && settings_.backfaceCulling && !cache_.hasOwnSlopes(c)) {
-        slopes = ownSlopes(c, footprint);
-        if (slopes.known()) own = judge(footprint, bound, &slopes, false, dist);
+    Verdict own;
+    if (held) {
+        // Its own verdict holds for what is left of its margin: a pass (or a failure at the
+        // finest level, which is a pass with no margin limit to the rest of this test).
+        own.margin = held->margin;
+        own.odometer = Odometer(records_[size_t(c)].odometer);
+        dist = held->dist;
+    } else {
+        const Footprint footprint = footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c));
+        const CellError bound = ownBound(c);
+        // The slopes only when the error fails (§5's cone of normals can only rescue a failing
+        // cell; a passing one keeps its error margin): a scan of its samples, computed when first needed.
+        SlopeBox slopes = cache_.ownSlopes(c);
+        own = judge(footprint, bound, &slopes, false, dist);
+        if (!own.pass && settings_.backfaceCulling && !cache_.hasOwnSlopes(c)) {
+            slopes = ownSlopes(c, footprint);
+            if (slopes.known()) own = judge(footprint, bound, &slopes, false, dist);
+        }
     }
     uint8_t& state = state_[size_t(c)];
     state &= uint8_t(kPending | kCancel);
@@ -471,6 +502,7 @@ void Refiner::testCell(int32_t c) {
     }
     Verdict record = own;
     if (!own.pass) record.margin = kForever; // failing at the finest level: nothing to do, whatever the view
+    const double ownMargin = record.margin;
     const Hexagon& h = mesh_->cell(c);
     if (h.kind != CellKind::Semi && h.splitCount > 0) {
         // The parent's test before the structural check when its bound is cached: most merge
@@ -508,7 +540,7 @@ void Refiner::testCell(int32_t c) {
             dist = std::max(dist, mergeDist);
         }
     }
-    setRecord(c, record.margin, record.odometer, dist);
+    setRecord(c, record.margin, record.odometer, dist, ownMargin);
 }
 
 bool Refiner::outOfBudget(double share) {
@@ -706,7 +738,7 @@ bool Refiner::sweep() {
         for (int32_t k = chunk; k < std::min(end, chunk + kChunk); ++k) {
             const int32_t c = recordAt(k);
             TestRecord& r = records_[size_t(c)];
-            if (odometers_.usedUp(r.stamp, Odometer(r.odometer), r.dist, r.rho)) { // rho < 0: due
+            if (odometers_.usedUp(r.stamp, Odometer(r.odometer), r.dist(), r.rho)) { // rho < 0: due
                 due[count++] = c;
                 continue;
             }
@@ -726,7 +758,10 @@ bool Refiner::sweep() {
                 continue;
             }
             ++visits_;
-            testCell(c);
+            HeldOwn held;
+            const bool kept = ownHolds(records_[size_t(c)], held);
+            ownKept_ += kept ? 1 : 0;
+            testCell(c, kept ? &held : nullptr);
         }
     }
     sweepCursor_ = begin;
@@ -794,6 +829,7 @@ UpdateStats Refiner::update() {
     start_ = std::chrono::steady_clock::now();
     operations_ = 0;
     tested_ = 0;
+    ownKept_ = 0;
     visitsAtStart_ = visits_;
     const OperationCounts before = mesh_->counts();
     bool converged = false;
@@ -830,6 +866,7 @@ UpdateStats Refiner::update() {
     last_.splits = int32_t(mesh_->counts().splits - before.splits);
     last_.merges = int32_t(mesh_->counts().merges - before.merges);
     last_.cellsTested = tested_;
+    last_.ownVerdictsKept = ownKept_;
     last_.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
     last_.converged = converged;
     adaptTau();

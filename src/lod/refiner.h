@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "lod/camera_odometers.h"
+#include "lod/float_rounding.h"
 #include "lod/cell_bounds.h"
 #include "lod/refinement_cache.h"
 #include "stream/geomorph.h"
@@ -53,6 +54,7 @@ struct UpdateStats {
     int32_t operations = 0; // refiner steps: splits, joins and merges it performed
     int32_t splits = 0, merges = 0; // mesh splits and merges, forced ones included
     int32_t cellsTested = 0; // criteria evaluations (§5) this update: a cell's own, parent or half bound against the view
+    int32_t ownVerdictsKept = 0; // re-tests that kept the cell's own verdict and judged only its merge
     double milliseconds = 0.0;
     bool converged = false; // every due re-test passes and nothing is left to refine or merge (fades may run on)
 };
@@ -98,12 +100,18 @@ private:
     // When a cell is next due: once the camera has used up the margin rho (metres, rounded
     // down) on the record's odometer since the update `stamp`, for a centre at distance dist
     // (rounded up) at the test (CameraOdometers::used). rho < 0: due now.
+    // ownRho: the part of rho that the cell's own test gave (a merge candidate's record holds
+    // its own test and its merge test): when the merge test's margin runs out first, the
+    // re-test keeps what is left of the own verdict and judges the merge only (testCell).
+    // Both in 16 bits (float_rounding.h's halfBits), dist rounded up and ownRho down.
     struct TestRecord {
         uint32_t stamp : CameraOdometers::kStampBits;
         uint32_t odometer : 3; // an Odometer
-        float dist;
+        uint16_t dist16 = 0, ownRho16 = 0;
         float rho;
-        TestRecord() : stamp(0), odometer(0), dist(0.0f), rho(-1.0f) {}
+        TestRecord() : stamp(0), odometer(0), rho(-1.0f) {}
+        float dist() const { return fromHalfBits(dist16); }
+        float ownRho() const { return fromHalfBits(ownRho16); }
     };
     static_assert(sizeof(TestRecord) == 12, "issue 12 counts the bytes of a cell");
     enum State : uint8_t {
@@ -145,7 +153,13 @@ private:
     SlopeBox ownSlopes(int32_t cell, const Footprint& footprint); // computed when a test first needs them
     void noteChanges(bool collect = true); // collect: queue the changed cells for retestChanged
     void retestChanged();
-    void testCell(int32_t cell);
+    // An own verdict that still holds at a re-test: what is left of its margin, for a centre
+    // now at most dist away (CameraOdometers::renewed).
+    struct HeldOwn {
+        double margin, dist;
+    };
+    bool ownHolds(const TestRecord& record, HeldOwn& held) const;
+    void testCell(int32_t cell, const HeldOwn* held = nullptr);
     Verdict parentVerdict(int32_t cell, double& dist);
     Verdict halvesVerdict(int32_t cell, Verdict parent, double& dist);
     // A joined hexagon in a merge candidate's ring that its merge breaks, and the half it leaves.
@@ -155,7 +169,7 @@ private:
         CellShape shape;
     };
     int32_t ringHalves(int32_t cell, RingHalf out[6]) const;
-    void setRecord(int32_t cell, double margin, Odometer odometer, double dist);
+    void setRecord(int32_t cell, double margin, Odometer odometer, double dist, double ownMargin);
     void renew(TestRecord& record) const;
     void invalidateAll();
     void checkSettings();
@@ -214,6 +228,7 @@ private:
     static constexpr uint32_t kMinVisits = 256;
     UpdateStats last_;
     mutable int32_t tested_ = 0; // criteria evaluations this update
+    int32_t ownKept_ = 0;        // re-tests this update that kept the own verdict
     static constexpr int32_t kMaxCyclesPerUpdate = 64;
     static constexpr double kRefineShare = 0.8;
 };

@@ -180,3 +180,22 @@ TEST(PackedBounds, NextUpAndNextDownAreStdNextafter) {
         }
     }
 }
+
+// halfBitsUp and halfBitsDown (float_rounding.h) keep a non-negative float in 16 bits on the
+// chosen side, within a relative 2^-7, and exactly when it fits.
+TEST(PackedBounds, SixteenBitFloatsRoundToTheChosenSide) {
+    std::mt19937 random(12);
+    for (int32_t k = 0; k < 100000; ++k) {
+        const float f = std::abs(fromBits(uint32_t(random())));
+        if (!std::isnormal(f) || f > 1e38f) continue; // normal floats: a 16-bit subnormal's step is coarser
+        const float up = fromHalfBits(halfBitsUp(f)), down = fromHalfBits(halfBitsDown(f));
+        ASSERT_GE(up, f);
+        ASSERT_LE(down, f);
+        ASSERT_LE(double(up) - double(down), std::ldexp(double(f), -7)) << f;
+        if (up == down) ASSERT_EQ(up, f);
+    }
+    for (float exact : {0.0f, 1.0f, 0.5f, 1536.0f, 65536.0f}) {
+        EXPECT_EQ(fromHalfBits(halfBitsUp(exact)), exact);
+        EXPECT_EQ(fromHalfBits(halfBitsDown(exact)), exact);
+    }
+}
