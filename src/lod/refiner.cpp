@@ -135,7 +135,8 @@ void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<in
 
 size_t Refiner::memoryBytes() const {
     return cache_.memoryBytes() + records_.capacity() * sizeof(TestRecord) + state_.capacity() + CameraOdometers::memoryBytes() +
-           (changes_.capacity() + fresh_.capacity() + freedScratch_.capacity() + mergeList_.capacity()) * sizeof(int32_t) +
+           (changes_.capacity() + fresh_.capacity() + freedScratch_.capacity() + mergeList_.capacity() + mergeChanged_.capacity()) *
+               sizeof(int32_t) +
            heap_.capacity() * sizeof(Candidate) + pending_.capacity() * sizeof(PendingMerge) + pyramid_.memoryBytes();
 }
 
@@ -173,8 +174,12 @@ void Refiner::noteChanges(bool collect) {
     for (int32_t c : changes_) {
         cache_.invalidate(c);
         records_[size_t(c)].rho = -1.0f;
-        state_[size_t(c)] &= uint8_t(kPending | kCancel); // a pending merge is checked by stillFrees
-        if (collect) fresh_.push_back(c);
+        uint8_t& state = state_[size_t(c)];
+        state &= uint8_t(kPending | kCancel | kFresh); // a pending merge is checked by stillFrees
+        if (collect && !(state & kFresh)) {
+            state |= kFresh;
+            fresh_.push_back(c);
+        }
     }
     changes_.clear();
 }
@@ -192,6 +197,7 @@ void Refiner::retestChanged() {
     };
     for (size_t k = 0; k < fresh_.size(); ++k) {
         const int32_t c = fresh_[k];
+        state_[size_t(c)] &= uint8_t(~kFresh);
         if (!mesh_->isLive(c)) continue;
         if (records_[size_t(c)].rho < 0.0f) testCell(c);
         for (int32_t o : mesh_->cell(c).opposite) {
@@ -491,7 +497,7 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
         }
     }
     uint8_t& state = state_[size_t(c)];
-    state &= uint8_t(kPending | kCancel);
+    state &= uint8_t(kPending | kCancel | kFresh);
     if (!own.pass && canRefine(c)) {
         state |= kFailing;
         records_[size_t(c)].rho = -1.0f;
@@ -603,12 +609,13 @@ bool Refiner::mergeNow(int32_t c) {
     const int32_t ring = ringHalves(c, halves);
     for (int32_t i = 0; i < ring; ++i)
         if (cache_.hasHalf(halves[i].ringCell, halves[i].which)) kept[count++] = {halves[i].shape, cache_.packedHalf(halves[i].ringCell)};
-    const size_t firstChanged = fresh_.size();
     if (!mesh_->merge(c)) return false;
+    // The cells the merge changed, from the mesh's log (fresh_ lists a cell once, and it may
+    // be there from an earlier merge of this update).
+    mergeChanged_.assign(changes_.begin(), changes_.end());
     noteChanges();
     if (count == 0) return true;
-    for (size_t i = firstChanged; i < fresh_.size(); ++i) {
-        const int32_t r = fresh_[i];
+    for (int32_t r : mergeChanged_) {
         if (!mesh_->isLive(r)) continue;
         const CellShape shape = shapeOfCell(*mesh_, r);
         for (int32_t k = 0; k < count; ++k)
@@ -650,7 +657,10 @@ void Refiner::callOff(const PendingMerge& merge) {
     // Due, and tested again in this update (retestChanged follows advancePendingMerges): an
     // update that called a merge off must not report converged before its cell's test.
     records_[size_t(merge.cell)].rho = -1.0f;
-    fresh_.push_back(merge.cell);
+    if (!(state_[size_t(merge.cell)] & kFresh)) {
+        state_[size_t(merge.cell)] |= kFresh;
+        fresh_.push_back(merge.cell);
+    }
 }
 
 // The fading merges: called off when the mesh around them changed or their record's re-test

@@ -120,6 +120,7 @@ private:
         kBlocked = 4,  // a merge candidate that canMerge refused: tested again when a cell that can unblock it changes
         kPending = 8,  // a merge of this record is fading its vertices out
         kCancel = 16,  // the pending merge is no longer wanted
+        kFresh = 32,   // in fresh_, not retested yet (an operation logs a cell more than once)
     };
     // A verdict of the criteria (§5) for one bound, and how far it holds.
     struct Verdict {
@@ -197,7 +198,8 @@ private:
     RefinementCache cache_;
     std::vector<TestRecord> records_;
     std::vector<uint8_t> state_;
-    std::vector<int32_t> changes_, fresh_;
+    std::vector<int32_t> changes_, fresh_; // the mesh's change log; the changed cells to retest, each once
+    std::vector<int32_t> mergeChanged_;    // mergeNow's copy of the log of one merge
     std::vector<Candidate> heap_;     // failing cells, largest projected error on top
     std::vector<int32_t> mergeList_;  // cells whose merge is wanted
     Geomorph* morph_ = nullptr;
