@@ -35,7 +35,8 @@ inline float roundedUp(double x) {
 }
 
 /// A non-negative float in 16 bits: its upper half (the bfloat16 format: the float's exponent,
-/// 7 bits of mantissa), rounded up or down; for figures that need range more than precision.
+/// 7 bits of mantissa), rounded up or down; for figures that need range more than precision
+/// (packed_bounds.h's IEEE halves stop at 65,504: distances and margins reach millions of metres).
 inline uint16_t halfBitsUp(float f) {
     uint32_t bits;
     std::memcpy(&bits, &f, sizeof(bits));

@@ -174,14 +174,18 @@ void Refiner::noteChanges(bool collect) {
     for (int32_t c : changes_) {
         cache_.invalidate(c);
         records_[size_t(c)].rho = -1.0f;
-        uint8_t& state = state_[size_t(c)];
-        state &= uint8_t(kPending | kCancel | kFresh); // a pending merge is checked by stillFrees
-        if (collect && !(state & kFresh)) {
-            state |= kFresh;
-            fresh_.push_back(c);
-        }
+        state_[size_t(c)] &= uint8_t(kPending | kCancel | kFresh); // a pending merge is checked by stillFrees
+        if (collect) queueFresh(c);
     }
     changes_.clear();
+}
+
+// Queues a cell for retestChanged, once however often it changed.
+void Refiner::queueFresh(int32_t c) {
+    uint8_t& state = state_[size_t(c)];
+    if (state & kFresh) return;
+    state |= kFresh;
+    fresh_.push_back(c);
 }
 
 // Tests the cells the last operations created or changed (they are due), and the blocked
@@ -404,7 +408,9 @@ bool Refiner::ownHolds(const TestRecord& r, HeldOwn& held) const {
     if (!(r.rho >= 0.0f) || r.ownRho16 == 0) return false;
     const CameraOdometers::Renewed own = odometers_.renewed(r.stamp, Odometer(r.odometer), r.dist(), r.ownRho());
     if (!(own.rho > 0.0f)) return false;
-    held = {own.rho >= std::numeric_limits<float>::max() ? kForever : double(own.rho), double(own.dist)};
+    // A margin kept as forever comes back as the largest 16-bit float (about 3.4e38), still
+    // above kForever, which is what testCell and setRecord read as forever.
+    held = {double(own.rho), double(own.dist)};
     return true;
 }
 
@@ -611,8 +617,8 @@ bool Refiner::mergeNow(int32_t c) {
         if (cache_.hasHalf(halves[i].ringCell, halves[i].which)) kept[count++] = {halves[i].shape, cache_.packedHalf(halves[i].ringCell)};
     if (!mesh_->merge(c)) return false;
     // The cells the merge changed, from the mesh's log (fresh_ lists a cell once, and it may
-    // be there from an earlier merge of this update).
-    mergeChanged_.assign(changes_.begin(), changes_.end());
+    // be there from an earlier merge of this update); only when there is a bound to carry.
+    if (count > 0) mergeChanged_.assign(changes_.begin(), changes_.end());
     noteChanges();
     if (count == 0) return true;
     for (int32_t r : mergeChanged_) {
@@ -657,10 +663,7 @@ void Refiner::callOff(const PendingMerge& merge) {
     // Due, and tested again in this update (retestChanged follows advancePendingMerges): an
     // update that called a merge off must not report converged before its cell's test.
     records_[size_t(merge.cell)].rho = -1.0f;
-    if (!(state_[size_t(merge.cell)] & kFresh)) {
-        state_[size_t(merge.cell)] |= kFresh;
-        fresh_.push_back(merge.cell);
-    }
+    queueFresh(merge.cell);
 }
 
 // The fading merges: called off when the mesh around them changed or their record's re-test

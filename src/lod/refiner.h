@@ -153,6 +153,7 @@ private:
     CellError ownBound(int32_t cell);
     SlopeBox ownSlopes(int32_t cell, const Footprint& footprint); // computed when a test first needs them
     void noteChanges(bool collect = true); // collect: queue the changed cells for retestChanged
+    void queueFresh(int32_t cell);
     void retestChanged();
     // An own verdict that still holds at a re-test: what is left of its margin, for a centre
     // now at most dist away (CameraOdometers::renewed).
