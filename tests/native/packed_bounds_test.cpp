@@ -192,7 +192,9 @@ TEST(PackedBounds, SixteenBitFloatsRoundToTheChosenSide) {
         ASSERT_GE(up, f);
         ASSERT_LE(down, f);
         ASSERT_LE(double(up) - double(down), std::ldexp(double(f), -7)) << f;
-        if (up == down) ASSERT_EQ(up, f);
+        if (up == down) {
+            ASSERT_EQ(up, f);
+        }
     }
     for (float exact : {0.0f, 1.0f, 0.5f, 1536.0f, 65536.0f}) {
         EXPECT_EQ(fromHalfBits(halfBitsUp(exact)), exact);
