@@ -14,27 +14,32 @@ struct Triangle {
     glm::vec3 a, b, c;
 };
 
-// The drawn triangles of a shape, as hex_mesh.cpp's appendTriangles draws them.
+// The drawn triangles of a shape, as hex_mesh.cpp's appendTriangles draws them; each corner
+// embedded once (a step-1 cell's bound is little more than this).
 int32_t shapeTriangles(const Heightfield& field, Embedding embedding, const CellShape& shape, Triangle out[6]) {
-    auto corner = [&](int32_t slot) {
-        return embedLatticePoint(field, embedding, latticeAdd(shape.center, kDirections[wrapSlot(slot) - 1], shape.step));
-    };
+    auto lattice = [&](int32_t slot) { return latticeAdd(shape.center, kDirections[wrapSlot(slot) - 1], shape.step); };
+    auto embed = [&](LatticePoint p) { return embedLatticePoint(field, embedding, p); };
     if (shape.kind == CellKind::Full) {
-        const glm::vec3 centre = embedLatticePoint(field, embedding, shape.center);
-        for (int32_t k = 1; k <= 6; ++k) out[k - 1] = {centre, corner(k), corner(k + 1)};
+        const glm::vec3 centre = embed(shape.center);
+        glm::vec3 corners[6];
+        for (int32_t k = 0; k < 6; ++k) corners[k] = embed(lattice(k + 1));
+        for (int32_t k = 0; k < 6; ++k) out[k] = {centre, corners[k], corners[(k + 1) % 6]};
         return 6;
     }
     const int32_t a = shape.firstVisible;
     if (shape.kind == CellKind::BoundarySemi) {
-        const glm::vec3 centre = embedLatticePoint(field, embedding, shape.center);
-        for (int32_t k = 0; k < 3; ++k) out[k] = {centre, corner(a + k), corner(a + k + 1)};
+        const glm::vec3 centre = embed(shape.center);
+        glm::vec3 corners[4];
+        for (int32_t k = 0; k < 4; ++k) corners[k] = embed(lattice(a + k));
+        for (int32_t k = 0; k < 3; ++k) out[k] = {centre, corners[k], corners[k + 1]};
         return 3;
     }
-    auto lattice = [&](int32_t slot) { return latticeAdd(shape.center, kDirections[wrapSlot(slot) - 1], shape.step); };
-    const int32_t start = semiFanFromSecondCorner(embedding, lattice(a), lattice(a + 1), lattice(a + 2), lattice(a + 3)) ? 1 : 0;
-    auto fan = [&](int32_t i) { return corner(a + (start + i) % 4); }; // as HexMesh::setCorners
-    out[0] = {fan(0), fan(1), fan(2)};
-    out[1] = {fan(0), fan(2), fan(3)};
+    const LatticePoint points[4] = {lattice(a), lattice(a + 1), lattice(a + 2), lattice(a + 3)};
+    const int32_t start = semiFanFromSecondCorner(embedding, points[0], points[1], points[2], points[3]) ? 1 : 0;
+    glm::vec3 fan[4]; // as HexMesh::setCorners
+    for (int32_t i = 0; i < 4; ++i) fan[i] = embed(points[(start + i) % 4]);
+    out[0] = {fan[0], fan[1], fan[2]};
+    out[1] = {fan[0], fan[2], fan[3]};
     return 2;
 }
 
@@ -211,8 +216,13 @@ CellError computeCellError(const Heightfield& field, Embedding embedding, const 
     CellError e{vertexLow, vertexHigh, 0.0f};
     const bool outside = f.x1 < 0.0f || f.z1 < 0.0f || f.x0 > float((field.width() - 1) * sx) ||
                          f.z0 > float((field.height() - 1) * sy);
-    if (outside) {
-        // No sample lies under the cell: nothing to approximate.
+    if (outside || (shape.step == 1 && shape.kind != CellKind::Semi)) {
+        // No sample lies under the cell: nothing to approximate. Or a hexagon (or boundary
+        // half) of step 1: its triangles are elementary triangles of the lattice, whose only
+        // samples are their corners (Pick's theorem: no room for another), and the drawn surface
+        // passes through them. Its error is exactly 0, which judge() reads as a verdict that no
+        // camera changes. (A step-1 semi-hexagon's long edge runs through a sample that is not
+        // a corner: it is scanned.)
     } else if (samples <= kExactScanSamples) {
         double error = 0.0;
         for (int32_t t = 0; t < count; ++t) scanTriangle(field, embedding, triangles[t], error, e.low, e.high);

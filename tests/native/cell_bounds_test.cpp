@@ -122,4 +122,43 @@ TEST(CellBounds, EveryScannedCellsErrorIsTheLargestDistanceOfItsSamplesFromItsTr
     EXPECT_GT(checked, 2000);
 }
 
+// At step 1 a hexagon's (and a boundary half's) only samples are its corners, so its bound is
+// exactly 0 (cell_bounds.cpp skips the scan); a semi-hexagon's long edge runs through its
+// hexagon's centre, a sample it must still measure.
+TEST(CellBounds, StepOneHexagonsHoldOnlyTheirCornersAndSemiHexagonsAreMeasured) {
+    auto field = makeField(45, 38, SampleType::F32);
+    MinMaxPyramid pyramid;
+    pyramid.build(*field);
+    for (Embedding embedding : {Embedding::Exact, Embedding::Shifted}) {
+        HexMesh mesh;
+        ASSERT_EQ(mesh.reset(*field, embedding, 8), nullptr);
+        refineUniformly(mesh, 2);                 // step 8 to step 2
+        refineNear(mesh, 600.0, 450.0, 300.0, 1); // step 1 there, semi-hexagons around it
+        const int32_t hexagons = mesh.liveCells();
+        int32_t full = 0, semis = 0, semisWithError = 0;
+        for (int32_t c = 0; c < mesh.cellCapacity(); ++c) {
+            if (!mesh.isLive(c)) continue;
+            const CellShape shape = shapeOfCell(mesh, c);
+            if (shape.step != 1) continue;
+            const CellError e = computeCellError(*field, embedding, pyramid, shape);
+            const Brute b = bruteForce(mesh, *field, embedding, c);
+            if (shape.kind == CellKind::Semi) {
+                EXPECT_GE(double(e.error), b.error) << "semi-hexagon " << c;
+                semisWithError += b.error > 1e-3 ? 1 : 0;
+                ++semis;
+                continue;
+            }
+            EXPECT_EQ(e.error, 0.0f) << "cell " << c;
+            EXPECT_LE(b.error, 1e-9) << "cell " << c; // the corners, up to the brute force's rounding
+            EXPECT_LE(b.samples, 3 * (HexMesh::fanLength(mesh.cell(c)) - 2)) << "cell " << c; // its corners, once per triangle
+            EXPECT_LE(e.low, b.low);
+            EXPECT_GE(e.high, b.high);
+            ++full;
+        }
+        EXPECT_GT(full, hexagons / 4) << int(embedding);
+        EXPECT_GT(semis, 0) << int(embedding);
+        EXPECT_GT(semisWithError, 0) << int(embedding);
+    }
+}
+
 } // namespace
