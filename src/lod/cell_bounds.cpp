@@ -14,32 +14,37 @@ struct Triangle {
     glm::vec3 a, b, c;
 };
 
-// The drawn triangles of a shape, as hex_mesh.cpp's appendTriangles draws them; each corner
-// embedded once (a step-1 cell's bound is little more than this).
-int32_t shapeTriangles(const Heightfield& field, Embedding embedding, const CellShape& shape, Triangle out[6]) {
+// The vertices of a shape's fan as hex_mesh.cpp's appendTriangles draws it, each embedded
+// once: the centre, then the corners around it (a hexagon, or a boundary half's four); or a
+// semi-hexagon's four corners from the one its fan starts at. Returns their number.
+int32_t shapeVertices(const Heightfield& field, Embedding embedding, const CellShape& shape, glm::vec3 out[7]) {
     auto lattice = [&](int32_t slot) { return latticeAdd(shape.center, kDirections[wrapSlot(slot) - 1], shape.step); };
     auto embed = [&](LatticePoint p) { return embedLatticePoint(field, embedding, p); };
-    if (shape.kind == CellKind::Full) {
-        const glm::vec3 centre = embed(shape.center);
-        glm::vec3 corners[6];
-        for (int32_t k = 0; k < 6; ++k) corners[k] = embed(lattice(k + 1));
-        for (int32_t k = 0; k < 6; ++k) out[k] = {centre, corners[k], corners[(k + 1) % 6]};
-        return 6;
-    }
-    const int32_t a = shape.firstVisible;
-    if (shape.kind == CellKind::BoundarySemi) {
-        const glm::vec3 centre = embed(shape.center);
-        glm::vec3 corners[4];
-        for (int32_t k = 0; k < 4; ++k) corners[k] = embed(lattice(a + k));
-        for (int32_t k = 0; k < 3; ++k) out[k] = {centre, corners[k], corners[k + 1]};
-        return 3;
+    const int32_t a = shape.kind == CellKind::Full ? 1 : shape.firstVisible;
+    if (shape.kind != CellKind::Semi) {
+        const int32_t corners = shape.kind == CellKind::Full ? 6 : 4;
+        out[0] = embed(shape.center);
+        for (int32_t k = 0; k < corners; ++k) out[1 + k] = embed(lattice(a + k));
+        return 1 + corners;
     }
     const LatticePoint points[4] = {lattice(a), lattice(a + 1), lattice(a + 2), lattice(a + 3)};
     const int32_t start = semiFanFromSecondCorner(embedding, points[0], points[1], points[2], points[3]) ? 1 : 0;
-    glm::vec3 fan[4]; // as HexMesh::setCorners
-    for (int32_t i = 0; i < 4; ++i) fan[i] = embed(points[(start + i) % 4]);
-    out[0] = {fan[0], fan[1], fan[2]};
-    out[1] = {fan[0], fan[2], fan[3]};
+    for (int32_t i = 0; i < 4; ++i) out[i] = embed(points[(start + i) % 4]); // as HexMesh::setCorners
+    return 4;
+}
+
+// The drawn triangles of a shape from its fan's vertices (shapeVertices).
+int32_t shapeTriangles(const CellShape& shape, const glm::vec3 v[7], Triangle out[6]) {
+    if (shape.kind == CellKind::Full) {
+        for (int32_t k = 0; k < 6; ++k) out[k] = {v[0], v[1 + k], v[1 + (k + 1) % 6]};
+        return 6;
+    }
+    if (shape.kind == CellKind::BoundarySemi) {
+        for (int32_t k = 0; k < 3; ++k) out[k] = {v[0], v[1 + k], v[2 + k]};
+        return 3;
+    }
+    out[0] = {v[0], v[1], v[2]};
+    out[1] = {v[0], v[2], v[3]};
     return 2;
 }
 
@@ -204,25 +209,26 @@ SlopeBox slopesUnder(const Heightfield& field, Embedding embedding, const Footpr
 
 CellError computeCellError(const Heightfield& field, Embedding embedding, const MinMaxPyramid& pyramid,
                            const CellShape& shape) {
-    Triangle triangles[6];
-    const int32_t count = shapeTriangles(field, embedding, shape, triangles);
-    const Footprint f = footprintOf(field, embedding, shape);
+    glm::vec3 vertices[7];
+    const int32_t vertexCount = shapeVertices(field, embedding, shape, vertices);
     float vertexLow = 1e30f, vertexHigh = -1e30f;
-    for (int32_t t = 0; t < count; ++t)
-        for (const glm::vec3& v : {triangles[t].a, triangles[t].b, triangles[t].c})
-            vertexLow = std::min(vertexLow, v.y), vertexHigh = std::max(vertexHigh, v.y);
+    for (int32_t k = 0; k < vertexCount; ++k) vertexLow = std::min(vertexLow, vertices[k].y), vertexHigh = std::max(vertexHigh, vertices[k].y);
+    CellError e{vertexLow, vertexHigh, 0.0f};
+    // A hexagon (or boundary half) of step 1: its triangles are elementary triangles of the
+    // lattice, whose only samples are their corners (Pick's theorem: no room for another), and
+    // the drawn surface passes through them. Its error is exactly 0, which judge() reads as a
+    // verdict that no camera changes. (A step-1 semi-hexagon's long edge runs through a sample
+    // that is not a corner: it is scanned.)
+    if (shape.step == 1 && shape.kind != CellKind::Semi) return e;
+    Triangle triangles[6];
+    const int32_t count = shapeTriangles(shape, vertices, triangles);
+    const Footprint f = footprintOf(field, embedding, shape);
     const double sx = field.scale().spacingX, sy = field.scale().spacingY;
     const double samples = (double(f.x1 - f.x0) / sx + 1.0) * (double(f.z1 - f.z0) / sy + 1.0);
-    CellError e{vertexLow, vertexHigh, 0.0f};
     const bool outside = f.x1 < 0.0f || f.z1 < 0.0f || f.x0 > float((field.width() - 1) * sx) ||
                          f.z0 > float((field.height() - 1) * sy);
-    if (outside || (shape.step == 1 && shape.kind != CellKind::Semi)) {
-        // No sample lies under the cell: nothing to approximate. Or a hexagon (or boundary
-        // half) of step 1: its triangles are elementary triangles of the lattice, whose only
-        // samples are their corners (Pick's theorem: no room for another), and the drawn surface
-        // passes through them. Its error is exactly 0, which judge() reads as a verdict that no
-        // camera changes. (A step-1 semi-hexagon's long edge runs through a sample that is not
-        // a corner: it is scanned.)
+    if (outside) {
+        // No sample lies under the cell: nothing to approximate.
     } else if (samples <= kExactScanSamples) {
         double error = 0.0;
         for (int32_t t = 0; t < count; ++t) scanTriangle(field, embedding, triangles[t], error, e.low, e.high);
