@@ -158,6 +158,46 @@ void scanTriangle(const Heightfield& field, Embedding embedding, const Triangle&
     error = std::max({error, above, -below});
 }
 
+// A step-1 semi-hexagon (half of a step-1 hexagon, cut along a diameter) holds the samples of
+// that hexagon on its side of the cut: its four corners and, when it lies on that side or on
+// the cut, the hexagon's centre (Pick's theorem: a step-1 hexagon holds its seven lattice
+// points and no other). Only the centre can be off the drawn surface: its distance from the
+// triangle it lies in (or lies on the edge of), with the plane of scanTriangle, and its
+// height; nothing when it lies outside the cell or the field.
+void measureStepOneSemiCentre(const Heightfield& field, Embedding embedding, const CellShape& shape, const Triangle triangles[2],
+                              double& error, float& low, float& high) {
+    const int32_t j = sampleColumn(shape.center), i = shape.center.r;
+    if (i < 0 || i >= field.height() || j < 0 || j >= field.width()) return;
+    const glm::vec3 p = embedLatticePoint(field, embedding, shape.center);
+    // The centre is on the cut or half a sample off it: a margin well over the rounding of
+    // float positions (a few ulps of the coordinates) and well under that half sample.
+    const double margin = 1e-3 * std::min(field.scale().spacingX, field.scale().spacingY) +
+                          1e-6 * std::max(std::abs(double(p.x)), std::abs(double(p.z)));
+    for (int32_t k = 0; k < 2; ++k) {
+        const Triangle& t = triangles[k];
+        const double ax = t.a.x, ay = t.a.y, az = t.a.z;
+        const double ux = double(t.b.x) - ax, uy = double(t.b.y) - ay, uz = double(t.b.z) - az;
+        const double vx = double(t.c.x) - ax, vy = double(t.c.y) - ay, vz = double(t.c.z) - az;
+        const double ny = uz * vx - ux * vz;
+        if (std::abs(ny) < 1e-12) continue;
+        // Inside, or within the margin of an edge: on the inner side of each edge, or close to it.
+        const glm::vec3* corners[3] = {&t.a, &t.b, &t.c};
+        bool inside = true;
+        for (int32_t e = 0; e < 3 && inside; ++e) {
+            const glm::vec3 &from = *corners[e], &to = *corners[(e + 1) % 3];
+            const double ex = double(to.x) - from.x, ez = double(to.z) - from.z;
+            const double side = (ex * (double(p.z) - from.z) - ez * (double(p.x) - from.x)) * (ny > 0.0 ? -1.0 : 1.0);
+            inside = side >= -margin * std::sqrt(ex * ex + ez * ez);
+        }
+        if (!inside) continue;
+        const double nx = uy * vz - uz * vy, nz = ux * vy - uy * vx;
+        const double kx = nx / ny, kz = nz / ny;
+        const double d = double(p.y) - (ay - kz * (double(p.z) - az) - kx * (double(p.x) - ax));
+        error = std::max(error, std::abs(d));
+        low = std::min(low, p.y), high = std::max(high, p.y);
+    }
+}
+
 } // namespace
 
 CellShape shapeOfCell(const HexMesh& mesh, int32_t cell) {
@@ -222,6 +262,12 @@ CellError computeCellError(const Heightfield& field, Embedding embedding, const 
     if (shape.step == 1 && shape.kind != CellKind::Semi) return e;
     Triangle triangles[6];
     const int32_t count = shapeTriangles(shape, vertices, triangles);
+    if (shape.step == 1) { // a semi-hexagon (the hexagons returned above)
+        double error = 0.0;
+        measureStepOneSemiCentre(field, embedding, shape, triangles, error, e.low, e.high);
+        e.error = nextUp(float(error));
+        return e;
+    }
     const Footprint f = footprintOf(field, embedding, shape);
     const double sx = field.scale().spacingX, sy = field.scale().spacingY;
     const double samples = (double(f.x1 - f.x0) / sx + 1.0) * (double(f.z1 - f.z0) / sy + 1.0);
