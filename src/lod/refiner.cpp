@@ -199,6 +199,15 @@ void Refiner::retestChanged() {
     auto retestIfUnblocked = [&](int32_t n) {
         if ((state_[size_t(n)] & kBlocked) && mesh_->isLive(n) && mesh_->canMerge(n)) testCell(n);
     };
+    // A neighbour whose merge test failed on a half of a ring cell: when c is that ring cell
+    // (or now one, or no longer), the merge may pass. Its own verdict still holds. (A wanted
+    // merge is checked by canMerge before it starts, and the halves it makes are tested.)
+    auto retestMergeOf = [&](int32_t n) {
+        if (!(state_[size_t(n)] & kHalfFailed) || !mesh_->isLive(n) || records_[size_t(n)].rho < 0.0f) return;
+        HeldOwn held;
+        const bool kept = ownHolds(records_[size_t(n)], held);
+        testCell(n, kept ? &held : nullptr);
+    };
     for (size_t k = 0; k < fresh_.size(); ++k) {
         const int32_t c = fresh_[k];
         state_[size_t(c)] &= uint8_t(~kFresh);
@@ -208,6 +217,7 @@ void Refiner::retestChanged() {
             if (o == kNone) continue;
             const int32_t n = hexIdx(o);
             retestIfUnblocked(n);
+            retestMergeOf(n);
             const Hexagon& ring = mesh_->cell(n);
             if (ring.kind != CellKind::Full || ring.splitCount != 0) continue; // not a ring cell a merge breaks
             for (int32_t across : ring.opposite)
@@ -527,7 +537,10 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
         if (!blocked) {
             merge = parentVerdict(c, mergeDist);
             blocked = merge.pass && !pending && !mesh_->canMerge(c);
-            if (merge.pass && !blocked) merge = halvesVerdict(c, merge, mergeDist);
+            if (merge.pass && !blocked) {
+                merge = halvesVerdict(c, merge, mergeDist);
+                if (!merge.pass) state |= kHalfFailed;
+            }
         }
         if (blocked) {
             state |= kBlocked;

@@ -121,6 +121,7 @@ private:
         kPending = 8,  // a merge of this record is fading its vertices out
         kCancel = 16,  // the pending merge is no longer wanted
         kFresh = 32,   // in fresh_, not retested yet (an operation logs a cell more than once)
+        kHalfFailed = 64, // its merge failed on a half of a ring cell: tested again when a ring cell changes
     };
     // A verdict of the criteria (§5) for one bound, and how far it holds.
     struct Verdict {
