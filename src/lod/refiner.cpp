@@ -769,7 +769,6 @@ bool Refiner::sweep() {
                 continue;
             }
             if (odometers_.age(r.stamp) >= CameraOdometers::kHistory / 2) renew(r);
-            if (state_[size_t(c)] & kWanted) mergeList_.push_back(c); // queued before, the budget ran out
         }
         for (int32_t i = 0; i < count; ++i) {
             if (i + kAhead < count) {
@@ -847,7 +846,9 @@ bool Refiner::coarsen() {
         }
     }
     const bool done = k == mergeList_.size();
-    mergeList_.clear(); // what is left keeps kWanted: the next sweep queues it again
+    // What the budget left keeps kWanted and its place, for the next update's coarsening (the
+    // sweep does not look for it: that was a read of every cell's state in every update).
+    mergeList_.erase(mergeList_.begin(), mergeList_.begin() + ptrdiff_t(k));
     return done;
 }
 
@@ -862,8 +863,7 @@ UpdateStats Refiner::update() {
     noteChanges(false); // changed outside an operation of ours: their records are due
     checkSettings();
     if (odometers_.beginUpdate()) invalidateAll(); // stamps wrapped: no record can be read back
-    heap_.clear();
-    mergeList_.clear();
+    heap_.clear(); // (merges a budget left wait in mergeList_)
     if (morph_) morph_->advance(); // one frame per update
     // One sweep tests what is due; then the work it queued, and what that work makes, until
     // none is left. Converged: the sweep went full circle within this update and every

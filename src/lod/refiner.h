@@ -203,7 +203,7 @@ private:
     std::vector<int32_t> changes_, fresh_; // the mesh's change log; the changed cells to retest, each once
     std::vector<int32_t> mergeChanged_;    // mergeNow's copy of the log of one merge
     std::vector<Candidate> heap_;     // failing cells, largest projected error on top
-    std::vector<int32_t> mergeList_;  // cells whose merge is wanted
+    std::vector<int32_t> mergeList_;  // cells whose merge is wanted (kept across updates when a budget stopped the coarsening)
     Geomorph* morph_ = nullptr;
     std::vector<PendingMerge> pending_;
     std::vector<int32_t> freedScratch_;
