@@ -51,6 +51,17 @@ public:
         const Spent& since = spent_[stamp % kHistory];
         return double(since.along[int32_t(odometer)]) + double(since.turn) * (double(dist) + double(since.along[0]));
     }
+    /// usedUp's figure (used() in floats), and the distance the eye travelled, since the
+    /// update `stamp`: the sweep's reading of one record. Used infinite for a stamp older
+    /// than kHistory.
+    struct Reading {
+        float used, travel;
+    };
+    Reading read(uint32_t stamp, Odometer odometer, float dist) const {
+        const Spent& since = spent_[stamp % kHistory];
+        const float used = since.along[int32_t(odometer)] + since.turn * (dist + since.along[0]);
+        return {age(stamp) >= kHistory ? std::numeric_limits<float>::infinity() : used, since.along[0]};
+    }
     /// Whether a record's margin rho (kept as storedMargin gives it) is used up: used() in
     /// floats, the sweep's check of every record. A verdict holds for movement up to its
     /// margin, so a margin of 0 still holds while the camera stands still; rho < 0 is used up

@@ -56,6 +56,7 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     cache_.setHeightRange(field.minHeight(), field.maxHeight());
     releasePool(records_);
     releasePool(state_);
+    summaries_.release();
     currentTau_ = settings_.tau;
     last_ = {};
     pending_.clear(); // their vertices belong to the old mesh
@@ -100,19 +101,21 @@ void Refiner::setView(const View& view) {
 
 void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<int32_t>& vertexMap) {
     const size_t cells = size_t(mesh_->cellCapacity());
-    // The sweep goes on from the first kept cell at or after where it stopped.
+    // The sweep goes on from the group of the first kept cell at or after where it stopped.
     int32_t cursor = 0;
-    for (size_t c = size_t(std::max(sweepCursor_, 0)); c < cellMap.size(); ++c) {
+    for (size_t c = size_t(std::max(sweepCursor_, 0)) * SweepSummaries::kGroup; c < cellMap.size(); ++c) {
         if (cellMap[c] != kNone) {
             cursor = cellMap[c];
             break;
         }
     }
-    sweepCursor_ = cursor;
+    sweepCursor_ = SweepSummaries::groupOf(cursor);
     const size_t room = mesh_->cellPoolRoom(); // the records' arrays keep the pool's room
     cache_.renumber(cellMap, cells, room);
     renumberPool(records_, cellMap, cells, room);
     renumberPool(state_, cellMap, cells, room);
+    summaries_.release(); // every group read again
+    summaries_.resize(cells, room);
     // A merge whose cell or vertex is gone (the mesh changed around it in the last update) keeps
     // kNone for it: the next update calls it off, as it would have without the renumbering.
     for (PendingMerge& merge : pending_) {
@@ -134,19 +137,22 @@ void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<in
 }
 
 size_t Refiner::memoryBytes() const {
-    return cache_.memoryBytes() + records_.capacity() * sizeof(TestRecord) + state_.capacity() + CameraOdometers::memoryBytes() +
+    return cache_.memoryBytes() + records_.capacity() * sizeof(TestRecord) + state_.capacity() + summaries_.memoryBytes() +
+           CameraOdometers::memoryBytes() +
            (changes_.capacity() + fresh_.capacity() + freedScratch_.capacity() + mergeList_.capacity() + mergeChanged_.capacity()) *
                sizeof(int32_t) +
            heap_.capacity() * sizeof(Candidate) + pending_.capacity() * sizeof(PendingMerge) + pyramid_.memoryBytes();
 }
 
 size_t Refiner::liveMemoryBytes() const {
-    return size_t(mesh_ ? mesh_->liveCells() : 0) * (sizeof(RefinementCache::Entry) + sizeof(TestRecord) + 1) +
+    const size_t cells = size_t(mesh_ ? mesh_->liveCells() : 0);
+    return cells * (sizeof(RefinementCache::Entry) + sizeof(TestRecord) + 1) + size_t(double(cells) * SweepSummaries::bytesPerRecord() + 0.5) +
            pending_.size() * sizeof(PendingMerge) + pyramid_.memoryBytes() + CameraOdometers::memoryBytes();
 }
 
 void Refiner::invalidateAll() {
     for (TestRecord& r : records_) r.rho = -1.0f;
+    summaries_.readAll();
     farRef_ = view_.farPlane;
 }
 
@@ -170,10 +176,11 @@ void Refiner::noteChanges(bool collect) {
         reserveLikePool(records_, capacity, room), reserveLikePool(state_, capacity, room);
         records_.resize(capacity);
         state_.resize(capacity, 0);
+        summaries_.resize(capacity, room);
     }
     for (int32_t c : changes_) {
         cache_.invalidate(c);
-        records_[size_t(c)].rho = -1.0f;
+        makeDue(c);
         state_[size_t(c)] &= uint8_t(kPending | kCancel | kFresh); // a pending merge is checked by stillFrees
         if (collect) queueFresh(c);
     }
@@ -401,6 +408,12 @@ void Refiner::setRecord(int32_t c, double margin, Odometer odometer, double dist
     r.dist16 = halfBitsUp(roundedUp(dist));
     r.rho = recordMargin(margin);
     r.ownRho16 = halfBitsDown(recordMargin(ownMargin));
+    summaries_.set(c, odometer, r.dist(), r.rho);
+}
+
+void Refiner::makeDue(int32_t c) {
+    records_[size_t(c)].rho = -1.0f;
+    summaries_.madeDue(c);
 }
 
 // Re-stamps a record that is not due before its stamp gets too old (CameraOdometers::renewed).
@@ -516,7 +529,7 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
     state &= uint8_t(kPending | kCancel | kFresh);
     if (!own.pass && canRefine(c)) {
         state |= kFailing;
-        records_[size_t(c)].rho = -1.0f;
+        makeDue(c);
         heap_.push_back({float(own.pixels), c});
         std::push_heap(heap_.begin(), heap_.end(), lowerPriority);
         if (state & kPending) state |= kCancel;
@@ -675,7 +688,7 @@ void Refiner::callOff(const PendingMerge& merge) {
     state_[size_t(merge.cell)] &= uint8_t(~(kPending | kCancel));
     // Due, and tested again in this update (retestChanged follows advancePendingMerges): an
     // update that called a merge off must not report converged before its cell's test.
-    records_[size_t(merge.cell)].rho = -1.0f;
+    makeDue(merge.cell);
     queueFresh(merge.cell);
 }
 
@@ -742,33 +755,44 @@ void Refiner::restart() {
 // the last one stopped; with a time budget it takes at most half of it, so that refining gets
 // the rest. False when the budget stopped it (the cursor keeps the place).
 //
-// The records go by in chunks: first the chunk's due cells are found, then tested, each a few
-// places ahead of its test asking for the cell's records (a due cell is a few in a hundred, so
-// each test began with cache misses on the cell, its fan, its bound and its centre vertex).
+// The records go by in groups, each passed over when its summary says that none of its
+// records can be due (sweep_summaries.h), else read, its due cells found and its summary made
+// again. The due cells of a few groups are then tested, each a few places ahead of its test
+// asking for the cell's records (a due cell is a few in a hundred, so each test began with
+// cache misses on the cell, its fan, its bound and its centre vertex).
 bool Refiner::sweep() {
-    const int32_t end = int32_t(records_.size());
+    constexpr int32_t kGroup = SweepSummaries::kGroup, kChunk = 4, kAhead = 4;
+    const int32_t end = int32_t(records_.size()), groups = summaries_.groups();
     const double halfBudget = 0.5 * settings_.budgetMs;
-    const int32_t begin = sweepCursor_ < end ? sweepCursor_ : 0;
-    auto recordAt = [&](int32_t k) { return begin + k < end ? begin + k : begin + k - end; };
-    constexpr int32_t kChunk = 256, kAhead = 4;
-    int32_t due[kChunk];
-    for (int32_t chunk = 0; chunk < end; chunk += kChunk) {
+    const int32_t first = sweepCursor_ < groups ? sweepCursor_ : 0;
+    auto groupAt = [&](int32_t k) { return first + k < groups ? first + k : first + k - groups; };
+    int32_t due[kChunk * kGroup];
+    SweepSummaries::Maker maker;
+    for (int32_t chunk = 0; chunk < groups; chunk += kChunk) {
         if (chunk > 0 && settings_.budgetMs > 0.0 && progressed()) {
             const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
             if (ms >= halfBudget) {
-                sweepCursor_ = recordAt(chunk);
+                sweepCursor_ = groupAt(chunk);
                 return false;
             }
         }
         int32_t count = 0;
-        for (int32_t k = chunk; k < std::min(end, chunk + kChunk); ++k) {
-            const int32_t c = recordAt(k);
-            TestRecord& r = records_[size_t(c)];
-            if (odometers_.usedUp(r.stamp, Odometer(r.odometer), r.dist(), r.rho)) { // rho < 0: due
-                due[count++] = c;
-                continue;
+        for (int32_t k = chunk; k < std::min(groups, chunk + kChunk); ++k) {
+            const int32_t g = groupAt(k);
+            if (summaries_.canSkip(g, odometers_)) continue;
+            maker.start();
+            for (int32_t c = g * kGroup; c < std::min(end, (g + 1) * kGroup); ++c) {
+                TestRecord& r = records_[size_t(c)];
+                const CameraOdometers::Reading reading = odometers_.read(r.stamp, Odometer(r.odometer), r.dist());
+                if (reading.used > r.rho) { // CameraOdometers::usedUp (rho < 0: due)
+                    due[count++] = c;
+                    continue;
+                }
+                const uint32_t age = odometers_.age(r.stamp);
+                maker.add(Odometer(r.odometer), r.rho, r.dist(), age, reading);
+                if (age >= CameraOdometers::kHistory / 2) renew(r);
             }
-            if (odometers_.age(r.stamp) >= CameraOdometers::kHistory / 2) renew(r);
+            maker.finish(summaries_, g, odometers_); // the due cells' tests below add their records to it
         }
         for (int32_t i = 0; i < count; ++i) {
             if (i + kAhead < count) {
@@ -789,7 +813,7 @@ bool Refiner::sweep() {
             testCell(c, kept ? &held : nullptr);
         }
     }
-    sweepCursor_ = begin;
+    sweepCursor_ = first;
     return true;
 }
 

@@ -30,6 +30,7 @@
 #include "lod/float_rounding.h"
 #include "lod/cell_bounds.h"
 #include "lod/refinement_cache.h"
+#include "lod/sweep_summaries.h"
 #include "stream/geomorph.h"
 #include "mesh/hex_mesh.h"
 #include "field/min_max_pyramid.h"
@@ -173,6 +174,7 @@ private:
     };
     int32_t ringHalves(int32_t cell, RingHalf out[6]) const;
     void setRecord(int32_t cell, double margin, Odometer odometer, double dist, double ownMargin);
+    void makeDue(int32_t cell); // tested at the next sweep (or by retestChanged)
     void renew(TestRecord& record) const;
     void invalidateAll();
     void checkSettings();
@@ -199,6 +201,7 @@ private:
     double planeNormX_ = std::sqrt(2.0), planeNormY_ = std::sqrt(2.0); // |(1, tanHalf)|: the side planes' normals, per view
     RefinementCache cache_;
     std::vector<TestRecord> records_;
+    SweepSummaries summaries_; // of records_, by groups the sweep may pass over
     std::vector<uint8_t> state_;
     std::vector<int32_t> changes_, fresh_; // the mesh's change log; the changed cells to retest, each once
     std::vector<int32_t> mergeChanged_;    // mergeNow's copy of the log of one merge
@@ -221,7 +224,7 @@ private:
     double checkedTau_ = 0.0;
     bool settingsChecked_ = false;
 
-    // Where the loop stands, kept across updates.
+    // Where the loop stands, kept across updates: the group of records the sweep goes on from.
     int32_t sweepCursor_ = 0;
 
     // Per-update state.

@@ -2,6 +2,7 @@
 // a bound on the view-space movement of a centre, also after a record is renewed, and a side
 // plane's odometer leaves the cells beside a camera that flies forward alone.
 #include "lod/camera_odometers.h"
+#include "lod/sweep_summaries.h"
 
 #include <gtest/gtest.h>
 
@@ -46,12 +47,16 @@ struct Record {
 
 struct Flight {
     double forward, sideways, climb, turn; // metres and radians a frame (random share added)
+    int32_t pauseFrom = 0, pauseTo = 0;    // the camera holds still in these frames
 };
 
 // Flies `frames` frames, testing the spheres whose records are used up as the refiner does, and
 // checks that every verdict still holds while its record is not. Returns the number of tests.
 // planes false: every margin on the travel odometer, as before the side planes had their own.
-int64_t fly(const Flight& flight, int32_t frames, uint32_t seed, bool planes = true) {
+// summaries: the records are swept in groups as Refiner::sweep does, passing over the groups
+// whose summary (sweep_summaries.h) says none can be due; the verdicts of the records passed
+// over must hold too. skipped: the groups passed over.
+int64_t fly(const Flight& flight, int32_t frames, uint32_t seed, bool planes = true, bool summaries = false, int64_t* skipped = nullptr) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     std::vector<glm::dvec3> centres;
@@ -61,6 +66,9 @@ int64_t fly(const Flight& flight, int32_t frames, uint32_t seed, bool planes = t
         radii.push_back(40.0 * (unit(rng) + 1.0));
     }
     std::vector<Record> records(centres.size());
+    SweepSummaries groups;
+    groups.resize(records.size(), records.size());
+    SweepSummaries::Maker maker;
     CameraOdometers odometers;
     glm::dvec3 eye(0.0, 0.0, 0.0);
     double yaw = 0.0, pitch = 0.17;
@@ -73,35 +81,53 @@ int64_t fly(const Flight& flight, int32_t frames, uint32_t seed, bool planes = t
             view = next;
         }
         EXPECT_FALSE(odometers.beginUpdate());
-        for (size_t i = 0; i < centres.size(); ++i) {
-            Record& r = records[i];
-            double s[4];
-            slacks(view, centres[i], radii[i], s);
-            if (!odometers.usedUp(r.stamp, r.odometer, r.dist, r.rho)) {
-                const bool holds = r.plane >= 0 ? s[r.plane] < 0.0 : std::min({s[0], s[1], s[2], s[3]}) >= 0.0;
-                if (!holds) {
-                    ADD_FAILURE() << (r.plane >= 0 ? "culled by a plane until its margin is used up" : "inside while its margin lasts")
-                                  << ": sphere " << i << ", frame " << frame;
-                    return -1;
+        for (int32_t g = 0; g < groups.groups(); ++g) {
+            const int32_t first = g * SweepSummaries::kGroup, end = std::min(int32_t(records.size()), first + SweepSummaries::kGroup);
+            const bool skip = summaries && groups.canSkip(g, odometers);
+            if (skip && skipped) ++*skipped;
+            maker.start();
+            std::vector<int32_t> due;
+            for (int32_t i = first; i < end; ++i) {
+                Record& r = records[size_t(i)];
+                double s[4];
+                slacks(view, centres[size_t(i)], radii[size_t(i)], s);
+                if (skip || !odometers.usedUp(r.stamp, r.odometer, r.dist, r.rho)) {
+                    const bool holds = r.plane >= 0 ? s[r.plane] < 0.0 : std::min({s[0], s[1], s[2], s[3]}) >= 0.0;
+                    if (!holds) {
+                        ADD_FAILURE() << (r.plane >= 0 ? "culled by a plane until its margin is used up" : "inside while its margin lasts")
+                                      << (skip ? " (its group passed over)" : "") << ": sphere " << i << ", frame " << frame;
+                        return -1;
+                    }
+                    if (skip) continue;
+                    maker.add(r.odometer, r.rho, r.dist, odometers.age(r.stamp), odometers.read(r.stamp, r.odometer, r.dist));
+                    if (odometers.age(r.stamp) >= CameraOdometers::kHistory / 2) {
+                        const CameraOdometers::Renewed renewed = odometers.renewed(r.stamp, r.odometer, r.dist, r.rho);
+                        r.dist = renewed.dist, r.rho = renewed.rho, r.stamp = odometers.stamp();
+                    }
+                    continue;
                 }
-                if (odometers.age(r.stamp) >= CameraOdometers::kHistory / 2) {
-                    const CameraOdometers::Renewed renewed = odometers.renewed(r.stamp, r.odometer, r.dist, r.rho);
-                    r.dist = renewed.dist, r.rho = renewed.rho, r.stamp = odometers.stamp();
+                due.push_back(i);
+            }
+            if (!skip) maker.finish(groups, g, odometers);
+            for (int32_t i : due) {
+                Record& r = records[size_t(i)];
+                double s[4];
+                slacks(view, centres[size_t(i)], radii[size_t(i)], s);
+                ++tests; // as Refiner::judge: the plane the sphere lies furthest outside, or the slack inside
+                double outside = 0.0, inside = 1e30;
+                r.plane = -1;
+                for (int32_t p = 0; p < 4; ++p) {
+                    inside = std::min(inside, s[p]);
+                    if (-s[p] > outside) outside = -s[p], r.plane = p;
                 }
-                continue;
+                r.odometer = r.plane >= 0 && planes ? Odometer(int32_t(Odometer::RightPlane) + r.plane) : Odometer::Travel;
+                r.stamp = odometers.stamp();
+                r.dist = float(glm::length(centres[size_t(i)] - view.eye) + 1.0); // rounded up, loosely
+                r.rho = CameraOdometers::storedMargin(r.plane >= 0 ? outside : inside);
+                groups.set(i, r.odometer, r.dist, r.rho);
             }
-            ++tests; // as Refiner::judge: the plane the sphere lies furthest outside, or the slack inside
-            double outside = 0.0, inside = 1e30;
-            r.plane = -1;
-            for (int32_t p = 0; p < 4; ++p) {
-                inside = std::min(inside, s[p]);
-                if (-s[p] > outside) outside = -s[p], r.plane = p;
-            }
-            r.odometer = r.plane >= 0 && planes ? Odometer(int32_t(Odometer::RightPlane) + r.plane) : Odometer::Travel;
-            r.stamp = odometers.stamp();
-            r.dist = float(glm::length(centres[i] - view.eye) + 1.0); // rounded up, loosely
-            r.rho = CameraOdometers::storedMargin(r.plane >= 0 ? outside : inside);
         }
+        if (frame >= flight.pauseFrom && frame < flight.pauseTo) continue;
         eye += glm::dvec3(std::sin(yaw), 0.0, -std::cos(yaw)) * (flight.forward * (1.0 + 0.5 * unit(rng))) +
                glm::dvec3(std::cos(yaw), 0.0, std::sin(yaw)) * (flight.sideways * unit(rng)) + glm::dvec3(0, flight.climb * unit(rng), 0);
         yaw += flight.turn * unit(rng);
@@ -129,6 +155,26 @@ TEST(CameraOdometers, FlyingForwardLeavesTheCellsBesideTheViewAlone) {
                 (long long)withPlanes, (long long)travelOnly);
     ASSERT_GT(withPlanes, 0);
     EXPECT_LT(2 * withPlanes, travelOnly);
+}
+
+// The refiner's sweep passes over groups of records by their summaries: every verdict it
+// passes over still holds, and it does pass over groups.
+TEST(CameraOdometers, AGroupSummaryPassesOverNoRecordThatIsDue) {
+    const int32_t frames = int32_t(CameraOdometers::kHistory) * 2 + 40;
+    int64_t skipped = 0;
+    fly({30.0, 10.0, 5.0, 0.0}, frames, 1, true, true, &skipped);
+    fly({30.0, 10.0, 5.0, 0.004}, frames, 2, true, true, &skipped);
+    fly({0.0, 40.0, 20.0, 0.01}, frames, 3, true, true, &skipped);
+    fly({-30.0, 0.0, 0.0, 0.0}, frames, 4, true, true, &skipped);
+    fly({3.0, 1.0, 0.5, 0.0005}, frames, 6, true, true, &skipped); // slowly: most groups passed over
+    fly({40.0, 0.0, 0.0, 0.03}, frames, 7, true, true, &skipped);  // turning hard while flying on
+    // Still for longer than the odometers' history between two stretches of flight: what the
+    // first stretch used up is not forgotten.
+    Flight pause{60.0, 20.0, 10.0, 0.002};
+    pause.pauseFrom = 30, pause.pauseTo = 30 + int32_t(CameraOdometers::kHistory) + 100;
+    fly(pause, pause.pauseTo + 60, 8, true, true, &skipped);
+    std::printf("groups passed over: %lld\n", (long long)skipped);
+    EXPECT_GT(skipped, frames * 10);
 }
 
 TEST(CameraOdometers, AStillCameraUsesNoMargin) {

@@ -490,11 +490,15 @@ TEST(Refiner, NothingIsLeftToDoWhenAnUpdateSaysConverged) {
         for (bool converged = false; !converged; ++updates) {
             ASSERT_LT(updates, 2000);
             const UpdateStats stats = lod.refiner.update();
-            if (budget > 0) ASSERT_LE(stats.operations, budget);
+            if (budget > 0) {
+                ASSERT_LE(stats.operations, budget);
+            }
             merges += stats.merges;
             converged = stats.converged;
         }
-        if (budget > 0) EXPECT_GT(updates, 10);
+        if (budget > 0) {
+            EXPECT_GT(updates, 10);
+        }
         EXPECT_GT(merges, 1000);
         EXPECT_LT(lod.mesh.triangleCount() * 4, near * 3);
         lod.refiner.restart();
