@@ -139,7 +139,7 @@ void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<in
 size_t Refiner::memoryBytes() const {
     return cache_.memoryBytes() + records_.capacity() * sizeof(TestRecord) + state_.capacity() + summaries_.memoryBytes() +
            CameraOdometers::memoryBytes() +
-           (changes_.capacity() + fresh_.capacity() + freedScratch_.capacity() + mergeList_.capacity() + mergeChanged_.capacity()) *
+           (changes_.capacity() + fresh_.capacity() + looked_.capacity() + freedScratch_.capacity() + mergeList_.capacity() + mergeChanged_.capacity()) *
                sizeof(int32_t) +
            heap_.capacity() * sizeof(Candidate) + pending_.capacity() * sizeof(PendingMerge) + pyramid_.memoryBytes();
 }
@@ -181,7 +181,7 @@ void Refiner::noteChanges(bool collect) {
     for (int32_t c : changes_) {
         cache_.invalidate(c);
         makeDue(c);
-        state_[size_t(c)] &= uint8_t(kPending | kCancel | kFresh); // a pending merge is checked by stillFrees
+        state_[size_t(c)] &= uint8_t(kPending | kCancel | kFresh | kLooked); // a pending merge is checked by stillFrees
         if (collect) queueFresh(c);
     }
     changes_.clear();
@@ -203,14 +203,23 @@ void Refiner::queueFresh(int32_t c) {
 // is joined or merged away. A merge test does not depend on the view to find that out, so
 // blocked cells culled by a side plane may keep that plane's long margin.
 void Refiner::retestChanged() {
+    // Each cell around the changes is looked at once (the changed cells are neighbours of
+    // each other, and the mesh does not change during this).
+    auto firstLook = [&](int32_t n) {
+        uint8_t& state = state_[size_t(n)];
+        if (state & kLooked) return false;
+        state |= kLooked;
+        looked_.push_back(n);
+        return true;
+    };
     auto retestIfUnblocked = [&](int32_t n) {
-        if ((state_[size_t(n)] & kBlocked) && mesh_->isLive(n) && mesh_->canMerge(n)) testCell(n);
+        if ((state_[size_t(n)] & kBlocked) && firstLook(n) && mesh_->isLive(n) && mesh_->canMerge(n)) testCell(n);
     };
     // A neighbour whose merge test failed on a half of a ring cell: when c is that ring cell
     // (or now one, or no longer), the merge may pass. Its own verdict still holds. (A wanted
     // merge is checked by canMerge before it starts, and the halves it makes are tested.)
     auto retestMergeOf = [&](int32_t n) {
-        if (!(state_[size_t(n)] & kHalfFailed) || !mesh_->isLive(n) || records_[size_t(n)].rho < 0.0f) return;
+        if (!(state_[size_t(n)] & kHalfFailed) || !firstLook(n) || !mesh_->isLive(n) || records_[size_t(n)].rho < 0.0f) return;
         HeldOwn held;
         const bool kept = ownHolds(records_[size_t(n)], held);
         testCell(n, kept ? &held : nullptr);
@@ -232,6 +241,8 @@ void Refiner::retestChanged() {
         }
     }
     fresh_.clear();
+    for (int32_t n : looked_) state_[size_t(n)] &= uint8_t(~kLooked);
+    looked_.clear();
 }
 
 CellError Refiner::parentBound(int32_t c, const CellShape& parent) {
@@ -526,7 +537,7 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
         }
     }
     uint8_t& state = state_[size_t(c)];
-    state &= uint8_t(kPending | kCancel | kFresh);
+    state &= uint8_t(kPending | kCancel | kFresh | kLooked);
     if (!own.pass && canRefine(c)) {
         state |= kFailing;
         makeDue(c);
@@ -911,6 +922,7 @@ UpdateStats Refiner::update() {
     trimExcess(heap_, room);
     trimExcess(mergeList_, room);
     trimExcess(fresh_, room);
+    trimExcess(looked_, room);
     trimExcess(changes_, room);
     last_.operations = operations_;
     last_.splits = int32_t(mesh_->counts().splits - before.splits);

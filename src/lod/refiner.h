@@ -123,6 +123,7 @@ private:
         kCancel = 16,  // the pending merge is no longer wanted
         kFresh = 32,   // in fresh_, not retested yet (an operation logs a cell more than once)
         kHalfFailed = 64, // its merge failed on a half of a ring cell: tested again when a ring cell changes
+        kLooked = 128,    // in looked_: retestChanged has looked at it
     };
     // A verdict of the criteria (§5) for one bound, and how far it holds.
     struct Verdict {
@@ -204,6 +205,7 @@ private:
     SweepSummaries summaries_; // of records_, by groups the sweep may pass over
     std::vector<uint8_t> state_;
     std::vector<int32_t> changes_, fresh_; // the mesh's change log; the changed cells to retest, each once
+    std::vector<int32_t> looked_;          // the cells around the changes that retestChanged looked at
     std::vector<int32_t> mergeChanged_;    // mergeNow's copy of the log of one merge
     std::vector<Candidate> heap_;     // failing cells, largest projected error on top
     std::vector<int32_t> mergeList_;  // cells whose merge is wanted (kept across updates when a budget stopped the coarsening)
