@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "views.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -14,19 +16,9 @@
 #include <glm/geometric.hpp>
 
 using namespace hexlod;
+using test::viewAt;
 
 namespace {
-
-View viewAt(const glm::dvec3& eye, double yaw, double pitch) {
-    View v;
-    v.eye = eye;
-    v.forward = {std::cos(pitch) * std::sin(yaw), -std::sin(pitch), -std::cos(pitch) * std::cos(yaw)};
-    v.right = glm::normalize(glm::cross(v.forward, glm::dvec3(0, 1, 0)));
-    v.up = glm::cross(v.right, v.forward);
-    v.tanHalfY = 0.57735026918962573;
-    v.tanHalfX = v.tanHalfY * 16.0 / 9.0;
-    return v;
-}
 
 // The slacks of the four side planes for a sphere, in Refiner::judge's order (negative: the
 // sphere lies outside that plane).
