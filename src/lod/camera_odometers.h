@@ -66,11 +66,7 @@ public:
     /// floats, the sweep's check of every record. A verdict holds for movement up to its
     /// margin, so a margin of 0 still holds while the camera stands still; rho < 0 is used up
     /// at once, as is a stamp older than kHistory.
-    bool usedUp(uint32_t stamp, Odometer odometer, float dist, float rho) const {
-        if (age(stamp) >= kHistory) return true;
-        const Spent& since = spent_[stamp % kHistory];
-        return since.along[int32_t(odometer)] + since.turn * (dist + since.along[0]) > rho;
-    }
+    bool usedUp(uint32_t stamp, Odometer odometer, float dist, float rho) const { return read(stamp, odometer, dist).used > rho; }
     /// A margin as a record keeps it: rounded down, less the relative 2^-20 that covers the
     /// rounding of usedUp's three float operations (each within 2^-24 of the exact result).
     static float storedMargin(double margin) { return roundedDown(double(roundedDown(margin)) * (1.0 - 0x1p-20)); }

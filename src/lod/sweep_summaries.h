@@ -62,7 +62,7 @@ public:
     /// renew, and none due under the summary.
     bool canSkip(int32_t group, const CameraOdometers& odometers) const {
         const Summary& s = summaries_[size_t(group)];
-        if (s.reach < 0.0f || odometers.age(s.oldest) >= CameraOdometers::kHistory / 2) return false;
+        if (s.reach < 0.0f || odometers.age(s.made) + s.oldestAge >= CameraOdometers::kHistory / 2) return false;
         for (int32_t o = 0; o < kOdometers; ++o)
             if (s.slack[o] < std::numeric_limits<float>::max() && odometers.usedUp(s.made, Odometer(o), s.reach, s.slack[o])) return false;
         return true;
@@ -91,7 +91,7 @@ public:
         void finish(SweepSummaries& into, int32_t group, const CameraOdometers& odometers) const {
             Summary& s = into.summaries_[size_t(group)];
             s.made = odometers.stamp();
-            s.oldest = (odometers.stamp() - oldestAge_) & ((1u << CameraOdometers::kStampBits) - 1u);
+            s.oldestAge = oldestAge_;
             for (int32_t o = 0; o < kOdometers; ++o) {
                 // A margin no camera uses up (a parked record, a verdict forever) stays so.
                 // storedMargin takes a relative 2^-20 off, more than the subtraction's rounding.
@@ -113,7 +113,7 @@ public:
 private:
     struct Summary {
         uint32_t made = 0;   // the update the summary was made in
-        uint32_t oldest = 0; // the oldest stamp of its records
+        uint32_t oldestAge = 0; // the age of its oldest record then (updates)
         float reach = -1.0f; // the largest distance of a centre (renewed); < 0: read the group
         float slack[kOdometers] = {}; // per odometer, the least margin left (renewed); the largest float: none
     };
