@@ -60,6 +60,24 @@ int32_t floorToInt(double v) {
     return t - (double(t) > v ? 1 : 0);
 }
 
+// The plane of a triangle, as a height over the ground: h = ay - kx (x - ax) - kz (z - az).
+// ny: y of (b - a) x (c - a), twice the signed ground area. Flat (vertical) when ny is ~0.
+struct TrianglePlane {
+    double ax, ay, az, kx, kz, ny;
+    bool vertical() const { return std::abs(ny) < 1e-12; }
+    double height(double x, double z) const { return ay - kz * (z - az) - kx * (x - ax); }
+};
+
+TrianglePlane planeOf(const Triangle& t) {
+    const double ax = t.a.x, ay = t.a.y, az = t.a.z;
+    const double ux = double(t.b.x) - ax, uy = double(t.b.y) - ay, uz = double(t.b.z) - az;
+    const double vx = double(t.c.x) - ax, vy = double(t.c.y) - ay, vz = double(t.c.z) - az;
+    const double ny = uz * vx - ux * vz;
+    if (std::abs(ny) < 1e-12) return {ax, ay, az, 0.0, 0.0, ny};
+    const double nx = uy * vz - uz * vy, nz = ux * vy - uy * vx;
+    return {ax, ay, az, nx / ny, nz / ny, ny};
+}
+
 // One edge of a triangle on the ground, for finding where each sample row crosses it.
 struct GroundEdge {
     double zLow, zHigh;   // rows within these (a hair wider) cross the edge
@@ -99,13 +117,9 @@ void scanRow(const Sample* row, int32_t j0, int32_t j1, double sx, double height
 // its vertices sample and what its full refinement reproduces.
 void scanTriangle(const Heightfield& field, Embedding embedding, const Triangle& t, double& error, float& low, float& high) {
     const double sx = field.scale().spacingX, sy = field.scale().spacingY;
-    const double ax = t.a.x, ay = t.a.y, az = t.a.z;
-    const double ux = double(t.b.x) - ax, uy = double(t.b.y) - ay, uz = double(t.b.z) - az;
-    const double vx = double(t.c.x) - ax, vy = double(t.c.y) - ay, vz = double(t.c.z) - az;
-    const double ny = uz * vx - ux * vz; // y of (u x v): twice the ground area
-    if (std::abs(ny) < 1e-12) return;
-    const double nx = uy * vz - uz * vy, nz = ux * vy - uy * vx;
-    const double kx = nx / ny, kz = nz / ny; // the plane: h = ay - kx (x - ax) - kz (z - az)
+    const TrianglePlane plane = planeOf(t);
+    if (plane.vertical()) return;
+    const double ax = plane.ax, ay = plane.ay, az = plane.az, kx = plane.kx, kz = plane.kz;
     // Samples within a hair of an edge belong to both triangles: none may fall between cells.
     const double eps = 1e-4;
     const double zMin = std::min({double(t.a.z), double(t.b.z), double(t.c.z)});
@@ -162,7 +176,7 @@ void scanTriangle(const Heightfield& field, Embedding embedding, const Triangle&
 // that hexagon on its side of the cut: its four corners and, when it lies on that side or on
 // the cut, the hexagon's centre (Pick's theorem: a step-1 hexagon holds its seven lattice
 // points and no other). Only the centre can be off the drawn surface: its distance from the
-// triangle it lies in (or lies on the edge of), with the plane of scanTriangle, and its
+// triangle it lies in (or lies on the edge of), on the plane scanTriangle uses, and its
 // height; nothing when it lies outside the cell or the field.
 void measureStepOneSemiCentre(const Heightfield& field, Embedding embedding, const CellShape& shape, const Triangle triangles[2],
                               double& error, float& low, float& high) {
@@ -175,24 +189,19 @@ void measureStepOneSemiCentre(const Heightfield& field, Embedding embedding, con
                           1e-6 * std::max(std::abs(double(p.x)), std::abs(double(p.z)));
     for (int32_t k = 0; k < 2; ++k) {
         const Triangle& t = triangles[k];
-        const double ax = t.a.x, ay = t.a.y, az = t.a.z;
-        const double ux = double(t.b.x) - ax, uy = double(t.b.y) - ay, uz = double(t.b.z) - az;
-        const double vx = double(t.c.x) - ax, vy = double(t.c.y) - ay, vz = double(t.c.z) - az;
-        const double ny = uz * vx - ux * vz;
-        if (std::abs(ny) < 1e-12) continue;
+        const TrianglePlane plane = planeOf(t);
+        if (plane.vertical()) continue;
         // Inside, or within the margin of an edge: on the inner side of each edge, or close to it.
         const glm::vec3* corners[3] = {&t.a, &t.b, &t.c};
         bool inside = true;
         for (int32_t e = 0; e < 3 && inside; ++e) {
             const glm::vec3 &from = *corners[e], &to = *corners[(e + 1) % 3];
             const double ex = double(to.x) - from.x, ez = double(to.z) - from.z;
-            const double side = (ex * (double(p.z) - from.z) - ez * (double(p.x) - from.x)) * (ny > 0.0 ? -1.0 : 1.0);
+            const double side = (ex * (double(p.z) - from.z) - ez * (double(p.x) - from.x)) * (plane.ny > 0.0 ? -1.0 : 1.0);
             inside = side >= -margin * std::sqrt(ex * ex + ez * ez);
         }
         if (!inside) continue;
-        const double nx = uy * vz - uz * vy, nz = ux * vy - uy * vx;
-        const double kx = nx / ny, kz = nz / ny;
-        const double d = double(p.y) - (ay - kz * (double(p.z) - az) - kx * (double(p.x) - ax));
+        const double d = double(p.y) - plane.height(p.x, p.z);
         error = std::max(error, std::abs(d));
         low = std::min(low, p.y), high = std::max(high, p.y);
     }
