@@ -219,10 +219,7 @@ void Refiner::retestChanged() {
     // (or now one, or no longer), the merge may pass. Its own verdict still holds. (A wanted
     // merge is checked by canMerge before it starts, and the halves it makes are tested.)
     auto retestMergeOf = [&](int32_t n) {
-        if (!(state_[size_t(n)] & kHalfFailed) || !firstLook(n) || !mesh_->isLive(n) || records_[size_t(n)].rho < 0.0f) return;
-        HeldOwn held;
-        const bool kept = ownHolds(records_[size_t(n)], held);
-        testCell(n, kept ? &held : nullptr);
+        if ((state_[size_t(n)] & kHalfFailed) && firstLook(n) && mesh_->isLive(n) && records_[size_t(n)].rho >= 0.0f) retest(n);
     };
     for (size_t k = 0; k < fresh_.size(); ++k) {
         const int32_t c = fresh_[k];
@@ -446,6 +443,14 @@ bool Refiner::ownHolds(const TestRecord& r, HeldOwn& held) const {
     // above kForever, which is what testCell and setRecord read as forever.
     held = {double(own.rho), double(own.dist)};
     return true;
+}
+
+// Tests a cell again, keeping its own verdict when that still holds. True when it was kept.
+bool Refiner::retest(int32_t c) {
+    HeldOwn held;
+    const bool kept = ownHolds(records_[size_t(c)], held);
+    testCell(c, kept ? &held : nullptr);
+    return kept;
 }
 
 // Whether a step could refine the cell: false at the finest level (the split cannot happen,
@@ -818,10 +823,7 @@ bool Refiner::sweep() {
                 continue;
             }
             ++visits_;
-            HeldOwn held;
-            const bool kept = ownHolds(records_[size_t(c)], held);
-            ownKept_ += kept ? 1 : 0;
-            testCell(c, kept ? &held : nullptr);
+            ownKept_ += retest(c) ? 1 : 0;
         }
     }
     sweepCursor_ = first;

@@ -165,6 +165,7 @@ private:
     };
     bool ownHolds(const TestRecord& record, HeldOwn& held) const;
     void testCell(int32_t cell, const HeldOwn* held = nullptr);
+    bool retest(int32_t cell); // testCell keeping the own verdict when ownHolds; true when kept
     Verdict parentVerdict(int32_t cell, double& dist);
     Verdict halvesVerdict(int32_t cell, Verdict parent, double& dist);
     // A joined hexagon in a merge candidate's ring that its merge breaks, and the half it leaves.
