@@ -13,6 +13,8 @@ void CameraOdometers::move(const View& from, const View& to) {
     stepAlong_[0] += glm::length(step);
     const glm::dvec3 dr = to.right - from.right, du = to.up - from.up, df = to.forward - from.forward;
     stepTurn_ += std::sqrt(glm::dot(dr, dr) + glm::dot(du, du) + glm::dot(df, df));
+    // The world's up vector in view coordinates is (right.y, up.y, forward.y).
+    stepTilt_ += glm::length(glm::dvec3(dr.y, du.y, df.y));
     // In the new view's coordinates a fixed point moves by -v, besides the turn's share. A side
     // plane's slack (Refiner::judge: e.g. (tanX z - x) / sqrt(1 + tanX^2) for the right plane)
     // has a unit gradient n; the point moves inwards across it by -n.v, never more than |v|.
@@ -26,12 +28,20 @@ void CameraOdometers::move(const View& from, const View& to) {
 bool CameraOdometers::beginUpdate() {
     // The camera's step since the last update counts for every update before this one; the
     // sums are rounded up, so what a record is charged never falls short.
+    const int32_t steady = int32_t(Odometer::Steady);
     for (Spent& since : spent_) {
-        for (int32_t k = 0; k < 5; ++k) since.along[k] = roundedUp(double(since.along[k]) + stepAlong_[k]);
-        since.turn = roundedUp(double(since.turn) + stepTurn_);
+        for (int32_t k = 0; k < steady; ++k) {
+            since.along[k] = roundedUp(double(since.along[k]) + stepAlong_[k]);
+            since.turn[k] = roundedUp(double(since.turn[k]) + stepTurn_);
+        }
+        since.along[steady] = roundedUp(double(since.along[steady]) + stepAlong_[0]);
+        since.turn[steady] = roundedUp(double(since.turn[steady]) + stepTurn_ + kTiltWeight * stepTilt_);
     }
+    // A tilt well below what any margin notices (a camera built with the same pitch every
+    // frame still wobbles in the last bits) does not end a quiet stretch; it is charged anyway.
+    quietUpdates_ = stepTilt_ > 1e-9 ? 0u : quietUpdates_ + 1u;
     for (double& a : stepAlong_) a = 0.0;
-    stepTurn_ = 0.0;
+    stepTurn_ = stepTilt_ = 0.0;
     stamp_ = (stamp_ + 1u) & kStampMask;
     spent_[stamp_ % kHistory] = Spent{};
     return stamp_ == 0u;

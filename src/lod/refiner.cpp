@@ -259,13 +259,15 @@ SlopeBox Refiner::ownSlopes(int32_t c, const Footprint& footprint) {
 
 // The criteria of §5 for one bound (see view_criteria.h), and the margin of the verdict: how
 // far the sphere's centre may move in view coordinates (the eye by as much in the world, the
-// world's up vector in view coordinates by at most margin / dist) before the verdict can change.
+// world's up vector in view coordinates by at most CameraOdometers::tiltAllowed(margin, dist)
+// on the odometer the verdict is measured by) before the verdict can change.
 //  - outside a side plane of the frustum: the distance beyond it (the planes are fixed in view
 //    coordinates; near and far planes move with the camera, so they give no margin);
 //  - back-facing: the smallest (v.n - r|n|)/|n| over the slope box's corners (v = centre - eye);
 //  - projected error within tau: a margin m for which the bound over every sphere of radius
-//    r + m around the centre, at depth >= z - r - m and with the up vector turned by up to
-//    m / dist, stays within tau (projectedErrorPixels' corner argument, plus the turn's share);
+//    r + m around the centre, at depth >= z - r - m and with the up vector tilted by up to
+//    CameraOdometers::tiltAllowed(m, dist, moving), stays within tau (projectedErrorPixels' corner
+//    argument, plus the tilt's share);
 //  - failing (asked for with failMargin, for merge tests): a margin that keeps the sphere
 //    inside the side planes and the far plane, not back-facing, and a lower bound of the
 //    projected error (at the centre's screen tangent, the nearest depth at most
@@ -275,7 +277,9 @@ SlopeBox Refiner::ownSlopes(int32_t c, const Footprint& footprint) {
 Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin,
                                 double& distOut) const {
     ++tested_;
+    const Odometer moving = odometers_.moving();
     Verdict v;
+    v.odometer = moving;
     if (settings_.viewIndependent) {
         v.pass = !(e.error > settings_.maxError);
         v.pixels = e.error;
@@ -304,7 +308,7 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
         // Culled until the centre comes back across that plane: the plane's odometer.
         if (outside > 0.0) return {true, 0.0, outside, Odometer(int32_t(Odometer::RightPlane) + culledBy)};
         // In front of the near plane: an own test only (merge tests do not use the near plane).
-        if ((!failMargin && z + radius < view_.nearPlane) || z - radius > view_.farPlane) return {true, 0.0, 0.0};
+        if ((!failMargin && z + radius < view_.nearPlane) || z - radius > view_.farPlane) return {true, 0.0, 0.0, moving};
     }
     double front = kForever; // how far the eye may move before a front-facing cell can turn its back
     if (settings_.backfaceCulling && slopes && slopes->known()) {
@@ -319,7 +323,7 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
                 back = std::min(back, s);
                 frontFacing = std::max(frontFacing, -s);
             }
-        if (backFacing) return {true, 0.0, back};
+        if (backFacing) return {true, 0.0, back, moving};
         front = frontFacing;
     }
     const double error = double(e.error) * settings_.verticalScale;
@@ -354,8 +358,8 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
             const double gx = std::max((ux - xLo * uz) * (ux - xLo * uz), (ux - xHi * uz) * (ux - xHi * uz));
             const double gy = std::max((uy - yLo * uz) * (uy - yLo * uz), (uy - yHi * uz) * (uy - yHi * uz));
             const double tMax2 = std::max(xLo * xLo, xHi * xHi) + std::max(yLo * yLo, yHi * yHi);
-            const double turn = dist > 0.0 ? m / dist : kForever;
-            return view_.pixelsPerTangent * error * (std::sqrt(gx + gy) + turn * std::sqrt(1.0 + tMax2)) * toLow;
+            const double tilt = dist > 0.0 ? CameraOdometers::tiltAllowed(m, dist, moving) : kForever;
+            return view_.pixelsPerTangent * error * (std::sqrt(gx + gy) + tilt * std::sqrt(1.0 + tMax2)) * toLow;
         };
         // At that cap the depth alone has used up the room the error had below tau, so the bound
         // there (its other terms only grow with m) is above tau: no need to try it.
@@ -376,8 +380,8 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
         if (z - m < mergeNearest_ || (settings_.culling && !farCoversData_ && z - radius + m > kFarShrink * farRef_)) return 0.0;
         const double dt = m * tangentSpeed / (z - m);
         const double tc = tangent + dt;
-        const double turn = dist > 0.0 ? m / dist : kForever;
-        const double g = pc - std::abs(uz) * dt - turn * std::sqrt(1.0 + tc * tc);
+        const double tilt = dist > 0.0 ? CameraOdometers::tiltAllowed(m, dist, moving) : kForever;
+        const double g = pc - std::abs(uz) * dt - tilt * std::sqrt(1.0 + tc * tc);
         return g > 0.0 ? view_.pixelsPerTangent * error * g / std::max(z - radius + m, mergeNearest_) : 0.0;
     };
     const double atCenter = view_.pixelsPerTangent * error * pc / std::max(z - radius, mergeNearest_);
@@ -396,7 +400,9 @@ void Refiner::tighten(Verdict& into, const Verdict& other) {
         into.margin = other.margin, into.odometer = other.odometer;
         return;
     }
-    if (into.odometer != other.odometer) into.odometer = Odometer::Travel;
+    // Steady charges at least what any other odometer does, travel at least what a plane's does.
+    if (into.odometer != other.odometer)
+        into.odometer = into.odometer == Odometer::Steady || other.odometer == Odometer::Steady ? Odometer::Steady : Odometer::Travel;
     into.margin = std::min(into.margin, other.margin);
 }
 
@@ -512,7 +518,7 @@ Refiner::Verdict Refiner::halvesVerdict(int32_t c, Verdict all, double& dist) {
             return half;
         }
         // One record for all: the smallest margin, checked with the largest distance (a turn
-        // then moves each centre by at most the record's allowance; see testCell).
+        // then moves and tilts each centre by at most the record's allowance; see testCell).
         tighten(all, half);
         dist = std::max(dist, halfDist);
     }
@@ -585,10 +591,11 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
                 state |= kCancel;
             }
             // One record for both tests: the smaller margin, checked with the larger distance.
-            // Not due means (movement on the record's odometer) + (turn) * (D + travel) < rho for
-            // D >= every tested centre's distance at the test: each centre moved less than
-            // rho <= its margin, and the view turned by less than rho / D <= margin / its
-            // distance, as judge() assumed. A plane's odometer only when every verdict is a cull
+            // Not due means (movement on the record's odometer) + (turn, plus kTiltWeight tilt
+            // when steady) * (D + travel) < rho for D >= every tested centre's distance at the
+            // test: each centre moved less than rho <= its margin, and the up vector tilted by
+            // less than tiltAllowed(rho, D) <= tiltAllowed(margin, its distance), as judge()
+            // assumed (tighten keeps the odometer that charges the most). A plane's odometer only when every verdict is a cull
             // by that plane (tighten).
             tighten(record, merge);
             dist = std::max(dist, mergeDist);

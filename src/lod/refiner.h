@@ -9,7 +9,7 @@
 // stops when the time or operation budget is spent and the next update resumes.
 //
 // Deferred re-testing: each test leaves a margin per cell, the distance the cell's centre may
-// move in view space (eye travel plus the turn of the view times the cell's distance) before
+// move in view space (eye travel plus the turn and tilt of the view times the cell's distance) before
 // the test's verdict can change; a compact record per cell (12 bytes, swept in index order)
 // says when the camera has used it up. A cell culled by a side plane counts only the eye's
 // movement towards that plane's inside (camera_odometers.h). The margins are bounds (see

@@ -27,7 +27,11 @@ namespace hexlod {
 class SweepSummaries {
 public:
     static constexpr int32_t kGroup = 64;
+    // One slot per odometer, but travel and steady share one, read as steady (which charges
+    // at least what travel does): a summary stays 32 bytes.
     static constexpr int32_t kOdometers = 5;
+    static int32_t slotOf(Odometer odometer) { return odometer == Odometer::Steady ? 0 : int32_t(odometer); }
+    static Odometer odometerOf(int32_t slot) { return slot == 0 ? Odometer::Steady : Odometer(slot); }
 
     static int32_t groupOf(int32_t record) { return record / kGroup; }
     int32_t groups() const { return int32_t(summaries_.size()); }
@@ -53,7 +57,7 @@ public:
     void set(int32_t record, Odometer odometer, float dist, float rho) {
         Summary& s = summaries_[size_t(groupOf(record))];
         if (s.reach < 0.0f) return; // read anyway
-        float& slack = s.slack[int32_t(odometer)];
+        float& slack = s.slack[slotOf(odometer)];
         slack = std::min(slack, rho);
         s.reach = std::max(s.reach, dist);
     }
@@ -64,7 +68,7 @@ public:
         const Summary& s = summaries_[size_t(group)];
         if (s.reach < 0.0f || odometers.age(s.made) + s.oldestAge >= CameraOdometers::kHistory / 2) return false;
         for (int32_t o = 0; o < kOdometers; ++o)
-            if (s.slack[o] < std::numeric_limits<float>::max() && odometers.usedUp(s.made, Odometer(o), s.reach, s.slack[o])) return false;
+            if (s.slack[o] < std::numeric_limits<float>::max() && odometers.usedUp(s.made, odometerOf(o), s.reach, s.slack[o])) return false;
         return true;
     }
 
@@ -83,7 +87,7 @@ public:
             // What is left, and how far the centre can be now (CameraOdometers::renewed), in
             // floats: the reading is within three roundings (each 2^-24) of the exact figure, a
             // relative 2^-21 more covers them; finish() covers the rounding of these two.
-            float& left = left_[int32_t(odometer)];
+            float& left = left_[slotOf(odometer)];
             left = std::min(left, rho - reading.used * (1.0f + 0x1p-21f));
             reach_ = std::max(reach_, dist + reading.travel);
             oldestAge_ = std::max(oldestAge_, age);

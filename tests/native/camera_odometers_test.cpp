@@ -1,6 +1,7 @@
 // The camera's odometers (issue 12, deferred re-testing): a margin measured on an odometer is
-// a bound on the view-space movement of a centre, also after a record is renewed, and a side
-// plane's odometer leaves the cells beside a camera that flies forward alone.
+// a bound on the view-space movement of a centre and on the tilt of the world's up vector in
+// view coordinates, also after a record is renewed, and a side plane's odometer leaves the
+// cells beside a camera that flies forward alone.
 #include "lod/camera_odometers.h"
 #include "lod/sweep_summaries.h"
 
@@ -35,11 +36,18 @@ struct Record {
     Odometer odometer = Odometer::Travel;
     float dist = 0.0f, rho = -1.0f;
     int32_t plane = -1; // culled by this plane; -1: inside every side plane
+    float testedDist = 0.0f, rho0 = 0.0f; // the distance and margin it was tested with
+    Odometer testedOdometer = Odometer::Travel;
+    glm::dvec3 up{0.0};      // the world's up vector in view coordinates when tested
 };
+
+glm::dvec3 upInView(const View& v) { return {v.right.y, v.up.y, v.forward.y}; }
 
 struct Flight {
     double forward, sideways, climb, turn; // metres and radians a frame (random share added)
     int32_t pauseFrom = 0, pauseTo = 0;    // the camera holds still in these frames
+    double nod = 0.0;                      // radians of pitch a frame, up or down (beside 0.2 turn)
+    int32_t nodPeriod = 0;                 // > 0: nodding only in the last quarter of each period
 };
 
 // Flies `frames` frames, testing the spheres whose records are used up as the refiner does, and
@@ -48,7 +56,9 @@ struct Flight {
 // summaries: the records are swept in groups as Refiner::sweep does, passing over the groups
 // whose summary (sweep_summaries.h) says none can be due; the verdicts of the records passed
 // over must hold too. skipped: the groups passed over.
-int64_t fly(const Flight& flight, int32_t frames, uint32_t seed, bool planes = true, bool summaries = false, int64_t* skipped = nullptr) {
+// steady: the tests whose verdicts went on the steady odometer (the camera had not tilted).
+int64_t fly(const Flight& flight, int32_t frames, uint32_t seed, bool planes = true, bool summaries = false, int64_t* skipped = nullptr,
+            int64_t* steady = nullptr) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     std::vector<glm::dvec3> centres;
@@ -65,7 +75,7 @@ int64_t fly(const Flight& flight, int32_t frames, uint32_t seed, bool planes = t
     glm::dvec3 eye(0.0, 0.0, 0.0);
     double yaw = 0.0, pitch = 0.17;
     View view = viewAt(eye, yaw, pitch);
-    int64_t tests = 0;
+    int64_t tests = 0, steadyTests = 0, otherTests = 0;
     for (int32_t frame = 0; frame < frames; ++frame) {
         if (frame > 0) {
             const View next = viewAt(eye, yaw, pitch);
@@ -90,6 +100,15 @@ int64_t fly(const Flight& flight, int32_t frames, uint32_t seed, bool planes = t
                                       << (skip ? " (its group passed over)" : "") << ": sphere " << i << ", frame " << frame;
                         return -1;
                     }
+                    // What judge() assumed of the up vector for the margin it gave (rho is at
+                    // most that margin until a renewal, which only lowers what is left).
+                    const double tilt = glm::length(upInView(view) - r.up);
+                    if (r.rho >= 0.0f && tilt > CameraOdometers::tiltAllowed(r.rho0, r.testedDist, r.testedOdometer)) {
+                        ADD_FAILURE() << "the up vector tilted by " << tilt << " while a margin of " << r.rho0 << " at "
+                                      << r.testedDist << " m lasts" << (skip ? " (its group passed over)" : "") << ": sphere " << i
+                                      << ", frame " << frame;
+                        return -1;
+                    }
                     if (skip) continue;
                     maker.add(r.odometer, r.rho, r.dist, odometers.age(r.stamp), odometers.read(r.stamp, r.odometer, r.dist));
                     if (odometers.age(r.stamp) >= CameraOdometers::kHistory / 2) {
@@ -112,10 +131,12 @@ int64_t fly(const Flight& flight, int32_t frames, uint32_t seed, bool planes = t
                     inside = std::min(inside, s[p]);
                     if (-s[p] > outside) outside = -s[p], r.plane = p;
                 }
-                r.odometer = r.plane >= 0 && planes ? Odometer(int32_t(Odometer::RightPlane) + r.plane) : Odometer::Travel;
+                r.odometer = r.plane >= 0 && planes ? Odometer(int32_t(Odometer::RightPlane) + r.plane) : odometers.moving();
                 r.stamp = odometers.stamp();
                 r.dist = float(glm::length(centres[size_t(i)] - view.eye) + 1.0); // rounded up, loosely
                 r.rho = CameraOdometers::storedMargin(r.plane >= 0 ? outside : inside);
+                r.testedDist = r.dist, r.rho0 = r.rho, r.up = upInView(view), r.testedOdometer = r.odometer;
+                ++(r.odometer == Odometer::Steady ? steadyTests : otherTests);
                 groups.set(i, r.odometer, r.dist, r.rho);
             }
         }
@@ -123,8 +144,10 @@ int64_t fly(const Flight& flight, int32_t frames, uint32_t seed, bool planes = t
         eye += glm::dvec3(std::sin(yaw), 0.0, -std::cos(yaw)) * (flight.forward * (1.0 + 0.5 * unit(rng))) +
                glm::dvec3(std::cos(yaw), 0.0, std::sin(yaw)) * (flight.sideways * unit(rng)) + glm::dvec3(0, flight.climb * unit(rng), 0);
         yaw += flight.turn * unit(rng);
-        pitch += 0.2 * flight.turn * unit(rng);
+        const bool nodding = flight.nodPeriod == 0 || 4 * (frame % flight.nodPeriod) >= 3 * flight.nodPeriod;
+        pitch += 0.2 * flight.turn * unit(rng) + (nodding ? flight.nod * unit(rng) : 0.0);
     }
+    if (steady) *steady += steadyTests;
     return tests;
 }
 
@@ -137,6 +160,19 @@ TEST(CameraOdometers, AVerdictHoldsUntilItsOdometerUsesUpTheMarginAlsoAfterRenew
     fly({30.0, 10.0, 5.0, 0.004}, frames, 2);    // and turning
     fly({0.0, 40.0, 20.0, 0.01}, frames, 3);     // sideways and turning
     fly({-30.0, 0.0, 0.0, 0.0}, frames, 4);      // backwards
+    Flight nodding{0.0, 0.0, 0.0, 0.002};         // looking up and down from one place
+    nodding.nod = 0.01;
+    fly(nodding, frames, 9);
+    // Flying straight and level, then nodding for a while: the verdicts made on the steady
+    // odometer are charged for the tilt that follows.
+    Flight bursts{30.0, 10.0, 0.0, 0.0};
+    bursts.nod = 0.01, bursts.nodPeriod = 40;
+    int64_t steady = 0;
+    const int64_t tests = fly(bursts, frames, 10, true, false, nullptr, &steady);
+    std::printf("flying level with bursts of nodding: %lld tests, %lld of them on the steady odometer\n", (long long)tests,
+                (long long)steady);
+    EXPECT_GT(steady, tests / 10);
+    EXPECT_LT(steady, tests);
 }
 
 TEST(CameraOdometers, FlyingForwardLeavesTheCellsBesideTheViewAlone) {
@@ -160,6 +196,9 @@ TEST(CameraOdometers, AGroupSummaryPassesOverNoRecordThatIsDue) {
     fly({-30.0, 0.0, 0.0, 0.0}, frames, 4, true, true, &skipped);
     fly({3.0, 1.0, 0.5, 0.0005}, frames, 6, true, true, &skipped); // slowly: most groups passed over
     fly({40.0, 0.0, 0.0, 0.03}, frames, 7, true, true, &skipped);  // turning hard while flying on
+    Flight bursts{30.0, 10.0, 0.0, 0.0};                            // level, with bursts of nodding
+    bursts.nod = 0.01, bursts.nodPeriod = 40;
+    fly(bursts, frames, 10, true, true, &skipped);
     // Still for longer than the odometers' history between two stretches of flight: what the
     // first stretch used up is not forgotten.
     Flight pause{60.0, 20.0, 10.0, 0.002};

@@ -426,6 +426,39 @@ TEST(Refiner, DeferredReTestsKeepEverySampleWithinTauUnderAMovingTurningCamera) 
     }
 }
 
+// The margins also bound the tilt of the up vector (CameraOdometers::tiltAllowed): a camera
+// that looks up and down from one place, which tilts it at every frame, keeps every sample in
+// view within tau.
+TEST(Refiner, DeferredReTestsKeepEverySampleWithinTauWhileTheCameraLooksUpAndDown) {
+    auto field = test::loadFixture(test::kGrandCanyon);
+    ASSERT_NE(field, nullptr);
+    Lod lod(*field, Embedding::Exact);
+    lod.refiner.settings().backfaceCulling = false; // every sample in the frustum counts
+    Camera cam = lowOblique(*field, 10.0 * field->scale().spacingX);
+    const double reach = glm::length(cam.target - cam.eye);
+    lod.refiner.setView(viewOf(cam));
+    ASSERT_GT(converge(lod.refiner), 0);
+    int64_t tested = 0;
+    for (int32_t frame = 1; frame <= 36; ++frame) {
+        // Nodding by about a degree a frame, three frames down then three up, and yawing a little.
+        cam.target.y += (frame % 6 < 3 ? -0.02 : 0.02) * reach;
+        cam.target.x += 0.002 * reach;
+        lod.refiner.setView(viewOf(cam));
+        const UpdateStats stats = lod.refiner.update();
+        ASSERT_TRUE(stats.converged) << "frame " << frame;
+        tested += stats.cellsTested;
+        if (frame % 12 != 0) continue;
+        const BoundCheck check = checkTauBound(lod.mesh, *field, cam, 1.0);
+        std::printf("looking up and down, frame %d: %lld samples, worst %.3f px, %lld triangles\n", frame,
+                    (long long)check.samplesInView, check.worstPixels, (long long)lod.mesh.triangleCount());
+        EXPECT_GT(check.samplesInView, 0);
+        EXPECT_EQ(check.uncovered, 0);
+        EXPECT_LE(check.worstPixels, 1.0 + 1e-6) << "frame " << frame;
+    }
+    std::printf("looking up and down: %lld criteria evaluations for %d live cells, over 36 frames\n", (long long)tested,
+                lod.mesh.liveCells());
+}
+
 // Issue 12: with an operation budget, the mesh after every update is the same on every run.
 TEST(Refiner, AnOperationBudgetGivesTheSameMeshEveryRun) {
     auto field = test::loadFixture(test::kGrandCanyon);

@@ -43,7 +43,7 @@ Tally fly(uint32_t seed, int32_t frames, double speed, double turn) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     auto randomRecord = [&](uint32_t stamp, Record& r) {
         r.stamp = stamp;
-        r.odometer = Odometer(int32_t(unit(rng) * 4.999));
+        r.odometer = Odometer(int32_t(unit(rng) * 5.999));
         r.dist = float(100.0 + 5000.0 * unit(rng));
         const double kind = unit(rng);
         r.rho = kind < 0.05 ? std::numeric_limits<float>::max() : CameraOdometers::storedMargin(std::exp(8.0 * unit(rng)));
