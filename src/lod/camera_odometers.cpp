@@ -37,9 +37,10 @@ bool CameraOdometers::beginUpdate() {
         since.along[steady] = roundedUp(double(since.along[steady]) + stepAlong_[0]);
         since.turn[steady] = roundedUp(double(since.turn[steady]) + stepTurn_ + kTiltWeight * stepTilt_);
     }
-    // A tilt well below what any margin notices (a camera built with the same pitch every
-    // frame still wobbles in the last bits) does not end a quiet stretch; it is charged anyway.
-    quietUpdates_ = stepTilt_ > 1e-9 ? 0u : quietUpdates_ + 1u;
+    // A tilt well below what a person pitching the view makes (a milliradian a frame and more)
+    // does not end a quiet stretch: the page's camera keeps its eye and target in 32-bit floats,
+    // so a level flight still tilts by up to about 3e-7 a frame. It is charged anyway.
+    quietUpdates_ = stepTilt_ > kQuietTilt ? 0u : quietUpdates_ + 1u;
     for (double& a : stepAlong_) a = 0.0;
     stepTurn_ = stepTilt_ = 0.0;
     stamp_ = (stamp_ + 1u) & kStampMask;

@@ -50,6 +50,7 @@ public:
     static constexpr int32_t kOdometers = 6;
     static constexpr double kTiltWeight = 8.0;
     static constexpr uint32_t kQuietUpdates = 8;
+    static constexpr double kQuietTilt = 1e-5; // a tilt per update below this is no pitching
 
     /// The largest tilt of the world's up vector in view coordinates (the length of its change)
     /// that a margin on `odometer` allows for a centre at distance `dist` (see above).
