@@ -595,8 +595,8 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
             // when steady) * (D + travel) < rho for D >= every tested centre's distance at the
             // test: each centre moved less than rho <= its margin, and the up vector tilted by
             // less than tiltAllowed(rho, D) <= tiltAllowed(margin, its distance), as judge()
-            // assumed (tighten keeps the odometer that charges the most). A plane's odometer only when every verdict is a cull
-            // by that plane (tighten).
+            // assumed. tighten keeps the odometer that charges the most: a plane's only when
+            // every verdict is a cull by that plane.
             tighten(record, merge);
             dist = std::max(dist, mergeDist);
         }

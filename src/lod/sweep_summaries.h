@@ -29,7 +29,7 @@ public:
     static constexpr int32_t kGroup = 64;
     // One slot per odometer, but travel and steady share one, read as steady (which charges
     // at least what travel does): a summary stays 32 bytes.
-    static constexpr int32_t kOdometers = 5;
+    static constexpr int32_t kSlots = 5;
     static int32_t slotOf(Odometer odometer) { return odometer == Odometer::Steady ? 0 : int32_t(odometer); }
     static Odometer odometerOf(int32_t slot) { return slot == 0 ? Odometer::Steady : Odometer(slot); }
 
@@ -67,7 +67,7 @@ public:
     bool canSkip(int32_t group, const CameraOdometers& odometers) const {
         const Summary& s = summaries_[size_t(group)];
         if (s.reach < 0.0f || odometers.age(s.made) + s.oldestAge >= CameraOdometers::kHistory / 2) return false;
-        for (int32_t o = 0; o < kOdometers; ++o)
+        for (int32_t o = 0; o < kSlots; ++o)
             if (s.slack[o] < std::numeric_limits<float>::max() && odometers.usedUp(s.made, odometerOf(o), s.reach, s.slack[o])) return false;
         return true;
     }
@@ -96,7 +96,7 @@ public:
             Summary& s = into.summaries_[size_t(group)];
             s.made = odometers.stamp();
             s.oldestAge = oldestAge_;
-            for (int32_t o = 0; o < kOdometers; ++o) {
+            for (int32_t o = 0; o < kSlots; ++o) {
                 // A margin no camera uses up (a parked record, a verdict forever) stays so.
                 // storedMargin takes a relative 2^-20 off, more than the subtraction's rounding.
                 const float left = left_[o];
@@ -106,7 +106,7 @@ public:
         }
 
     private:
-        float left_[kOdometers];
+        float left_[kSlots];
         float reach_;
         uint32_t oldestAge_;
     };
@@ -119,7 +119,7 @@ private:
         uint32_t made = 0;   // the update the summary was made in
         uint32_t oldestAge = 0; // the age of its oldest record then (updates)
         float reach = -1.0f; // the largest distance of a centre (renewed); < 0: read the group
-        float slack[kOdometers] = {}; // per odometer, the least margin left (renewed); the largest float: none
+        float slack[kSlots] = {}; // per slot (slotOf), the least margin left (renewed); the largest float: none
     };
     static_assert(sizeof(Summary) == 32, "32 bytes a group");
     std::vector<Summary> summaries_;
