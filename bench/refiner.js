@@ -5,7 +5,8 @@
 // too small for 300) and the default length (80 % of the shorter side), replayed natively by build/native/hexlod_bench --flight from the mesh
 // converged for the first camera:
 //   - without a budget: cells tested per frame and the update time of frames that converge,
-//     in ms per million drawn triangles (p95);
+//     in ms per million drawn triangles (p95); the update time in ms (p50, p95) and the range
+//     of drawn triangles, which say what the figure per million triangles is made of;
 //   - the floor of those update times (hexlod_bench --floor, a run of its own so that it does
 //     not cool the update's caches): the same mesh operations and the bounds of the new cells,
 //     nothing judged, in ms per million drawn triangles (p95), which no update can go below;
@@ -87,10 +88,11 @@ for (const file of fields) {
     writeFileSync(fieldPath, new Uint8Array(heights.buffer, heights.byteOffset, heights.byteLength));
     console.log(`\n${basename(file)} (${terrain.width} x ${terrain.height})`);
     console.log('| flight | cells tested / frame, no budget p50 / p95 | converged frames, no budget | update ms per M triangles p95, wall / thread CPU (converged, no budget) | ' +
+      'update ms p50 / p95 and triangles min – max, no budget | ' +
       'floor ms per M triangles p95, operations and new bounds / operations alone | ' +
       `cells tested / frame, ${budgetMs} ms p50 | frames within tau, ${budgetMs} ms | screen error p50 / p95 / max px, ${budgetMs} ms | ` +
       'triangles p50 | B / triangle live p50 / at capacity p50 / at capacity max |');
-    console.log('| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |');
+    console.log('| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |');
     // Wall-clock figures on a shared machine: see the thread CPU column.
     for (const step of steps) {
       // A flight is at most 80 % of the shorter side long: fewer frames when the step needs it.
@@ -106,13 +108,18 @@ for (const file of fields) {
       const conv = grab(free, /converged after the update in (\d+) of (\d+) frames; their update ms per million triangles p50 (\S+) p95 (\S+)/);
       const cpu = grab(free, /the same in thread CPU time: p50 (\S+) p95 (\S+)/);
       const floor = floorRun && grab(floorRun, /floor \(.*\): ms per million triangles p50 (\S+) p95 (\S+); operations alone p50 (\S+) p95 (\S+);/);
+      // The update's own time and the mesh's range: a figure per million triangles rises as the
+      // mesh shrinks (a camera nearing the edge of a small field) even when the update does not.
+      const updateFree = grab(free, /update ms p50 (\S+) p95 (\S+);/);
+      const trisFree = grab(free, /triangles min (\d+) p50 (\d+) max (\d+)/);
       const testedBudget = grab(budgeted, /cells tested per frame p50 (\S+) p95 (\S+) max (\S+)/);
       const err = grab(budgeted, /screen error of the drawn mesh after the update: p50 (\S+) p95 (\S+) max (\S+) px; within tau in (\S+) %/);
       const tris = grab(budgeted, /triangles min (\S+) p50 (\S+) max (\S+)/);
       const bytes = grab(budgeted, /live p50 (\S+) max (\S+); at capacity p50 (\S+) max (\S+)/);
       const name = (step > 0 ? `${Math.round(path.step)} m/frame` : `default (${Math.round(path.step)} m/frame)`) +
         (count < frames ? ` (${count} frames)` : '');
-      console.log(`| ${name} | ${testedFree[0]} / ${testedFree[1]} | ${conv[0]} of ${conv[1]} | ${conv[3].toFixed(2)} / ${cpu[1].toFixed(2)} | ${floor ? `${floor[1].toFixed(2)} / ${floor[3].toFixed(2)}` : 'n/a'} | ${testedBudget[0]} | ` +
+      console.log(`| ${name} | ${testedFree[0]} / ${testedFree[1]} | ${conv[0]} of ${conv[1]} | ${conv[3].toFixed(2)} / ${cpu[1].toFixed(2)} | ` +
+        `${updateFree[0].toFixed(3)} / ${updateFree[1].toFixed(3)}; ${trisFree[0]} – ${trisFree[2]} | ${floor ? `${floor[1].toFixed(2)} / ${floor[3].toFixed(2)}` : 'n/a'} | ${testedBudget[0]} | ` +
         `${err[3].toFixed(1)} % | ${err[0].toFixed(2)} / ${err[1].toFixed(2)} / ${err[2].toFixed(2)} | ${tris[1]} | ${bytes[0].toFixed(1)} / ${bytes[2].toFixed(1)} / ${bytes[3].toFixed(1)} |`);
     }
   } finally {
