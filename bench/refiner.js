@@ -54,6 +54,8 @@ if (!existsSync(NATIVE_BENCH)) {
   process.exit(1);
 }
 
+// hexlod_bench's "triangles min N p50 N max N; splits ...": digits only, as a ';' follows max.
+const trianglesLine = /triangles min (\d+) p50 (\d+) max (\d+)/;
 const grab = (text, re) => {
   const m = re.exec(text);
   return m ? m.slice(1).map(Number) : null;
@@ -111,10 +113,10 @@ for (const file of fields) {
       // The update's own time and the mesh's range: a figure per million triangles rises as the
       // mesh shrinks (a camera nearing the edge of a small field) even when the update does not.
       const updateFree = grab(free, /update ms p50 (\S+) p95 (\S+);/);
-      const trisFree = grab(free, /triangles min (\d+) p50 (\d+) max (\d+)/);
+      const trisFree = grab(free, trianglesLine);
       const testedBudget = grab(budgeted, /cells tested per frame p50 (\S+) p95 (\S+) max (\S+)/);
       const err = grab(budgeted, /screen error of the drawn mesh after the update: p50 (\S+) p95 (\S+) max (\S+) px; within tau in (\S+) %/);
-      const tris = grab(budgeted, /triangles min (\S+) p50 (\S+) max (\S+)/);
+      const tris = grab(budgeted, trianglesLine);
       const bytes = grab(budgeted, /live p50 (\S+) max (\S+); at capacity p50 (\S+) max (\S+)/);
       const name = (step > 0 ? `${Math.round(path.step)} m/frame` : `default (${Math.round(path.step)} m/frame)`) +
         (count < frames ? ` (${count} frames)` : '');
