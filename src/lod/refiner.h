@@ -177,6 +177,7 @@ private:
     int32_t ringHalves(int32_t cell, RingHalf out[6]) const;
     void setRecord(int32_t cell, double margin, Odometer odometer, double dist, double ownMargin);
     void makeDue(int32_t cell); // tested at the next sweep (or by retestChanged)
+    void makeDueForRetest(int32_t cell); // queued for retestChanged: its group's summary stays
     void renew(TestRecord& record) const;
     void invalidateAll();
     void checkSettings();
