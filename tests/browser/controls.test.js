@@ -3,7 +3,7 @@
 // inputs reach the settings.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { startViewer, openPage, outDir } from './harness.js';
+import { startViewer, openPage, outDir, pixelStats } from './harness.js';
 
 let viewer, page, problems;
 before(async () => {
@@ -118,4 +118,65 @@ test('a refused value keeps the previous one everywhere and says why; the terrai
   assert.equal(await page.evaluate(() => document.getElementById('status').textContent), '');
   await set('tau', 1);
   await set('budgetMs', 4);
+});
+
+// The intake bar's spacing field (hidden on a phone, where the panel's cell size is the control).
+test('the spacing field: shows both spacings of non-square cells, scales them together in place, refuses bad values', async () => {
+  const { page: wide, problems: wideProblems } = await openPage(viewer.browser, viewer.url, { width: 960, height: 600 });
+  await wide.waitForFunction(() => window.hexlod && window.hexlod.status === 'ready', null, { timeout: 120000 });
+  const draw = (n) => wide.evaluate((k) => new Promise((resolve) => {
+    const mark = window.hexlod.frames;
+    const tick = () => { window.hexlod.requestRender(); if (window.hexlod.frames - mark >= k) resolve(); else setTimeout(tick, 30); };
+    tick();
+  }), n);
+  const readout = () => wide.evaluate(() => {
+    const t = window.hexlod.terrainObject();
+    const ratio = document.getElementById('spacing-ratio');
+    return { x: t.spacingX, y: t.spacingY, cellSize: window.hexlod.settings.cellSize, field: document.getElementById('spacing-input').value,
+      ratio: ratio.textContent, ratioHidden: ratio.hidden, status: document.getElementById('status').textContent,
+      distance: window.hexlod.rig.cameras.orbit.distance, name: window.hexlod.terrain.name };
+  });
+  const apply = async (text) => {
+    await wide.fill('#spacing-input', text);
+    await wide.click('#spacing-form button[type=submit]');
+    await draw(2);
+    return readout();
+  };
+  // The default terrain's sidecar gives 806.9 m east-west and 926 m north-south.
+  const start = await readout();
+  assert.deepEqual([start.x, start.y, start.field, start.ratioHidden], [806.9, 926, '806.9', false]);
+  assert.match(start.ratio, /926 m north–south/);
+
+  // Apply unchanged: nothing changes (it used to reload the file with square 806.9 m cells).
+  let now = await apply('806.9');
+  assert.deepEqual([now.x, now.y, now.distance, now.name], [start.x, start.y, start.distance, start.name]);
+
+  // Twice the spacing: both double, in place, and the camera keeps its framing (its distance doubles).
+  now = await apply('1613.8');
+  assert.equal(now.x, 1613.8);
+  assert.ok(Math.abs(now.y - 1852) < 1e-9, `north-south kept its ratio: ${now.y}`);
+  assert.equal(now.cellSize, 1613.8, 'the panel\'s cell size is the same setting');
+  assert.ok(Math.abs(now.distance / start.distance - 2) < 1e-9, `the orbit scaled with the ground: ${now.distance}`);
+  assert.match(now.ratio, /1852 m north–south/);
+  assert.equal(now.status, '');
+  await draw(5);
+  const stats = pixelStats(await wide.screenshot({ path: `${outDir}/controls-spacing-doubled.png` }));
+  assert.ok(stats.colours > 60 && stats.skyFraction < 0.6, `the terrain is on screen: ${JSON.stringify(stats)}`);
+
+  // Bad values: the page says why; the spacing, the field and the camera stay.
+  for (const [text, message] of [['-5', /cell size must be a positive/], ['0', /cell size must be a positive/], ['', /type the metres/]]) {
+    const after = await apply(text);
+    assert.match(after.status, message, `'${text}'`);
+    assert.deepEqual([after.x, after.y, after.cellSize, after.field, after.distance], [now.x, now.y, now.cellSize, '1613.8', now.distance],
+      `'${text}' changed nothing`);
+  }
+
+  // The panel's cell size shows in the field too; back to the file's spacing.
+  await wide.evaluate(() => window.hexlod.setSetting('cellSize', 806.9));
+  now = await readout();
+  assert.deepEqual([now.x, now.field, now.status], [806.9, '806.9', '']);
+  assert.ok(Math.abs(now.y - 926) < 1e-9);
+  assert.match(now.ratio, /926 m north–south/);
+  assert.deepEqual(wideProblems, []);
+  await wide.close();
 });

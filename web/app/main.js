@@ -200,30 +200,37 @@ async function main() {
       renderer.invalidate();
     } else if (key === 'cellSize' && terrain) {
       const k = value / terrain.spacingX;
-      terrain.setScale({ ...current.field, spacingX: terrain.spacingX * k, spacingY: terrain.spacingY * k });
+      terrain.setScale({ ...current.field, spacingX: value, spacingY: terrain.spacingY * k }); // the value as typed, rows in ratio
       rescaleGround(k);
       makeWorld(current);
       keepCamerasAboveGround();
       renderer.invalidate();
       hud.setTerrain(current.field, terrain, current.loadMs);
+      intake.showSpacing(terrain);
     } else if (terrain && !['wireframe', 'colorByLevel', 'freeze', ...SHADING_KEYS].includes(key)) {
       applyLodSettings(terrain, settings);
     }
   }
   const owner = new SettingsOwner(settings, applySetting);
 
-  /** A setting changed (panel, key, test): through its owner, which keeps the old value when it fails. */
+  /**
+   * A setting changed (panel, key, test): through its owner, which keeps the old value when it
+   * fails. False when it failed (the status says why).
+   */
   function onSetting(key, value) {
+    let applied = true;
     try {
       if (key === 'camera') rig.setMode(value); // the camera is the rig's, not a setting
       else owner.set(key, value);
       showStatus('');
     } catch (error) {
       showStatus(error.message, true);
+      applied = false;
     }
     syncView();
     syncPanel();
     requestRender();
+    return applied;
   }
 
   function syncPanel() {
@@ -258,7 +265,8 @@ async function main() {
   document.getElementById('help-close').onclick = toggleHelp;
 
   // Drop, file picker, ?src=, progress, RAW size dialog and error display (file_intake.js).
-  const intake = createFileIntake({ core, state, show, showStatus });
+  const intake = createFileIntake({ core, state, show, showStatus, setCellSize: (metres) => onSetting('cellSize', metres),
+    currentSpacing: () => current.terrain });
 
   const setSetting = (key, value) => onSetting(key, value);
   const resetView = () => { if (current) frameDefault(current); syncPanel(); requestRender(); };

@@ -8,20 +8,37 @@ import { extensionOf, baseNameOf } from '../loaders/common.js';
 
 const PROGRESS_AFTER_MS = 100; // slower than a blink: show the bar
 
+/** Metres as the spacing field shows them: six significant digits, no trailing zeros. */
+const formatMetres = (metres) => String(Number(metres.toPrecision(6)));
+
 /**
  * @param {{ core: import('../core/core.js').HexlodCore, state: object, show: (loaded: object) => void,
- *   showStatus: (message: string, isError?: boolean) => void }} page
+ *   showStatus: (message: string, isError?: boolean) => void, setCellSize: (metres: number) => boolean,
+ *   currentSpacing: () => {spacingX: number, spacingY: number} }} page
+ *   setCellSize: the panel's cell size setting (east-west metres; north-south keeps its ratio),
+ *   false when refused (the page shows why); currentSpacing: the terrain on screen's
  * @returns {{ open: (files: Array<{name: string, bytes: Uint8Array}>, options?: object) => Promise<boolean>,
- *   openUrl: (url: string) => Promise<boolean> }}
+ *   openUrl: (url: string) => Promise<boolean>, showSpacing: (terrain: object) => void }}
  */
-export function createFileIntake({ core, state, show, showStatus }) {
+export function createFileIntake({ core, state, show, showStatus, setCellSize, currentSpacing }) {
   const $ = (id) => document.getElementById(id);
   const picker = $('file-input'), progress = $('load-progress'), encodingSelect = $('png-encoding');
-  const spacingInput = $('spacing-input'), spacingForm = $('spacing-form');
+  const spacingInput = $('spacing-input'), spacingForm = $('spacing-form'), spacingRatio = $('spacing-ratio');
   const rawDialog = $('raw-dialog'), rawForm = $('raw-form');
-  let last = null; // { files, options } of the terrain on screen, to reload it with another spacing
   state.loading = false;
   state.progress = 0;
+
+  /**
+   * The terrain's spacing in the field: east-west metres, and north-south beside it when the
+   * cells are not square (the two scale together, as the panel's cell size does).
+   */
+  function showSpacing(terrain) {
+    spacingInput.value = formatMetres(terrain.spacingX);
+    const square = Math.abs(terrain.spacingY - terrain.spacingX) <= 1e-9 * terrain.spacingX;
+    spacingRatio.hidden = square;
+    spacingRatio.textContent = square ? '' : `(${formatMetres(terrain.spacingY)} m north–south)`;
+    spacingInput.title = square ? 'metres between samples' : 'metres between columns (east–west); rows scale with them';
+  }
 
   /** Loads files into a new terrain; on failure the current one stays and the message shows. */
   async function open(files, options = {}) {
@@ -42,12 +59,9 @@ export function createFileIntake({ core, state, show, showStatus }) {
     const encoding = encodingSelect.value;
     try {
       const loaded = await loadTerrain(core, files, { ...options, encoding, onProgress, guessSpacing: true });
-      // A spacing the user typed replaces the file's in what the page shows and frames.
-      if (options.spacing) loaded.field = { ...loaded.field, spacingX: options.spacing.x, spacingY: options.spacing.y };
       show(loaded);
-      last = { files, options };
-      spacingInput.value = loaded.terrain.spacingX.toPrecision(4);
-      spacingForm.classList.toggle('assumed', !loaded.field.spacingFromFile && !options.spacing);
+      showSpacing(loaded.terrain);
+      spacingForm.classList.toggle('assumed', !loaded.field.spacingFromFile); // a guess: the user may know better
       state.error = null;
       showStatus('');
       return true;
@@ -133,11 +147,18 @@ export function createFileIntake({ core, state, show, showStatus }) {
     if (picker.files.length) await open(await readFiles(picker.files));
     picker.value = '';
   };
-  spacingForm.onsubmit = async (e) => {
+  // The same setting as the panel's cell size (the form is novalidate: our message, not the
+  // browser's bubble, says what is wrong): the terrain is scaled in place (no reload) and
+  // the cameras with it; a bad value leaves both, and the page says why. (This form used to
+  // reload the file with square cells, so Apply on a field with 806.9 x 926 m cells squashed it.)
+  spacingForm.onsubmit = (e) => {
     e.preventDefault();
-    const metres = Number(spacingInput.value);
-    if (!last || !(metres > 0)) return;
-    await open(last.files, { ...last.options, spacing: { x: metres, y: metres } });
+    if (state.loading || !state.terrain) return;
+    const text = spacingInput.value.trim(); // '' also for text that is not a number
+    const applied = text === '' ? (showStatus('spacing: type the metres between samples, a positive number', true), false)
+      : setCellSize(Number(text));
+    if (applied) spacingForm.classList.remove('assumed');
+    else showSpacing(currentSpacing()); // the field shows what is in effect again
   };
-  return { open, openUrl };
+  return { open, openUrl, showSpacing };
 }
