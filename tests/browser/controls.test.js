@@ -3,7 +3,8 @@
 // inputs reach the settings.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { startViewer, openPage, outDir, pixelStats } from './harness.js';
+import { readFileSync } from 'node:fs';
+import { startViewer, openPage, outDir, pixelStats, dropFiles, terrainShown, projectDir } from './harness.js';
 
 let viewer, page, problems;
 before(async () => {
@@ -177,6 +178,19 @@ test('the spacing field: shows both spacings of non-square cells, scales them to
   assert.deepEqual([now.x, now.field, now.status], [806.9, '806.9', '']);
   assert.ok(Math.abs(now.y - 926) < 1e-9);
   assert.match(now.ratio, /926 m north–south/);
+  assert.equal(await wide.evaluate(() => document.getElementById('spacing-form').classList.contains('assumed')), false);
+
+  // A file that gives no spacing: the guess is outlined until the user sets one.
+  await dropFiles(wide, [{ name: 'volcano_maungawhau.png', bytes: readFileSync(`${projectDir}tests/fixtures/volcano_maungawhau.png`) }]);
+  await terrainShown(wide, 'volcano_maungawhau.png');
+  const outlined = () => wide.evaluate(() => document.getElementById('spacing-form').classList.contains('assumed'));
+  now = await readout();
+  assert.equal(now.x, now.y, 'a guessed spacing is square');
+  assert.deepEqual([now.field, now.ratioHidden, await outlined()], [String(now.x), true, true]);
+  assert.match((await apply('-1')).status, /cell size must be a positive/);
+  assert.equal(await outlined(), true, 'a refused value is no answer');
+  now = await apply('10');
+  assert.deepEqual([now.x, now.y, now.field, now.status, await outlined()], [10, 10, '10', '', false]);
   assert.deepEqual(wideProblems, []);
   await wide.close();
 });

@@ -18,7 +18,7 @@ const formatMetres = (metres) => String(Number(metres.toPrecision(6)));
  *   setCellSize: the panel's cell size setting (east-west metres; north-south keeps its ratio),
  *   false when refused (the page shows why); currentSpacing: the terrain on screen's
  * @returns {{ open: (files: Array<{name: string, bytes: Uint8Array}>, options?: object) => Promise<boolean>,
- *   openUrl: (url: string) => Promise<boolean>, showSpacing: (terrain: object) => void }}
+ *   openUrl: (url: string) => Promise<boolean>, showSpacing: (terrain: object, assumed?: boolean) => void }}
  */
 export function createFileIntake({ core, state, show, showStatus, setCellSize, currentSpacing }) {
   const $ = (id) => document.getElementById(id);
@@ -30,9 +30,11 @@ export function createFileIntake({ core, state, show, showStatus, setCellSize, c
 
   /**
    * The terrain's spacing in the field: east-west metres, and north-south beside it when the
-   * cells are not square (the two scale together, as the panel's cell size does).
+   * cells are not square (the two scale together, as the panel's cell size does). `assumed`: a
+   * guess (the file said nothing), outlined until the user sets one here or in the panel.
    */
-  function showSpacing(terrain) {
+  function showSpacing(terrain, assumed = false) {
+    spacingForm.classList.toggle('assumed', assumed);
     spacingInput.value = formatMetres(terrain.spacingX);
     const square = Math.abs(terrain.spacingY - terrain.spacingX) <= 1e-9 * terrain.spacingX;
     spacingRatio.hidden = square;
@@ -60,8 +62,7 @@ export function createFileIntake({ core, state, show, showStatus, setCellSize, c
     try {
       const loaded = await loadTerrain(core, files, { ...options, encoding, onProgress, guessSpacing: true });
       show(loaded);
-      showSpacing(loaded.terrain);
-      spacingForm.classList.toggle('assumed', !loaded.field.spacingFromFile); // a guess: the user may know better
+      showSpacing(loaded.terrain, !loaded.field.spacingFromFile);
       state.error = null;
       showStatus('');
       return true;
@@ -156,9 +157,8 @@ export function createFileIntake({ core, state, show, showStatus, setCellSize, c
     if (state.loading || !state.terrain) return;
     const text = spacingInput.value.trim(); // '' also for text that is not a number
     const applied = text === '' ? (showStatus('spacing: type the metres between samples, a positive number', true), false)
-      : setCellSize(Number(text));
-    if (applied) spacingForm.classList.remove('assumed');
-    else showSpacing(currentSpacing()); // the field shows what is in effect again
+      : setCellSize(Number(text)); // which shows the new spacing (main.js)
+    if (!applied) spacingInput.value = formatMetres(currentSpacing().spacingX); // what is in effect again
   };
   return { open, openUrl, showSpacing };
 }
