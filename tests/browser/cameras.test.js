@@ -3,7 +3,7 @@
 // gestures orbit, pinch and pan, and the cursor readout names the ground under the pointer.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { startViewer, openPage, outDir } from './harness.js';
+import { startViewer, openPage, outDir, drawFrames } from './harness.js';
 
 let viewer, page, problems;
 before(async () => {
@@ -15,11 +15,7 @@ before(async () => {
 after(async () => { await viewer?.close(); });
 
 /** Asks for frames until `n` more were drawn. */
-async function frames(n) {
-  await page.evaluate(() => { window.hexlod.mark = window.hexlod.frames; });
-  await page.waitForFunction((k) => { window.hexlod.requestRender(); return window.hexlod.frames - window.hexlod.mark >= k; },
-    n, { timeout: 120000, polling: 30 });
-}
+const frames = (n) => drawFrames(page, n);
 
 test('walking across the steepest slope of the DEM never goes under the drawn surface or the field', async () => {
   // The steepest place: the largest height difference between neighbouring samples.

@@ -4,7 +4,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { startViewer, openPage, outDir, pixelStats, dropFiles, terrainShown, projectDir } from './harness.js';
+import { startViewer, openPage, outDir, pixelStats, dropFiles, terrainShown, projectDir, drawFrames } from './harness.js';
 
 let viewer, page, problems;
 before(async () => {
@@ -14,11 +14,7 @@ before(async () => {
 });
 after(async () => { await viewer?.close(); });
 
-async function frames(n) {
-  await page.evaluate(() => { window.hexlod.mark = window.hexlod.frames; });
-  await page.waitForFunction((k) => { window.hexlod.requestRender(); return window.hexlod.frames - window.hexlod.mark >= k; },
-    n, { timeout: 120000, polling: 30 });
-}
+const frames = (n, on = page) => drawFrames(on, n);
 const converged = () => page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; },
   null, { timeout: 240000, polling: 100 });
 // Converged, and no operation in 10 frames: a merge that completes can free a blocked neighbour
@@ -125,11 +121,6 @@ test('a refused value keeps the previous one everywhere and says why; the terrai
 test('the spacing field: shows both spacings of non-square cells, scales them together in place, refuses bad values', async () => {
   const { page: wide, problems: wideProblems } = await openPage(viewer.browser, viewer.url, { width: 960, height: 600 });
   await wide.waitForFunction(() => window.hexlod && window.hexlod.status === 'ready', null, { timeout: 120000 });
-  const draw = (n) => wide.evaluate((k) => new Promise((resolve) => {
-    const mark = window.hexlod.frames;
-    const tick = () => { window.hexlod.requestRender(); if (window.hexlod.frames - mark >= k) resolve(); else setTimeout(tick, 30); };
-    tick();
-  }), n);
   const readout = () => wide.evaluate(() => {
     const t = window.hexlod.terrainObject();
     const ratio = document.getElementById('spacing-ratio');
@@ -140,7 +131,7 @@ test('the spacing field: shows both spacings of non-square cells, scales them to
   const apply = async (text) => {
     await wide.fill('#spacing-input', text);
     await wide.click('#spacing-form button[type=submit]');
-    await draw(2);
+    await frames(2, wide);
     return readout();
   };
   // The default terrain's sidecar gives 806.9 m east-west and 926 m north-south.
@@ -160,7 +151,7 @@ test('the spacing field: shows both spacings of non-square cells, scales them to
   assert.ok(Math.abs(now.distance / start.distance - 2) < 1e-9, `the orbit scaled with the ground: ${now.distance}`);
   assert.match(now.ratio, /1852 m north–south/);
   assert.equal(now.status, '');
-  await draw(5);
+  await frames(5, wide);
   const stats = pixelStats(await wide.screenshot({ path: `${outDir}/controls-spacing-doubled.png` }));
   assert.ok(stats.colours > 60 && stats.skyFraction < 0.6, `the terrain is on screen: ${JSON.stringify(stats)}`);
 

@@ -86,6 +86,13 @@ export function pixelStats(png) {
     snowFraction: snow / n, groundFraction: ground / n };
 }
 
+/** Asks the page for frames until it has drawn `n` more. */
+export async function drawFrames(page, n) {
+  await page.evaluate(() => { window.hexlod.mark = window.hexlod.frames; });
+  await page.waitForFunction((k) => { window.hexlod.requestRender(); return window.hexlod.frames - window.hexlod.mark >= k; },
+    n, { timeout: 120000, polling: 30 });
+}
+
 /** Resolves once the page has drawn a frame asked for after this call. */
 export function nextFrame(page) {
   return page.evaluate(() => new Promise((resolve) => {

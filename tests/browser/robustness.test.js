@@ -4,23 +4,18 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { decode } from 'fast-png';
-import { startViewer, openPage, outDir, pixelStats } from './harness.js';
+import { startViewer, openPage, outDir, pixelStats, drawFrames } from './harness.js';
 
 let viewer;
 before(async () => { viewer = await startViewer(); });
 after(async () => { await viewer?.close(); });
 
 const ready = (page) => page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
-async function frames(page, n) {
-  await page.evaluate(() => { window.hexlod.mark = window.hexlod.frames; });
-  await page.waitForFunction((k) => { window.hexlod.requestRender(); return window.hexlod.frames - window.hexlod.mark >= k; },
-    n, { timeout: 120000, polling: 30 });
-}
 
 test('a lost WebGL context is restored without a reload; screenshots save 1x and 2x PNGs', async () => {
   const { page, problems } = await openPage(viewer.browser, viewer.url, { width: 480, height: 300 });
   await ready(page);
-  await frames(page, 3);
+  await drawFrames(page, 3);
   const before = await page.evaluate(() => window.hexlod.triangles);
   await page.evaluate(() => {
     window.loseContext = document.getElementById('view').getContext('webgl2').getExtension('WEBGL_lose_context');
@@ -29,7 +24,7 @@ test('a lost WebGL context is restored without a reload; screenshots save 1x and
   await page.waitForFunction(() => window.hexlod.contextLost, null, { timeout: 10000 });
   await page.evaluate(() => window.loseContext.restoreContext());
   await page.waitForFunction(() => !window.hexlod.contextLost && window.hexlod.contextRestores === 1, null, { timeout: 30000 });
-  await frames(page, 3);
+  await drawFrames(page, 3);
   const state = await page.evaluate(() => ({ glError: window.hexlod.glError(), triangles: window.hexlod.triangles,
     uploaded: window.hexlod.uploadBytes, status: document.getElementById('status').textContent }));
   assert.equal(state.glError, 0);
