@@ -155,10 +155,11 @@ export function createFileIntake({ core, state, show, showStatus, setCellSize, c
   spacingForm.onsubmit = (e) => {
     e.preventDefault();
     if (state.loading || !state.terrain) return;
-    const text = spacingInput.value.trim(); // '' also for text that is not a number
-    const applied = text === '' ? (showStatus('spacing: type the metres between samples, a positive number', true), false)
-      : setCellSize(Number(text)); // which shows the new spacing (main.js)
-    if (!applied) spacingInput.value = formatMetres(currentSpacing().spacingX); // what is in effect again
+    // '' also for text that is not a number, which Number() would read as 0.
+    const text = spacingInput.value.trim();
+    if (text === '') showStatus('spacing: type the metres between samples, a positive number', true);
+    else if (setCellSize(Number(text))) return; // main.js shows the new spacing
+    spacingInput.value = formatMetres(currentSpacing().spacingX); // what is in effect again
   };
   return { open, openUrl, showSpacing };
 }
