@@ -1,12 +1,17 @@
 #!/usr/bin/env bash
 # build.sh: the one build entry point of hexlod.
-#   ./build.sh          native core + tests + benchmark, then the WebAssembly module
-#   ./build.sh native   only the native part (CMake + Ninja, into build/native)
-#   ./build.sh wasm     only the WebAssembly modules (Emscripten 3.1.6): build/wasm, the product the
+#   ./build.sh          everything (./hexlod.sh test, npm run build): native, wasm, site, wasm-tests
+#   ./build.sh native   only the native part (CMake + Ninja, into build/native): core, GoogleTest
+#                       suite, benchmark
+#   ./build.sh page     only the page's WebAssembly module, build/wasm: all that ./hexlod.sh view
+#                       builds
+#   ./build.sh wasm     both WebAssembly modules (Emscripten 3.1.6): build/wasm, the product the
 #                       page loads, and build/wasm-diag, the same core with the diagnostics ABI,
 #                       which Node (bin/, tests/node, benchmarks) loads
 #   ./build.sh wasm-tests  the GoogleTest suite built to WebAssembly, run under Node (build/wasm-tests)
 #   ./build.sh site     the static production site in dist/ (needs the WebAssembly module)
+# A WebAssembly module is rebuilt only when its sources, flags or Emscripten changed (a content
+# stamp in its folder); GoogleTest for WebAssembly likewise, and Ninja rebuilds what changed.
 set -euo pipefail
 cd "$(dirname "$0")"
 target=${1:-all}
@@ -21,8 +26,12 @@ build_native() {
   ninja -C build/native
 }
 
+emscripten_version() {
+  cat "$(dirname "$(readlink -f "$(command -v em++)")")/emscripten-version.txt" 2>/dev/null || echo unknown
+}
+
 # One WebAssembly module: $1 the output folder, $2 the ABI headers whose functions it exports,
-# then the sources.
+# then the sources. Skipped when its stamp says the same sources and flags built it.
 build_wasm_module() {
   local out=$1 headers=$2
   shift 2
@@ -50,18 +59,37 @@ build_wasm_module() {
     -sEXPORTED_FUNCTIONS="$exports,_malloc,_free"  # the C ABI is the whole boundary
     -sEXPORTED_RUNTIME_METHODS=UTF8ToString        # to read hexlod_last_error() messages
   )
+  # Up to date when the last successful build had the same Emscripten, flags, source list, and
+  # the same content of every file under src/ (any of them may be included). A content stamp,
+  # not mtimes: git sets every file's mtime to when it wrote it (a clone, a checkout), and a
+  # copy that keeps older mtimes (cp -p, rsync, tar) would look up to date when it is not.
+  # Hashing src/ takes milliseconds. The stamp goes before the build, so a failed one has none.
+  local stamp
+  stamp=$(printf '%s\n' "emscripten $(emscripten_version)" "${flags[*]}" "$*"
+          find src -type f -print0 | LC_ALL=C sort -z | xargs -0 sha256sum)
+  if [ -f "$out/hexlod_core.mjs" ] && [ -f "$out/hexlod_core.wasm" ] &&
+     [ "$(cat "$out/build.stamp" 2>/dev/null)" = "$stamp" ]; then
+    echo "$out/hexlod_core.mjs and .wasm are up to date"
+    return
+  fi
+  rm -f "$out/build.stamp"
   # Debian's emscripten runs its JS optimiser with node; it needs Debian's acorn on NODE_PATH.
   NODE_PATH=/usr/share/nodejs em++ "${flags[@]}" "$@" -o "$out/hexlod_core.mjs"
+  printf '%s\n' "$stamp" >"$out/build.stamp"
   echo "built $out/hexlod_core.mjs and hexlod_core.wasm ($(stat -c %s "$out/hexlod_core.wasm") bytes)"
 }
 
-build_wasm() {
-  # The product (the page and dist/): the ABI of src/api/hexlod.h only, no diagnostics code.
+# The product (the page and dist/): the ABI of src/api/hexlod.h only, no diagnostics code.
+build_page() {
   local product=()
   for source in "${core_sources[@]}"; do
     [ "$source" = src/api/hexlod_diagnostics_api.cpp ] || product+=("$source")
   done
   build_wasm_module build/wasm src/api/hexlod.h "${product[@]}"
+}
+
+build_wasm() {
+  build_page
   # For Node (the CLI, its tests and benchmarks): the same core plus src/api/hexlod_diagnostics.h.
   build_wasm_module build/wasm-diag "src/api/hexlod.h src/api/hexlod_diagnostics.h" "${core_sources[@]}"
 }
@@ -75,9 +103,10 @@ build_site() {
 
 case "$target" in
   native) build_native ;;
+  page) build_page ;;
   wasm) build_wasm ;;
   site) build_site ;;
   wasm-tests) scripts/build_wasm_tests.sh ;;
   all) build_native; build_wasm; build_site; scripts/build_wasm_tests.sh ;;
-  *) echo "usage: ./build.sh [native|wasm|site|wasm-tests|all]" >&2; exit 2 ;;
+  *) echo "usage: ./build.sh [native|page|wasm|site|wasm-tests|all]" >&2; exit 2 ;;
 esac
