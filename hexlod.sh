@@ -1,18 +1,42 @@
 #!/usr/bin/env bash
-# The two things a person does with a fresh clone; each sets everything up first.
-#   ./hexlod.sh view   install what is missing, build, and open the viewer on the default terrain
-#   ./hexlod.sh test   install what is missing, build, and run every test layer
+# The two things a person does with a fresh clone; each sets up what it needs first.
+#   ./hexlod.sh view   install what the page needs (Emscripten, GLM, Node, the npm packages),
+#                      build only the page's WebAssembly module (build/wasm, skipped when up to
+#                      date) and serve the viewer on its default terrain with Vite's dev server
+#                      at http://127.0.0.1:$HEXLOD_PORT/ (default 5173); prints each step's time
+#   ./hexlod.sh test   install everything, build everything (./build.sh: native, both
+#                      WebAssembly modules, dist/, the WebAssembly test suite) and run every
+#                      test layer
 set -euo pipefail
 cd "$(dirname "$0")"
 
+# Seconds since $1 (an $EPOCHREALTIME), to a tenth.
+since() {
+  local now=${EPOCHREALTIME/,/.}
+  awk -v start="${1/,/.}" -v now="$now" 'BEGIN { printf "%.1f", now - start }'
+}
+
 case "${1:-}" in
   view)
-    scripts/setup.sh
-    ./build.sh
+    port=${HEXLOD_PORT:-5173}
+    [[ $port =~ ^[0-9]+$ ]] || { echo "hexlod: HEXLOD_PORT must be a port number, not '$port'" >&2; exit 2; }
+
+    start=$EPOCHREALTIME
+    scripts/setup.sh view
+    echo "hexlod: [1/3] packages ready ($(since "$start") s)"
+
+    start=$EPOCHREALTIME
+    # Whether the module was built or found up to date: its modification time moved or not.
+    wasm_time() { stat -c %y build/wasm/hexlod_core.wasm 2>/dev/null || true; }
+    before=$(wasm_time)
+    ./build.sh page
+    [ "$(wasm_time)" = "$before" ] && state="up to date" || state=built
+    echo "hexlod: [2/3] page core $state ($(since "$start") s)"
+
     open_flag=()
     [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ] && open_flag=(--open)
-    echo "hexlod: serving the viewer at http://127.0.0.1:5173/ (Ctrl-C stops it)"
-    exec npx vite --config vite.config.js --port 5173 --strictPort "${open_flag[@]}"
+    echo "hexlod: [3/3] serving http://127.0.0.1:$port/ (Ctrl-C stops it)"
+    exec npx vite --config vite.config.js --port "$port" --strictPort "${open_flag[@]}"
     ;;
   test)
     scripts/setup.sh
@@ -31,7 +55,7 @@ case "${1:-}" in
     echo "hexlod: all test layers passed"
     ;;
   *)
-    echo "usage: ./hexlod.sh view | test" >&2
+    echo "usage: ./hexlod.sh view | test   (view serves on \$HEXLOD_PORT, default 5173)" >&2
     exit 2
     ;;
 esac
