@@ -4,6 +4,9 @@ import { existsSync, statSync } from 'node:fs';
 import { createServer as createNetServer } from 'node:net';
 
 export const DEFAULT_CHROMIUM = '/usr/bin/chromium';
+
+/** The machine, not the input, failed: no browser, or one that does not start or dies. */
+export class EnvironmentError extends Error {}
 const CHROMIUM_FLAGS = [
   '--no-sandbox', // CI runs as root
   '--disable-gpu', '--enable-unsafe-swiftshader', // WebGL2 on the CPU: the same pixels on every run
@@ -26,12 +29,16 @@ export async function freePort() {
  */
 export async function launchChromium(path = process.env.CHROMIUM_PATH || DEFAULT_CHROMIUM) {
   if (!existsSync(path) || !statSync(path).isFile()) {
-    throw new Error(`no Chromium at ${path}: install Debian's (apt-get install chromium) or give --chromium PATH`);
+    throw new EnvironmentError(`no Chromium at ${path}: install Debian's (apt-get install chromium) or give --chromium PATH`);
   }
   const { chromium } = await import('playwright-core');
   try {
     return await chromium.launch({ executablePath: path, headless: true, args: CHROMIUM_FLAGS });
   } catch (error) {
-    throw new Error(`Chromium at ${path} did not start: ${String(error.message).split('\n')[0]}`);
+    // Playwright's own words for a program that exits at once ("Target page, context or browser
+    // has been closed") do not say that the program is not a working Chromium.
+    const why = String(error.message).split('\n')[0].replace(/^browserType\.launch: /, '');
+    const closed = /has been closed|exited|Browser closed/i.test(why);
+    throw new EnvironmentError(`Chromium at ${path} did not start${closed ? ': the program exited at once; is it a Chromium browser?' : `: ${why}`}`);
   }
 }

@@ -72,7 +72,7 @@ async function main(argv) {
   }
   if (!Object.hasOwn(commands, command)) throw new UsageError(`unknown command '${command}'`);
   current = command;
-  const code = await commands[command](rest); // regress returns 1 when a flight regressed
+  const code = await commands[command](rest); // regress returns its own exit code (0-3)
   return typeof code === 'number' ? code : 0;
 }
 

@@ -1,107 +1,135 @@
 // hexlod regress: scripted flights (web/app/deterministic/flight.js) over height fields, flown in
-// headless Chromium in the page's deterministic mode and replayed in Node on the same WASM core;
+// headless Chromium in the page's deterministic mode and replayed in Node on the same WASM core,
 // compared with stored references: per-frame mesh hashes and figures exactly (and the page with
-// Node), screenshots with a tolerance. Writes new images, diffs, figures, a text summary and an
-// HTML report; --update writes the references instead.
-import { existsSync, readFileSync, readdirSync, statSync, mkdirSync, writeFileSync, copyFileSync, rmSync } from 'node:fs';
-import { basename, dirname, extname, join, relative, resolve } from 'node:path';
-import { UsageError, parseOptions, parseNumber, readInputs } from './cli_common.js';
+// Node), screenshots under a tolerance (web/app/deterministic/tolerance.js). Every run rewrites
+// summary.txt and report.html (and --junit, --json), whatever stopped it; --update writes the
+// references instead of comparing.
+import { existsSync, readFileSync, mkdirSync, writeFileSync, copyFileSync, rmSync } from 'node:fs';
+import { join, relative, resolve } from 'node:path';
+import { UsageError, parseOptions, parseNumber } from './cli_common.js';
 import { createNodeCore } from './node_core.js';
+import { EnvironmentError } from './chromium.js';
+import { readDem } from './dem_source.js';
+import { collectJobs, InputError } from './regress_jobs.js';
+import { compareStats, statsMatch, describeStats, statsLines, flightRecordOf, flightChanges, compareImages, describeImage,
+  briefImage, readPng, writePng } from './regress_compare.js';
+import { flightLine, summaryText, htmlReport, junitXml, jsonReport } from './regress_report.js';
 import { loadTerrain } from '../web/loaders/terrain_source.js';
-import { parseFlight, replayFlight, FlightError } from '../web/app/deterministic/flight.js';
-import { compareStats, compareImages, readPng, writePng, htmlReport, flightLine } from './regress_compare.js';
+import { replayFlight } from '../web/app/deterministic/flight.js';
+import { DEFAULT_TOLERANCE, toleranceFor } from '../web/app/deterministic/tolerance.js';
 
-export const DEFAULT_THRESHOLD = 8;    // channel difference (of 255) above which a pixel differs
-export const DEFAULT_MAX_SHARE = 0.002; // share of differing pixels above which a capture regresses
+export const EXIT = { pass: 0, regression: 1, input: 2, environment: 3 };
+const MAX_JOBS = 16;
 
 export const REGRESS_USAGE = `usage: hexlod regress <heightfield> <flight.json> [options]
        hexlod regress <flight.json> [options]     (the flight names its height field: "dem")
        hexlod regress <folder> [options]          (every *.flight.json in it)
   Flies each flight in headless Chromium (the page's deterministic mode: ?flight=, README),
-  replays it in Node on the same WASM core, and compares with the references: the mesh hash,
-  triangle count and other figures of every frame exactly (and the page with Node), the
-  captured frames' pixels with a tolerance. Exit code 1 on any regression.
-  A flight without "dem" in a folder uses the height field beside it with the same name
-  (NAME.flight.json and NAME.png, .tif, ...).
+  replays it in Node on the same WASM core, and compares with the references: the mesh hash
+  and figures of every frame exactly (and the page with Node), the captured frames' pixels
+  under the flight's tolerance. A height field is a file or an http(s) URL. A flight without
+  "dem" uses the height field beside it with the same name (NAME.png, .tif, ...).
+  Exit code: 0 all passed, 1 a flight regressed, 2 bad input or usage (a flight file, a height
+  field, no reference), 3 the browser or the machine failed; the highest that applies.
   --refs DIR        references (default: refs/ beside the flight files); one folder per flight
-  --out DIR         new screenshots, diffs, figures, summary.txt and report.html
-                    (default: regress-out/ in the current directory)
+  --platform NAME   references of one platform: refs/FLIGHT/NAME/ (e.g. linux-swiftshader)
+  --out DIR         new images, diffs, figures, summary.txt and report.html (default: regress-out/)
+  --junit FILE      also write the results as JUnit XML;  --json FILE  and as JSON
   --update          write the new results as the references (no comparison)
-  --threshold N     a pixel differs when a channel differs by more than N of 255 (default ${DEFAULT_THRESHOLD})
-  --max-share F     a capture regresses when more than this share of its pixels differ
-                    (default ${DEFAULT_MAX_SHARE}, i.e. ${DEFAULT_MAX_SHARE * 100} %)
+  --grep REGEX      only the flights whose name matches
+  --jobs N          fly N flights at once, each in its own page (default 1; same results)
+  --threshold F     per pixel: pixelmatch's perceptual colour distance, 0..1, above which a pixel
+                    differs (default ${DEFAULT_TOLERANCE.threshold}: a change of one level per channel passes)
+  --max-diff-pixels N, --max-diff-pixel-ratio F
+                    differing pixels a capture may have: N, or this share, whichever allows more
+                    (defaults ${DEFAULT_TOLERANCE.maxDiffPixels} and ${DEFAULT_TOLERANCE.maxDiffPixelRatio}); these override the flight file's "tolerance"
+  --mask X,Y,W,H[;X,Y,W,H...]  rectangles (CSS pixels) left out of every capture's comparison
+  --strict          any changed pixel (outside the masks) fails
   --node-only       only the Node replay and its figures (no browser, no pixels)
   --chromium PATH   the browser (default: $CHROMIUM_PATH or /usr/bin/chromium)`;
 
-const OPTIONS = { refs: 'string', out: 'string', update: 'boolean', threshold: 'string', 'max-share': 'string',
-  'node-only': 'boolean', chromium: 'string' };
-const DEM_EXTENSIONS = ['.png', '.tif', '.tiff', '.hgt', '.asc', '.pgm', '.r16', '.raw', '.f32'];
+const OPTIONS = { refs: 'string', out: 'string', update: 'boolean', threshold: 'string', 'max-diff-pixels': 'string',
+  'max-diff-pixel-ratio': 'string', mask: 'string', strict: 'boolean', 'node-only': 'boolean', chromium: 'string',
+  junit: 'string', json: 'string', grep: 'string', jobs: 'string', platform: 'string' };
 
-/** The flight's name: its file name without .flight.json or .json. */
-const flightName = (path) => basename(path).replace(/(\.flight)?\.json$/i, '');
-
-function readFlight(path) {
-  if (!existsSync(path)) throw new Error(`${path}: no such file`);
-  let json;
-  try {
-    json = JSON.parse(readFileSync(path, 'utf8'));
-  } catch (error) {
-    throw new FlightError(`${path}: not valid JSON (${error.message})`);
-  }
-  return parseFlight(json, path);
+/** The --out of the arguments, read before they are checked, so a usage mistake still rewrites the report. */
+function outOf(args) {
+  const i = args.findIndex((a) => a === '--out' || a.startsWith('--out='));
+  if (i < 0) return 'regress-out';
+  return args[i].startsWith('--out=') ? args[i].slice(6) : (args[i + 1] ?? 'regress-out');
 }
 
-/** The flights to run: [{name, flightPath, demPath, flight}]. */
-export function collectJobs(positionals) {
-  if (positionals.length === 0) throw new UsageError('regress needs a height field and a flight, a flight, or a folder');
-  if (positionals.length > 2) throw new UsageError('regress takes a height field and a flight, a flight, or a folder');
-  for (const p of positionals) if (!existsSync(p)) throw new Error(`${p}: no such file or folder`);
-  const demBeside = (flightPath, flight) => {
-    if (flight.dem) return resolve(dirname(flightPath), flight.dem);
-    const base = join(dirname(flightPath), flightName(flightPath));
-    const found = DEM_EXTENSIONS.map((e) => base + e).find((p) => existsSync(p));
-    if (!found) throw new Error(`${flightPath}: no "dem" key and no height field ${base}.png (or .tif, ...) beside it`);
-    return found;
-  };
-  let jobs;
-  if (positionals.length === 2) {
-    const [demPath, flightPath] = positionals;
-    if (statSync(demPath).isDirectory()) throw new UsageError(`${demPath} is a folder: give a folder alone`);
-    jobs = [{ flightPath, demPath, flight: readFlight(flightPath) }];
-  } else if (statSync(positionals[0]).isDirectory()) {
-    const folder = positionals[0];
-    const files = readdirSync(folder).filter((f) => f.toLowerCase().endsWith('.flight.json')).sort();
-    if (files.length === 0) throw new Error(`${folder}: no *.flight.json files in it`);
-    jobs = files.map((f) => {
-      const flightPath = join(folder, f);
-      const flight = readFlight(flightPath);
-      return { flightPath, demPath: demBeside(flightPath, flight), flight };
-    });
-  } else {
-    const flightPath = positionals[0];
-    if (extname(flightPath).toLowerCase() !== '.json') throw new UsageError(`${flightPath}: give a flight (.json) with it, or a flight that names its height field`);
-    const flight = readFlight(flightPath);
-    jobs = [{ flightPath, demPath: demBeside(flightPath, flight), flight }];
-  }
-  for (const job of jobs) {
-    job.name = flightName(job.flightPath);
-    if (!existsSync(job.demPath)) throw new Error(`${job.flightPath}: its height field ${job.demPath}: no such file`);
-  }
-  const names = jobs.map((j) => j.name);
-  const twice = names.find((n, i) => names.indexOf(n) !== i);
-  if (twice) throw new UsageError(`two flights named ${twice}: their references would collide`);
-  return jobs;
+function parseMasks(text) {
+  return text.split(';').map((part) => {
+    const numbers = part.split(',').map((p) => (p.trim() === '' ? NaN : Number(p)));
+    if (numbers.length !== 4 || !numbers.every((n) => Number.isFinite(n) && n >= 0) || numbers[2] <= 0 || numbers[3] <= 0) {
+      throw new UsageError(`--mask must be X,Y,W,H in CSS pixels (several joined by ;), with a positive width and height, got '${text}'`);
+    }
+    return numbers;
+  });
 }
 
-/** Loads the height field as the page does (auto PNG colours, a spacing guessed when none). */
-async function replayInNode(job) {
+/** The checked options of a run. */
+function readOptions(values) {
+  const overrides = {};
+  if (values.threshold !== undefined) overrides.threshold = parseNumber('threshold', values.threshold, { min: 0, max: 1 });
+  if (values['max-diff-pixels'] !== undefined) overrides.maxDiffPixels = parseNumber('max-diff-pixels', values['max-diff-pixels'], { min: 0, integer: true });
+  if (values['max-diff-pixel-ratio'] !== undefined) overrides.maxDiffPixelRatio = parseNumber('max-diff-pixel-ratio', values['max-diff-pixel-ratio'], { min: 0, max: 1 });
+  if (values.strict && Object.keys(overrides).length) throw new UsageError('--strict takes no --threshold or --max-diff-* with it');
+  if (values.strict) overrides.strict = true;
+  if (values.mask !== undefined) overrides.masks = parseMasks(values.mask);
+  let grep = null;
+  if (values.grep !== undefined) {
+    try {
+      grep = new RegExp(values.grep);
+    } catch (error) {
+      throw new UsageError(`--grep must be a regular expression: ${error.message}`);
+    }
+  }
+  if (values.platform !== undefined && !/^[A-Za-z0-9][A-Za-z0-9._-]{0,63}$/.test(values.platform)) {
+    throw new UsageError(`--platform must be a folder name of letters, digits, '.', '_' and '-', got '${values.platform}'`);
+  }
+  if (values.update && (values.strict || Object.keys(overrides).length)) throw new UsageError('--update compares nothing: give no tolerance options with it');
+  const jobs = values.jobs !== undefined ? parseNumber('jobs', values.jobs, { min: 1, max: MAX_JOBS, integer: true }) : 1;
+  return { overrides, grep, jobs, update: !!values.update, nodeOnly: !!values['node-only'], platform: values.platform ?? null };
+}
+
+/** Deletes what an earlier run left that this one would write, so no report shows another run. */
+function clearStale(out, files) {
+  mkdirSync(out, { recursive: true });
+  for (const file of [join(out, 'summary.txt'), join(out, 'report.html'), join(out, 'results.json'), ...files]) rmSync(file, { force: true });
+}
+
+/** The height field's files, read once per source however many flights fly over it. */
+class DemCache {
+  constructor(jobs) {
+    this.uses = new Map();
+    for (const job of jobs) if (job.source) this.uses.set(job.source, (this.uses.get(job.source) ?? 0) + 1);
+    this.reads = new Map();
+  }
+
+  get(source) {
+    if (!this.reads.has(source)) this.reads.set(source, readDem(source));
+    return this.reads.get(source);
+  }
+
+  /** A flight is done with it: the bytes go when no other flight needs them. */
+  release(source) {
+    const left = this.uses.get(source) - 1;
+    this.uses.set(source, left);
+    if (left === 0) this.reads.delete(source);
+  }
+}
+
+/** Replays a flight in Node as the page does (auto PNG colours, a spacing guessed when none). */
+async function replayInNode(job, dem) {
   const core = await createNodeCore();
   let loaded;
   try {
-    loaded = await loadTerrain(core, readInputs(job.demPath), { encoding: 'auto', guessSpacing: true });
+    loaded = await loadTerrain(core, dem.files, { encoding: 'auto', guessSpacing: true });
   } catch (error) {
     const message = error.needsSize ? `${error.message} (give the size in a NAME.json sidecar: width, height)` : error.message;
-    throw new Error(`${job.demPath}: the height field does not load: ${message.replace(/^[^:]*: /, '')}`);
+    throw new InputError(`${job.source}: the height field does not load: ${message.replace(/^[^:]*: /, '')}`);
   }
   const record = replayFlight(loaded.terrain, job.flight);
   loaded.terrain.destroy();
@@ -110,123 +138,243 @@ async function replayInNode(job) {
 
 const frameFile = (frame) => `frame-${String(frame).padStart(4, '0')}.png`;
 
-/** Compares (or, updating, stores) one flight's results; returns its result for the report. */
-function judge(job, run, { refs, out, update, threshold, maxShare, nodeOnly }) {
-  const dir = join(out, job.name), refDir = join(refs, job.name);
+/** A path as the user reads it: relative to the current folder when inside it. */
+const shown = (path) => {
+  const rel = relative(process.cwd(), path);
+  return rel && !rel.startsWith('..') ? rel : path;
+};
+
+/** A result with no comparison: the flight could not be flown or had nothing to compare with. */
+const outcome = (job, verdict, problem, extra = {}) => ({
+  name: job.name, flightPath: shown(job.flightPath), dem: job.source,
+  verdict, problems: [problem], details: [], frameLines: [], changes: [], frames: job.flight?.frames ?? 0, differingFrames: [], captures: [],
+  table: null, ...extra,
+});
+
+/** The command that makes a missing reference. */
+function updateCommand(job, context) {
+  const quote = (s) => (/^[\w./:@%+=,-]+$/.test(s) ? s : `'${s.replace(/'/g, "'\\''")}'`);
+  const args = ['hexlod', 'regress', ...(job.demGiven ? [shown(job.source)] : []), shown(job.flightPath)];
+  if (context.refsGiven) args.push('--refs', context.refs);
+  if (context.platform) args.push('--platform', context.platform);
+  return [...args, '--update'].map(quote).join(' ');
+}
+
+/**
+ * Compares one flown flight with its reference (or, updating, writes it as the reference) and
+ * writes its images and figures into out/NAME/.
+ */
+function judge(job, flown, dem, context) {
+  const { out, refs, platform, update, nodeOnly, overrides } = context;
+  const dir = join(out, job.name), refDir = platform ? join(refs, job.name, platform) : join(refs, job.name);
   mkdirSync(dir, { recursive: true });
-  const problems = [];
-  const statsDoc = { flight: relative(refs, job.flightPath), dem: basename(job.demPath), frames: job.flight.frames, stats: run.stats };
-  writeFileSync(join(dir, 'stats.json'), JSON.stringify(statsDoc, null, 0).replace(/\},\{/g, '},\n{') + '\n');
-  if (run.nodeMismatch) problems.push(`the page and Node disagree: ${run.nodeMismatch}`);
-  if (run.pageProblems?.length) problems.push(`the page reported: ${run.pageProblems[0]}`);
-  const captures = [];
+  const record = flightRecordOf(job.flight, dem);
+  const doc = { flight: relative(refDir, job.flightPath), ...record, frames: job.flight.frames, stats: flown.stats };
+  writeFileSync(join(dir, 'stats.json'), JSON.stringify(doc).replace(/\},\{/g, '},\n{') + '\n');
+  const result = outcome(job, 'pass', null, { problems: [], table: { actual: flown.stats, reference: null } });
+  if (flown.nodeDiff && !statsMatch(flown.nodeDiff)) {
+    result.problems.push(`the page and Node disagree: ${describeStats(flown.nodeDiff, 'Node')}`);
+    result.frameLines.push(...statsLines(flown.nodeDiff).map((line) => `page against Node: ${line}`));
+  }
+  for (const problem of flown.pageProblems) result.problems.push(`the page reported: ${problem}`);
+
   if (update) {
-    if (problems.length === 0) {
-      if (!nodeOnly) rmSync(refDir, { recursive: true, force: true }); // a Node-only update keeps the images
-      mkdirSync(refDir, { recursive: true });
-      copyFileSync(join(dir, 'stats.json'), join(refDir, 'stats.json'));
-    }
-    for (const [frame, image] of run.images) {
+    result.captures = [...flown.images].map(([frame, image]) => {
       writePng(join(dir, frameFile(frame)), image);
-      if (problems.length === 0) copyFileSync(join(dir, frameFile(frame)), join(refDir, frameFile(frame)));
-      captures.push({ frame, image: `${job.name}/${frameFile(frame)}` });
+      return { frame, verdict: 'pass', images: { actual: `${job.name}/${frameFile(frame)}` } };
+    });
+    if (result.problems.length) {
+      result.verdict = 'regression';
+      result.problems.push('the reference was not written');
+      return result;
     }
-    return { name: job.name, dem: job.demPath, frames: job.flight.frames, captures, problems, updated: problems.length === 0 };
+    if (!nodeOnly) rmSync(refDir, { recursive: true, force: true }); // a Node-only update keeps the images
+    mkdirSync(refDir, { recursive: true });
+    copyFileSync(join(dir, 'stats.json'), join(refDir, 'stats.json'));
+    for (const frame of flown.images.keys()) copyFileSync(join(dir, frameFile(frame)), join(refDir, frameFile(frame)));
+    result.verdict = 'updated';
+    return result;
   }
-  const refStats = join(refDir, 'stats.json');
-  if (!existsSync(refStats)) {
-    problems.push(`no reference in ${refDir}: run with --update to make one`);
-  } else {
-    const mismatch = compareStats(JSON.parse(readFileSync(refStats, 'utf8')).stats, run.stats, 'the reference');
-    if (mismatch) problems.push(mismatch);
+
+  const reference = context.reference;
+  result.table.reference = reference.stats;
+  result.changes = flightChanges(reference, record);
+  const statsDiff = compareStats(reference.stats, flown.stats);
+  result.differingFrames = statsDiff.frames;
+  if (!statsMatch(statsDiff)) {
+    result.problems.push(`mesh: ${describeStats(statsDiff, 'the reference')}`);
+    result.frameLines.push(...statsLines(statsDiff));
   }
-  for (const [frame, image] of run.images) {
-    const name = frameFile(frame), capture = { frame, image: `${job.name}/${name}` };
-    writePng(join(dir, name), image);
-    const refPath = join(refDir, name);
-    if (!existsSync(refPath)) {
-      if (existsSync(refStats)) problems.push(`frame ${frame}: no reference image`);
-      captures.push(capture);
+  for (const frame of nodeOnly ? [] : job.flight.captures) {
+    const image = flown.images.get(frame);
+    const name = frameFile(frame);
+    const capture = { frame, verdict: 'pass', images: {} };
+    result.captures.push(capture);
+    if (!image) {
+      capture.verdict = 'fail';
+      result.problems.push(`frame ${frame}: not captured`);
       continue;
     }
-    const refCopy = name.replace('.png', '-ref.png'), diffName = name.replace('.png', '-diff.png');
-    copyFileSync(refPath, join(dir, refCopy));
-    capture.reference = `${job.name}/${refCopy}`;
-    const result = compareImages(readPng(readFileSync(refPath)), image, threshold);
-    if (result.sizeMismatch) {
-      capture.problem = `size ${result.sizeMismatch}`;
-      problems.push(`frame ${frame}: ${capture.problem}`);
-    } else {
-      writePng(join(dir, diffName), result.diff);
-      Object.assign(capture, { diff: `${job.name}/${diffName}`, share: result.share, maxDelta: result.maxDelta });
-      if (result.share > maxShare) {
-        capture.problem = `${(100 * result.share).toFixed(3)} % of pixels differ (max ${result.maxDelta})`;
-        problems.push(`frame ${frame}: ${capture.problem}`);
+    writePng(join(dir, name), image);
+    capture.images.actual = `${job.name}/${name}`;
+    const refPath = join(refDir, name);
+    if (!existsSync(refPath)) {
+      capture.verdict = 'fail';
+      capture.summary = 'no reference image';
+      result.problems.push(`frame ${frame}: no reference image`);
+      continue;
+    }
+    copyFileSync(refPath, join(dir, name.replace('.png', '-ref.png')));
+    capture.images.reference = `${job.name}/${name.replace('.png', '-ref.png')}`;
+    const tolerance = toleranceFor(job.flight.tolerance, frame, overrides);
+    const compared = compareImages(readPng(readFileSync(refPath)), image, tolerance, job.flight.dpr);
+    capture.tolerance = tolerance;
+    if (compared.sizeMismatch) {
+      capture.verdict = 'fail';
+      capture.summary = `size ${compared.sizeMismatch}`;
+      result.problems.push(`frame ${frame}: ${capture.summary}`);
+      continue;
+    }
+    writePng(join(dir, name.replace('.png', '-diff.png')), compared.diff);
+    capture.images.diff = `${job.name}/${name.replace('.png', '-diff.png')}`;
+    const { diff, passed, ...figures } = compared;
+    Object.assign(capture, figures, { verdict: passed ? 'pass' : 'fail', summary: describeImage(compared, tolerance) });
+    if (!passed) {
+      result.problems.push(`frame ${frame}: ${briefImage(compared)}`);
+      result.details.push(`frame ${frame}: ${capture.summary}`);
+    }
+  }
+  if (result.problems.length) {
+    result.verdict = 'regression';
+    if (result.changes.length) result.problems.unshift(`the flight changed: ${result.changes.join(', ')}`);
+    else result.details.unshift('the flight and its height field are as the reference recorded them: the difference comes from hexlod (core, shaders, page) or the browser');
+  }
+  return result;
+}
+
+/** Reads a flight's reference, or says why there is none to compare with. */
+function readReference(job, context) {
+  const refDir = context.platform ? join(context.refs, job.name, context.platform) : join(context.refs, job.name);
+  const path = join(refDir, 'stats.json');
+  if (!existsSync(path)) return { missing: `no reference in ${refDir}; make one with: ${updateCommand(job, context)}` };
+  try {
+    const doc = JSON.parse(readFileSync(path, 'utf8'));
+    if (!Array.isArray(doc?.stats)) throw new Error('it has no "stats" list');
+    return { doc };
+  } catch (error) {
+    return { bad: `${path}: not a reference (${error.message}); make it again with --update` };
+  }
+}
+
+/** Flies one flight: its height field, the Node replay, the page; returns its result. */
+async function runJob(job, index, context) {
+  if (job.error) return outcome(job, 'bad-input', job.error);
+  let reference = null;
+  if (!context.update) {
+    const found = readReference(job, context);
+    if (found.missing) return outcome(job, 'no-reference', found.missing);
+    if (found.bad) return outcome(job, 'bad-input', found.bad);
+    reference = found.doc;
+  }
+  rmSync(join(context.out, job.name), { recursive: true, force: true });
+  let dem;
+  try {
+    dem = await context.dems.get(job.source);
+    const nodeStats = await replayInNode(job, dem);
+    const flown = { stats: nodeStats, images: new Map(), pageProblems: [], nodeDiff: null };
+    if (!context.nodeOnly) {
+      const session = await context.browser();
+      try {
+        const page = await context.browserModule.flyInPage(session, { id: index, demFiles: dem.files, flightPath: job.flightPath, flight: job.flight });
+        Object.assign(flown, { stats: page.stats, images: page.images, pageProblems: page.problems, nodeDiff: compareStats(nodeStats, page.stats) });
+      } catch (error) {
+        if (error instanceof EnvironmentError) throw error;
+        return outcome(job, 'regression', `the page failed: ${String(error.message).split('\n')[0]}`);
       }
     }
-    captures.push(capture);
+    return judge(job, flown, dem, { ...context, reference });
+  } catch (error) {
+    const message = String(error.message).split('\n')[0];
+    if (error instanceof EnvironmentError) return outcome(job, 'error', message);
+    if (error instanceof InputError || !dem) return outcome(job, 'bad-input', message);
+    return outcome(job, 'error', message); // the core failed on a height field that loaded
+  } finally {
+    context.dems.release(job.source);
   }
-  if (!nodeOnly) {
-    for (const frame of job.flight.captures) {
-      if (!run.images.has(frame)) problems.push(`frame ${frame}: not captured`);
+}
+
+/** Runs the jobs, `count` at a time; results in the jobs' order, progress lines as they end. */
+async function runAll(jobs, context, count) {
+  const results = new Array(jobs.length);
+  let next = 0;
+  const worker = async () => {
+    while (next < jobs.length) {
+      const i = next++;
+      const started = performance.now();
+      results[i] = await runJob(jobs[i], i, context);
+      results[i].seconds = (performance.now() - started) / 1000;
+      console.log(`[${i + 1}/${jobs.length}] ${jobs[i].name}: ${flightLine(results[i])} (${results[i].seconds.toFixed(1)} s)`);
     }
-  }
-  return { name: job.name, dem: job.demPath, frames: job.flight.frames, captures, problems };
+  };
+  await Promise.all(Array.from({ length: Math.min(count, jobs.length) }, worker));
+  return results;
+}
+
+/** The exit code of a run: the most serious of its outcomes (EXIT). */
+function exitCodeOf(run) {
+  const verdicts = new Set(run.results.map((r) => r.verdict));
+  if (run.error?.kind === 'environment' || verdicts.has('error')) return EXIT.environment;
+  if (run.error || verdicts.has('bad-input') || verdicts.has('no-reference')) return EXIT.input;
+  if (verdicts.has('regression')) return EXIT.regression;
+  return EXIT.pass;
 }
 
 export async function regress(args) {
-  const { values, positionals } = parseOptions(args, OPTIONS);
-  if (values.help) { console.log(REGRESS_USAGE); return 0; }
-  const threshold = values.threshold !== undefined ? parseNumber('threshold', values.threshold, { min: 0, max: 255, integer: true }) : DEFAULT_THRESHOLD;
-  const maxShare = values['max-share'] !== undefined ? parseNumber('max-share', values['max-share'], { min: 0, max: 1 }) : DEFAULT_MAX_SHARE;
-  const jobs = collectJobs(positionals);
-  const refs = resolve(values.refs ?? join(dirname(jobs[0].flightPath), 'refs'));
-  const out = resolve(values.out ?? 'regress-out');
-  const nodeOnly = !!values['node-only'];
-  const options = { refs, out, update: !!values.update, threshold, maxShare, nodeOnly };
-  mkdirSync(out, { recursive: true });
-
-  // Node first: a height field that does not load stops everything before a browser starts.
-  const runs = [];
-  for (const job of jobs) {
-    const started = performance.now();
-    runs.push({ stats: await replayInNode(job), images: new Map(), nodeMs: performance.now() - started });
-  }
-  const session = nodeOnly ? null : await (await import('./regress_browser.js')).startBrowser({ chromium: values.chromium });
-  const results = [];
+  if (args.includes('--help') || args.includes('-h')) { console.log(REGRESS_USAGE); return 0; }
+  const started = performance.now();
+  const run = { options: { out: resolve(outOf(args)) }, error: null, results: [], exitCode: 0, startedAt: new Date().toISOString(), seconds: 0 };
+  const reports = [];
+  let session = null;
   try {
-    for (let i = 0; i < jobs.length; i++) {
-      const job = jobs[i], run = runs[i];
-      const started = performance.now();
-      if (session) {
-        try {
-          const page = await (await import('./regress_browser.js')).flyInPage(session, { id: i, ...job });
-          run.nodeMismatch = compareStats(run.stats, page.stats, 'Node');
-          run.pageProblems = page.problems;
-          run.stats = page.stats;
-          run.images = page.images;
-        } catch (error) {
-          run.pageProblems = [String(error.message).split('\n')[0]]; // this flight fails; the others still fly
-        }
-      }
-      const result = judge(job, run, options);
-      results.push(result);
-      const seconds = ((performance.now() - started + run.nodeMs) / 1000).toFixed(1);
-      console.log(`[${i + 1}/${jobs.length}] ${job.name}: ${flightLine(result)} ${seconds} s`);
-    }
+    const { values, positionals } = parseOptions(args, OPTIONS);
+    const options = readOptions(values);
+    if (values.junit) reports.push([resolve(values.junit), junitXml]);
+    if (values.json) reports.push([resolve(values.json), jsonReport]);
+    clearStale(run.options.out, reports.map(([path]) => path));
+    const jobs = collectJobs(positionals, options.grep);
+    const firstFlight = jobs[0].flightPath;
+    const refs = resolve(values.refs ?? join(firstFlight, '..', 'refs'));
+    Object.assign(run.options, { refs, platform: options.platform, update: options.update, nodeOnly: options.nodeOnly,
+      jobs: options.jobs, grep: values.grep ?? null, tolerance: options.overrides });
+    for (const job of jobs) job.demGiven = positionals.length === 2;
+    const browserModule = options.nodeOnly ? null : await import('./regress_browser.js');
+    let starting = null;
+    const context = {
+      ...options, out: run.options.out, refs, refsGiven: values.refs !== undefined, dems: new DemCache(jobs), browserModule,
+      // The browser starts when the first flight needs it: a run whose flights all fail early needs none.
+      browser: () => (starting ??= browserModule.startBrowser({ chromium: values.chromium }).then((s) => (session = s))),
+    };
+    run.results = await runAll(jobs, context, options.jobs);
+    const broken = run.results.find((r) => r.verdict === 'error');
+    if (broken) run.error = { kind: 'environment', message: broken.problems[0] };
+  } catch (error) {
+    const kind = error instanceof UsageError || error?.code?.startsWith?.('ERR_PARSE_ARGS') ? 'usage'
+      : error instanceof EnvironmentError ? 'environment' : 'input';
+    run.error = { kind, message: String(error?.message ?? error).replace(/\s*\n\s*/g, ' ') };
   } finally {
     await session?.close();
+    run.seconds = (performance.now() - started) / 1000;
+    run.exitCode = exitCodeOf(run);
+    try {
+      mkdirSync(run.options.out, { recursive: true });
+      writeFileSync(join(run.options.out, 'summary.txt'), summaryText(run));
+      writeFileSync(join(run.options.out, 'report.html'), htmlReport(run));
+      for (const [path, format] of reports) writeFileSync(path, format(run));
+    } catch (error) {
+      console.error(`hexlod: the report could not be written: ${error.message}`);
+    }
   }
-  const failed = results.filter((r) => r.problems.length);
-  const summary = [
-    `hexlod regress: ${results.length} flights, ${failed.length} regressed${options.update ? ', references written' : ''}` +
-      (nodeOnly ? ' (Node only: no pixels)' : ''),
-    ...results.map((r) => `  ${r.name}: ${flightLine(r)}`),
-    `references ${refs}`,
-    `report     ${join(out, 'report.html')}`,
-  ].join('\n');
-  writeFileSync(join(out, 'summary.txt'), summary + '\n');
-  writeFileSync(join(out, 'report.html'), htmlReport(results, { threshold, maxShare }));
-  console.log(summary);
-  return failed.length ? 1 : 0;
+  if (run.results.length) process.stdout.write(summaryText(run));
+  if (run.error) console.error(`hexlod: ${run.error.message}${run.error.kind === 'usage' ? '; see hexlod regress --help' : ''}`);
+  return run.exitCode;
 }

@@ -14,41 +14,49 @@ import { basename, dirname, extname, join } from 'node:path';
 import { createHash } from 'node:crypto';
 import { tmpdir } from 'node:os';
 import { fileURLToPath } from 'node:url';
-import { DEFAULT_CHROMIUM, freePort, launchChromium } from './chromium.js';
+import { DEFAULT_CHROMIUM, EnvironmentError, freePort, launchChromium } from './chromium.js';
 
 export const projectDir = fileURLToPath(new URL('..', import.meta.url));
 export { DEFAULT_CHROMIUM };
 
-/** Files the middleware may serve: /__regress/<id>/<kind>/<name> -> absolute path. */
+/** Files the middleware may serve: /__regress/<id>/<kind>/<name> -> their bytes. */
 class FileTable {
   constructor() { this.files = new Map(); }
 
-  /** Registers a file (and, for a height field, its NAME.json sidecar); returns its URL path. */
-  add(id, kind, path) {
-    const name = basename(path);
-    this.files.set(`/${id}/${kind}/${name}`, path);
-    if (kind === 'dem') {
-      const sidecar = join(dirname(path), `${basename(path, extname(path))}.json`);
-      if (extname(path).toLowerCase() !== '.json' && existsSync(sidecar)) this.files.set(`/${id}/${kind}/${basename(sidecar)}`, sidecar);
+  /**
+   * Registers files under one id and kind (a height field with its sidecar, or a flight file);
+   * returns the URL path of the first.
+   * @param {{name: string, bytes: Uint8Array}[]} files
+   */
+  add(id, kind, files) {
+    for (const { name, bytes } of files) this.files.set(`/${id}/${kind}/${name}`, { name, bytes });
+    return `/__regress/${id}/${kind}/${encodeURIComponent(files[0].name)}`;
+  }
+
+  /** Registers a file on disk and, for a height field, its NAME.json sidecar beside it. */
+  addPath(id, kind, path) {
+    const files = [{ name: basename(path), bytes: readFileSync(path) }];
+    const sidecar = join(dirname(path), `${basename(path, extname(path))}.json`);
+    if (kind === 'dem' && extname(path).toLowerCase() !== '.json' && existsSync(sidecar)) {
+      files.push({ name: basename(sidecar), bytes: readFileSync(sidecar) });
     }
-    return `/__regress/${id}/${kind}/${encodeURIComponent(name)}`;
+    return this.add(id, kind, files);
   }
 
   middleware() {
-    return (req, res, next) => {
-      const path = this.files.get(decodeURIComponent(req.url.split('?')[0]));
-      if (!path) {
+    return (req, res) => {
+      const file = this.files.get(decodeURIComponent(req.url.split('?')[0]));
+      if (!file) {
         // Not ours (the page asks for a sidecar that may not exist): a plain 404, never Vite's HTML.
         res.statusCode = 404;
         res.setHeader('Content-Type', 'text/plain');
         res.end('not found');
         return;
       }
-      const bytes = readFileSync(path);
-      res.setHeader('Content-Type', extname(path).toLowerCase() === '.json' ? 'application/json' : 'application/octet-stream');
-      res.setHeader('Content-Length', bytes.length);
+      res.setHeader('Content-Type', extname(file.name).toLowerCase() === '.json' ? 'application/json' : 'application/octet-stream');
+      res.setHeader('Content-Length', file.bytes.length);
       res.setHeader('Cache-Control', 'no-store');
-      res.end(bytes);
+      res.end(file.bytes);
     };
   }
 }
@@ -77,7 +85,7 @@ export async function startBrowser({ chromium: chromiumPath = process.env.CHROMI
     await server.listen();
   } catch (error) {
     await browser.close();
-    throw error;
+    throw new EnvironmentError(`the page's dev server (Vite) did not start: ${String(error.message).split('\n')[0]}`);
   }
   const { port } = server.httpServer.address();
   return {
@@ -93,11 +101,14 @@ export async function startBrowser({ chromium: chromiumPath = process.env.CHROMI
 
 /**
  * Flies one flight in a new page: captures the pixels of `captures` and the figures of every frame.
+ * A browser that dies on the way throws EnvironmentError; a page that fails throws Error.
+ * @param {{id: string|number, demFiles: {name: string, bytes: Uint8Array}[], flightPath: string, flight: object}} job
  * @returns {Promise<{stats: object[], images: Map<number, {width, height, rgb: Uint8Array}>, problems: string[]}>}
  */
-export async function flyInPage(session, { id, demPath, flightPath, flight, timeoutMs = 300000 }) {
-  const dem = session.files.add(id, 'dem', demPath);
-  const flightUrl = session.files.add(id, 'flight', flightPath);
+export async function flyInPage(session, { id, demFiles, flightPath, flight, timeoutMs = 300000 }) {
+  if (!session.browser.isConnected()) throw new EnvironmentError('the browser closed during the run');
+  const dem = session.files.add(id, 'dem', demFiles);
+  const flightUrl = session.files.addPath(id, 'flight', flightPath);
   const [w, h] = flight.viewport;
   const page = await session.browser.newPage({ viewport: { width: w, height: h }, deviceScaleFactor: flight.dpr });
   const problems = [];
@@ -127,8 +138,13 @@ export async function flyInPage(session, { id, demPath, flightPath, flight, time
     await withTimeout(page.evaluate((n) => window.hexlod.flight.frame(n), flight.frames - 1), timeoutMs, `frame ${flight.frames - 1}`);
     const stats = await page.evaluate(() => window.hexlod.flight.stats());
     return { stats, images, problems };
+  } catch (error) {
+    if (!session.browser.isConnected() || /Target (page, context or browser )?(has been )?closed|crashed/i.test(error.message)) {
+      throw new EnvironmentError(`the browser closed or crashed during the flight: ${String(error.message).split('\n')[0]}`);
+    }
+    throw error;
   } finally {
-    await page.close();
+    await page.close().catch(() => {});
   }
 }
 

@@ -1,24 +1,107 @@
-// Comparisons and reports of `hexlod regress`: per-frame figures exactly, pixels with a
-// tolerance (a per-pixel threshold and a share of differing pixels), a diff image, a text
-// summary and an HTML report with reference, new and diff side by side.
+// Comparisons of `hexlod regress`: a flight's per-frame figures against the reference's (every
+// frame that differs, field by field), the flight's own settings against those the reference
+// recorded (so a mismatch can name its cause, "tau 1 → 2"), and captured images with pixelmatch's
+// perceptual measure under a tolerance (web/app/deterministic/tolerance.js), masks, and the drift
+// that stays below it (share of pixels changed at all, mean change).
 import { writeFileSync } from 'node:fs';
 import { encode, decode } from 'fast-png';
+import pixelmatch from 'pixelmatch';
 import { RECORD_FIELDS } from '../web/app/deterministic/flight.js';
 
+const FIELDS = ['hash', ...RECORD_FIELDS];
+
 /**
- * The first difference between two lists of frame figures, as one line, or null.
- * @param {object[]} expected @param {object[]} actual
- * @param {string} what e.g. 'the reference', 'Node'
+ * Every frame whose figures differ between two runs of a flight.
+ * @param {object[]} expected @param {object[]} actual per-frame figures (FlightRecord.toArray())
+ * @returns {{expectedFrames: number, actualFrames: number,
+ *   frames: {frame: number, fields: Record<string, [unknown, unknown]>}[]}}
+ *   fields maps each differing figure to [expected, actual]
  */
-export function compareStats(expected, actual, what) {
-  if (expected.length !== actual.length) return `${actual.length} frames, ${what} has ${expected.length}`;
-  for (let f = 0; f < expected.length; f++) {
-    const e = expected[f], a = actual[f];
-    for (const key of ['hash', ...RECORD_FIELDS]) {
-      if (e[key] !== a[key]) return `frame ${f}: ${key} ${a[key]}, ${what} has ${e[key]}`;
-    }
+export function compareStats(expected, actual) {
+  const frames = [];
+  for (let f = 0; f < Math.min(expected.length, actual.length); f++) {
+    const fields = {};
+    for (const key of FIELDS) if (expected[f][key] !== actual[f][key]) fields[key] = [expected[f][key], actual[f][key]];
+    if (Object.keys(fields).length) frames.push({ frame: f, fields });
   }
-  return null;
+  return { expectedFrames: expected.length, actualFrames: actual.length, frames };
+}
+
+/** True when compareStats found no difference. */
+export const statsMatch = (diff) => diff.frames.length === 0 && diff.expectedFrames === diff.actualFrames;
+
+/** One frame's difference, e.g. 'frame 4: triangles 26668 → 26702' or 'frame 4: hash only'. */
+function frameLine({ frame, fields }) {
+  const counts = Object.entries(fields).filter(([key]) => key !== 'hash').map(([key, [a, b]]) => `${key} ${a} → ${b}`);
+  return `frame ${frame}: ${counts.length ? counts.slice(0, 3).join(', ') : 'the mesh (hash), same counts'}`;
+}
+
+/** A frame's difference in brief: its triangles before → after, or which figures differ. */
+function briefFrame({ frame, fields }) {
+  if (fields.triangles) return `frame ${frame}: triangles ${fields.triangles[0]} → ${fields.triangles[1]}`;
+  return `frame ${frame}: ${Object.keys(fields).join(', ')}`;
+}
+
+/**
+ * A stats difference as one short phrase: how many frames differ, the first and the last with
+ * their triangles before → after. `what`: who holds the expected figures ('the reference', 'Node').
+ */
+export function describeStats(diff, what) {
+  const parts = [];
+  if (diff.expectedFrames !== diff.actualFrames) parts.push(`${diff.actualFrames} frames, ${what} has ${diff.expectedFrames}`);
+  const n = diff.frames.length;
+  if (n) {
+    const ends = n === 1 ? briefFrame(diff.frames[0]) : `${briefFrame(diff.frames[0])} … ${briefFrame(diff.frames[n - 1])}`;
+    parts.push(`${n} of ${Math.min(diff.expectedFrames, diff.actualFrames)} frames differ from ${what} (${ends})`);
+  }
+  return parts.join('; ');
+}
+
+/** Every differing frame, one line each (for summary.txt). */
+export const statsLines = (diff) => diff.frames.map(frameLine);
+
+const SETTING_LABELS = { tau: 'tau', exaggeration: 'exaggeration', operations: 'operations', geomorph: 'geomorph',
+  culling: 'culling', backfaceCulling: 'backfaceCulling', embedding: 'embedding' };
+const list = (values) => values.join(', ');
+const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+
+/**
+ * What a reference records of a flight and its height field: everything that decides its
+ * figures and pixels (not its tolerance, which only judges them).
+ */
+export function flightRecordOf(flight, dem) {
+  const { fps, frames, viewport, dpr, settings, captures, keyframes } = flight;
+  return { spec: { fps, frames, viewport, dpr, settings, captures, keyframes }, dem: { name: dem.name, bytes: dem.size, sha256: dem.sha256 } };
+}
+
+/**
+ * How a flight and its height field differ from what the reference recorded, one phrase per
+ * change ('tau 1 → 2', 'viewport 320x180 → 400x225'), or [] when they are the same.
+ */
+export function flightChanges(reference, current) {
+  const changes = [];
+  const was = reference.spec, now = current.spec;
+  if (!was) return ['the reference records no flight settings (it was made by an older hexlod): run --update to record them'];
+  for (const key of Object.keys({ ...was.settings, ...now.settings })) {
+    if (!same(was.settings[key], now.settings[key])) changes.push(`${SETTING_LABELS[key] ?? key} ${was.settings[key]} → ${now.settings[key]}`);
+  }
+  if (!same(was.viewport, now.viewport)) changes.push(`viewport ${was.viewport.join('x')} → ${now.viewport.join('x')}`);
+  for (const key of ['dpr', 'fps', 'frames']) if (was[key] !== now[key]) changes.push(`${key} ${was[key]} → ${now[key]}`);
+  if (!same(was.captures, now.captures)) changes.push(`captures ${list(was.captures)} → ${list(now.captures)}`);
+  if (was.keyframes.length !== now.keyframes.length) {
+    changes.push(`keyframes ${was.keyframes.length} → ${now.keyframes.length}`);
+  } else {
+    was.keyframes.forEach((k, i) => {
+      for (const key of ['time', 'position', 'target', 'fov']) {
+        if (!same(k[key], now.keyframes[i][key])) changes.push(`keyframe ${i} ${key} ${JSON.stringify(k[key])} → ${JSON.stringify(now.keyframes[i][key])}`);
+      }
+    });
+  }
+  const a = typeof reference.dem === 'object' ? reference.dem : { name: reference.dem };
+  const b = current.dem;
+  if (a.name !== b.name) changes.push(`height field ${a.name} → ${b.name}`);
+  else if (a.sha256 && a.sha256 !== b.sha256) changes.push(`height field ${a.name}: its content changed (sha256 ${a.sha256.slice(0, 8)} → ${b.sha256.slice(0, 8)})`);
+  return changes;
 }
 
 /** Reads an 8-bit RGB(A) PNG as {width, height, rgb}. */
@@ -38,71 +121,105 @@ export function writePng(path, { width, height, rgb }) {
   writeFileSync(path, encode({ width, height, data: rgb, channels: 3, depth: 8 }));
 }
 
+/** RGB -> RGBA (opaque), as pixelmatch reads. */
+function rgba({ width, height, rgb }) {
+  const out = new Uint8Array(width * height * 4);
+  for (let p = 0; p < width * height; p++) {
+    out[4 * p] = rgb[3 * p];
+    out[4 * p + 1] = rgb[3 * p + 1];
+    out[4 * p + 2] = rgb[3 * p + 2];
+    out[4 * p + 3] = 255;
+  }
+  return out;
+}
+
+/** A mask per pixel (1: left out) from rectangles in CSS pixels, rounded outwards to device pixels. */
+function maskOf(rects, dpr, width, height) {
+  const mask = new Uint8Array(width * height);
+  for (const [x, y, w, h] of rects) {
+    const x0 = Math.max(0, Math.floor(x * dpr)), x1 = Math.min(width, Math.ceil((x + w) * dpr));
+    const y0 = Math.max(0, Math.floor(y * dpr)), y1 = Math.min(height, Math.ceil((y + h) * dpr));
+    for (let row = y0; row < y1; row++) mask.fill(1, row * width + x0, row * width + Math.max(x0, x1));
+  }
+  return mask;
+}
+
+const RED = [255, 0, 0], YELLOW = [255, 255, 0], ORANGE = [255, 150, 0], MASKED = [70, 110, 200];
+
 /**
- * Compares two images pixel by pixel: a pixel differs when one of its channels differs by more
- * than `threshold` (0-255). Returns the count and share of differing pixels, the largest channel
- * difference, and a diff image: differing pixels red, smaller differences orange, the rest the
- * reference's grey, dimmed.
+ * Compares a capture with its reference under a tolerance. The diff image marks pixels that
+ * differ red, anti-aliased ones pixelmatch left out yellow, pixels changed below the threshold
+ * orange, masked regions blue; the rest is the reference in faint grey.
+ * @param {{width, height, rgb}} reference @param {{width, height, rgb}} actual
+ * @param {ReturnType<import('../web/app/deterministic/tolerance.js').toleranceFor>} tolerance
+ * @param {number} dpr device pixels per CSS pixel (masks are in CSS pixels)
  */
-export function compareImages(reference, actual, threshold) {
+export function compareImages(reference, actual, tolerance, dpr = 1) {
   if (reference.width !== actual.width || reference.height !== actual.height) {
     return { sizeMismatch: `${actual.width}x${actual.height}, the reference is ${reference.width}x${reference.height}` };
   }
   const { width, height } = reference;
-  const a = reference.rgb, b = actual.rgb;
-  const diff = new Uint8Array(width * height * 3);
-  let differing = 0, maxDelta = 0;
+  const mask = maskOf(tolerance.masks, dpr, width, height);
+  const a = rgba(reference), b = rgba(actual);
+  let masked = 0, changed = 0, deltaSum = 0, maxDelta = 0;
   for (let p = 0; p < width * height; p++) {
-    const k = 3 * p;
-    const delta = Math.max(Math.abs(a[k] - b[k]), Math.abs(a[k + 1] - b[k + 1]), Math.abs(a[k + 2] - b[k + 2]));
-    if (delta > maxDelta) maxDelta = delta;
-    if (delta > threshold) {
-      differing += 1;
-      diff[k] = 255; diff[k + 1] = 0; diff[k + 2] = 0;
-    } else if (delta > 0) {
-      diff[k] = 255; diff[k + 1] = 170; diff[k + 2] = 0;
-    } else {
-      const grey = Math.round(0.25 * (0.2126 * a[k] + 0.7152 * a[k + 1] + 0.0722 * a[k + 2]));
-      diff[k] = diff[k + 1] = diff[k + 2] = grey;
+    const k = 4 * p;
+    if (mask[p]) {
+      masked += 1;
+      b[k] = a[k]; b[k + 1] = a[k + 1]; b[k + 2] = a[k + 2]; // equal: pixelmatch passes over it
+      continue;
     }
+    const delta = Math.max(Math.abs(a[k] - b[k]), Math.abs(a[k + 1] - b[k + 1]), Math.abs(a[k + 2] - b[k + 2]));
+    if (delta) changed += 1;
+    deltaSum += delta;
+    if (delta > maxDelta) maxDelta = delta;
   }
-  return { differing, share: differing / (width * height), maxDelta, diff: { width, height, rgb: diff } };
+  const output = new Uint8Array(width * height * 4);
+  const differing = pixelmatch(a, b, output, width, height, {
+    threshold: tolerance.threshold, includeAA: tolerance.antialiasing === 'count', alpha: 0.15,
+    diffColor: RED, aaColor: YELLOW,
+  });
+  const diff = new Uint8Array(width * height * 3);
+  let antialiased = 0;
+  for (let p = 0; p < width * height; p++) {
+    const k = 4 * p;
+    let colour = [output[k], output[k + 1], output[k + 2]];
+    const isRed = colour[0] === 255 && colour[1] === 0 && colour[2] === 0;
+    const isYellow = colour[0] === 255 && colour[1] === 255 && colour[2] === 0;
+    if (isYellow) antialiased += 1;
+    if (mask[p]) colour = MASKED;
+    else if (!isRed && !isYellow && (a[k] !== b[k] || a[k + 1] !== b[k + 1] || a[k + 2] !== b[k + 2])) colour = ORANGE;
+    diff.set(colour, 3 * p);
+  }
+  const compared = width * height - masked;
+  const allowed = Math.max(tolerance.maxDiffPixels, Math.floor(tolerance.maxDiffPixelRatio * compared));
+  return {
+    compared, masked, differing, allowed, antialiased, changed, maxDelta,
+    share: compared ? differing / compared : 0,
+    changedShare: compared ? changed / compared : 0,
+    meanChange: compared ? deltaSum / compared : 0,
+    passed: differing <= allowed,
+    diff: { width, height, rgb: diff },
+  };
 }
 
-const escapeHtml = (text) => String(text).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
+const percent = (share) => `${(100 * share).toFixed(share && share < 0.0001 ? 4 : share < 0.01 ? 3 : 2)} %`;
 
-/** The one-line verdict of a flight. */
-export function flightLine(result) {
-  if (result.updated) return `updated (${result.frames} frames, ${result.captures.length} captures)`;
-  if (result.problems.length === 0) {
-    const deltas = result.captures.filter((c) => c.maxDelta !== undefined).map((c) => c.maxDelta);
-    const pixels = deltas.length ? `, largest pixel difference ${Math.max(...deltas)}` : '';
-    return `ok (${result.frames} frames, ${result.captures.length} captures${pixels})`;
-  }
-  return `REGRESSION: ${result.problems.join('; ')}`;
+/** A failed capture in brief, e.g. '13.60 % of pixels differ (0.200 % allowed)'. */
+export function briefImage(result) {
+  return `${percent(result.share)} of pixels differ (${percent(result.compared ? result.allowed / result.compared : 0)} allowed)`;
 }
 
-/** The HTML report: per flight its verdict and, per capture, reference, new and diff. */
-export function htmlReport(results, { threshold, maxShare }) {
-  const rows = results.map((r) => {
-    const images = r.captures.map((c) => `
-      <figure><figcaption>frame ${c.frame}${c.share !== undefined ? `: ${(100 * c.share).toFixed(3)} % of pixels differ by more than ${threshold}, max ${c.maxDelta}` : ''}${c.problem ? ` · <b>${escapeHtml(c.problem)}</b>` : ''}</figcaption>
-        <div class="row">
-          ${c.reference ? `<a href="${c.reference}"><img src="${c.reference}" alt="reference"></a>` : '<span class="none">no reference</span>'}
-          <a href="${c.image}"><img src="${c.image}" alt="new"></a>
-          ${c.diff ? `<a href="${c.diff}"><img src="${c.diff}" alt="diff"></a>` : ''}
-        </div></figure>`).join('');
-    return `<section class="${r.problems.length ? 'bad' : 'good'}"><h2>${escapeHtml(r.name)}</h2>
-      <p>${escapeHtml(r.dem)} · ${escapeHtml(flightLine(r))}</p>
-      <p class="legend">reference · new · diff (red: differs by more than ${threshold}; orange: by less)</p>${images}</section>`;
-  }).join('\n');
-  const failed = results.filter((r) => r.problems.length).length;
-  return `<!doctype html><html lang="en"><head><meta charset="utf-8"><title>hexlod regress: ${failed} of ${results.length} regressed</title>
-<style>body{font:14px system-ui,sans-serif;margin:16px;background:#f4f5f7}section{background:#fff;margin:12px 0;padding:8px 12px;border-left:6px solid #3a3}
-section.bad{border-color:#d33}.row{display:flex;gap:8px;flex-wrap:wrap}img{image-rendering:pixelated;border:1px solid #ccc;max-width:32vw}
-figure{margin:8px 0}.legend{color:#666}.none{display:inline-block;width:200px;color:#a00}</style></head><body>
-<h1>hexlod regress: ${failed ? `${failed} of ${results.length} flights regressed` : `all ${results.length} flights as the references`}</h1>
-<p>Mesh hashes and per-frame figures compared exactly; pixels: a pixel differs when a channel differs by more than ${threshold},
-a capture regresses when more than ${(100 * maxShare).toFixed(3)} % of its pixels differ.</p>
-${rows}</body></html>\n`;
+/** A capture's comparison in words, e.g. '12.30 % of pixels differ (allowed 0.200 %); 32.36 % changed at all, mean change 0.668, largest 4'. */
+export function describeImage(result, tolerance) {
+  const allowedShare = result.compared ? result.allowed / result.compared : 0;
+  const drift = result.changed
+    ? `${percent(result.changedShare)} changed at all, mean change ${result.meanChange.toFixed(3)}, largest ${result.maxDelta} of 255`
+    : 'identical';
+  const masked = result.masked ? `, ${result.masked} pixels masked` : '';
+  if (!result.passed) {
+    return `${result.differing} pixels (${percent(result.share)}) differ beyond threshold ${tolerance.threshold}, ` +
+      `${result.allowed} (${percent(allowedShare)}) allowed; ${drift}${masked}`;
+  }
+  return `${drift}${result.differing ? `; ${result.differing} pixels beyond threshold ${tolerance.threshold}, ${result.allowed} allowed` : ''}${masked}`;
 }

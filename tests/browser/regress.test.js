@@ -1,15 +1,19 @@
 // Our own regression flights (tests/regress/flights) through `hexlod regress`: every flight flown
 // in headless Chromium gives the mesh hashes and figures of its Node replay and of the stored
-// references, and pixels within the tolerance. A changed reference is caught: a painted block
-// in an image shows up in the diff, a changed triangle count in the figures, exit code 1.
+// references, and identical pixels. A changed reference is caught: a painted block in an image
+// shows up in the diff and the report's comparer, a changed triangle count in the figures, exit
+// code 1. A real shader change (the lowland colour's red 0.14 → 0.15) is caught by the default
+// tolerance. --jobs 2 gives what --jobs 1 gives, and a height field by URL flies as the file.
 // References are rewritten with: node bin/hexlod.js regress tests/regress/flights --update
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFile } from 'node:child_process';
-import { cpSync, existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { cpSync, existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
+import { createServer } from 'node:http';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { decode } from 'fast-png';
 import { readPng, writePng } from '../../bin/regress_compare.js';
 import { startBrowser } from '../../bin/regress_browser.js';
 
@@ -17,22 +21,47 @@ const root = fileURLToPath(new URL('../../', import.meta.url));
 const flights = join(root, 'tests/regress/flights');
 const outDir = join(root, 'tests/out/regress');
 
-function hexlod(args) {
+function hexlod(args, project = root) {
   return new Promise((resolve) => {
-    execFile(process.execPath, [join(root, 'bin/hexlod.js'), ...args], { cwd: root, timeout: 600000, maxBuffer: 16 << 20 },
+    execFile(process.execPath, [join(project, 'bin/hexlod.js'), ...args], { cwd: root, timeout: 600000, maxBuffer: 16 << 20 },
       (error, stdout, stderr) => resolve({ code: error ? error.code : 0, stdout, stderr }));
   });
+}
+
+/** Files of two output folders that differ (names, or bytes), as a list. */
+function differingFiles(a, b) {
+  const list = (dir) => readdirSync(dir, { recursive: true }).filter((f) => /\.(png|json)$/.test(f)).sort();
+  const names = list(a);
+  const problems = names.join() === list(b).join() ? [] : [`file lists differ: ${names.join()} / ${list(b).join()}`];
+  for (const name of names) {
+    if (existsSync(join(b, name)) && !readFileSync(join(a, name)).equals(readFileSync(join(b, name)))) problems.push(name);
+  }
+  return problems;
 }
 
 test('every regression flight matches Node and its references, hashes exactly and pixels within the tolerance', async () => {
   const names = readdirSync(flights).filter((f) => f.endsWith('.flight.json')).map((f) => f.replace('.flight.json', ''));
   const { code, stdout, stderr } = await hexlod(['regress', flights, '--out', outDir]);
   assert.equal(code, 0, `${stdout}\n${stderr}`);
-  for (const name of names) assert.match(stdout, new RegExp(`\\] ${name}: ok \\(21 frames`), `${name}\n${stdout}`);
-  assert.match(stdout, new RegExp(`${names.length} flights, 0 regressed`));
+  // Byte-identical pixels on one machine: SwiftShader is deterministic.
+  for (const name of names) assert.match(stdout, new RegExp(`\\] ${name}: ok: 21 frames, [12] captures?; pixels identical`), `${name}\n${stdout}`);
+  assert.match(stdout, new RegExp(`hexlod regress: ${names.length} flights: ${names.length} passed`));
   const report = readFileSync(join(outDir, 'report.html'), 'utf8');
-  assert.match(report, /all \d+ flights as the references/);
+  assert.match(report, /<title>hexlod regress: 7 flights: 7 passed<\/title>/);
   assert.ok(existsSync(join(outDir, 'grandcanyon_tau1/frame-0020-diff.png')));
+});
+
+test('--jobs 2 flies two pages at once and writes what --jobs 1 wrote, byte for byte', async () => {
+  const out = mkdtempSync(join(tmpdir(), 'hexlod-jobs-'));
+  try {
+    const { code, stdout } = await hexlod(['regress', flights, '--jobs', '2', '--out', out]);
+    assert.equal(code, 0, stdout);
+    assert.deepEqual(differingFiles(outDir, out), []);
+    const summary = (dir) => readFileSync(join(dir, 'summary.txt'), 'utf8').replace(/^report .*$/m, '');
+    assert.equal(summary(out), summary(outDir));
+  } finally {
+    rmSync(out, { recursive: true, force: true });
+  }
 });
 
 test('a changed reference is caught: pixels in the diff image, figures by frame, exit code 1', async () => {
@@ -55,16 +84,53 @@ test('a changed reference is caught: pixels in the diff image, figures by frame,
 
     const { code, stdout } = await hexlod(['regress', join(flights, `${name}.flight.json`), '--refs', refs, '--out', out]);
     assert.equal(code, 1, stdout);
-    assert.match(stdout, /REGRESSION: frame 12: triangles \d+, the reference has \d+/);
-    assert.match(stdout, /frame 20: 1\.389 % of pixels differ/);
+    const t12 = doc.stats[12].triangles;
+    // pixelmatch counts the block's pixels but for those of its outline that it takes for anti-aliasing.
+    assert.match(stdout, new RegExp(`REGRESSION: mesh: 1 of 21 frames differ from the reference \\(frame 12: triangles ${t12} → ${t12 - 6}\\); frame 20: 1\\.[23]\\d % of pixels differ \\(0\\.200 % allowed\\)`));
+    assert.match(stdout, /^ {4}frame 20: 7\d\d pixels \(1\.[23]\d %\) differ beyond threshold 0\.004, 115 \(0\.200 %\) allowed; 1\.39 % changed at all/m);
     assert.doesNotMatch(stdout, /frame 6:/); // the untouched capture still matches
     const diff = readPng(readFileSync(join(out, name, 'frame-0020-diff.png')));
-    let red = 0;
-    for (let k = 0; k < diff.rgb.length; k += 3) if (diff.rgb[k] === 255 && diff.rgb[k + 1] === 0 && diff.rgb[k + 2] === 0) red += 1;
-    assert.equal(red, 800, 'the diff marks exactly the painted block');
+    let red = 0, yellow = 0, marked = 0;
+    for (let k = 0; k < diff.rgb.length; k += 3) {
+      const isRed = diff.rgb[k] === 255 && diff.rgb[k + 1] === 0 && diff.rgb[k + 2] === 0;
+      const isYellow = diff.rgb[k] === 255 && diff.rgb[k + 1] === 255 && diff.rgb[k + 2] === 0;
+      red += isRed;
+      yellow += isYellow;
+      const p = k / 3, x = p % diff.width, y = Math.floor(p / diff.width);
+      if ((isRed || isYellow) && x >= 100 && x < 140 && y >= 50 && y < 70) marked += 1;
+    }
+    assert.equal(marked, 800, 'the diff marks exactly the painted block');
+    assert.equal(red + yellow, 800);
+    assert.ok(red > 700, `${red} red pixels`);
     const report = readFileSync(join(out, 'report.html'), 'utf8');
-    assert.match(report, /1 of 1 flights regressed/);
+    assert.match(report, /<h1>hexlod regress: 1 flight: 1 regressed<\/h1>/);
     for (const file of ['frame-0020-ref.png', 'frame-0020.png', 'frame-0020-diff.png']) assert.ok(report.includes(`${name}/${file}`), file);
+    for (const label of ['reference', 'new', 'diff']) assert.match(report, new RegExp(`<figcaption>${label}</figcaption>`));
+    assert.match(report, new RegExp(`<td class="d">${t12} → ${t12 - 6}</td>`)); // the figure table
+
+    // The report's comparer: the slider at 100 % shows the reference (the magenta block), at 0 % the new image.
+    const session = await startBrowser();
+    try {
+      const page = await session.browser.newPage({ viewport: { width: 1200, height: 900 } });
+      await page.goto(`file://${join(out, 'report.html')}`);
+      const compare = page.locator('.capture').nth(1).locator('.compare');
+      const blockPixel = async (split) => {
+        await page.locator('.capture').nth(1).locator('input[type=range]').first().fill(String(split));
+        const shot = decode(await compare.screenshot());
+        const k = shot.channels * ((1 + 60) * shot.width + 1 + 120); // the block's centre, inside the 1 px border
+        return [shot.data[k], shot.data[k + 1], shot.data[k + 2]];
+      };
+      assert.deepEqual(await blockPixel(100), [255, 0, 255]);
+      assert.notDeepEqual(await blockPixel(0), [255, 0, 255]);
+    } finally {
+      await session.close();
+    }
+
+    // A mask over the block (CSS pixels): the pixels pass, the figures still fail.
+    const masked = await hexlod(['regress', join(flights, `${name}.flight.json`), '--refs', refs, '--out', out, '--mask', '100,50,40,20']);
+    assert.equal(masked.code, 1);
+    assert.doesNotMatch(masked.stdout, /frame 20: .* differ/);
+    assert.match(masked.stdout, /frame 12: triangles/);
   } finally {
     rmSync(refs, { recursive: true, force: true });
   }
@@ -80,9 +146,9 @@ test('the canvas is viewport x dpr device pixels: 160 x 90 at dpr 2 flies as 320
     writeFileSync(join(dir, `${name}.flight.json`), JSON.stringify(flight));
     // The references of the 320 x 180 flight at dpr 1.
     const { code, stdout } = await hexlod(['regress', join(dir, `${name}.flight.json`), '--refs', join(flights, 'refs'),
-      '--out', join(dir, 'out'), '--threshold', '0', '--max-share', '0']);
+      '--out', join(dir, 'out'), '--strict']);
     assert.equal(code, 0, stdout);
-    assert.match(stdout, /ok \(21 frames, 2 captures, largest pixel difference 0\)/);
+    assert.match(stdout, /ok: 21 frames, 2 captures; pixels identical; the flight changed since the reference \(viewport 320x180 → 160x90, dpr 1 → 2\), its results did not$/m);
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }
@@ -91,8 +157,8 @@ test('the canvas is viewport x dpr device pixels: 160 x 90 at dpr 2 flies as 320
 test('the window API and URL parameters: ready, frame(n) in order, pixels, ops= and viewport= overrides, a bad flight named', async () => {
   const session = await startBrowser();
   try {
-    const dem = session.files.add('api', 'dem', join(root, 'tests/fixtures/volcano_maungawhau.png'));
-    const flight = session.files.add('api', 'flight', join(flights, 'volcano_down_tau1.flight.json'));
+    const dem = session.files.addPath('api', 'dem', join(root, 'tests/fixtures/volcano_maungawhau.png'));
+    const flight = session.files.addPath('api', 'flight', join(flights, 'volcano_down_tau1.flight.json'));
     const page = await session.browser.newPage({ viewport: { width: 400, height: 300 } });
     await page.goto(`${session.url}?src=${dem}&flight=${flight}&ops=3&viewport=200x100&dpr=1`);
     await page.waitForFunction(() => window.hexlod?.flight, null, { timeout: 120000 });
@@ -124,7 +190,7 @@ test('the window API and URL parameters: ready, frame(n) in order, pixels, ops= 
     // A flight with a bad key: the page stops with the message naming it.
     const badPath = join(mkdtempSync(join(tmpdir(), 'hexlod-badflight-')), 'bad.flight.json');
     writeFileSync(badPath, JSON.stringify({ keyframes: [{ time: 0, position: [0, 1, 0], target: [1, 0, 1], fov: 500 }] }));
-    const bad = session.files.add('bad', 'flight', badPath);
+    const bad = session.files.addPath('bad', 'flight', badPath);
     const badPage = await session.browser.newPage();
     await badPage.goto(`${session.url}?src=${dem}&flight=${bad}`);
     await badPage.waitForFunction(() => window.hexlod?.status === 'error', null, { timeout: 60000 });
@@ -133,5 +199,58 @@ test('the window API and URL parameters: ready, frame(n) in order, pixels, ops= 
     rmSync(dirname(badPath), { recursive: true, force: true });
   } finally {
     await session.close();
+  }
+});
+
+/** A copy of what the page and the command need, with node_modules linked, to try a change to the page on. */
+function projectCopy() {
+  const dir = mkdtempSync(join(tmpdir(), 'hexlod-copy-'));
+  for (const part of ['bin', 'bench', 'web', 'shaders', 'public', 'build/wasm', 'build/wasm-diag', 'vite.config.js', 'package.json']) {
+    cpSync(join(root, part), join(dir, part), { recursive: true });
+  }
+  symlinkSync(join(root, 'node_modules'), join(dir, 'node_modules'));
+  return dir;
+}
+
+test('a subtle shader change (lowland red 0.14 → 0.15) fails by default; below a looser tolerance it passes and is reported as drift', async () => {
+  const copy = projectCopy();
+  try {
+    const shader = join(copy, 'shaders/ground_color.glsl');
+    const text = readFileSync(shader, 'utf8');
+    assert.ok(text.includes('vec3 lowland = vec3(0.14, 0.19, 0.08);'), 'the lowland colour this test changes');
+    writeFileSync(shader, text.replace('vec3(0.14, 0.19, 0.08)', 'vec3(0.15, 0.19, 0.08)'));
+    const args = ['regress', flights, '--grep', '^(grandcanyon_tau1|volcano_down_tau4)$', '--out', join(copy, 'out')];
+    const { code, stdout } = await hexlod(args, copy);
+    assert.equal(code, 1, stdout);
+    assert.match(stdout, /grandcanyon_tau1: REGRESSION: frame 6: \d+\.\d+ % of pixels differ \(0\.200 % allowed\); frame 20: /);
+    assert.match(stdout, /volcano_down_tau4: REGRESSION: frame 6: /);
+    assert.match(stdout, /the flight and its height field are as the reference recorded them: the difference comes from hexlod/);
+    assert.doesNotMatch(stdout, /mesh:/); // a shader change leaves the meshes alone
+    const loose = await hexlod([...args, '--threshold', '0.01'], copy);
+    assert.equal(loose.code, 0, loose.stdout);
+    assert.match(loose.stdout, /grandcanyon_tau1: ok: 21 frames, 2 captures; pixels changed below the tolerance: frame 6 \d+\.\d+ % changed at all, mean change 0\.\d+, largest \d of 255/);
+  } finally {
+    rmSync(copy, { recursive: true, force: true });
+  }
+});
+
+test('a height field by URL flies in the page as the file does: the same figures and pixels as the references', async () => {
+  const server = createServer((req, res) => {
+    const path = join(root, 'tests/fixtures', req.url.replace(/^\//, ''));
+    if (!existsSync(path)) return void res.writeHead(404).end();
+    res.writeHead(200).end(readFileSync(path));
+  });
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  const dir = mkdtempSync(join(tmpdir(), 'hexlod-url-'));
+  try {
+    const flight = JSON.parse(readFileSync(join(flights, 'volcano_down_tau4.flight.json'), 'utf8'));
+    flight.dem = `http://127.0.0.1:${server.address().port}/volcano_maungawhau.png`;
+    writeFileSync(join(dir, 'volcano_down_tau4.flight.json'), JSON.stringify(flight));
+    const { code, stdout } = await hexlod(['regress', join(dir, 'volcano_down_tau4.flight.json'), '--refs', join(flights, 'refs'), '--out', join(dir, 'out'), '--strict']);
+    assert.equal(code, 0, stdout);
+    assert.match(stdout, /volcano_down_tau4: ok: 21 frames, 2 captures; pixels identical/);
+  } finally {
+    server.close();
+    rmSync(dir, { recursive: true, force: true });
   }
 });

@@ -10,7 +10,8 @@
 //     "settings": { "tau": 1, "exaggeration": 2, "operations": 1000, "geomorph": true,
 //                   "embedding": "exact", "culling": true, "backfaceCulling": true },
 //     "captures": [0, 30, 59],                     frames to screenshot
-//     "keyframes": [ { "time": 0, "position": [x, y, z], "target": [x, y, z], "fov": 50 }, ... ]
+//     "keyframes": [ { "time": 0, "position": [x, y, z], "target": [x, y, z], "fov": 50 }, ... ],
+//     "tolerance": { "threshold": 0.004, "maxDiffPixelRatio": 0.002, ... }  optional: see tolerance.js
 //   }
 // Positions are metres of the height field: x east from the first column, z south from the first
 // row, y the height above the field's zero (not exaggerated: the exaggeration is applied here).
@@ -20,6 +21,7 @@
 // Node), so the page and Node compute bit-identical cameras.
 import { defaultSettings, applyLodSettings } from '../settings.js';
 import { FRAME } from '../../core/core.js';
+import { parseTolerance } from './tolerance.js';
 
 export const DEFAULT_FPS = 30;
 export const DEFAULT_VIEWPORT = [400, 225];
@@ -47,13 +49,14 @@ const SETTING_KINDS = {
  * @param {unknown} json the parsed file
  * @param {string} name the file's name, for messages
  * @returns {{dem: string|null, fps: number, frames: number, viewport: number[], dpr: number,
- *   settings: object, captures: number[], keyframes: {time: number, position: number[], target: number[], fov: number}[]}}
+ *   settings: object, captures: number[], keyframes: {time: number, position: number[], target: number[], fov: number}[],
+ *   tolerance: {flight: object, captures: Record<number, object>}}}
  * @throws FlightError naming the key that is wrong
  */
 export function parseFlight(json, name = 'flight') {
   const fail = (key, why) => { throw new FlightError(`${name}: ${key} ${why}`); };
   if (json === null || typeof json !== 'object' || Array.isArray(json)) fail('the file', 'must hold a JSON object');
-  const known = ['dem', 'fps', 'viewport', 'dpr', 'settings', 'captures', 'keyframes', 'description'];
+  const known = ['dem', 'fps', 'viewport', 'dpr', 'settings', 'captures', 'keyframes', 'tolerance', 'description'];
   for (const key of Object.keys(json)) if (!known.includes(key)) fail(`"${key}"`, `is not a flight key (${known.join(', ')})`);
   const number = (key, value, { min = -Infinity, max = Infinity, integer = false } = {}) => {
     if (typeof value !== 'number' || !Number.isFinite(value) || (integer && !Number.isInteger(value)) || value < min || value > max) {
@@ -65,7 +68,7 @@ export function parseFlight(json, name = 'flight') {
     if (!Array.isArray(value) || value.length !== 3) fail(key, `must be three numbers [x, y, z] in metres, got ${JSON.stringify(value)}`);
     return value.map((v, k) => number(`${key}[${k}]`, v, { min: -LIMIT, max: LIMIT }));
   };
-  if (json.dem !== undefined && (typeof json.dem !== 'string' || json.dem === '')) fail('"dem"', 'must be a file path');
+  if (json.dem !== undefined && (typeof json.dem !== 'string' || json.dem === '')) fail('"dem"', 'must be a file path or an http(s) URL');
   const fps = json.fps === undefined ? DEFAULT_FPS : number('"fps"', json.fps, { min: 1, max: 1000 });
   let viewport = DEFAULT_VIEWPORT;
   if (json.viewport !== undefined) {
@@ -118,7 +121,8 @@ export function parseFlight(json, name = 'flight') {
     captures = json.captures.map((c, i) => number(`"captures"[${i}]`, c, { min: 0, max: frames - 1, integer: true }));
     captures = [...new Set(captures)].sort((a, b) => a - b);
   }
-  return { dem: json.dem ?? null, fps, frames, viewport, dpr, settings, captures, keyframes };
+  const tolerance = parseTolerance(json.tolerance, captures, fail);
+  return { dem: json.dem ?? null, fps, frames, viewport, dpr, settings, captures, keyframes, tolerance };
 }
 
 /**
