@@ -199,6 +199,7 @@ function judge(job, flown, dem, context) {
   const reference = context.reference;
   result.table.reference = reference.stats;
   result.changes = flightChanges(reference, record);
+  if (!reference.spec) result.details.push('the reference records no flight settings (an older hexlod made it): run --update to record them');
   const statsDiff = compareStats(reference.stats, flown.stats);
   result.differingFrames = statsDiff.frames;
   if (!statsMatch(statsDiff)) {

@@ -76,12 +76,13 @@ export function flightRecordOf(flight, dem) {
 
 /**
  * How a flight and its height field differ from what the reference recorded, one phrase per
- * change ('tau 1 → 2', 'viewport 320x180 → 400x225'), or [] when they are the same.
+ * change ('tau 1 → 2', 'viewport 320x180 → 400x225'), or [] when they are the same (or the
+ * reference records nothing to compare with).
  */
 export function flightChanges(reference, current) {
   const changes = [];
   const was = reference.spec, now = current.spec;
-  if (!was) return ['the reference records no flight settings (it was made by an older hexlod): run --update to record them'];
+  if (!was) return changes; // made by an older hexlod: judge() says so
   for (const key of Object.keys({ ...was.settings, ...now.settings })) {
     if (!same(was.settings[key], now.settings[key])) changes.push(`${SETTING_LABELS[key] ?? key} ${was.settings[key]} → ${now.settings[key]}`);
   }
