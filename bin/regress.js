@@ -97,7 +97,7 @@ function readOptions(values) {
 /** Deletes what an earlier run left that this one would write, so no report shows another run. */
 function clearStale(out, files) {
   mkdirSync(out, { recursive: true });
-  for (const file of [join(out, 'summary.txt'), join(out, 'report.html'), join(out, 'results.json'), ...files]) rmSync(file, { force: true });
+  for (const file of [join(out, 'summary.txt'), join(out, 'report.html'), ...files]) rmSync(file, { force: true });
 }
 
 /** The height field's files, read once per source however many flights fly over it. */
@@ -270,6 +270,14 @@ function readReference(job, context) {
 /** Flies one flight: its height field, the Node replay, the page; returns its result. */
 async function runJob(job, index, context) {
   if (job.error) return outcome(job, 'bad-input', job.error);
+  try {
+    return await flyJob(job, index, context);
+  } finally {
+    context.dems.release(job.source);
+  }
+}
+
+async function flyJob(job, index, context) {
   let reference = null;
   if (!context.update) {
     const found = readReference(job, context);
@@ -299,8 +307,6 @@ async function runJob(job, index, context) {
     if (error instanceof EnvironmentError) return outcome(job, 'error', message);
     if (error instanceof InputError || !dem) return outcome(job, 'bad-input', message);
     return outcome(job, 'error', message); // the core failed on a height field that loaded
-  } finally {
-    context.dems.release(job.source);
   }
 }
 

@@ -254,3 +254,41 @@ test('a height field by URL flies in the page as the file does: the same figures
     rmSync(dir, { recursive: true, force: true });
   }
 });
+
+test('a folder flown in the browser: a bad flight and one without a reference fail alone, the other flies; JUnit, JSON and the report follow every run', async () => {
+  const dir = mkdtempSync(join(tmpdir(), 'hexlod-folder-'));
+  try {
+    for (const name of ['volcano_down_tau1', 'volcano_down_tau4']) {
+      const flight = JSON.parse(readFileSync(join(flights, `${name}.flight.json`), 'utf8'));
+      flight.dem = join(flights, flight.dem);
+      writeFileSync(join(dir, `${name}.flight.json`), JSON.stringify(flight));
+    }
+    cpSync(join(flights, 'refs/volcano_down_tau4'), join(dir, 'refs/volcano_down_tau4'), { recursive: true });
+    writeFileSync(join(dir, 'typo.flight.json'), JSON.stringify({ keyframes: [{ time: 0, position: [0, 1, 0], target: [1, 0, 1] }], fsp: 10 }));
+    const args = ['regress', dir, '--out', join(dir, 'out'), '--junit', join(dir, 'junit.xml'), '--json', join(dir, 'result.json')];
+    const first = await hexlod(args);
+    assert.equal(first.code, 2, first.stdout);
+    assert.match(first.stdout, /\] typo: BAD INPUT: \S+typo\.flight\.json: "fsp" is not a flight key/);
+    assert.match(first.stdout, /\] volcano_down_tau1: NO REFERENCE: no reference in \S+; make one with: hexlod regress \S+volcano_down_tau1\.flight\.json --update/);
+    assert.match(first.stdout, /\] volcano_down_tau4: ok: 21 frames, 2 captures; pixels identical/);
+    assert.match(first.stdout, /^hexlod regress: 3 flights: 1 had bad input, 1 had no reference, 1 passed$/m);
+    const json = JSON.parse(readFileSync(join(dir, 'result.json'), 'utf8'));
+    assert.deepEqual(json.flights.map((f) => f.verdict), ['bad-input', 'no-reference', 'pass']);
+    assert.equal(json.flights[2].captures[1].changed, 0);
+    assert.ok(existsSync(join(dir, 'out/volcano_down_tau4/frame-0020-diff.png')));
+    assert.ok(!existsSync(join(dir, 'out/volcano_down_tau1')), 'a flight without a reference is not flown');
+
+    // The next run cannot start its browser: exit 3, and every report says so, none shows the run before.
+    const second = await hexlod([...args, '--grep', 'tau4', '--chromium', '/bin/false']);
+    assert.equal(second.code, 3, second.stdout);
+    assert.match(second.stderr, /^hexlod: Chromium at \/bin\/false did not start: the program exited at once; is it a Chromium browser\?\n$/);
+    const summary = readFileSync(join(dir, 'out/summary.txt'), 'utf8');
+    assert.match(summary, /^hexlod regress: 1 flight: 1 could not run; stopped: Chromium at \/bin\/false did not start/);
+    assert.doesNotMatch(summary, /passed|typo/);
+    assert.match(readFileSync(join(dir, 'out/report.html'), 'utf8'), /<h2>volcano_down_tau4: could not run<\/h2>/);
+    assert.equal(JSON.parse(readFileSync(join(dir, 'result.json'), 'utf8')).exitCode, 3);
+    assert.match(readFileSync(join(dir, 'junit.xml'), 'utf8'), /<testcase classname="hexlod.regress" name="volcano_down_tau4"[^>]*>\s*<error type="error" message="Chromium at \/bin\/false did not start/);
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
