@@ -124,8 +124,10 @@ function figureTable(r) {
   };
   const rows = frames.map((f) => `<tr${differs(f) ? ' class="d"' : ''}><td>${f}</td>${TABLE_FIELDS.map((k) => cell(f, k)).join('')}</tr>`).join('\n');
   const note = frames.length < actual.length ? `<p>${plural(frames.length, 'frame')} of ${actual.length} differ; only those are listed.</p>` : '';
-  const caption = reference ? 'Per-frame figures, reference → new where they differ' : 'Per-frame figures';
-  return `<details${reference && frames.some(differs) ? ' open' : ''}><summary>${caption}</summary>${note}
+  const anyDiffers = frames.some(differs);
+  const caption = !reference ? 'Per-frame figures' : anyDiffers ? 'Per-frame figures, reference → new where they differ'
+    : 'Per-frame figures, every one as the reference\'s';
+  return `<details${anyDiffers ? ' open' : ''}><summary>${caption}</summary>${note}
 <table><tr><th>frame</th>${TABLE_FIELDS.map((k) => `<th>${k}</th>`).join('')}</tr>
 ${rows}</table></details>`;
 }
