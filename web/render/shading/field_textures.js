@@ -40,6 +40,7 @@ export class FieldTextures {
     this.occlusionScale = NaN;
     this.sunKey = [NaN, NaN, NaN, NaN];
     this.sunGrid = this.occlusionGrid = null;
+    this.sunData = null; // sized for the old grid: kept, a bigger field's texImage2D failed (INVALID_OPERATION)
   }
 
   /** A new field (or new spacing): everything is made again. */
@@ -136,8 +137,9 @@ export class FieldTextures {
 
   makeSun(verticalScale, sunDirection) {
     const start = performance.now();
-    this.sunGrid = this.sunGrid ?? downsampleField(this.view(), SUN_MAX_SIDE);
-    this.sunData = sunVisibility(this.sunGrid, sunDirection, verticalScale, this.sunData);
+    const grid = this.sunGrid = this.sunGrid ?? downsampleField(this.view(), SUN_MAX_SIDE);
+    if (this.sunData?.length !== grid.width * grid.height) this.sunData = new Uint8Array(grid.width * grid.height);
+    sunVisibility(grid, sunDirection, verticalScale, this.sunData);
     this.sun = this.makeR8(TEXTURE_UNIT_SUN, this.sun, this.sunGrid, this.sunData);
     this.sunKey[0] = sunDirection[0]; this.sunKey[1] = sunDirection[1]; this.sunKey[2] = sunDirection[2];
     this.sunKey[3] = verticalScale;
