@@ -20,9 +20,13 @@ std::unique_ptr<Terrain> Terrain::create(int32_t width, int32_t height, SampleTy
 }
 
 const char* Terrain::setScale(const HeightfieldScale& scale) {
+    const HeightfieldScale previous = field_->scale();
     if (const char* error = field_->setScale(scale)) return error;
     if (!hasMesh_) return nullptr;
-    if (const char* error = field_->prepare()) return error;
+    if (const char* error = field_->prepare()) {
+        field_->setScale(previous); // prepare changed nothing: the terrain stays as it was
+        return error;
+    }
     if (const char* error = mesh_.reset(*field_, mesh_.embedding(), mesh_.baseStep())) return error;
     attachMesh();
     return nullptr;

@@ -40,7 +40,7 @@ public:
     const Heightfield& field() const { return *field_; }
     /// How samples become metres. With a mesh, the mesh is rebuilt from its base for the new
     /// scale (every position and cached bound depends on it; the settings are kept).
-    /// Returns null or what is wrong.
+    /// Returns null, or what is wrong and the previous scale kept.
     const char* setScale(const HeightfieldScale& scale);
     /// After the samples were written: fills missing ones, computes the height range.
     const char* prepare() { return field_->prepare(); }

@@ -53,10 +53,10 @@ typedef struct hexlod_terrain hexlod_terrain;
 
 /* How samples become metres. 48 bytes. */
 typedef struct hexlod_scale {
-    double spacing_x_m;     /* between columns (0: 1 m) */
-    double spacing_y_m;     /* between rows (0: 1 m) */
-    double height_scale;    /* height_m = raw * height_scale + height_offset_m (0: 1) */
-    double height_offset_m;
+    double spacing_x_m;     /* between columns, 1e-6 to 1e8 (0: 1 m) */
+    double spacing_y_m;     /* between rows, 1e-6 to 1e8 (0: 1 m) */
+    double height_scale;    /* height_m = raw * height_scale + height_offset_m; negative flips; |.| at most 1e9 (0: 1) */
+    double height_offset_m; /* -1e9 to 1e9 */
     double nodata_raw;      /* with has_nodata, samples equal to this are missing (NaN and infinities always are) */
     int32_t has_nodata;
     int32_t reserved;       /* 0 */
@@ -76,14 +76,15 @@ typedef struct hexlod_mesh_settings {
 
 /* Refinement (§5, §6), blends and stream (§7): everything but the camera. 64 bytes.
  * Once converged, every sample in the view frustum is within tau pixels of the drawn surface on
- * screen, or, with max_error_m > 0, every sample of the field within max_error_m metres. */
+ * screen, or, with max_error_m > 0, every sample of the field within max_error_m metres.
+ * The ranges are what hexlod_terrain_set_settings accepts; NaN and infinities never are. */
 typedef struct hexlod_settings {
-    double tau_px;               /* screen-space tolerance in device pixels (0: 1) */
-    double max_error_m;          /* > 0: view-independent mode, the camera ignored (0: tau mode) */
-    double vertical_scale;       /* heights are drawn times this (0: 1) */
-    double budget_ms;            /* time per LOD update (0: no limit) */
-    int32_t max_operations;      /* splits and merges per LOD update (0: no limit); every update makes progress */
-    int32_t max_triangles;       /* no split starts while more are drawn (0: no cap) */
+    double tau_px;               /* screen-space tolerance in device pixels, 0.01 to 10000 (0: 1) */
+    double max_error_m;          /* 1e-6 to 1e9: view-independent mode, the camera ignored (0: tau mode) */
+    double vertical_scale;       /* heights are drawn times this, 0.001 to 1000 (0: 1) */
+    double budget_ms;            /* time per LOD update, up to 60000 (0: no limit) */
+    int32_t max_operations;      /* splits and merges per LOD update, >= 0 (0: no limit); every update makes progress */
+    int32_t max_triangles;       /* no split starts while more are drawn, >= 0 (0: no cap) */
     int32_t auto_tau;            /* non-zero: tau rises while the cap or the time budget is exceeded and falls back (§6) */
     int32_t no_frustum_culling;  /* non-zero: cells outside the view are refined as inside */
     int32_t no_backface_culling; /* non-zero: no cone-of-normals culling (exact embedding, cells of up to 4096 samples) */
@@ -93,15 +94,19 @@ typedef struct hexlod_settings {
 } hexlod_settings;
 
 /* The camera of view-dependent refinement. 112 bytes. The caller computes the tangent, so no
- * transcendental function enters a split decision. */
+ * transcendental function enters a split decision. The ranges are what hexlod_terrain_frame
+ * accepts; NaN and infinities never are. */
 typedef struct hexlod_camera {
-    double eye[3];             /* metres, world frame (x east, y up, z south; heights times the vertical scale) */
-    double target[3];          /* metres, a point looked at */
-    double up[3];              /* (0, 0, 0): +y */
-    double tan_half_fov_y;     /* tan(vertical field of view / 2) */
-    double aspect;             /* viewport width / height */
-    double viewport_height_px; /* device pixels */
-    double near_m, far_m;      /* clip plane distances */
+    double eye[3];             /* metres, world frame (x east, y up, z south; heights times the vertical
+                                  scale), each -1e12 to 1e12 */
+    double target[3];          /* metres, a point looked at, each -1e12 to 1e12, at least 1e-6 from eye */
+    double up[3];              /* (0, 0, 0): +y; else at least 1e-6 long, each at most 1e12, and off the
+                                  view direction (sine of the angle at least 1e-6): looking straight up
+                                  or down, give e.g. (0, 0, -1) */
+    double tan_half_fov_y;     /* tan(vertical field of view / 2), 1e-4 to 1e4 (0.0115 to 179.989 degrees) */
+    double aspect;             /* viewport width / height, 1e-4 to 1e4 */
+    double viewport_height_px; /* device pixels, 1 to 100000 */
+    double near_m, far_m;      /* clip plane distances: 1e-6 <= near_m < far_m <= 1e12 */
 } hexlod_camera;
 
 /* Steps of hexlod_terrain_frame (bits; 0 = HEXLOD_FRAME_ALL). */
@@ -201,13 +206,17 @@ void hexlod_terrain_destroy(hexlod_terrain* terrain);
 void* hexlod_terrain_samples(hexlod_terrain* terrain);
 
 /* Sets how samples become metres. With a mesh, the mesh is rebuilt from its base for the new
- * scale (positions and cached refinement data change; settings are kept). 0 or HEXLOD_ERROR
- * (a negative or non-finite spacing or scale). */
+ * scale (positions and cached refinement data change; settings are kept). 0 or HEXLOD_ERROR,
+ * the previous scale and mesh kept: a non-finite field, a spacing outside 1e-6..1e8 m, a height
+ * scale of magnitude over 1e9, an offset outside -1e9..1e9 m, or, with a mesh, heights the new
+ * scale puts outside -1e9..1e9 m (see hexlod_terrain_prepare). */
 int32_t hexlod_terrain_set_scale(hexlod_terrain* terrain, const hexlod_scale* scale);
 
 /* Call once the samples are written (and after any change to them): fills missing samples with
  * the lowest valid height, computes the height range and fills *info (may be NULL).
- * 0 or HEXLOD_ERROR (every sample missing). */
+ * 0 or HEXLOD_ERROR, nothing changed: every sample missing, or a valid sample whose height
+ * (raw * height_scale + height_offset_m) lies outside -1e9..1e9 m, most often an undeclared
+ * nodata value. */
 int32_t hexlod_terrain_prepare(hexlod_terrain* terrain, hexlod_field_info* info);
 
 /* (Re)creates the base hexagon mesh over the whole field (§4.7); settings (NULL: defaults)
@@ -216,16 +225,21 @@ int32_t hexlod_terrain_reset_mesh(hexlod_terrain* terrain, const hexlod_mesh_set
 
 /* Sets everything but the camera (NULL: defaults). A change that decides splits re-tests every
  * cell at the next update; a layout or normals change rewrites the stream. Works before the
- * mesh exists and is kept across mesh resets. 0 or HEXLOD_ERROR (a negative or non-finite
- * number, morph frames over 1000, an unknown layout). */
+ * mesh exists and is kept across mesh resets. 0 or HEXLOD_ERROR, the previous settings kept,
+ * the message naming the field and its range: a field outside the range its comment in
+ * hexlod_settings gives (NaN, infinities, negative numbers included), morph frames outside
+ * 0..1000, an unknown layout. The flags (auto_tau, no_*) take any int32, non-zero meaning set. */
 int32_t hexlod_terrain_set_settings(hexlod_terrain* terrain, const hexlod_settings* settings);
 
 /* One frame, the steps chosen by `steps` (HEXLOD_FRAME_*): the camera (NULL keeps the last
  * one), one refinement step within the budget (§6: re-test the cells whose margin the camera
  * used up, refine the failing ones largest projected error first, coarsen in descending level
  * order; the mesh is consistent after every operation), then the stream (§7: only what changed
- * is rewritten). Fills *out (required). 0 or HEXLOD_ERROR (no mesh, a degenerate camera: eye
- * on the target, up along the view, a non-positive size or plane). */
+ * is rewritten). Fills *out (required). 0 or HEXLOD_ERROR: no mesh, unknown step bits, or a
+ * camera field outside the range its comment in hexlod_camera gives (NaN, infinities, zero or
+ * negative sizes and planes, near_m >= far_m, eye on the target, up along the view). A refused
+ * camera fails the whole call, the message starting "degenerate camera: " and naming the field:
+ * no step runs, and the previous camera, mesh and stream stay. */
 int32_t hexlod_terrain_frame(hexlod_terrain* terrain, const hexlod_camera* camera, int32_t steps, hexlod_frame* out);
 
 /* The renderer uploaded every dirty range: forget them. 0 or HEXLOD_ERROR. */
@@ -235,7 +249,7 @@ int32_t hexlod_terrain_acknowledge(hexlod_terrain* terrain);
  * The drawn surface is unscaled (times the vertical scale on screen) and the highest where
  * triangles meet; call it after the frame's stream step; it scans every cell (about a
  * millisecond for 100k triangles). Returns 1, 0 where no drawn triangle covers the point
- * (outside the domain; *height_m = NaN), or HEXLOD_ERROR. */
+ * (outside the domain, or a NaN or infinite position; *height_m = NaN), or HEXLOD_ERROR. */
 int32_t hexlod_terrain_height_at(const hexlod_terrain* terrain, double x_m, double z_m, int32_t surface, double* height_m);
 
 /* Writes the level-ordered view (not incrementally; outline non-zero adds the cell edges) and

@@ -8,6 +8,7 @@
 #include <new>
 #include <vector>
 
+#include "api/hexlod_inputs.h"
 #include "api/terrain_handle.h"
 #include "mesh/mesh_census.h"
 
@@ -34,8 +35,6 @@ using hexlod::api::kNullHandle;
 using hexlod::api::needMesh;
 
 namespace {
-
-bool finiteNonNegative(double value) { return std::isfinite(value) && value >= 0.0; }
 
 // The ranges as (first, count) int32 pairs.
 const int32_t* rangePairs(const std::vector<hexlod::ElementRange>& ranges) {
@@ -153,13 +152,7 @@ int32_t hexlod_terrain_set_settings(hexlod_terrain* terrain, const hexlod_settin
     if (!terrain) return fail(kNullHandle);
     const hexlod_settings defaults{};
     const hexlod_settings& in = settings ? *settings : defaults;
-    if (!finiteNonNegative(in.tau_px)) return fail("tau must be a positive number of pixels (0: 1 px)");
-    if (!finiteNonNegative(in.max_error_m)) return fail("the maximum error must be a positive number of metres (0: tau mode)");
-    if (!finiteNonNegative(in.vertical_scale)) return fail("the vertical scale must be a positive number (0: 1)");
-    if (!std::isfinite(in.budget_ms)) return fail("the time budget must be a finite number of milliseconds (0: none)");
-    if (in.morph_frames < 0 || in.morph_frames > hexlod::Geomorph::kMaxFrames) return fail("morph frames must be 0 (off) to 1000");
-    if (in.layout != HEXLOD_LAYOUT_FANS && in.layout != HEXLOD_LAYOUT_TRIANGLES)
-        return fail("unknown index layout (expected 0 = fans, 1 = triangles)");
+    if (const char* error = hexlod::api::checkSettings(in)) return fail(error); // the previous settings stay
     hexlod::TerrainSettings s;
     s.lod.viewIndependent = in.max_error_m > 0.0;
     s.lod.tau = in.tau_px > 0.0 ? in.tau_px : 1.0;
@@ -182,16 +175,18 @@ int32_t hexlod_terrain_frame(hexlod_terrain* terrain, const hexlod_camera* camer
     if (const char* error = needMesh(terrain)) return fail(error);
     if (!out) return fail("hexlod_terrain_frame needs a hexlod_frame to fill");
     constexpr int32_t kSteps = HEXLOD_FRAME_CAMERA | HEXLOD_FRAME_LOD | HEXLOD_FRAME_STREAM;
+    constexpr int32_t kAll = kSteps | HEXLOD_FRAME_QUERY | HEXLOD_FRAME_HASH | HEXLOD_FRAME_CENSUS;
+    if (steps & ~kAll) return fail("unknown frame steps (expected a sum of HEXLOD_FRAME_* bits, 0 to 63)");
     if (!(steps & (kSteps | HEXLOD_FRAME_QUERY))) steps |= kSteps;
     if (steps & HEXLOD_FRAME_QUERY) steps &= ~kSteps;
     hexlod::Terrain& core = *terrain->core;
     if ((steps & HEXLOD_FRAME_CAMERA) && camera) {
-        const double* up = camera->up;
-        const bool defaultUp = up[0] == 0.0 && up[1] == 0.0 && up[2] == 0.0;
+        // A refused camera fails the whole frame: the previous camera, mesh and stream stay.
+        glm::dvec3 up;
+        if (const char* error = hexlod::api::checkCamera(*camera, &up)) return fail(error);
         hexlod::View view;
         if (!hexlod::makeView({camera->eye[0], camera->eye[1], camera->eye[2]},
-                              {camera->target[0], camera->target[1], camera->target[2]},
-                              defaultUp ? glm::dvec3(0, 1, 0) : glm::dvec3(up[0], up[1], up[2]), camera->tan_half_fov_y,
+                              {camera->target[0], camera->target[1], camera->target[2]}, up, camera->tan_half_fov_y,
                               camera->aspect, camera->viewport_height_px, camera->near_m, camera->far_m, view))
             return fail("degenerate camera: eye on the target, up along the view, or a non-positive size or plane");
         core.setView(view); // the refiner re-tests only what the camera's movement may have changed
@@ -211,12 +206,17 @@ int32_t hexlod_terrain_acknowledge(hexlod_terrain* terrain) {
 int32_t hexlod_terrain_height_at(const hexlod_terrain* terrain, double x_m, double z_m, int32_t surface, double* height_m) {
     if (!terrain) return fail(kNullHandle);
     if (!height_m) return fail("hexlod_terrain_height_at needs a double to write to");
+    if (surface != HEXLOD_SURFACE_FIELD && surface != HEXLOD_SURFACE_DRAWN) return fail("unknown surface (expected 0 = field, 1 = drawn)");
+    if (surface == HEXLOD_SURFACE_DRAWN)
+        if (const char* error = needMesh(terrain)) return fail(error);
+    if (!std::isfinite(x_m) || !std::isfinite(z_m)) { // no surface lies there (and NaN must not reach an index)
+        *height_m = std::nan("");
+        return 0;
+    }
     if (surface == HEXLOD_SURFACE_FIELD) {
         *height_m = terrain->core->field().heightAtPosition(x_m, z_m);
         return 1;
     }
-    if (surface != HEXLOD_SURFACE_DRAWN) return fail("unknown surface (expected 0 = field, 1 = drawn)");
-    if (const char* error = needMesh(terrain)) return fail(error);
     float height = 0.0f;
     if (!terrain->core->drawnHeightAt(x_m, z_m, height)) {
         *height_m = std::nan("");

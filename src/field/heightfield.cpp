@@ -60,6 +60,8 @@ const char* Heightfield::setScale(const HeightfieldScale& scale) {
     if (std::min(scale.spacingX, scale.spacingY) < kMinSpacing || std::max(scale.spacingX, scale.spacingY) > kMaxSpacing)
         return "sample spacing must be between 1e-6 m and 1e8 m";
     if (scale.heightScale == 0.0) return "height scale must not be zero";
+    if (std::abs(scale.heightScale) > kMaxAbsHeight) return "height scale must be at most 1e9 metres per raw unit in magnitude";
+    if (std::abs(scale.heightOffset) > kMaxAbsHeight) return "height offset must be between -1e9 m and 1e9 m";
     scale_ = scale;
     return nullptr;
 }
@@ -83,10 +85,10 @@ const char* Heightfield::prepare() {
     const size_t n = sampleCount();
     double lowRaw = 0.0, highRaw = 0.0;
     bool any = false;
-    missingCount_ = 0;
+    size_t missing = 0;
     for (size_t k = 0; k < n; ++k) {
         if (isMissing(k)) {
-            ++missingCount_;
+            ++missing;
             continue;
         }
         const double raw = rawAt(k);
@@ -95,14 +97,19 @@ const char* Heightfield::prepare() {
         highRaw = std::max(highRaw, raw);
     }
     if (!any) return "every sample is nodata";
+    const double a = lowRaw * scale_.heightScale + scale_.heightOffset;
+    const double b = highRaw * scale_.heightScale + scale_.heightOffset;
+    // Beyond this, heights (times the vertical scale) overflow what the criteria (§5) and the
+    // camera can hold: most often a nodata value the file does not declare.
+    if (!(std::max(std::abs(a), std::abs(b)) <= kMaxAbsHeight))
+        return "heights must lie between -1e9 m and 1e9 m after the height scale and offset (is a nodata value undeclared?)";
     // A negative scale flips which raw extreme is the lowest height.
     const double fillRaw = scale_.heightScale > 0.0 ? lowRaw : highRaw;
+    missingCount_ = missing;
     if (missingCount_ > 0) {
         for (size_t k = 0; k < n; ++k)
             if (isMissing(k)) setRaw(k, fillRaw);
     }
-    const double a = lowRaw * scale_.heightScale + scale_.heightOffset;
-    const double b = highRaw * scale_.heightScale + scale_.heightOffset;
     minHeight_ = float(std::min(a, b));
     maxHeight_ = float(std::max(a, b));
     return nullptr;

@@ -22,6 +22,10 @@ size_t sampleBytes(SampleType type);
 constexpr int32_t kMaxFieldSide = 65536;
 /// Sample spacing, metres: a micrometre (surface metrology) to 100,000 km (a coarse whole planet).
 constexpr double kMinSpacing = 1e-6, kMaxSpacing = 1e8;
+/// Largest height magnitude, metres after the scale (offset included): a thousand times the
+/// Moon's distance, far past any real relief, and small enough that heights times the largest
+/// vertical scale (1000) stay within the camera's coordinates (api/hexlod.h).
+constexpr double kMaxAbsHeight = 1e9;
 
 struct HeightfieldScale {
     double spacingX = 1.0;     // metres between columns
@@ -47,13 +51,15 @@ public:
     size_t sampleCount() const { return size_t(width_) * size_t(height_); }
     size_t byteSize() const { return sampleCount() * sampleBytes(type_); }
 
-    /// Validates the scale and records it. Returns an error message or null.
+    /// Validates the scale and records it (spacings within [kMinSpacing, kMaxSpacing], a non-zero
+    /// height scale and an offset within kMaxAbsHeight). Returns an error message or null.
     const char* setScale(const HeightfieldScale& scale);
     const HeightfieldScale& scale() const { return scale_; }
 
     /// Call after the samples are written: replaces missing samples (nodata, NaN, inf) by the
     /// lowest valid height, so no spike or hole reaches the mesh, and finds min and max.
-    /// Returns an error message (e.g. every sample missing) or null.
+    /// Returns an error message (every sample missing, or heights beyond kMaxAbsHeight metres
+    /// after the scale) or null; on error nothing changed.
     const char* prepare();
     size_t missingCount() const { return missingCount_; }
     float minHeight() const { return minHeight_; } // metres
