@@ -16,6 +16,16 @@ extern "C" {
  * counters, free lists). 0, or HEXLOD_ERROR with the violation in hexlod_last_error(). */
 int32_t hexlod_diag_check_mesh(const hexlod_terrain* terrain);
 
+/* Checks that the stream draws a watertight surface (src/diagnostics/watertightness.h): the
+ * triangles the GPU assembles from the index array (its layout, primitive restart) use live
+ * vertex slots at finite positions, all counter-clockwise seen from above; every directed edge
+ * is used once, so every interior edge by exactly two triangles; the edges used once form one
+ * loop, and the Euler characteristic is 1 (one disc: no T-junction, crack or hole). Reads the
+ * stream as the last frame's stream step left it. out (7 doubles, may be NULL): triangles,
+ * vertices used, edges, boundary edges, boundary loops, Euler characteristic, indices read.
+ * 0, or HEXLOD_ERROR with the first defect (and where) in hexlod_last_error(). */
+int32_t hexlod_diag_check_stream(const hexlod_terrain* terrain, double* out);
+
 /* Splits every whole cell of the coarsest levels, `rounds` times: the uniform split (Fig. 4),
  * equal to that many 1-to-4 splits of the base triangulation. Returns the splits, or HEXLOD_ERROR. */
 int32_t hexlod_diag_refine_uniform(hexlod_terrain* terrain, int32_t rounds);

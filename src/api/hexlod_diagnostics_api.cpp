@@ -3,10 +3,12 @@
 // and the diagnostics WASM builds only.
 #include "api/hexlod_diagnostics.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "api/terrain_handle.h"
 #include "diagnostics/error_evaluator.h"
+#include "diagnostics/watertightness.h"
 
 using hexlod::api::fail;
 using hexlod::api::needMesh;
@@ -16,6 +18,27 @@ extern "C" {
 int32_t hexlod_diag_check_mesh(const hexlod_terrain* terrain) {
     if (const char* error = needMesh(terrain)) return fail(error);
     if (const char* problem = terrain->core->mesh().checkInvariants()) return fail(problem);
+    return 0;
+}
+
+int32_t hexlod_diag_check_stream(const hexlod_terrain* terrain, double* out) {
+    if (const char* error = needMesh(terrain)) return fail(error);
+    const hexlod::HexMesh& mesh = terrain->core->mesh();
+    const hexlod::FanStream& stream = terrain->core->stream();
+    const std::vector<uint32_t>& indices = stream.indices();
+    std::vector<uint32_t> triangles;
+    hexlod::assembleTriangles(indices.data(), indices.size(),
+                              stream.layout() == hexlod::IndexLayout::Fans ? hexlod::Primitive::TriangleFan : hexlod::Primitive::Triangles,
+                              triangles);
+    const hexlod::WatertightStats stats =
+        hexlod::checkWatertight(triangles, mesh.positionData(), size_t(mesh.vertexCapacity()), hexlod::kStreamVertexWords,
+                                [&mesh](uint32_t v) { return mesh.isVertexLive(int32_t(v)); });
+    if (out) {
+        const double figures[7] = {double(stats.triangles), double(stats.vertices), double(stats.edges), double(stats.boundaryEdges),
+                                   double(stats.boundaryLoops), double(stats.euler), double(indices.size())};
+        std::copy(figures, figures + 7, out);
+    }
+    if (stats.error) return fail(stats.error);
     return 0;
 }
 

@@ -1,0 +1,141 @@
+// Watertightness of the drawn triangles (paper §7's fan stream, seen as the GPU assembles it);
+// see watertightness.h. Sorting directed edges keeps it exact and independent of hash layouts.
+#include "diagnostics/watertightness.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace hexlod {
+
+namespace {
+
+constexpr uint32_t kRestart = 0xFFFFFFFFu;
+
+thread_local char message[256];
+
+template <typename... Args>
+const char* failure(const char* format, Args... args) {
+    std::snprintf(message, sizeof(message), format, args...);
+    return message;
+}
+
+uint64_t edgeKey(uint32_t from, uint32_t to) { return uint64_t(from) << 32 | to; }
+uint32_t edgeFrom(uint64_t key) { return uint32_t(key >> 32); }
+uint32_t edgeTo(uint64_t key) { return uint32_t(key); }
+
+bool contains(const std::vector<uint64_t>& sorted, uint64_t key) { return std::binary_search(sorted.begin(), sorted.end(), key); }
+
+} // namespace
+
+void assembleTriangles(const uint32_t* indices, size_t count, Primitive primitive, std::vector<uint32_t>& out) {
+    uint32_t held[3];
+    int32_t n = 0; // vertices since the last restart (a fan's count keeps growing)
+    for (size_t k = 0; k < count; ++k) {
+        const uint32_t i = indices[k];
+        if (i == kRestart) {
+            n = 0;
+            continue;
+        }
+        if (primitive == Primitive::Triangles) {
+            held[n++] = i;
+            if (n == 3) out.insert(out.end(), {held[0], held[1], held[2]}), n = 0;
+        } else {
+            if (n == 0) held[0] = i;
+            else if (n >= 2) out.insert(out.end(), {held[0], held[1], i});
+            held[1] = i;
+            ++n;
+        }
+    }
+}
+
+WatertightStats checkWatertight(const std::vector<uint32_t>& triangles, const float* positions, size_t vertexCount, size_t strideWords,
+                                const std::function<bool(uint32_t)>& live) {
+    WatertightStats stats;
+    stats.triangles = int64_t(triangles.size() / 3);
+    if (triangles.size() % 3 != 0) return stats.error = failure("%zu indices are not whole triangles", triangles.size()), stats;
+    if (triangles.empty()) return stats.error = failure("no triangles are drawn"), stats;
+    auto at = [&](uint32_t v) { return positions + size_t(v) * strideWords; };
+
+    // Vertices and triangles: valid, live, finite, counter-clockwise seen from +y.
+    std::vector<uint8_t> used(vertexCount, 0);
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+        for (size_t k = 0; k < 3; ++k) {
+            const uint32_t v = triangles[t + k];
+            if (v >= vertexCount) return stats.error = failure("triangle %zu uses vertex %u of %zu", t / 3, v, vertexCount), stats;
+            if (live && !live(v)) return stats.error = failure("triangle %zu uses free vertex slot %u", t / 3, v), stats;
+            const float* p = at(v);
+            if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+                return stats.error = failure("vertex %u has a non-finite position", v), stats;
+            if (!used[v]) used[v] = 1, ++stats.vertices;
+        }
+        const float *a = at(triangles[t]), *b = at(triangles[t + 1]), *c = at(triangles[t + 2]);
+        const double crossY = (double(b[2]) - a[2]) * (double(c[0]) - a[0]) - (double(b[0]) - a[0]) * (double(c[2]) - a[2]);
+        if (!(crossY > 0.0))
+            return stats.error = failure("triangle %zu (vertices %u, %u, %u) is %s seen from above", t / 3, triangles[t], triangles[t + 1],
+                                         triangles[t + 2], crossY == 0.0 ? "degenerate" : "clockwise"),
+                   stats;
+    }
+
+    // Directed edges: each used once; the ones whose reverse nobody uses are the boundary.
+    std::vector<uint64_t> directed;
+    directed.reserve(triangles.size());
+    for (size_t t = 0; t < triangles.size(); t += 3)
+        for (size_t k = 0; k < 3; ++k) directed.push_back(edgeKey(triangles[t + k], triangles[t + (k + 1) % 3]));
+    std::sort(directed.begin(), directed.end());
+    for (size_t k = 1; k < directed.size(); ++k)
+        if (directed[k] == directed[k - 1])
+            return stats.error = failure("edge %u -> %u is used by two triangles in the same direction (overlap or fold)",
+                                         edgeFrom(directed[k]), edgeTo(directed[k])),
+                   stats;
+    std::vector<uint64_t> boundary; // sorted, as `directed` is
+    for (const uint64_t e : directed)
+        if (!contains(directed, edgeKey(edgeTo(e), edgeFrom(e)))) boundary.push_back(e);
+    stats.boundaryEdges = int64_t(boundary.size());
+    stats.edges = int64_t(directed.size() + boundary.size()) / 2;
+    stats.euler = stats.vertices - stats.edges + stats.triangles;
+
+    // The boundary: one edge out of (and so into) each boundary vertex, then one loop.
+    // A crack or T-junction whose ends lie on the outline (or another one) shows here.
+    auto pinch = [&](uint32_t v, const char* what) {
+        return failure("a crack or T-junction at vertex %u at (%.3f, %.3f) (x, z metres): it %s two boundary edges (or the surface "
+                       "pinches there)", v, double(at(v)[0]), double(at(v)[2]), what);
+    };
+    for (size_t k = 1; k < boundary.size(); ++k)
+        if (edgeFrom(boundary[k]) == edgeFrom(boundary[k - 1])) return stats.error = pinch(edgeFrom(boundary[k]), "starts"), stats;
+    std::vector<uint8_t> ends(vertexCount, 0);
+    for (const uint64_t e : boundary)
+        if (ends[edgeTo(e)]++) return stats.error = pinch(edgeTo(e), "ends"), stats;
+    std::vector<uint8_t> visited(boundary.size(), 0);
+    size_t shortest = boundary.size() + 1, shortestStart = 0;
+    for (size_t start = 0; start < boundary.size(); ++start) {
+        if (visited[start]) continue;
+        ++stats.boundaryLoops;
+        size_t length = 0;
+        for (size_t k = start; !visited[k];) {
+            visited[k] = 1;
+            ++length;
+            const uint32_t next = edgeTo(boundary[k]);
+            const auto it = std::lower_bound(boundary.begin(), boundary.end(), edgeKey(next, 0));
+            if (it == boundary.end() || edgeFrom(*it) != next)
+                return stats.error = failure("the boundary ends at vertex %u: no boundary edge leaves it", next), stats;
+            k = size_t(it - boundary.begin());
+        }
+        if (length < shortest) shortest = length, shortestStart = start;
+    }
+    if (stats.boundaryLoops != 1) {
+        const uint32_t u = edgeFrom(boundary[shortestStart]), v = edgeTo(boundary[shortestStart]);
+        return stats.error = failure("a crack or T-junction: the boundary forms %lld loops, not 1; the shortest (%zu edges) runs from "
+                                     "vertex %u at (%.3f, %.3f) to %u at (%.3f, %.3f) (x, z metres)",
+                                     (long long)stats.boundaryLoops, shortest, u, double(at(u)[0]), double(at(u)[2]), v,
+                                     double(at(v)[0]), double(at(v)[2])),
+               stats;
+    }
+    if (stats.euler != 1)
+        return stats.error = failure("the triangles are not one disc: Euler characteristic %lld (V %lld - E %lld + F %lld), not 1",
+                                     (long long)stats.euler, (long long)stats.vertices, (long long)stats.edges, (long long)stats.triangles),
+               stats;
+    return stats;
+}
+
+} // namespace hexlod
