@@ -17,7 +17,7 @@ namespace {
 // hexlod_last_error() points here until the next refusal (the ABI's messages are static storage).
 thread_local char message[320];
 
-const char* refuse(const char* format, ...) {
+__attribute__((format(printf, 1, 2))) const char* refuse(const char* format, ...) {
     va_list args;
     va_start(args, format);
     std::vsnprintf(message, sizeof(message), format, args);

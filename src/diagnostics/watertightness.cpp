@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 
 namespace hexlod {
@@ -14,9 +15,11 @@ constexpr uint32_t kRestart = 0xFFFFFFFFu;
 
 thread_local char message[256];
 
-template <typename... Args>
-const char* failure(const char* format, Args... args) {
-    std::snprintf(message, sizeof(message), format, args...);
+__attribute__((format(printf, 1, 2))) const char* failure(const char* format, ...) {
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(message, sizeof(message), format, args);
+    va_end(args);
     return message;
 }
 
