@@ -1,5 +1,6 @@
 // Watertightness of the drawn triangles (paper §7's fan stream, seen as the GPU assembles it);
-// see watertightness.h. Sorting directed edges keeps it exact and independent of hash layouts.
+// see watertightness.h. Edges are bucketed by their start vertex (no hashing): linear time, and
+// the same verdict and message in every build.
 #include "diagnostics/watertightness.h"
 
 #include <algorithm>
@@ -22,12 +23,6 @@ __attribute__((format(printf, 1, 2))) const char* failure(const char* format, ..
     va_end(args);
     return message;
 }
-
-uint64_t edgeKey(uint32_t from, uint32_t to) { return uint64_t(from) << 32 | to; }
-uint32_t edgeFrom(uint64_t key) { return uint32_t(key >> 32); }
-uint32_t edgeTo(uint64_t key) { return uint32_t(key); }
-
-bool contains(const std::vector<uint64_t>& sorted, uint64_t key) { return std::binary_search(sorted.begin(), sorted.end(), key); }
 
 } // namespace
 
@@ -80,57 +75,59 @@ WatertightStats checkWatertight(const std::vector<uint32_t>& triangles, const fl
                    stats;
     }
 
-    // Directed edges: each used once; the ones whose reverse nobody uses are the boundary.
-    std::vector<uint64_t> directed;
-    directed.reserve(triangles.size());
+    // Directed edges by their start vertex (a vertex has a handful): each used once; the ones
+    // whose reverse nobody uses are the boundary.
+    std::vector<uint32_t> first(vertexCount + 1, 0), to(triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t) ++first[triangles[t] + 1];
+    for (size_t v = 0; v < vertexCount; ++v) first[v + 1] += first[v];
+    std::vector<uint32_t> fill(first.begin(), first.end() - 1);
     for (size_t t = 0; t < triangles.size(); t += 3)
-        for (size_t k = 0; k < 3; ++k) directed.push_back(edgeKey(triangles[t + k], triangles[t + (k + 1) % 3]));
-    std::sort(directed.begin(), directed.end());
-    for (size_t k = 1; k < directed.size(); ++k)
-        if (directed[k] == directed[k - 1])
-            return stats.error = failure("edge %u -> %u is used by two triangles in the same direction (overlap or fold)",
-                                         edgeFrom(directed[k]), edgeTo(directed[k])),
-                   stats;
-    std::vector<uint64_t> boundary; // sorted, as `directed` is
-    for (const uint64_t e : directed)
-        if (!contains(directed, edgeKey(edgeTo(e), edgeFrom(e)))) boundary.push_back(e);
-    stats.boundaryEdges = int64_t(boundary.size());
-    stats.edges = int64_t(directed.size() + boundary.size()) / 2;
-    stats.euler = stats.vertices - stats.edges + stats.triangles;
+        for (size_t k = 0; k < 3; ++k) to[fill[triangles[t + k]]++] = triangles[t + (k + 1) % 3];
+    auto hasEdge = [&](uint32_t a, uint32_t b) { return std::find(&to[first[a]], &to[first[a + 1]], b) != &to[first[a + 1]]; };
 
-    // The boundary: one edge out of (and so into) each boundary vertex, then one loop.
-    // A crack or T-junction whose ends lie on the outline (or another one) shows here.
+    // The boundary: one edge out of and one into each boundary vertex, then one loop. A crack or
+    // T-junction whose ends lie on the outline (or on another crack) shows as a pinch.
     auto pinch = [&](uint32_t v, const char* what) {
         return failure("a crack or T-junction at vertex %u at (%.3f, %.3f) (x, z metres): it %s two boundary edges (or the surface "
                        "pinches there)", v, double(at(v)[0]), double(at(v)[2]), what);
     };
-    for (size_t k = 1; k < boundary.size(); ++k)
-        if (edgeFrom(boundary[k]) == edgeFrom(boundary[k - 1])) return stats.error = pinch(edgeFrom(boundary[k]), "starts"), stats;
+    constexpr uint32_t kNone = 0xFFFFFFFFu;
+    std::vector<uint32_t> next(vertexCount, kNone); // the boundary edge leaving a vertex
     std::vector<uint8_t> ends(vertexCount, 0);
-    for (const uint64_t e : boundary)
-        if (ends[edgeTo(e)]++) return stats.error = pinch(edgeTo(e), "ends"), stats;
-    std::vector<uint8_t> visited(boundary.size(), 0);
-    size_t shortest = boundary.size() + 1, shortestStart = 0;
-    for (size_t start = 0; start < boundary.size(); ++start) {
-        if (visited[start]) continue;
+    for (uint32_t a = 0; a < uint32_t(vertexCount); ++a) {
+        for (uint32_t k = first[a]; k < first[a + 1]; ++k) {
+            const uint32_t b = to[k];
+            if (std::find(&to[k + 1], &to[first[a + 1]], b) != &to[first[a + 1]])
+                return stats.error = failure("edge %u -> %u is used by two triangles in the same direction (overlap or fold)", a, b), stats;
+            if (hasEdge(b, a)) continue;
+            ++stats.boundaryEdges;
+            if (next[a] != kNone) return stats.error = pinch(a, "starts"), stats;
+            if (ends[b]++) return stats.error = pinch(b, "ends"), stats;
+            next[a] = b;
+        }
+    }
+    stats.edges = (int64_t(triangles.size()) + stats.boundaryEdges) / 2;
+    stats.euler = stats.vertices - stats.edges + stats.triangles;
+    std::vector<uint8_t> visited(vertexCount, 0);
+    int64_t shortest = stats.boundaryEdges + 1;
+    uint32_t shortestStart = 0;
+    for (uint32_t start = 0; start < uint32_t(vertexCount); ++start) {
+        if (next[start] == kNone || visited[start]) continue;
         ++stats.boundaryLoops;
-        size_t length = 0;
-        for (size_t k = start; !visited[k];) {
-            visited[k] = 1;
+        int64_t length = 0;
+        for (uint32_t v = start; !visited[v]; v = next[v]) {
+            visited[v] = 1;
             ++length;
-            const uint32_t next = edgeTo(boundary[k]);
-            const auto it = std::lower_bound(boundary.begin(), boundary.end(), edgeKey(next, 0));
-            if (it == boundary.end() || edgeFrom(*it) != next)
-                return stats.error = failure("the boundary ends at vertex %u: no boundary edge leaves it", next), stats;
-            k = size_t(it - boundary.begin());
+            if (next[next[v]] == kNone)
+                return stats.error = failure("the boundary ends at vertex %u: no boundary edge leaves it", next[v]), stats;
         }
         if (length < shortest) shortest = length, shortestStart = start;
     }
     if (stats.boundaryLoops != 1) {
-        const uint32_t u = edgeFrom(boundary[shortestStart]), v = edgeTo(boundary[shortestStart]);
-        return stats.error = failure("a crack or T-junction: the boundary forms %lld loops, not 1; the shortest (%zu edges) runs from "
+        const uint32_t u = shortestStart, v = next[shortestStart];
+        return stats.error = failure("a crack or T-junction: the boundary forms %lld loops, not 1; the shortest (%lld edges) runs from "
                                      "vertex %u at (%.3f, %.3f) to %u at (%.3f, %.3f) (x, z metres)",
-                                     (long long)stats.boundaryLoops, shortest, u, double(at(u)[0]), double(at(u)[2]), v,
+                                     (long long)stats.boundaryLoops, (long long)shortest, u, double(at(u)[0]), double(at(u)[2]), v,
                                      double(at(v)[0]), double(at(v)[2])),
                stats;
     }
