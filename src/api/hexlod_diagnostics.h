@@ -26,6 +26,12 @@ int32_t hexlod_diag_check_mesh(const hexlod_terrain* terrain);
  * 0, or HEXLOD_ERROR with the first defect (and where) in hexlod_last_error(). */
 int32_t hexlod_diag_check_stream(const hexlod_terrain* terrain, double* out);
 
+/* The module's own allocator, all terrains together (for the soak benchmark's leak check):
+ * out[0] bytes allocated and not freed, out[1] bytes the allocator holds from the system
+ * (under WebAssembly, at most the memory size, which never shrinks). 0, or HEXLOD_ERROR where
+ * the C library does not say (neither Emscripten's nor glibc's allocator). */
+int32_t hexlod_diag_heap(double* out);
+
 /* Splits every whole cell of the coarsest levels, `rounds` times: the uniform split (Fig. 4),
  * equal to that many 1-to-4 splits of the base triangulation. Returns the splits, or HEXLOD_ERROR. */
 int32_t hexlod_diag_refine_uniform(hexlod_terrain* terrain, int32_t rounds);

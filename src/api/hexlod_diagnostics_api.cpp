@@ -3,6 +3,8 @@
 // and the diagnostics WASM builds only.
 #include "api/hexlod_diagnostics.h"
 
+#include <malloc.h> // mallinfo: Emscripten's dlmalloc, glibc's mallinfo2
+
 #include <algorithm>
 #include <vector>
 
@@ -39,6 +41,22 @@ int32_t hexlod_diag_check_stream(const hexlod_terrain* terrain, double* out) {
         std::copy(figures, figures + 7, out);
     }
     if (stats.error) return fail(stats.error);
+    return 0;
+}
+
+int32_t hexlod_diag_heap(double* out) {
+    if (!out) return fail("out must point to 2 doubles");
+#if defined(__EMSCRIPTEN__)
+    const struct mallinfo info = mallinfo();
+    out[0] = double(unsigned(info.uordblks));
+    out[1] = double(unsigned(info.arena));
+#elif defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 33))
+    const struct mallinfo2 info = mallinfo2();
+    out[0] = double(info.uordblks + info.hblkhd); // small chunks and mmapped ones
+    out[1] = double(info.arena + info.hblkhd);
+#else
+    return fail("this C library does not report its heap");
+#endif
     return 0;
 }
 
