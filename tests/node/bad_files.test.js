@@ -14,6 +14,7 @@ import { isMainThread, parentPort, workerData } from 'node:worker_threads';
 import { runWatchedWorker } from './watched_worker.js';
 import { zlibSync } from 'fflate';
 import { loadHeightfield, HeightfieldError } from '../../web/loaders/index.js';
+import { checkSize } from '../../web/loaders/common.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
 import { createNodeCore } from '../../bin/node_core.js';
 import { seededRandom } from '../../web/app/seeded_random.js';
@@ -37,6 +38,36 @@ async function refused(files, name, problem, options = {}) {
     return true;
   });
   return allocations;
+}
+
+/**
+ * A copy of a TIFF fixture with entries of its first directory replaced: tag -> { type, count,
+ * value } (a SHORT or SSHORT value sits in the entry's first 2 bytes), or { double } for a value
+ * typed DOUBLE, appended to the file and pointed at.
+ */
+function withTiffTags(name, tags) {
+  return withTiffBytes(read(DIR + name), tags);
+}
+
+/** withTiffTags on the bytes of a TIFF. */
+function withTiffBytes(src, tags) {
+  const doubles = Object.values(tags).filter((t) => 'double' in t);
+  const b = new Uint8Array(src.length + 8 * doubles.length);
+  b.set(src);
+  const v = new DataView(b.buffer), ifd = v.getUint32(4, true);
+  let end = src.length;
+  for (let i = 0; i < v.getUint16(ifd, true); i++) {
+    const e = ifd + 2 + 12 * i, t = tags[v.getUint16(e, true)];
+    if (!t) continue;
+    let { type, count, value } = t;
+    if ('double' in t) { v.setFloat64(end, t.double, true); [type, count, value] = [12, 1, end]; end += 8; }
+    if (type !== undefined) v.setUint16(e + 2, type, true);
+    if (count !== undefined) v.setUint32(e + 4, count, true);
+    if (value === undefined) continue;
+    const short = [3, 8].includes(v.getUint16(e + 2, true)) && v.getUint32(e + 4, true) === 1;
+    if (short) v.setUint16(e + 8, value & 0xffff, true); else v.setUint32(e + 8, value >>> 0, true);
+  }
+  return b;
 }
 
 if (isMainThread) {
@@ -111,6 +142,35 @@ if (isMainThread) {
     for (const [f, problem] of cases) assert.equal(await refused([f], f.name, problem), 0, `${f.name} allocated`);
     // RAW sizes that do not fit the bytes.
     await refused([file('volcano.r16')], 'volcano.r16', /size 100000x100000 does not fit 5307/, { width: 100000, height: 100000 });
+  });
+
+  test('every size is a positive whole number, whoever declares it (file, sidecar, JS options)', async () => {
+    // checkSize itself.
+    for (const [w, h, problem] of [[-1, 2, /width -1 is not a positive whole number \(declared size -1x2\)/],
+      [2, NaN, /height NaN is not/], [2.5, 2, /width 2.5 is not/], ['3', 2, /width "3" is not/], [0, 2, /zero width/]]) {
+      assert.throws(() => checkSize('f.x', w, h, 1e9), (e) => e instanceof HeightfieldError && problem.test(e.message) && e.message.startsWith('f.x: '));
+    }
+    // RAW sizes through the JS API: a height of -1 made a width of -5307 and a flat 2x2 terrain.
+    const r16 = file('volcano.r16');
+    for (const [options, problem] of [[{ height: -1 }, /^volcano\.r16: height -1 is not a positive whole number$/],
+      [{ width: -87, height: -61 }, /width -87 is not/], [{ width: NaN }, /width NaN is not/],
+      [{ width: '87', height: '61' }, /width "87" is not/], [{ width: 87.5 }, /width 87.5 is not/]]) {
+      assert.equal(await refused([r16], 'volcano.r16', problem, options), 0, JSON.stringify(options));
+    }
+    // ... and through a sidecar.
+    for (const json of ['{"width": -87}', '{"width": 87, "height": 60.5}', '{"height": "61"}']) {
+      await refused([r16, { name: 'volcano.json', bytes: text(json) }], 'volcano.json', /must be a positive integer/);
+    }
+    // GeoTIFF sizes of other types than LONG: a DOUBLE or SSHORT of -200 reached allocate() as a RangeError.
+    const [WIDTH, HEIGHT, SSHORT] = [256, 257, 8];
+    for (const [tags, problem] of [[{ [WIDTH]: { double: -200 } }, /width -200 is not a positive whole number \(declared size -200x200\)/],
+      [{ [WIDTH]: { double: 200.5 } }, /width 200\.5 is not/], [{ [HEIGHT]: { double: NaN } }, /height NaN is not|zero height/],
+      [{ [HEIGHT]: { type: SSHORT, value: -200 } }, /height -200 is not/], [{ [WIDTH]: { double: 2 ** 40 } }, /is absurd/]]) {
+      assert.equal(await refused([{ name: 's.tif', bytes: withTiffTags('everest_i16_strips.tif', tags) }], 's.tif', problem), 0);
+    }
+    // A DOUBLE that holds a whole number is a size like any other.
+    const h = await loadHeightfield([{ name: 'd.tif', bytes: withTiffTags('everest_i16_strips.tif', { [WIDTH]: { double: 200 } }) }]);
+    assert.deepEqual([h.width, h.height], [200, 200]);
   });
 
   test('all no-data: refused with the reason, in every format that has no-data', async () => {

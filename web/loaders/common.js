@@ -37,17 +37,28 @@ export function defaultAllocate(sampleType, width, height) {
 }
 
 /**
- * Throws HeightfieldError unless width x height is a sane, positive size.
- * Called before anything is allocated.
+ * Throws HeightfieldError unless width x height is a sane size: two positive integers whose
+ * product is at most maxSamples. Called before anything is allocated, on every size a file,
+ * a sidecar or the caller declares (a negative, fractional or NaN size would otherwise reach
+ * allocate() as a RangeError or a degenerate field).
  */
 export function checkSize(file, width, height, maxSamples) {
-  if (width === 0 || height === 0) {
-    throw new HeightfieldError(file, `zero ${width === 0 ? 'width' : 'height'} (declared size ${width}x${height})`);
+  const declared = `declared size ${shown(width)}x${shown(height)}`;
+  for (const [what, v] of [['width', width], ['height', height]]) {
+    if (v === 0) throw new HeightfieldError(file, `zero ${what} (${declared})`);
+    if (!Number.isInteger(v) || v < 0) {
+      throw new HeightfieldError(file, `${what} ${shown(v)} is not a positive whole number (${declared})`);
+    }
   }
   if (width * height > maxSamples) {
     throw new HeightfieldError(file,
-      `declared size ${width}x${height} is absurd (${width * height} samples; limit ${maxSamples})`);
+      `${declared} is absurd (${width * height} samples; limit ${maxSamples})`);
   }
+}
+
+/** A value for a message: numbers as they are, anything else as JSON ("87" for a string). */
+export function shown(v) {
+  return typeof v === 'number' ? String(v) : JSON.stringify(v) ?? String(v);
 }
 
 /**

@@ -53,7 +53,6 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   const image = await guard('bad TIFF structure', async () => (await fromArrayBuffer(buffer)).getImage(0));
   const dir = image.fileDirectory;
   const width = image.getWidth(), height = image.getHeight();
-  if (!Number.isInteger(width) || !Number.isInteger(height)) fail('bad TIFF: image size missing');
   checkSize(name, width, height, options.maxSamples ?? DEFAULT_MAX_SAMPLES);
   const format = dir.getValue('SampleFormat')?.[0] ?? 1;
   const bits = dir.getValue('BitsPerSample')?.[0] ?? 1;

@@ -2,7 +2,7 @@
 // terrain editors export them). The file does not say its size: a square one is inferred,
 // otherwise width and height come from the caller (a dialog, CLI flags) or a NAME.json sidecar.
 
-import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize } from './common.js';
+import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, shown } from './common.js';
 import { SampleSink } from './pacing.js';
 import { copyRows } from './copy_rows.js';
 
@@ -30,6 +30,13 @@ export async function decodeRaw(bytes, name, allocate, options = {}) {
   const count = bytes.length / 2;
   let width = options.width ?? sidecar?.width;
   let height = options.height ?? sidecar?.height;
+  // A size the caller gives (the page's dialog, the CLI, the JS API) is checked before it is
+  // used to work out the other one: a height of -1 must not turn into a width of -count.
+  for (const [what, v] of [['width', width], ['height', height]]) {
+    if (v !== undefined && !(Number.isInteger(v) && v > 0)) {
+      throw new SizeNeededError(name, `${what} ${shown(v)} is not a positive whole number`, count);
+    }
+  }
   if (width === undefined && height === undefined) {
     const side = Math.round(Math.sqrt(count));
     if (side * side !== count) {
