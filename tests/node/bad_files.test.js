@@ -12,7 +12,7 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { isMainThread, parentPort, workerData } from 'node:worker_threads';
 import { runWatchedWorker } from './watched_worker.js';
-import { zlibSync } from 'fflate';
+import { deflateRawSync, constants as zlibConstants } from 'node:zlib';
 import { loadHeightfield, HeightfieldError } from '../../web/loaders/index.js';
 import { checkSize } from '../../web/loaders/common.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
@@ -186,10 +186,16 @@ if (isMainThread) {
 
   test('too big for memory: the core cannot hold the field, the file is named, nothing stays allocated', async () => {
     // A 32769^2 Terrarium PNG decodes to float32: 4 GiB + 512 MiB of samples, more than a 32-bit
-    // WebAssembly memory can hold. Its IDAT is just long enough to pass the deflate-ratio check.
-    const side = 32769, idatBytes = Math.ceil((side * (3 * side + 1)) / 1032) + 1032;
-    const idat = new Uint8Array(idatBytes);
-    idat.set(zlibSync(new Uint8Array(16)).subarray(0, 2)); // a valid zlib header
+    // WebAssembly memory can hold. Its IDAT is a real stream of every row (3.2 GB of zeros in
+    // 3 MB: one flushed block of 1 MiB of zeros, repeated), as the loader proves before it
+    // allocates.
+    const side = 32769, total = side * (3 * side + 1), MIB = 1 << 20;
+    const flushed = deflateRawSync(new Uint8Array(MIB), { level: 9, finishFlush: zlibConstants.Z_SYNC_FLUSH });
+    const adler = new Uint8Array([(total % 65521) >> 8, (total % 65521) & 255, 0, 1]); // of zeros: a = 1, b = length
+    const blocks = [new Uint8Array([0x78, 0xda]), ...Array(Math.floor(total / MIB)).fill(flushed),
+      deflateRawSync(new Uint8Array(total % MIB), { level: 9 }), adler];
+    const idat = new Uint8Array(blocks.reduce((n, p) => n + p.length, 0));
+    blocks.reduce((o, p) => { idat.set(p, o); return o + p.length; }, 0);
     const chunk = (type, data) => {
       const out = new Uint8Array(12 + data.length), v = new DataView(out.buffer);
       v.setUint32(0, data.length);

@@ -442,13 +442,51 @@ if (isMainThread) {
   test('bad input: corrupt IDAT contents with valid CRCs', async () => {
     const { width, height, data } = fastPngDecode(volcanoPng);
     const rows = rows16(data, width, height);
-    await rejects([{ name: 'h.png', bytes: makePng({ width, height, bitDepth: 16, colourType: 0, rows, zlibEdit: (z) => { const c = z.slice(); c[0] = 0x79; return c; } }) }],
-      'h.png', /corrupt IDAT data \(bad zlib header\)/);
-    await rejects([{ name: 'd.png', bytes: makePng({ width, height, bitDepth: 16, colourType: 0, rows, zlibEdit: (z) => { const c = z.slice(); c[2] |= 6; return c; } }) }],
-      'd.png', /corrupt IDAT data \(zlib: invalid block type\) after 0 of 61 rows/);
-    await rejects([{ name: 'f.png', bytes: makePng({ width, height, bitDepth: 16, colourType: 0, rows, level: 0, zlibEdit: (z) => {
+    // All refused before anything is allocated: the data is inflated once to check it first.
+    assert.equal(await rejects([{ name: 'h.png', bytes: makePng({ width, height, bitDepth: 16, colourType: 0, rows, zlibEdit: (z) => { const c = z.slice(); c[0] = 0x79; return c; } }) }],
+      'h.png', /corrupt IDAT data \(bad zlib header\)/), 0);
+    assert.equal(await rejects([{ name: 'd.png', bytes: makePng({ width, height, bitDepth: 16, colourType: 0, rows, zlibEdit: (z) => { const c = z.slice(); c[2] |= 6; return c; } }) }],
+      'd.png', /corrupt IDAT data \(zlib: invalid block type\) after 0 of 61 rows/), 0);
+    assert.equal(await rejects([{ name: 'f.png', bytes: makePng({ width, height, bitDepth: 16, colourType: 0, rows, level: 0, zlibEdit: (z) => {
       const c = z.slice(); c[7 + (1 + 2 * width) * 5] = 9; return c; // stored block: 2 zlib + 5 block header bytes, then row 5's filter byte
-    } }) }], 'f.png', /corrupt IDAT data \(bad filter type 9 on row 5\) after 5 of 61 rows/);
+    } }) }], 'f.png', /corrupt IDAT data \(bad filter type 9 on row 5\) after 5 of 61 rows/), 0);
+  });
+
+  test('a forged IHDR is refused before anything is allocated: the IDAT data must hold every row', async () => {
+    // The IHDR of a valid file with a larger size: once far beyond the data (filter bytes fall
+    // on image data), once with rows of exactly three original rows (every filter byte is
+    // valid, only the length of the data shows the forgery), at 16 and 8 bits and at 1 bit.
+    const forged = (png, width, height, bitDepth = 16) =>
+      concat([SIGNATURE, ihdr(width, height, bitDepth, 0), png.subarray(chunksOf(png)[0].end)]);
+    const grey8 = fastPngEncode({ width: 87, height: 61, data: Uint8Array.from({ length: 87 * 61 }, (_, i) => Math.imul(i, 2654435761) >>> 24), depth: 8, channels: 1 });
+    const cases = [
+      [forged(volcanoPng, 1000, 2000), /corrupt IDAT data \(bad filter type \d+ on row \d+\) after \d+ of 2000 rows/],
+      [forged(volcanoPng, 262, 1000), /truncated: IDAT data ends after 20 of 1000 rows$/], // 2 x 262 + 1 = 3 x 175 bytes a row
+      [forged(grey8, 263, 1000, 8), /truncated: IDAT data ends after 20 of 1000 rows$/], // 263 + 1 = 3 x 88
+      [forged(grey8, 8 * 263, 5000, 1), /truncated: IDAT data ends after 20 of 5000 rows$/], // 1 bit: 263 + 1 = 3 x 88
+    ];
+    for (const [bytes, problem] of cases) assert.equal(await rejects([{ name: 'f.png', bytes }], 'f.png', problem), 0);
+  });
+
+  test('the native inflater and fflate decode the same; fflate goes on where the native stream fails', async () => {
+    const globe = read(`${GLOBE}.png`);
+    const native = await decodePng(globe, 'g.png', (t, w, h) => new Uint16Array(w * h));
+    // A stream cut in half: the native stream fails part-way, fflate goes on from there.
+    const { width, height, data } = fastPngDecode(volcanoPng);
+    const cut = makePng({ width, height, bitDepth: 16, colourType: 0, rows: rows16(data, width, height),
+      zlibEdit: (z) => z.subarray(0, z.length >> 1) });
+    const problem = async () => (await decodePng(cut, 'z.png', () => assert.fail('allocated')).catch((e) => e)).message;
+    const nativeProblem = await problem();
+    assert.match(nativeProblem, /^z\.png: truncated: IDAT data ends after [1-9]\d* of 61 rows$/);
+    const { DecompressionStream } = globalThis;
+    globalThis.DecompressionStream = undefined; // as in a browser without it: fflate alone
+    try {
+      const fflate = await decodePng(globe, 'g.png', (t, w, h) => new Uint16Array(w * h));
+      assert.equal(firstMismatch(native.samples, fflate.samples), null);
+      assert.equal(await problem(), nativeProblem);
+    } finally {
+      globalThis.DecompressionStream = DecompressionStream;
+    }
   });
 
   test('bad input: bad CRC, broken chunk layout', async () => {

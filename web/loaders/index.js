@@ -62,7 +62,9 @@ export const ACCEPT_EXTENSIONS = Object.keys(KIND_OF_EXTENSION).map((e) => `.${e
  *   file has been validated far enough to trust its size. Default: a fresh typed array.
  * @param {() => ArrayLike<number>} [options.reacquire] returns a fresh view on the same samples;
  *   called after every pause of the decoder (needed when they live in memory that may grow)
- * @param {(fraction: number, phase: string) => void} [options.onProgress] 0..1 at every pause
+ * @param {(fraction: number, phase: string) => void} [options.onProgress] 0..1 at every pause, per
+ *   phase: 'checking' (a compressed file proving its declared size before anything is
+ *   allocated), 'decoding', 'filling no-data'
  * @param {number} [options.maxSamples] reject files declaring more than this many samples
  *   (default DEFAULT_MAX_SAMPLES = 32769^2)
  * @param {number} [options.width] width of a RAW file (else inferred when square, or sidecar)
@@ -103,6 +105,7 @@ export async function loadHeightfield(files, options = {}) {
   const decodeOptions = {
     maxSamples, sidecar, reacquire: options.reacquire,
     onProgress: progress && ((fraction) => progress(fraction, 'decoding')),
+    onCheckProgress: progress && ((fraction) => progress(fraction, 'checking')),
     width: options.width, height: options.height, encoding: options.encoding,
   };
   if (main.kind === 'f32' && !sidecar) {

@@ -68,3 +68,14 @@ export class SampleSink {
     this.sliceStart = now();
   }
 }
+
+/**
+ * Pauses for work done before anything is allocated (a file proving its declared size): the
+ * same slices as a SampleSink, with progress but no samples to reacquire.
+ * @param {(fraction: number) => void} [onProgress]
+ * @returns {(fraction: number) => Promise<void>}
+ */
+export function pacer(onProgress) {
+  const sink = SampleSink.over(null, { onProgress });
+  return (fraction) => sink.pace(fraction);
+}

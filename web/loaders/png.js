@@ -3,22 +3,25 @@
 // Memory is the point of this decoder: a 16385x16385 16-bit field is 512 MB,
 // so it can afford neither the whole inflated stream nor a second copy of the
 // pixels. The file is walked once to check its structure (chunk lengths, CRCs,
-// IHDR, tEXt, IDAT positions) without allocating anything; then the IDAT
-// chunks are fed, as views into the file, slice by slice to fflate's streaming
-// inflater, and each inflated row is unfiltered against the previous one and
-// written into the destination. Only two rows of scratch are kept.
+// IHDR, tEXt, IDAT positions) without allocating anything. Then the IDAT stream
+// is inflated once and counted, keeping nothing, to prove that it holds every row
+// the IHDR declares (a forged IHDR must not reserve memory: WebAssembly memory
+// never shrinks). Only then is the field allocated, and the IDAT chunks, as views
+// into the file, are inflated again (inflate.js), each inflated row unfiltered
+// against the previous one and written into the destination. Only two rows of
+// scratch are kept.
 
 import { Unzlib } from 'fflate';
 import {
   HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, describeContent,
 } from './common.js';
-import { SampleSink } from './pacing.js';
+import { SampleSink, pacer } from './pacing.js';
+import { inflate, isInflateError } from './inflate.js';
 import { ENCODINGS, encodingFromName, detectEncoding } from './terrain_rgb.js';
 
 const SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];
 const COLOUR_TYPES = { 0: 'grayscale', 2: 'RGB', 3: 'palette', 4: 'grayscale+alpha', 6: 'RGBA' };
-// Compressed bytes handed to the inflater per call. It bounds the output of
-// one call (deflate expands at most ~1032:1) and so fflate's temporary buffers.
+// Compressed bytes handed to fflate per call when counting the rows of a truncated file.
 const SLICE = 64 * 1024;
 // Deflate cannot expand data by more than this factor (258-byte matches in 2 bits).
 const MAX_DEFLATE_RATIO = 1032;
@@ -94,6 +97,10 @@ export async function decodePng(bytes, name, allocate, options = {}) {
     heightScale = (range.max - range.min) / maxRaw;
     heightFromFile = true;
   }
+
+  const proof = await proveRows(png, pacer(options.onCheckProgress));
+  if (proof.problem) fail(`corrupt IDAT data (${proof.problem}) after ${proof.rows} of ${height} rows`);
+  if (proof.rows < height) fail(`truncated: IDAT data ends after ${proof.rows} of ${height} rows`);
 
   const sampleType = rgb ? 'f32' : bitDepth === 16 ? 'u16' : 'u8';
   const sink = new SampleSink(allocate, sampleType, width, height, options);
@@ -247,7 +254,7 @@ async function inflateRows({ ihdr, idat, decodeRgb }, sink) {
   if (headerProblem) return { done, error: headerProblem, first };
   const wanted = sink ? height : 1;
 
-  const inflater = new Unzlib((chunk) => {
+  const onChunk = (chunk) => {
     let p = 0;
     while (p < chunk.length && done < wanted) {
       const take = Math.min(rowLen - filled, chunk.length - p);
@@ -255,7 +262,7 @@ async function inflateRows({ ihdr, idat, decodeRgb }, sink) {
       filled += take;
       p += take;
       if (filled === rowLen) {
-        if (cur[0] > 4) throw new BadFilter(cur[0]);
+        if (cur[0] > 4) { error = `bad filter type ${cur[0]} on row ${done}`; return false; }
         unfilter(cur, prev, bpp);
         if (sink) storeRow(cur, sink.samples, done * width, ihdr, decodeRgb);
         else first = cur.slice(1);
@@ -264,27 +271,36 @@ async function inflateRows({ ihdr, idat, decodeRgb }, sink) {
         done++;
       }
     }
-  });
-
-  try {
-    feed: for (const part of idat) {
-      for (let p = 0; p < part.length; p += SLICE) {
-        inflater.push(part.subarray(p, p + SLICE), false);
-        if (done === wanted) break feed; // anything after the last row is ignored
-        if (sink) await sink.pace(done / height);
-      }
-    }
-    if (done < wanted) inflater.push(new Uint8Array(0), true);
-  } catch (e) {
-    if (e instanceof BadFilter) error = `bad filter type ${e.type} on row ${done}`;
-    else if (isInflateError(e)) {
-      // Running out of input is truncation (reported by the caller), not
-      // corruption. With the header checked, 'invalid zlib data' can only mean
-      // the stream is shorter than its 4-byte checksum.
-      if (!/^(unexpected EOF|invalid zlib data)$/.test(e.message)) error = `zlib: ${e.message}`;
-    } else throw e;
-  }
+    return done < wanted; // anything after the last row is ignored
+  };
+  const pace = sink ? () => sink.pace(done / height) : undefined;
+  error = (await inflate(idat, onChunk, pace)) ?? error;
   return { done, error, first };
+}
+
+/**
+ * Inflates the whole IDAT stream, keeping nothing, to prove before anything is allocated that
+ * it holds every row the IHDR declares, each with a valid filter type (the decode that follows
+ * then has nothing left to refuse). Returns { rows: complete rows before the first problem,
+ * problem: what is wrong with the data, or null }.
+ */
+async function proveRows({ ihdr, idat }, pace) {
+  const header = zlibHeaderProblem(idat);
+  if (header) return { rows: 0, problem: header };
+  const rowLen = ihdr.rowBytes + 1, enough = ihdr.height * rowLen;
+  let length = 0, bad = null;
+  const onChunk = (chunk) => {
+    // The filter byte of every row that starts in this chunk.
+    const end = Math.min(length + chunk.length, enough);
+    for (let p = Math.ceil(length / rowLen) * rowLen; p < end; p += rowLen) {
+      if (chunk[p - length] > 4) { bad = { row: p / rowLen, type: chunk[p - length] }; return false; }
+    }
+    length += chunk.length;
+    return length < enough;
+  };
+  const error = await inflate(idat, onChunk, () => pace(length / enough));
+  if (bad) return { rows: bad.row, problem: `bad filter type ${bad.type} on row ${bad.row}` };
+  return { rows: Math.min(ihdr.height, Math.floor(length / rowLen)), problem: error };
 }
 
 /** Complete rows in a (truncated) IDAT stream, counted without keeping any of them. */
@@ -318,15 +334,6 @@ function zlibHeaderProblem(idat) {
   if ((cmf & 15) !== 8 || cmf >> 4 > 7 || ((cmf << 8) | flg) % 31 !== 0) return 'bad zlib header';
   if (flg & 32) return 'zlib stream wants a preset dictionary';
   return null;
-}
-
-class BadFilter extends Error {
-  constructor(type) { super(`bad filter type ${type}`); this.type = type; }
-}
-
-// fflate throws plain Errors carrying a numeric `code`.
-function isInflateError(e) {
-  return e instanceof Error && typeof e.code === 'number';
 }
 
 /**
