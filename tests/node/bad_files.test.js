@@ -138,7 +138,7 @@ if (isMainThread) {
       return b;
     };
     cases.push([{ name: 'w.tif', bytes: tif(1000000, 1000000) }, /declared size 1000000x1000000 is absurd/]);
-    cases.push([{ name: 'w.tif', bytes: tif(20000, 200) }, /truncated: \d+ bytes of image data cannot hold 20000x200 samples/]);
+    cases.push([{ name: 'w.tif', bytes: tif(20000, 200) }, /bad TIFF: strip 0 holds 6400 bytes, but its 20000x16 samples need 640000 \(is the image size right\?\)/]);
     for (const [f, problem] of cases) assert.equal(await refused([f], f.name, problem), 0, `${f.name} allocated`);
     // RAW sizes that do not fit the bytes.
     await refused([file('volcano.r16')], 'volcano.r16', /size 100000x100000 does not fit 5307/, { width: 100000, height: 100000 });
@@ -171,6 +171,73 @@ if (isMainThread) {
     // A DOUBLE that holds a whole number is a size like any other.
     const h = await loadHeightfield([{ name: 'd.tif', bytes: withTiffTags('everest_i16_strips.tif', { [WIDTH]: { double: 200 } }) }]);
     assert.deepEqual([h.width, h.height], [200, 200]);
+  });
+
+  test('every TIFF strip or tile decodes to exactly what its geometry needs, checked before anything is allocated', async () => {
+    const [WIDTH, HEIGHT, ROWS_PER_STRIP, TILE_WIDTH, TILE_LENGTH] = [256, 257, 278, 322, 323];
+    const cases = [
+      // LZW strips of an inflated width loaded as 58095 x 120 of garbage (heights down to -44 005 m);
+      // a narrower width, from the first half of every strip.
+      ['etopo_i32_strips_lzw.tif', { [WIDTH]: { value: 58095 } }, /bad TIFF: strip 0 decodes to 6720 bytes, but its 58095x7 samples need 1626660 \(is the image size right\?\)$/],
+      ['etopo_i32_strips_lzw.tif', { [WIDTH]: { value: 120 } }, /bad TIFF: strip 0 decodes to more than 3360 bytes, but its 120x7 samples need 3360/],
+      ['etopo_i32_strips_lzw.tif', { [WIDTH]: { value: 3000 }, [HEIGHT]: { value: 12000 }, [ROWS_PER_STRIP]: { value: 700 } },
+        /strip 0 decodes to 6720 bytes, but its 3000x700 samples need 8400000/],
+      // Uncompressed strips, short and long.
+      ['everest_i16_strips.tif', { [WIDTH]: { value: 400 }, [HEIGHT]: { value: 100 } }, /bad TIFF: strip 0 holds 6400 bytes, but its 400x16 samples need 12800/],
+      ['everest_i16_strips.tif', { [WIDTH]: { value: 100 } }, /bad TIFF: strip 0 holds 6400 bytes, but its 100x16 samples need 3200/],
+      // Tiles of a forged size, deflate and LZW.
+      ['canyon_u16_tiled_deflate.tif', { [WIDTH]: { value: 6144 }, [HEIGHT]: { value: 6144 }, [TILE_WIDTH]: { value: 2048 }, [TILE_LENGTH]: { value: 2048 } },
+        /bad TIFF: tile 0 decodes to 8192 bytes, but its 2048x2048 samples need 8388608 \(is the tile size right\?\)$/],
+      ['jacksboro_f32_tiled_lzw.tif', { [WIDTH]: { value: 8000 }, [HEIGHT]: { value: 6000 }, [TILE_WIDTH]: { value: 2048 }, [TILE_LENGTH]: { value: 2048 } },
+        /bad TIFF: tile 0 decodes to 16384 bytes, but its 2048x2048 samples need 16777216/],
+      // Block sizes that are no sizes.
+      ['everest_i16_strips.tif', { [ROWS_PER_STRIP]: { double: 16.5 } }, /bad TIFF: RowsPerStrip 16\.5 is not a positive whole number$/],
+      ['everest_i16_strips.tif', { [ROWS_PER_STRIP]: { value: 0 } }, /bad TIFF: RowsPerStrip 0 is not a positive whole number$/],
+      ['canyon_u16_tiled_deflate.tif', { [TILE_WIDTH]: { value: 0 } }, /bad TIFF: TileWidth 0 is not a positive whole number$/],
+      ['canyon_u16_tiled_deflate.tif', { [TILE_LENGTH]: { double: 64.5 } }, /bad TIFF: TileLength 64\.5 is not a positive whole number$/],
+      ['canyon_u16_tiled_deflate.tif', { [TILE_LENGTH]: { double: 2 ** 40 } }, /bad TIFF: tiles of 64x1099511627776 samples are absurd \(over 2 GB each\)$/],
+    ];
+    for (const [source, tags, problem] of cases) {
+      assert.equal(await refused([{ name: 'm.tif', bytes: withTiffTags(source, tags) }], 'm.tif', problem), 0, `${source} ${JSON.stringify(tags)} allocated`);
+    }
+    // Corrupt block data: the codec's reason, and the block.
+    const corrupt = (source, tag, k, edit) => {
+      const b = read(DIR + source).slice(), v = new DataView(b.buffer), ifd = v.getUint32(4, true);
+      for (let i = 0; i < v.getUint16(ifd, true); i++) {
+        const e = ifd + 2 + 12 * i;
+        if (v.getUint16(e, true) === tag) edit(b, v.getUint32(v.getUint32(e + 8, true) + 4 * k, true));
+      }
+      return b;
+    };
+    const badLzw = corrupt('etopo_i32_strips_lzw.tif', 273, 3, (b, at) => { b[at] = 0xff; });
+    assert.equal(await refused([{ name: 'l.tif', bytes: badLzw }], 'l.tif', /corrupt strip 3 \(bad LZW code 510 after a clear\)$/), 0);
+    const badDeflate = corrupt('canyon_u16_tiled_deflate.tif', 324, 4, (b, at) => { b[at + 2] |= 6; });
+    assert.equal(await refused([{ name: 'd.tif', bytes: badDeflate }], 'd.tif', /corrupt tile 4 \(zlib: invalid block type\)$/), 0);
+  });
+
+  test('no error of the geotiff library leaks: a no-data tag of any type or place', async () => {
+    const NODATA = 42113, SHORT = 3;
+    for (const [tags, problem] of [[{ [NODATA]: { type: SHORT, count: 1, value: 7 } }, /bad TIFF: the no-data tag \(42113\) holds 7, not the text of a number$/],
+      [{ [NODATA]: { double: -32768 } }, /the no-data tag \(42113\) holds -32768, not the text of a number/]]) {
+      await refused([{ name: 'n.tif', bytes: withTiffTags('everest_i16_strips.tif', tags) }], 'n.tif', problem);
+    }
+    // Text, as GDAL writes it: a number ("-32768" and its NUL), "nan"; not words. Each text is
+    // appended to the file (or written at `at`) and the tag pointed at it.
+    const nodataText = (value, at) => {
+      const src = read(`${DIR}everest_i16_strips.tif`), b = new Uint8Array(src.length + value.length);
+      b.set(src);
+      b.set(text(value), at ?? src.length);
+      return withTiffBytes(b, { [NODATA]: { count: value.length, value: at ?? src.length } });
+    };
+    const nodataOf = async (bytes) => (await loadHeightfield([{ name: 'v.tif', bytes }])).nodata;
+    assert.equal(await nodataOf(nodataText('-32768\0')), -32768);
+    assert.equal(await nodataOf(nodataText('-32768')), -32768, 'without its NUL the library read -3276');
+    assert.equal(await nodataOf(nodataText('nan\0\0\0')), null);
+    await refused([{ name: 'w.tif', bytes: nodataText('abc\0\0\0') }], 'w.tif', /bad TIFF: the no-data tag \(42113\) is not a number \("abc"\)$/);
+    // Stored away from its directory, the library loads the tag only on demand (its getter threw).
+    const far = nodataText('-32768\0', 8);
+    const h = await loadHeightfield([{ name: 'far.tif', bytes: far }]);
+    assert.equal(h.nodata, -32768);
   });
 
   test('all no-data: refused with the reason, in every format that has no-data', async () => {

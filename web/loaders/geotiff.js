@@ -1,6 +1,8 @@
-// GeoTIFF height fields through the `geotiff` library (strips or tiles; none, deflate, LZW and
-// the other codecs it knows; predictors). It reads a band of rows at a time into a small
-// array that is copied into the caller's samples, so the full raster is never held twice.
+// GeoTIFF height fields through the `geotiff` library (its directory parsing, and strips or
+// tiles in none, deflate, LZW and the other codecs it knows, with predictors). Every block is
+// checked against its geometry before the field is allocated (tiff_blocks.js), then decoded
+// one at a time straight into the caller's samples (tiff_raster.js): the full raster is never
+// held twice.
 //
 // Sample types: int16 -> i16, uint16 -> u16, uint8 -> u8 (exact); float32 -> f32 (exact);
 // int32/uint32 and float64 -> f32 (exact for integer heights up to 2^24 = 16 777 216, i.e.
@@ -9,16 +11,17 @@
 // geographic ones (EPSG:4326 and friends), turned into metres at the raster's mid latitude.
 
 import { fromArrayBuffer, addDecoder } from 'geotiff';
-import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, degreesToMetres } from './common.js';
-import { SampleSink } from './pacing.js';
+import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, degreesToMetres, shown } from './common.js';
+import { SampleSink, pacer } from './pacing.js';
 import { TiffLzwDecoder, lzwParameters } from './tiff_lzw.js';
+import { blockLayout, checkBlocks } from './tiff_blocks.js';
+import { readBlocks } from './tiff_raster.js';
 
-// Compression 5 (LZW) through our bounded decoder (see tiff_lzw.js); not in a worker.
+// Compression 5 (LZW) through our bounded decoder (see tiff_lzw.js).
 addDecoder(5, async () => TiffLzwDecoder, lzwParameters, false);
 
-/** Rows decoded per read, at most (a band is cut to whole strips or tiles). */
-const BAND_SAMPLES = 1 << 21;
 const GEOGRAPHIC_MODEL = 2; // GTModelTypeGeoKey: 1 projected, 2 geographic
+const GEO_TAGS = ['ModelPixelScale', 'ModelTiepoint', 'ModelTransformation', 'GeoKeyDirectory', 'GeoDoubleParams', 'GeoAsciiParams'];
 const LINEAR_UNITS_M = { 9001: 1, 9002: 0.3048, 9003: 0.3048006096012192 }; // EPSG unit codes
 
 /** True when bytes start with a TIFF or BigTIFF header. */
@@ -39,7 +42,9 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   const ifd = firstDirectoryOffset(bytes);
   if (ifd + 2 > bytes.length) fail(`truncated: the image directory at byte ${ifd} lies past the end (${bytes.length} bytes)`);
 
-  // Any failure inside the library on a damaged file is that file's problem.
+  // Every call into the library goes through here: whatever it throws on a damaged file (a
+  // TypeError on a tag of the wrong type, a RangeError past the end of a buffer) is that
+  // file's problem, and reaches the caller as a HeightfieldError saying what was being read.
   const guard = async (what, step) => {
     try {
       return await step();
@@ -52,30 +57,41 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
     ? bytes.buffer : bytes.slice().buffer;
   const image = await guard('bad TIFF structure', async () => (await fromArrayBuffer(buffer)).getImage(0));
   const dir = image.fileDirectory;
-  const width = image.getWidth(), height = image.getHeight();
+  const [width, height] = await guard('bad TIFF image size', () => Promise.all([dir.loadValue('ImageWidth'), dir.loadValue('ImageLength')]));
+  if (width === undefined || height === undefined) fail('bad TIFF: image size missing');
   checkSize(name, width, height, options.maxSamples ?? DEFAULT_MAX_SAMPLES);
-  const format = dir.getValue('SampleFormat')?.[0] ?? 1;
-  const bits = dir.getValue('BitsPerSample')?.[0] ?? 1;
+  const [format, bits] = await guard('bad TIFF sample type', async () =>
+    [(await dir.loadValue('SampleFormat'))?.[0] ?? 1, (await dir.loadValue('BitsPerSample'))?.[0] ?? 1]);
   const sampleType = sampleTypeOf(format, bits);
   if (!sampleType) fail(`unsupported TIFF sample type: ${['', 'unsigned', 'signed', 'float'][format] ?? `format ${format}`} ${bits}-bit`);
-  await guard('bad TIFF structure', () => checkBlocksInFile(image, bytes.length, fail));
-
-  const nodata = image.getGDALNoData();
+  const nodata = parseNodata(await guard('bad TIFF no-data tag (42113)', () => dir.loadValue('GDAL_NODATA')), fail);
+  // The library reads the geotransform synchronously: a tag stored away from its directory must be loaded first.
+  await guard('bad TIFF georeference', () => Promise.all(GEO_TAGS.map((tag) => dir.loadValue(tag))));
   const geo = spacingOf(image, height);
 
+  // Every strip or tile must hold what its geometry needs before memory is reserved.
+  const layout = await guard('bad TIFF layout', () => blockLayout(image, { width, height }, fail));
+  await guard('bad TIFF image data', () => checkBlocks(image, layout, bytes, fail, pacer(options.onCheckProgress)));
+
   const sink = new SampleSink(allocate, sampleType, width, height, options);
-  const blockRows = image.getTileHeight() || height;
-  const rowsPerBand = Math.max(1, Math.floor(BAND_SAMPLES / width / blockRows)) * blockRows;
-  for (let y0 = 0; y0 < height; y0 += rowsPerBand) {
-    const y1 = Math.min(height, y0 + rowsPerBand);
-    const band = await guard(`corrupt image data in rows ${y0}..${y1 - 1}`,
-      () => image.readRasters({ window: [0, y0, width, y1], samples: [0], interleave: true }));
-    if (band.length !== (y1 - y0) * width) fail(`corrupt image data in rows ${y0}..${y1 - 1}`);
-    sink.samples.set(band, y0 * width); // int32/float64 convert to float32 here
-    await sink.pace(y1 / height);
-  }
+  await guard('corrupt image data', () => readBlocks(image, layout, bytes, sink, { format, bits, nodata }));
   if (sampleType === 'f32') rejectInfinities(sink.samples, width, fail);
-  return { width, height, sampleType, samples: sink.samples, nodata: Number.isFinite(nodata) ? nodata : null, ...geo };
+  return { width, height, sampleType, samples: sink.samples, nodata, ...geo };
+}
+
+/**
+ * The GDAL no-data tag (42113): ASCII text holding a number, "-32768" (with or without its
+ * terminating NUL). "nan" and "inf" give no value: NaN samples are no-data anyway, and an
+ * infinite one is damage.
+ */
+function parseNodata(value, fail) {
+  if (value === undefined) return null;
+  if (typeof value !== 'string') fail(`bad TIFF: the no-data tag (42113) holds ${shown(value)}, not the text of a number`);
+  const text = value.replace(/\0+$/, '').trim();
+  if (/^[+-]?(nan|inf|infinity)$/i.test(text)) return null;
+  const v = text === '' ? NaN : Number(text);
+  if (!Number.isFinite(v)) fail(`bad TIFF: the no-data tag (42113) is not a number (${JSON.stringify(text.slice(0, 40))})`);
+  return v;
 }
 
 /** Byte offset of the first image file directory (classic TIFF or BigTIFF header). */
@@ -93,33 +109,6 @@ function sampleTypeOf(format, bits) {
   if ((format === 1 || format === 2) && bits === 32) return 'f32';
   if (format === 3 && (bits === 32 || bits === 64)) return 'f32';
   return null;
-}
-
-/** Every strip or tile must lie inside the file: otherwise it was cut short. */
-async function checkBlocksInFile(image, fileBytes, fail) {
-  const dir = image.fileDirectory;
-  const tiled = dir.hasTag('TileOffsets');
-  const offsets = await dir.loadValue(tiled ? 'TileOffsets' : 'StripOffsets');
-  const counts = await dir.loadValue(tiled ? 'TileByteCounts' : 'StripByteCounts');
-  if (!offsets || !counts) fail(`bad TIFF: no ${tiled ? 'tile' : 'strip'} offsets`);
-  const across = Math.ceil(image.getWidth() / image.getTileWidth());
-  const down = Math.ceil(image.getHeight() / image.getTileHeight());
-  if (offsets.length < across * down || counts.length < across * down) {
-    fail(`bad TIFF: ${offsets.length} ${tiled ? 'tiles' : 'strips'} listed, ${across * down} needed`);
-  }
-  let stored = 0;
-  for (let i = 0; i < offsets.length; i++) {
-    if (Number(offsets[i]) + Number(counts[i]) > fileBytes) {
-      fail(`truncated: ${tiled ? 'tile' : 'strip'} ${i} ends at byte ${Number(offsets[i]) + Number(counts[i])}, the file has ${fileBytes}`);
-    }
-    stored += Number(counts[i]);
-  }
-  // No codec expands more than LZW (a 12-bit code stands for at most 4096 bytes): fewer
-  // stored bytes than that cannot hold the declared image. Checked before allocating.
-  const bits = Array.from(dir.getValue('BitsPerSample') ?? [1]).reduce((a, b) => a + b, 0);
-  const rawBytes = image.getWidth() * image.getHeight() * (bits / 8);
-  const ratio = (dir.getValue('Compression') ?? 1) === 1 ? 1 : 2731;
-  if (stored * ratio < rawBytes) fail(`truncated: ${stored} bytes of image data cannot hold ${image.getWidth()}x${image.getHeight()} samples`);
 }
 
 /** Metres between columns and rows from the geotransform, or nulls without one. */

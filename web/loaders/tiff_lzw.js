@@ -1,14 +1,24 @@
 // TIFF LZW decoding (TIFF 6.0 §13) for the geotiff library, replacing its own decoder: that one
 // collects the output in a plain JS array with no bound, so a damaged block can grow it until
 // the JS engine aborts the whole process (seen in our fuzz tests). This one writes into a
-// typed array of the block's known size and stops there; a bad code is an exception.
+// typed array of the block's known size and stops there; a bad code is an exception. The same
+// code walk also counts a block's bytes without writing them, for the check of every block's
+// size before the field is allocated (tiff_blocks.js).
 
 import { BaseDecoder } from 'geotiff';
 
 const CLEAR = 256, END = 257, FIRST_FREE = 258, MAX_CODES = 4096;
 
+/** The `width`-bit code (9..12) at bit offset `bit`, most significant bit first, from a 24-bit window. */
+function codeAt(input, bit, width) {
+  const p = bit >> 3;
+  const window = (input[p] << 16) | (input[p + 1] << 8) | input[p + 2]; // past the end reads as 0
+  return (window >>> (24 - (bit & 7) - width)) & ((1 << width) - 1);
+}
+
 /**
- * Decodes one strip or tile.
+ * Decodes one strip or tile. Data that ends before `size` bytes (a bottom strip holding only
+ * the image's remaining rows) leaves the rest zero: lzwLength has checked what each block holds.
  * @param {Uint8Array} input LZW codes, most significant bit first
  * @param {number} size bytes the block holds when decoded
  * @returns {Uint8Array}
@@ -29,9 +39,9 @@ export function lzwDecode(input, size) {
   };
 
   while (o < size) {
-    if (bit + width > totalBits) throw new Error(`LZW data ends after ${o} of ${size} bytes`);
-    let code = 0;
-    for (let k = 0; k < width; k++, bit++) code = (code << 1) | ((input[bit >> 3] >> (7 - (bit & 7))) & 1);
+    if (bit + width > totalBits) break;
+    const code = codeAt(input, bit, width);
+    bit += width;
     if (code === END) break;
     if (code === CLEAR) { next = FIRST_FREE; width = 9; old = -1; continue; }
     if (old < 0) {
@@ -63,7 +73,43 @@ export function lzwDecode(input, size) {
   return out;
 }
 
-/** Block geometry for the decoder; strips never taller than the image. */
+/**
+ * Bytes a strip or tile decodes to, counted without writing them: the same walk as lzwDecode,
+ * with only the lengths of the table's strings. Stops counting at `limit`.
+ * @param {Uint8Array} input LZW codes
+ * @param {number} limit
+ * @returns {number} bytes, at most limit
+ * @throws {Error} on a code the table does not hold
+ */
+export function lzwLength(input, limit) {
+  const length = new Uint16Array(MAX_CODES).fill(1, 0, 256);
+  const totalBits = input.length * 8;
+  let bit = 0, width = 9, next = FIRST_FREE, old = -1, o = 0;
+  while (o < limit && bit + width <= totalBits) {
+    const code = codeAt(input, bit, width);
+    bit += width;
+    if (code === END) break;
+    if (code === CLEAR) { next = FIRST_FREE; width = 9; old = -1; continue; }
+    if (old < 0) {
+      if (code > 255) throw new Error(`bad LZW code ${code} after a clear`);
+      o++;
+      old = code;
+      continue;
+    }
+    if (code < next) o += length[code];
+    else if (code === next && next < MAX_CODES) o += length[old] + 1;
+    else throw new Error(`bad LZW code ${code} (table holds ${next})`);
+    if (next < MAX_CODES) length[next++] = length[old] + 1;
+    if (next + 1 >= 1 << width && width < 12) width++;
+    old = code;
+  }
+  return Math.min(o, limit);
+}
+
+/**
+ * Block geometry for the decoder when the library's readRasters uses it (the registry is global);
+ * strips never taller than the image.
+ */
 export async function lzwParameters(dir) {
   const tiled = dir.hasTag('TileOffsets');
   const imageHeight = await dir.loadValue('ImageLength');
@@ -80,6 +126,7 @@ export async function lzwParameters(dir) {
   };
 }
 
+/** The library's decoder interface; parameters as tiff_blocks.js gives them (bytesPerPixel included). */
 export class TiffLzwDecoder extends BaseDecoder {
   decodeBlock(buffer) {
     const { tileWidth, tileHeight, bytesPerPixel } = this.parameters;

@@ -1,0 +1,130 @@
+// The strips or tiles of a TIFF, checked before the field is allocated, as GDAL checks strip and
+// tile sizes before it allocates: every block lies inside the file and decodes to exactly the
+// bytes its geometry needs. Without that, a forged width or height reserves memory its data
+// does not hold (WebAssembly memory never shrinks), and blocks too short or too long for the
+// declared geometry load as garbage: the geotiff library pads a short block and ignores the
+// rest of a long one.
+//
+// Uncompressed blocks prove their size by their byte counts. Compressed ones are decoded once,
+// keeping nothing where we can (LZW and deflate are only counted), before the decode proper.
+
+import { getDecoder } from 'geotiff';
+import { shown } from './common.js';
+import { inflatedLength } from './inflate.js';
+import { lzwLength } from './tiff_lzw.js';
+
+/**
+ * The block layout of the first image, from its tags, each checked.
+ * @param {import('geotiff').GeoTIFFImage} image
+ * @param {{ width: number, height: number }} size the image size, already checked
+ * @param {(problem: string) => never} fail
+ * @returns {Promise<{ tiled: boolean, blockWidth: number, blockHeight: number, bytesPerPixel: number,
+ *   compression: number, offsets: ArrayLike<number>, counts: ArrayLike<number>, blocks: number,
+ *   decoder: import('geotiff').BaseDecoder }>} blocks: how many blocks hold the first sample (the
+ *   only one read); decoder: the library's for the file's compression and predictor
+ */
+export async function blockLayout(image, { width, height }, fail) {
+  const dir = image.fileDirectory;
+  const tiled = image.isTiled;
+  const kind = tiled ? 'tile' : 'strip';
+  const positive = (tag, v) => {
+    if (!Number.isInteger(v) || v <= 0) fail(`bad TIFF: ${tag} ${shown(v)} is not a positive whole number`);
+    return v;
+  };
+  const blockWidth = tiled ? positive('TileWidth', await dir.loadValue('TileWidth')) : width;
+  const rowsPerStrip = await dir.loadValue('RowsPerStrip');
+  const blockHeight = tiled ? positive('TileLength', await dir.loadValue('TileLength'))
+    : Math.min(height, rowsPerStrip === undefined ? height : positive('RowsPerStrip', rowsPerStrip));
+
+  const bits = Array.from((await dir.loadValue('BitsPerSample')) ?? [1]);
+  const planar = image.planarConfiguration;
+  const pixelBits = planar === 2 ? bits[0] : bits.reduce((a, b) => a + b, 0);
+  if (pixelBits % 8 !== 0) fail(`unsupported TIFF: ${pixelBits} bits a pixel is not a whole number of bytes`);
+  // A decoder holds one block at a time: one beyond what a typed array holds is no block.
+  if (blockWidth * blockHeight * (pixelBits / 8) > 2 ** 31 - 1) {
+    fail(`bad TIFF: ${kind}s of ${blockWidth}x${blockHeight} samples are absurd (over 2 GB each)`);
+  }
+
+  const offsets = await dir.loadValue(tiled ? 'TileOffsets' : 'StripOffsets');
+  const counts = await dir.loadValue(tiled ? 'TileByteCounts' : 'StripByteCounts');
+  if (!offsets || !counts) fail(`bad TIFF: no ${kind} offsets`);
+  const blocks = Math.ceil(width / blockWidth) * Math.ceil(height / blockHeight);
+  if (offsets.length < blocks || counts.length < blocks) {
+    fail(`bad TIFF: ${Math.min(offsets.length, counts.length)} ${kind}s listed, ${blocks} needed`);
+  }
+  const compression = (await dir.loadValue('Compression')) ?? 1;
+  // What the library's decoders (and ours for LZW, see tiff_lzw.js) need to know of a block.
+  const decoderParameters = {
+    tileWidth: blockWidth, tileHeight: blockHeight, planarConfiguration: planar, bitsPerSample: bits,
+    predictor: (await dir.loadValue('Predictor')) || 1, bytesPerPixel: pixelBits / 8,
+    samplesPerPixel: (await dir.loadValue('SamplesPerPixel')) ?? 1,
+    JPEGTables: await dir.loadValue('JPEGTables'), LercParameters: await dir.loadValue('LercParameters'),
+  };
+  let decoder;
+  try {
+    decoder = await getDecoder(compression, decoderParameters);
+  } catch (e) {
+    fail(`unsupported TIFF compression ${compression} (${String(e?.message ?? e).split('\n')[0].slice(0, 80)})`);
+  }
+  return { tiled, blockWidth, blockHeight, bytesPerPixel: pixelBits / 8, compression, offsets, counts, blocks, decoder };
+}
+
+/**
+ * Checks every block of the first sample: inside the file, and decoding to the bytes its
+ * geometry needs (a strip at the bottom may hold only the image's remaining rows, or a whole
+ * strip). Nothing is allocated but one block at a time for codecs that cannot be counted.
+ * @param {import('geotiff').GeoTIFFImage} image
+ * @param {Awaited<ReturnType<typeof blockLayout>>} layout
+ * @param {Uint8Array} bytes the file
+ * @param {(problem: string) => never} fail
+ * @param {(fraction: number) => Promise<void>} pace
+ */
+export async function checkBlocks(image, layout, bytes, fail, pace) {
+  const { tiled, blockWidth, blockHeight, bytesPerPixel, compression, offsets, counts, blocks } = layout;
+  const height = image.getHeight();
+  const kind = tiled ? 'tile' : 'strip';
+  const slices = [];
+  for (let i = 0; i < blocks; i++) {
+    const offset = Number(offsets[i]), count = Number(counts[i]);
+    if (offset + count > bytes.length) fail(`truncated: ${kind} ${i} ends at byte ${offset + count}, the file has ${bytes.length}`);
+    slices.push(bytes.subarray(offset, offset + count));
+  }
+
+  const measure = measurer(layout);
+  const full = blockWidth * blockHeight * bytesPerPixel;
+  for (let i = 0; i < blocks; i++) {
+    if (slices[i].length === 0) continue; // a sparse file's empty block (GDAL SPARSE_OK): the library fills it with no-data
+    const rows = tiled ? blockHeight : Math.min(blockHeight, height - i * blockHeight);
+    const needed = blockWidth * rows * bytesPerPixel;
+    let length;
+    try {
+      length = await measure(slices[i], full);
+    } catch (e) {
+      fail(`corrupt ${kind} ${i} (${String(e?.message ?? e).split('\n')[0].slice(0, 120)})`);
+    }
+    if (length !== needed && length !== full) {
+      const counted = compression === 1 ? `holds ${length}` : `decodes to ${length > full ? `more than ${full}` : length}`;
+      fail(`bad TIFF: ${kind} ${i} ${counted} bytes, but its ${blockWidth}x${rows} samples need ${needed} ` +
+        `(is the ${tiled ? 'tile' : 'image'} size right?)`);
+    }
+    await pace((i + 1) / blocks);
+  }
+}
+
+/**
+ * A function (block bytes, full block size) -> bytes the block decodes to, counted up to just
+ * past the full size (anything more is too long in any case).
+ */
+function measurer({ compression, decoder }) {
+  if (compression === 1) return (block) => block.length;
+  if (compression === 5) return (block, full) => lzwLength(block, full + 1);
+  if (compression === 8 || compression === 32946) {
+    return async (block, full) => {
+      const { length, error } = await inflatedLength([block], full + 1);
+      if (error) throw new Error(error);
+      return length;
+    };
+  }
+  // Any other codec the library knows: decode the block (one at a time) and measure it.
+  return async (block) => (await decoder.decodeBlock(block.slice().buffer)).byteLength;
+}
