@@ -70,6 +70,24 @@ function withTiffBytes(src, tags) {
   return b;
 }
 
+/** A PNG chunk with its CRC. */
+function pngChunk(type, data) {
+  const body = concatBytes([text(type), typeof data === 'string' ? text(data) : data]);
+  const out = new Uint8Array(body.length + 8), v = new DataView(out.buffer);
+  v.setUint32(0, body.length - 4);
+  out.set(body, 4);
+  let c = 0xffffffff;
+  for (const b of body) { c ^= b; for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1; }
+  v.setUint32(out.length - 4, (c ^ 0xffffffff) >>> 0);
+  return out;
+}
+
+function concatBytes(parts) {
+  const out = new Uint8Array(parts.reduce((n, p) => n + p.length, 0));
+  parts.reduce((o, p) => { out.set(p, o); return o + p.length; }, 0);
+  return out;
+}
+
 if (isMainThread) {
   const formats = ['x.png', 'x.tif', 'x.hgt', 'x.asc', 'x.pgm', 'x.r16'];
 
@@ -238,6 +256,60 @@ if (isMainThread) {
     const far = nodataText('-32768\0', 8);
     const h = await loadHeightfield([{ name: 'far.tif', bytes: far }]);
     assert.equal(h.nodata, -32768);
+  });
+
+  test('non-finite heights are refused in every text and float format, naming the line or sample', async () => {
+    const grid = (values, nodata = '') => text(`ncols 3\nnrows 2\ncellsize 1\n${nodata}1 2 3\n4 ${values} 6\n`);
+    // 1e999 is Infinity as a number, 1e39 as a float32: the grid became a field with an infinite height.
+    for (const v of ['1e999', '1e39', '-1e39', '-3.5e38']) {
+      await refused([{ name: 'i.asc', bytes: grid(v) }], 'i.asc', new RegExp(`^i\\.asc: line 5: '${v.replace('.', '\\.')}' is not a finite float32 height`));
+    }
+    await refused([{ name: 'i.asc', bytes: grid('5', 'NODATA_value 1e39\n') }], 'i.asc', /bad header: NODATA_value 1e\+39 is beyond the float32 range$/);
+    const inf = new Float32Array(6);
+    inf[5] = -Infinity;
+    await refused([{ name: 'i.f32', bytes: new Uint8Array(inf.buffer) }, { name: 'i.json', bytes: text('{"width": 3, "height": 2}') }],
+      'i.f32', /sample at row 1, column 2 is -Infinity/);
+    // A float32 GeoTIFF: the 16-bit strips read as 100 float32 samples a row, one of them +Infinity.
+    const tif = withTiffTags('everest_i16_strips.tif', { 256: { value: 100 }, 258: { value: 32 }, 339: { value: 3 } });
+    new DataView(tif.buffer).setFloat32(8 + (2 * 100 + 5) * 4, Infinity, true);
+    await refused([{ name: 'f.tif', bytes: tif }], 'f.tif', /sample at row 2, column 5 is Infinity/);
+    // Height ranges whose span overflows make an infinite height scale.
+    const withRange = (min, max) => {
+      const png = read(`${DIR}everest_16bit.png`), v = new DataView(png.buffer, png.byteOffset);
+      const parts = [png.subarray(0, 8)];
+      for (let p = 8; p < png.length;) {
+        const len = v.getUint32(p), type = String.fromCharCode(...png.subarray(p + 4, p + 8));
+        if (type !== 'tEXt') parts.push(png.subarray(p, p + 12 + len));
+        if (type === 'IHDR') parts.push(pngChunk('tEXt', `min_m\0${min}`), pngChunk('tEXt', `max_m\0${max}`));
+        p += 12 + len;
+      }
+      return concatBytes(parts);
+    };
+    await refused([{ name: 'r.png', bytes: withRange(-1e308, 1e308) }], 'r.png', /tEXt min_m -1e\+308 and max_m 1e\+308 span more than a number can hold$/);
+    await refused([file('everest.pgm'), { name: 'everest.json', bytes: text('{"min": -1e308, "max": 1e308}') }], 'everest.json',
+      /min -1e\+308 and max 1e\+308 span more than a number can hold$/);
+  });
+
+  test('no-data values match float32 samples, however they are written', async () => {
+    // GDAL's float no-data, written with fewer digits: -3.4028235e+38 is not exactly a float32.
+    const grid = text('ncols 3\nnrows 2\ncellsize 1\nNODATA_value -3.4028235e+38\n1 2 3\n4 -3.4028235e+38 6\n');
+    const h = await loadHeightfield([{ name: 'n.asc', bytes: grid }]);
+    assert.equal(h.missing, 1);
+    assert.ok(h.samples.every((v) => v > 0 && v < 7), Array.from(h.samples).join(' '));
+    const f = new Float32Array([1, 2, 3, 4, -9999.9, 6]);
+    const g = await loadHeightfield([{ name: 'n.f32', bytes: new Uint8Array(f.buffer) }, { name: 'n.json', bytes: text('{"width": 3, "height": 2, "nodata": -9999.9}') }]);
+    assert.equal(g.missing, 1);
+    assert.ok(g.samples.every((v) => v > 0 && v < 7), Array.from(g.samples).join(' '));
+  });
+
+  test('what the core refuses in a file (its spacing, its heights) is refused naming the file', async () => {
+    const core = await createNodeCore();
+    for (const [files, problem] of [
+      [[file('everest.pgm'), { name: 'everest.json', bytes: text('{"cell_size_m": 1e-300}') }], /^everest\.pgm: invalid height scale: sample spacing must be between/],
+      [[{ name: 'h.asc', bytes: text('ncols 2\nnrows 2\ncellsize 1\n1 2\n3 2e9\n') }], /^h\.asc: cannot use this height field: heights must lie between -1e9 m and 1e9 m/],
+    ]) {
+      await assert.rejects(loadTerrain(core, files), (e) => e instanceof HeightfieldError && problem.test(e.message) && !e.message.includes('\n'));
+    }
   });
 
   test('all no-data: refused with the reason, in every format that has no-data', async () => {

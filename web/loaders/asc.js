@@ -61,6 +61,9 @@ export async function decodeAsc(bytes, name, allocate, options = {}) {
   checkSize(name, width, height, options.maxSamples ?? DEFAULT_MAX_SAMPLES);
   const dx = header.cellsize ?? header.dx, dy = header.cellsize ?? header.dy ?? dx;
   if (!(dx > 0) || !(dy > 0)) fail('bad header: cellsize missing or not positive');
+  // Samples are float32: no-data must be one too, or -3.4028235e+38 would not match its samples.
+  const nodata = 'nodata_value' in header ? Math.fround(header.nodata_value) : null;
+  if (nodata !== null && !Number.isFinite(nodata)) fail(`bad header: NODATA_value ${header.nodata_value} is beyond the float32 range`);
   // Every value takes at least two bytes (a digit and a separator): reject before allocating.
   if ((n - pos) < width * height * 2 - 1) fail(`truncated: ${n - pos} bytes cannot hold ${width}x${height} values`);
 
@@ -71,8 +74,10 @@ export async function decodeAsc(bytes, name, allocate, options = {}) {
       const t = token();
       if (!t) fail(`truncated: ${row + x} of ${width * height} values (ends on row ${y + 1})`);
       const v = parseNumber(bytes, t[0], t[1]);
-      if (!Number.isFinite(v)) fail(`line ${line}: '${text(t)}' is not a number`);
+      if (Number.isNaN(v)) fail(`line ${line}: '${text(t)}' is not a number`);
       samples[row + x] = v;
+      // 1e999 parses to Infinity, 1e39 becomes Infinity as a float32: both are damage.
+      if (!Number.isFinite(samples[row + x])) fail(`line ${line}: '${text(t)}' is not a finite float32 height (beyond ±3.4e38)`);
     }
     await sink.pace(y / height);
   }
@@ -82,8 +87,7 @@ export async function decodeAsc(bytes, name, allocate, options = {}) {
   const geographic = dx <= 0.1 && dy <= 0.1 && x0 >= -180 && x0 + width * dx <= 360 &&
     y0 >= -90 && y0 + height * dy <= 90;
   const spacing = geographic ? degreesToMetres(dx, dy, y0 + (height * dy) / 2) : { spacingX: dx, spacingY: dy };
-  return { width, height, sampleType: 'f32', samples: sink.samples, nodata: header.nodata_value ?? null,
-    ...spacing, geographic };
+  return { width, height, sampleType: 'f32', samples: sink.samples, nodata, ...spacing, geographic };
 }
 
 /** A decimal number (sign, digits, fraction, exponent) from bytes[s, e); NaN if malformed. */

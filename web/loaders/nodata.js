@@ -19,6 +19,8 @@ import { HeightfieldError } from './common.js';
  * @throws {HeightfieldError} when every sample is missing
  */
 export async function fillNodata(sink, width, height, nodata, name) {
+  // Float samples hold float32 values: a no-data of -9999.9 (a double) is -9999.900390625 there.
+  if (nodata !== null && sink.samples instanceof Float32Array) nodata = Math.fround(nodata);
   const isMissing = nodata === null || Number.isNaN(nodata)
     ? (v) => v !== v // NaN
     : (v) => v === nodata || v !== v;

@@ -229,6 +229,7 @@ function heightRange(text, fail) {
   };
   const min = parse('min_m'), max = parse('max_m');
   if (max < min) fail(`tEXt max_m (${max}) is below min_m (${min})`);
+  if (!Number.isFinite(max - min)) fail(`tEXt min_m ${min} and max_m ${max} span more than a number can hold`);
   return { min, max };
 }
 

@@ -53,6 +53,7 @@ export function parseSidecar(bytes, name) {
   const max = finite('max');
   if ((min === undefined) !== (max === undefined)) fail(`${min === undefined ? 'max' : 'min'} given without ${min === undefined ? 'min' : 'max'}`);
   if (min !== undefined && max < min) fail(`max (${max}) is below min (${min})`);
+  if (min !== undefined && !Number.isFinite(max - min)) fail(`min ${min} and max ${max} span more than a number can hold`);
 
   const cell = finite('cell_size_m', true);
   const spacingX = finite('cell_size_x_m', true) ?? cell ?? null;

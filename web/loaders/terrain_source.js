@@ -3,6 +3,7 @@
 // Runs in the browser and in Node.
 import { loadHeightfield, HeightfieldError } from './index.js';
 import { extensionOf } from './common.js';
+import { CoreError } from '../core/core.js';
 
 const BYTES = { u8: 1, u16: 2, i16: 2, f32: 4 };
 const RELIEF_RATIO = 0.05; // height range / extent of a guessed spacing
@@ -49,8 +50,12 @@ export async function loadTerrain(core, files, options = {}) {
       reacquire: () => profile ?? terrain.samples(),
     });
     if (profile) widenProfile(terrain, profile, field);
-    terrain.setScale(options.spacing ? { ...field, spacingX: options.spacing.x, spacingY: options.spacing.y } : field);
-    const missing = field.missing + terrain.prepare();
+    // The core has the last word on a field's scale and heights (a spacing of 1e-300 m, heights
+    // beyond 1e9 m): its refusal is this file's problem, said with its name.
+    const missing = field.missing + fileProblem(main, () => {
+      terrain.setScale(options.spacing ? { ...field, spacingX: options.spacing.x, spacingY: options.spacing.y } : field);
+      return terrain.prepare();
+    });
     if (options.guessSpacing && !field.spacingFromFile && !options.spacing) {
       // No spacing anywhere: one that makes the relief a twentieth of the extent, a plausible
       // landscape, rather than 1 m, which turns any real DEM into needles. No mesh exists
@@ -64,6 +69,16 @@ export async function loadTerrain(core, files, options = {}) {
     return { terrain, field: metadata, missing, loadMs: performance.now() - start };
   } catch (error) {
     terrain?.destroy();
+    throw error;
+  }
+}
+
+/** Runs a core call on a file's data; a CoreError becomes a HeightfieldError naming the file. */
+function fileProblem(name, step) {
+  try {
+    return step();
+  } catch (error) {
+    if (error instanceof CoreError) throw new HeightfieldError(name, error.message);
     throw error;
   }
 }
