@@ -107,8 +107,24 @@ if (isMainThread) {
     for (const [name, keep, problem] of cases) {
       assert.equal(await refused([{ name, bytes: cut(name, keep) }], name, problem), 0, `${name} allocated`);
     }
-    // An ASCII grid cut near its end still passes the byte estimate: it is refused while reading.
-    await refused([{ name: 'j.asc', bytes: cut('jacksboro_voids.asc', 0.97) }], 'j.asc', /truncated: \d+ of 47500 values \(ends on row 1\d\d\)/);
+    // An ASCII grid cut near its end passes the byte estimate: its values are counted before
+    // anything is allocated. So are values beyond ncols x nrows.
+    assert.equal(await refused([{ name: 'j.asc', bytes: cut('jacksboro_voids.asc', 0.97) }], 'j.asc',
+      /truncated: \d+ of 47500 values \(ends on row 1\d\d\)$/), 0);
+    const asc = new TextDecoder().decode(read(`${DIR}jacksboro_voids.asc`)).replace('nrows 190', 'nrows 189');
+    assert.equal(await refused([{ name: 'k.asc', bytes: text(asc) }], 'k.asc', /more values than ncols x nrows \(250x189\)$/), 0);
+    // The count reads four bytes at a time: any alignment of the file's bytes, any separators.
+    const grid = text('ncols 5\r\nnrows 3\r\ncellsize 1\r\n1 22  333\t4444 55555\r\n6\t\t7 8 9\f10\n11 12 13 14 15   \n');
+    for (let at = 0; at < 4; at++) {
+      const padded = new Uint8Array(grid.length + 8);
+      padded.set(grid, at);
+      const h = await loadHeightfield([{ name: 'g.asc', bytes: padded.subarray(at, at + grid.length) }]);
+      assert.deepEqual(Array.from(h.samples), [1, 22, 333, 4444, 55555, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15], `at ${at}`);
+      for (const keep of [grid.length - 12, grid.length - 6]) {
+        assert.equal(await refused([{ name: 'g.asc', bytes: padded.subarray(at, at + keep) }], 'g.asc',
+          keep === grid.length - 6 ? /truncated: 14 of 15 values \(ends on row 3\)$/ : /truncated: 12 of 15 values \(ends on row 3\)$/), 0);
+      }
+    }
     await refused([{ name: 'N27E086.hgt', bytes: new Uint8Array(1201 * 1201 * 2 - 2) }], 'N27E086.hgt',
       /truncated: 2884800 bytes, but an SRTM tile has 1201x1201 or 3601x3601 16-bit samples/);
     await refused([{ name: 'c.r16', bytes: cut('canyon.r16', 0.5).subarray(1) }], 'c.r16', /odd length 36863 bytes/);

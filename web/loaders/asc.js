@@ -4,7 +4,7 @@
 // The numbers are parsed straight from the bytes: no string per value, no copy of the text.
 
 import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, degreesToMetres } from './common.js';
-import { SampleSink } from './pacing.js';
+import { SampleSink, pacer } from './pacing.js';
 
 const KEYS = ['ncols', 'nrows', 'xllcorner', 'xllcenter', 'yllcorner', 'yllcenter', 'cellsize', 'dx', 'dy', 'nodata_value'];
 
@@ -30,7 +30,7 @@ export async function decodeAsc(bytes, name, allocate, options = {}) {
     while (pos < n) {
       const c = bytes[pos];
       if (c === 0x0a) line++;
-      else if (c !== 0x20 && c !== 0x09 && c !== 0x0d) break;
+      else if (c > 0x20) break; // any other control byte separates values too
       pos++;
     }
     if (pos >= n) return null;
@@ -64,8 +64,15 @@ export async function decodeAsc(bytes, name, allocate, options = {}) {
   // Samples are float32: no-data must be one too, or -3.4028235e+38 would not match its samples.
   const nodata = 'nodata_value' in header ? Math.fround(header.nodata_value) : null;
   if (nodata !== null && !Number.isFinite(nodata)) fail(`bad header: NODATA_value ${header.nodata_value} is beyond the float32 range`);
-  // Every value takes at least two bytes (a digit and a separator): reject before allocating.
+  // Every value takes at least two bytes (a digit and a separator): a quick answer for a file cut short.
   if ((n - pos) < width * height * 2 - 1) fail(`truncated: ${n - pos} bytes cannot hold ${width}x${height} values`);
+  // The proof of the declared size before memory is reserved (WebAssembly memory never
+  // shrinks): the text holds exactly ncols x nrows values. Counting is a fraction of parsing.
+  const count = await countValues(bytes, pos, pacer(options.onCheckProgress));
+  if (count < width * height) {
+    fail(`truncated: ${count} of ${width * height} values (ends on row ${Math.floor(count / width) + 1})`);
+  }
+  if (count > width * height) fail(`more values than ncols x nrows (${width}x${height})`);
 
   const sink = new SampleSink(allocate, 'f32', width, height, options);
   for (let y = 0; y < height; y++) {
@@ -88,6 +95,45 @@ export async function decodeAsc(bytes, name, allocate, options = {}) {
     y0 >= -90 && y0 + height * dy <= 90;
   const spacing = geographic ? degreesToMetres(dx, dy, y0 + (height * dy) / 2) : { spacingX: dx, spacingY: dy };
   return { width, height, sampleType: 'f32', samples: sink.samples, nodata, ...spacing, geographic };
+}
+
+const LITTLE_ENDIAN_HOST = new Uint8Array(new Uint16Array([1]).buffer)[0] === 1;
+
+/**
+ * The values in bytes[start..]: runs of bytes above 0x20, as token() reads them. Four bytes at
+ * a time, three to four times faster than byte by byte: bit 7 of each byte of a word is set
+ * when the byte belongs to a value, and a value starts where such a byte follows one that does
+ * not. Pauses every few megabytes.
+ */
+async function countValues(bytes, start, pace) {
+  let count = 0, inValue = 0; // inValue: 1 when the byte before is part of a value
+  const byByte = (from, to) => {
+    for (let i = from; i < to; i++) {
+      const v = bytes[i] > 0x20 ? 1 : 0;
+      count += v & (inValue ^ 1);
+      inValue = v;
+    }
+  };
+  let i = Math.min(bytes.length, start + ((4 - ((bytes.byteOffset + start) & 3)) & 3)); // to a word boundary
+  byByte(start, i);
+  if (LITTLE_ENDIAN_HOST) {
+    const words = new Uint32Array(bytes.buffer, bytes.byteOffset + i, (bytes.length - i) >> 2);
+    let carry = inValue << 7; // bit 7: the byte before the word is part of a value
+    for (let w0 = 0; w0 < words.length; w0 += 1 << 20) {
+      for (let k = w0, end = Math.min(words.length, w0 + (1 << 20)); k < end; k++) {
+        const w = words[k];
+        const value = (((w & 0x7f7f7f7f) + 0x5f5f5f5f) | w) & 0x80808080; // per byte: above 0x20
+        const starts = value & ~((value << 8) | carry);
+        carry = value >>> 24;
+        count += Math.imul(starts >>> 7, 0x01010101) >>> 24; // bits set in starts
+      }
+      await pace((i + 4 * w0) / bytes.length);
+    }
+    inValue = carry >>> 7;
+    i += words.length * 4;
+  }
+  byByte(i, bytes.length);
+  return count;
 }
 
 /** A decimal number (sign, digits, fraction, exponent) from bytes[s, e); NaN if malformed. */
