@@ -135,6 +135,12 @@ test('SRTM .hgt: big-endian metres, voids filled, latitude from the tile name', 
   assert.ok(Math.abs(south.spacingX - 92.6 * Math.cos((44.5 * Math.PI) / 180)) < 0.3, `${south.spacingX}`);
   const unnamed = await loadHeightfield([{ name: 'tile.hgt', bytes }]);
   assert.equal(unnamed.spacingFromFile, false);
+  // Names no tile has (a cosine of 95.5 degrees made a spacing of 0.0001 m) give no spacing either.
+  for (const name of ['N95E000.hgt', 'S91W010.hgt', 'N27E181.hgt', 'N60W180.hgt']) {
+    const h = await loadHeightfield([{ name, bytes }]);
+    assert.equal(h.spacingFromFile, name === 'N60W180.hgt', name);
+    assert.ok(h.spacingX > 1 && h.spacingY > 1, `${name}: ${h.spacingX} x ${h.spacingY}`);
+  }
 });
 
 test('GeoTIFF without a geotransform: no spacing from the file', async () => {

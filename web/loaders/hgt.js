@@ -9,12 +9,14 @@ import { copyRows } from './copy_rows.js';
 export const HGT_VOID = -32768;
 const SIDES = [1201, 3601];
 
-/** Latitude of the south edge from a tile name like N27E086 / s12w077, or null. */
+/** Latitude of the south edge from a tile name like N27E086 / s12w077, or null (also for a
+ *  name no tile has, such as N95E000, whose cosine would make the spacing absurd). */
 export function tileLatitude(name) {
-  const m = /^([NS])(\d{2})[EW]\d{3}/i.exec(fileNameOf(name));
+  const m = /^([NS])(\d{2})([EW])(\d{3})/i.exec(fileNameOf(name));
   if (!m) return null;
-  const lat = Number(m[2]);
-  return m[1].toUpperCase() === 'N' ? lat : -lat;
+  const lat = m[1].toUpperCase() === 'N' ? Number(m[2]) : -Number(m[2]);
+  const lon = m[3].toUpperCase() === 'E' ? Number(m[4]) : -Number(m[4]);
+  return lat >= -90 && lat <= 89 && lon >= -180 && lon <= 179 ? lat : null;
 }
 
 /**
