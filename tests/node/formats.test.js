@@ -177,3 +177,25 @@ test('loaders pause and report progress, and read samples through reacquire() af
   assert.ok(reacquired >= 0 && fractions.every((f) => f >= 0 && f <= 1));
   assert.ok(!(h instanceof HeightfieldError));
 });
+
+test('a compressed file reports checking before anything is allocated, then decoding, each within 0..1', async () => {
+  const reports = [];
+  let allocatedAt = -1;
+  // A clock that moves 30 ms a reading: every chance to pause is taken, and reported.
+  const { now } = performance;
+  let clock = 0;
+  performance.now = () => (clock += 30);
+  try {
+    await loadHeightfield([{ name: 'globe.png', bytes: read('public/terrain/globe_himalaya_2048.png') }], {
+      allocate: (type, w, hh) => { allocatedAt = reports.length; return new Uint16Array(w * hh); },
+      onProgress: (fraction, phase) => reports.push([phase, fraction]),
+    });
+  } finally {
+    performance.now = now;
+  }
+  assert.ok(allocatedAt > 0 && allocatedAt < reports.length, `allocated after report ${allocatedAt} of ${reports.length}`);
+  reports.forEach(([phase, fraction], i) => {
+    assert.ok(fraction >= 0 && fraction <= 1, `${phase} ${fraction}`);
+    assert.equal(phase, i < allocatedAt ? 'checking' : 'decoding', `report ${i}, allocated after ${allocatedAt}`);
+  });
+});

@@ -26,6 +26,6 @@ export async function copyRows(bytes, offset, sink, width, height, littleEndian)
       // Swap byte order; storing into an Int16Array/Uint16Array keeps the low 16 bits (and sign).
       for (let i = 0, k = 0; i < count; i++, k += 2) samples[first + i] = (src[k] << 8) | src[k + 1];
     }
-    await sink.pace((y0 + rowsPerBand) / height);
+    await sink.pace(Math.min(height, y0 + rowsPerBand) / height);
   }
 }

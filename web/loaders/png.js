@@ -299,7 +299,7 @@ async function proveRows({ ihdr, idat }, pace) {
     length += chunk.length;
     return length < enough;
   };
-  const error = await inflate(idat, onChunk, () => pace(length / enough));
+  const error = await inflate(idat, onChunk, () => pace(Math.min(1, length / enough)));
   if (bad) return { rows: bad.row, problem: `bad filter type ${bad.type} on row ${bad.row}` };
   return { rows: Math.min(ihdr.height, Math.floor(length / rowLen)), problem: error };
 }
