@@ -330,9 +330,13 @@ Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const Sl
     const double error = double(e.error) * settings_.verticalScale;
     // A merge test bounds the error at the sphere's nearest depth however close to the eye, not
     // at the near plane: its verdict, and the margin of a failing one, then hold whatever near
-    // plane later views have (the page's follows the height above the ground). It is the
-    // stricter test, so a merge it allows is not split again by the own test.
-    const double nearest = failMargin ? mergeNearest_ : view_.nearPlane;
+    // plane later views have (the page's follows the height above the ground). It must be the
+    // stricter test, so that a merge it allows is not split again by the own test: with a near
+    // plane closer than mergeNearest_ (a walk a few centimetres above the ground), the near
+    // plane. (Issue 29's teleports found the cycle: 1984 splits and merges every update.) A
+    // passing merge's margin holds for any near plane (upper() ignores it), and a failing one's
+    // lower bound, taken at mergeNearest_, holds for every nearer depth.
+    const double nearest = failMargin ? std::min(mergeNearest_, view_.nearPlane) : view_.nearPlane;
     v.pixels = projectedErrorPixels(view_, center, radius, error, nearest);
     const double t = tau();
     v.pass = !(v.pixels > t);

@@ -598,3 +598,40 @@ TEST(Refiner, ANearPlaneMovingOutMakesNoCellDueAndTheMeshStaysWithinTau) {
         EXPECT_LE(check.worstPixels, 1.0 + 1e-6) << "near plane at " << near << " m";
     }
 }
+
+TEST(Refiner, ANearPlaneCloserThanTheMergeTestsDepthDoesNotMakeSplitsAndMergesCycle) {
+    // Merge tests bound the error at 1e-3 sample spacings from the eye (7 cm here) at the
+    // closest; a near plane closer still made the own test stricter than the merge test, and
+    // every update split and merged the same cells again (issue 29's teleport 599: 1984 of each).
+    auto field = test::loadFixture(test::kJacksboro);
+    ASSERT_NE(field, nullptr);
+    struct Case {
+        const char* what;
+        Camera cam;
+        bool culling;
+        double verticalScale;
+    };
+    Camera found{{24591.40043945499, 839.5496333077688, 14227.046295231581}, {24591.400364737267, 839.549751249316, 14227.046362400746}};
+    found.tanHalfFovY = 0.010257113956459514;
+    found.aspect = 0.21240080866321692;
+    found.viewportHeight = 9.0;
+    found.nearPlane = 0.03174378840383538;
+    found.farPlane = 31743.788403835377;
+    Camera walk = lowOblique(*field, 1.5); // a walk camera's eye height, near plane as the page's at 10 cm clearance
+    walk.target.y = walk.eye.y - 20.0;
+    walk.nearPlane = 0.03;
+    for (const Case& k : {Case{"the teleport", found, false, 2.0}, Case{"a walk", walk, true, 1.0}, Case{"a walk, no culling", walk, false, 1.0}}) {
+        Lod lod(*field, Embedding::Exact);
+        lod.refiner.settings().culling = k.culling;
+        lod.refiner.settings().backfaceCulling = false;
+        lod.refiner.settings().verticalScale = k.verticalScale;
+        lod.refiner.setView(viewOf(k.cam));
+        UpdateStats stats;
+        int32_t updates = 0;
+        do stats = lod.refiner.update();
+        while (!stats.converged && ++updates < 10);
+        EXPECT_TRUE(stats.converged) << k.what << ": " << stats.splits << " splits and " << stats.merges << " merges in update " << updates;
+        ASSERT_EQ(lod.mesh.checkInvariants(), nullptr) << k.what;
+        EXPECT_EQ(lod.refiner.update().operations, 0) << k.what << ": converged means nothing left to do";
+    }
+}
