@@ -114,7 +114,7 @@ if (isMainThread) {
     const asc = new TextDecoder().decode(read(`${DIR}jacksboro_voids.asc`)).replace('nrows 190', 'nrows 189');
     assert.equal(await refused([{ name: 'k.asc', bytes: text(asc) }], 'k.asc', /more values than ncols x nrows \(250x189\)$/), 0);
     // The count reads four bytes at a time: any alignment of the file's bytes, any separators.
-    const grid = text('ncols 5\r\nnrows 3\r\ncellsize 1\r\n1 22  333\t4444 55555\r\n6\t\t7 8 9\f10\n11 12 13 14 15   \n');
+    const grid = text('ncols 5\r\nnrows 3\r\ncellsize 1\r\n1 22  333\t4444 55555\r\n6\t\t7 8 9 10\n11 12 13 14 15   \n');
     for (let at = 0; at < 4; at++) {
       const padded = new Uint8Array(grid.length + 8);
       padded.set(grid, at);
@@ -124,6 +124,13 @@ if (isMainThread) {
         assert.equal(await refused([{ name: 'g.asc', bytes: padded.subarray(at, at + keep) }], 'g.asc',
           keep === grid.length - 6 ? /truncated: 14 of 15 values \(ends on row 3\)$/ : /truncated: 12 of 15 values \(ends on row 3\)$/), 0);
       }
+    }
+    // Other control characters are no separators (a NUL between two values made them two).
+    for (const c of [0, 0x0c]) {
+      const bad = grid.slice();
+      bad[grid.indexOf(0x39)] = c; // the 9 of the second row
+      assert.equal(await refused([{ name: 'c.asc', bytes: bad }], 'c.asc',
+        new RegExp(`^c\\.asc: line 5: control character 0x0${c.toString(16)} \\(values are separated by spaces, tabs and line ends\\)$`)), 0);
     }
     await refused([{ name: 'N27E086.hgt', bytes: new Uint8Array(1201 * 1201 * 2 - 2) }], 'N27E086.hgt',
       /truncated: 2884800 bytes, but an SRTM tile has 1201x1201 or 3601x3601 16-bit samples/);
