@@ -7,7 +7,9 @@
 //             accepted although the mutation made it invalid for sure (a strip cut short);
 //   blow-up   memory the input does not justify: the core asked for more than 4x the input's
 //             bytes (+ 1 MiB) for a file it then refused, WASM memory grew at all for a refused
-//             file, grew more than 4x the samples for an accepted one, or a terrain was left behind;
+//             file, grew more than 4x the samples for an accepted one, a terrain was left behind,
+//             or the core's allocator holds more than 64 KiB more than before the case (a leak;
+//             small growth is let pass: the core keeps its last error message, for one);
 //             or the worker's JS memory (heap and array buffers, this thread's alone) grew by more
 //             than 4x the input + 64 MiB (garbage of the case included: a decoder may make copies).
 // Hangs, deaths of the worker and the process's memory are watched from outside (watched_worker.js).
@@ -25,7 +27,13 @@ const BYTES = { u8: 1, u16: 2, i16: 2, f32: 4 };
  * and terrains still alive (a refused file must leave none).
  */
 export function spyOnCore(core) {
-  const spy = { requestedBytes: 0, live: 0 };
+  const spy = { requestedBytes: 0, live: 0, heapInUse: () => 0 };
+  const m = core.module;
+  if (typeof m._hexlod_diag_heap === 'function') {
+    // Bytes allocated and not freed in the core (src/api/hexlod_diagnostics.h), into 16 bytes kept for it.
+    const out = m._malloc(16);
+    spy.heapInUse = () => (m._hexlod_diag_heap(out) === 0 ? new Float64Array(core.buffer, out, 1)[0] : 0);
+  }
   const create = core.createTerrain.bind(core);
   core.createTerrain = (width, height, sampleType) => {
     const terrain = create(width, height, sampleType); // a size the core refuses costs nothing
@@ -81,7 +89,7 @@ function cleanRefusal(e, files) {
  */
 export async function judgeCase(core, spy, c, declaredSize) {
   const inputBytes = c.files.reduce((s, f) => s + f.bytes.length, 0);
-  const wasmBefore = core.buffer.byteLength, jsBefore = jsBytes();
+  const wasmBefore = core.buffer.byteLength, jsBefore = jsBytes(), heapBefore = spy.heapInUse();
   spy.requestedBytes = 0;
   const start = performance.now();
   let kind, detail = '', sampleBytes = 0, trap = false;
@@ -112,7 +120,9 @@ export async function judgeCase(core, spy, c, declaredSize) {
   if (kind === 'refused' || kind === 'accepted') {
     const mb = (n) => `${(n / MIB).toFixed(1)} MiB`;
     let blowup = null;
+    const held = spy.heapInUse() - heapBefore;
     if (spy.live > 0) blowup = `${spy.live} terrain(s) left allocated in the core`;
+    else if (held > 64 * 1024) blowup = `the core holds ${mb(held)} more than before the case (a leak)`;
     else if (kind === 'refused' && spy.requestedBytes > 4 * inputBytes + MIB) blowup = `the core was asked for ${mb(spy.requestedBytes)} for a refused input of ${inputBytes} bytes`;
     else if (kind === 'refused' && wasmGrowth > 0) blowup = `WASM memory grew by ${mb(wasmGrowth)} for a refused input of ${inputBytes} bytes`;
     else if (wasmGrowth > 4 * justified + MIB) blowup = `WASM memory grew by ${mb(wasmGrowth)} for ${mb(sampleBytes)} of samples`;
