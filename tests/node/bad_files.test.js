@@ -241,6 +241,13 @@ if (isMainThread) {
     for (const [source, tags, problem] of cases) {
       assert.equal(await refused([{ name: 'm.tif', bytes: withTiffTags(source, tags) }], 'm.tif', problem), 0, `${source} ${JSON.stringify(tags)} allocated`);
     }
+    // Directory entries that claim more than the file holds: the library made an array of the
+    // claimed count first (gigabytes), so they are refused before it reads them.
+    await refused([{ name: 'c.tif', bytes: withTiffTags('everest_i16_strips.tif', { [HEIGHT]: { count: 2 ** 31 - 1 } }) }], 'c.tif',
+      /^c\.tif: bad TIFF: tag 257 holds 2147483647 values \(8589934588 bytes from byte \d+\), past the end of the file \(80410 bytes\)$/);
+    const entries = read(`${DIR}everest_i16_strips.tif`).slice();
+    new DataView(entries.buffer).setUint16(new DataView(entries.buffer).getUint32(4, true), 0xffff, true);
+    await refused([{ name: 'e.tif', bytes: entries }], 'e.tif', /^e\.tif: truncated: the image directory's 65535 entries run past the end \(80410 bytes\)$/);
     // Corrupt block data: the codec's reason, and the block.
     const corrupt = (source, tag, k, edit) => {
       const b = read(DIR + source).slice(), v = new DataView(b.buffer), ifd = v.getUint32(4, true);
