@@ -85,7 +85,8 @@ function cleanRefusal(e, files) {
 
 /**
  * Loads one case into the core and judges it.
- * @returns {Promise<{ kind: string, detail: string, signature: string, ms: number, wasmGrowth: number, requestedBytes: number, trap: boolean }>}
+ * @returns {Promise<{ kind: string, detail: string, signature: string, ms: number, wasmGrowth: number, jsGrowth: number,
+ *   requestedBytes: number, trap: boolean }>}
  */
 export async function judgeCase(core, spy, c, declaredSize) {
   const inputBytes = c.files.reduce((s, f) => s + f.bytes.length, 0);

@@ -132,13 +132,14 @@ function mustRefuse(g, seedRows) {
     h[k.toLowerCase()] = Number(v);
   }
   if (!(h.ncols > 0 && h.nrows > 0 && Number.isInteger(h.ncols) && Number.isInteger(h.nrows))) return null;
-  const count = g.rows.reduce((s, row) => s + row.length, 0);
+  // An empty token (a value replaced by '') is written as two spaces: no value at all.
+  const count = g.rows.reduce((s, row) => s + row.filter((t) => t !== '').length, 0);
   if (count !== h.ncols * h.nrows) return `it has ${count} values for ${h.ncols}x${h.nrows}`;
-  if (![' ', '\t', '  '].includes(g.sep) && g.rows.some((row) => row.length > 1)) return `its values are separated by ${JSON.stringify(g.sep)}`;
+  if (![' ', '\t', '  '].includes(g.sep) && g.rows.some((row) => row.filter((t) => t !== '').length > 1)) return `its values are separated by ${JSON.stringify(g.sep)}`;
   const seedSet = new Set(seedRows);
   for (const row of g.rows) {
     if (seedSet.has(row)) continue;
-    const bad = row.find((t) => !goodValue(t));
+    const bad = row.find((t) => t !== '' && !goodValue(t));
     if (bad !== undefined) return `a value is ${JSON.stringify(bad)}`;
   }
   return null;
