@@ -157,6 +157,45 @@ test('GeoTIFF without a geotransform: no spacing from the file', async () => {
   assert.deepEqual([h.spacingX, h.spacingY, h.spacingFromFile], [1, 1, false]);
 });
 
+/** A little-endian TIFF with uncompressed 16-bit strips, written big-endian: every directory
+ *  field, out-of-line value and sample byte-swapped. */
+function bigEndianTwin(le) {
+  const be = le.slice(), view = new DataView(le.buffer, le.byteOffset, le.length);
+  const swap = (at, size) => { for (let k = 0; k < size; k++) be[at + k] = le[at + size - 1 - k]; };
+  const SIZES = { 1: 1, 2: 1, 3: 2, 4: 4, 5: 4, 11: 4, 12: 8 }; // a RATIONAL is two LONGs
+  be.set([0x4d, 0x4d]);
+  swap(2, 2); swap(4, 4);
+  const ifd = view.getUint32(4, true), entries = view.getUint16(ifd, true);
+  swap(ifd, 2);
+  const u32 = (tag) => {
+    for (let i = 0; i < entries; i++) if (view.getUint16(ifd + 2 + 12 * i, true) === tag) return ifd + 2 + 12 * i;
+  };
+  for (let i = 0; i < entries; i++) {
+    const e = ifd + 2 + 12 * i, type = view.getUint16(e + 2, true), size = SIZES[type];
+    const count = view.getUint32(e + 4, true) * (type === 5 ? 2 : 1);
+    swap(e, 2); swap(e + 2, 2); swap(e + 4, 4);
+    const at = size * count <= 4 ? e + 8 : view.getUint32(e + 8, true);
+    if (size * count > 4) swap(e + 8, 4);
+    for (let k = 0; k < count; k++) swap(at + k * size, size);
+  }
+  swap(ifd + 2 + 12 * entries, 4);
+  const offsets = view.getUint32(u32(273) + 8, true), counts = view.getUint32(u32(279) + 8, true);
+  for (let s = 0; s < view.getUint32(u32(273) + 4, true); s++) {
+    const at = view.getUint32(offsets + 4 * s, true), n = view.getUint32(counts + 4 * s, true);
+    for (let k = 0; k < n; k += 2) swap(at + k, 2);
+  }
+  return be;
+}
+
+test('a big-endian GeoTIFF loads as its little-endian twin (the library misread its strip offsets)', async () => {
+  const le = read(`${DIR}everest_i16_strips.tif`);
+  const be = bigEndianTwin(le);
+  assert.deepEqual(Array.from(be.subarray(0, 4)), [0x4d, 0x4d, 0, 42]);
+  const [a, b] = [await loadHeightfield([{ name: 'le.tif', bytes: le }]), await loadHeightfield([{ name: 'be.tif', bytes: be }])];
+  assert.deepEqual([b.width, b.height, b.nodata, b.missing, b.spacingX, b.spacingY], [a.width, a.height, a.nodata, a.missing, a.spacingX, a.spacingY]);
+  assert.ok(a.samples.every((v, i) => v === b.samples[i]), 'same samples');
+});
+
 test('a sidecar overrides the spacing of the file', async () => {
   const h = await loadHeightfield([file('canyon_u16_tiled_deflate.tif'),
     { name: 'canyon_u16_tiled_deflate.json', bytes: new TextEncoder().encode('{"cell_size_m": 61.7}') }]);

@@ -14,6 +14,7 @@ import { fromArrayBuffer, addDecoder } from 'geotiff';
 import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, degreesToMetres, shown } from './common.js';
 import { SampleSink, pacer } from './pacing.js';
 import { TiffLzwDecoder, lzwParameters } from './tiff_lzw.js';
+import { readDirectory } from './tiff_directory.js';
 import { blockLayout, checkBlocks } from './tiff_blocks.js';
 import { readBlocks } from './tiff_raster.js';
 
@@ -39,9 +40,7 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   const fail = (problem) => { throw new HeightfieldError(name, problem); };
   if (bytes.length < 8) fail(bytes.length === 0 ? 'empty file' : `truncated: ${bytes.length} bytes, no TIFF header`);
   if (!hasTiffSignature(bytes)) fail('not a TIFF file (bad signature)');
-  const ifd = firstDirectoryOffset(bytes);
-  if (ifd + 2 > bytes.length) fail(`truncated: the image directory at byte ${ifd} lies past the end (${bytes.length} bytes)`);
-  checkDirectory(bytes, ifd, fail);
+  const directory = readDirectory(bytes, fail);
 
   // Every call into the library goes through here: whatever it throws on a damaged file (a
   // TypeError on a tag of the wrong type, a RangeError past the end of a buffer) is that
@@ -71,7 +70,7 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   const geo = spacingOf(image, height);
 
   // Every strip or tile must hold what its geometry needs before memory is reserved.
-  const layout = await guard('bad TIFF layout', () => blockLayout(image, { width, height }, fail));
+  const layout = await guard('bad TIFF layout', () => blockLayout(image, directory, { width, height }, fail));
   await guard('bad TIFF image data', () => checkBlocks(image, layout, bytes, fail, pacer(options.onCheckProgress)));
 
   const sink = new SampleSink(allocate, sampleType, width, height, options);
@@ -93,44 +92,6 @@ function parseNodata(value, fail) {
   const v = text === '' ? NaN : Number(text);
   if (!Number.isFinite(v)) fail(`bad TIFF: the no-data tag (42113) is not a number (${JSON.stringify(text.slice(0, 40))})`);
   return v;
-}
-
-/** Byte offset of the first image file directory (classic TIFF or BigTIFF header). */
-function firstDirectoryOffset(bytes) {
-  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.length);
-  const little = bytes[0] === 0x49;
-  if (view.getUint16(2, little) === 43) return bytes.length < 16 ? Infinity : Number(view.getBigUint64(8, little));
-  return view.getUint32(4, little);
-}
-
-/** Bytes a value of each TIFF field type takes (TIFF 6.0, and BigTIFF's 16 to 18). */
-const FIELD_TYPE_BYTES = { 1: 1, 2: 1, 3: 2, 4: 4, 5: 8, 6: 1, 7: 1, 8: 2, 9: 4, 10: 8, 11: 4, 12: 8, 13: 4, 16: 8, 17: 8, 18: 8 };
-
-/**
- * Every entry of the first image directory must fit in the file, as libtiff checks: the library
- * makes an array of the count an entry claims before it reads a value (a count forged to 2^31
- * took gigabytes of memory). An unknown field type is left to the library, which refuses it.
- */
-function checkDirectory(bytes, ifd, fail) {
-  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.length);
-  const little = bytes[0] === 0x49, big = view.getUint16(2, little) === 43;
-  const u64 = (p) => Number(view.getBigUint64(p, little));
-  const entries = big ? (ifd + 8 <= bytes.length ? u64(ifd) : Infinity) : view.getUint16(ifd, little);
-  const first = ifd + (big ? 8 : 2), entryBytes = big ? 20 : 12, inline = big ? 8 : 4;
-  if (first + entries * entryBytes > bytes.length) {
-    fail(`truncated: the image directory's ${entries} entries run past the end (${bytes.length} bytes)`);
-  }
-  for (let i = 0; i < entries; i++) {
-    const e = first + i * entryBytes;
-    const tag = view.getUint16(e, little), type = view.getUint16(e + 2, little);
-    const count = big ? u64(e + 4) : view.getUint32(e + 4, little);
-    const size = (FIELD_TYPE_BYTES[type] ?? 0) * count;
-    if (size <= inline) continue;
-    const offset = big ? u64(e + 12) : view.getUint32(e + 8, little);
-    if (offset + size > bytes.length) {
-      fail(`bad TIFF: tag ${tag} holds ${count} values (${size} bytes from byte ${offset}), past the end of the file (${bytes.length} bytes)`);
-    }
-  }
 }
 
 function sampleTypeOf(format, bits) {

@@ -13,17 +13,21 @@ import { shown } from './common.js';
 import { inflatedLength } from './inflate.js';
 import { lzwLength } from './tiff_lzw.js';
 
+const STRIP_OFFSETS = 273, STRIP_BYTE_COUNTS = 279, TILE_OFFSETS = 324, TILE_BYTE_COUNTS = 325;
+
 /**
  * The block layout of the first image, from its tags, each checked.
  * @param {import('geotiff').GeoTIFFImage} image
+ * @param {ReturnType<typeof import('./tiff_directory.js').readDirectory>} directory the same
+ *   directory as we read it (the block offsets and byte counts come from there)
  * @param {{ width: number, height: number }} size the image size, already checked
  * @param {(problem: string) => never} fail
  * @returns {Promise<{ tiled: boolean, blockWidth: number, blockHeight: number, bytesPerPixel: number,
- *   compression: number, offsets: ArrayLike<number>, counts: ArrayLike<number>, blocks: number,
+ *   compression: number, offsets: number[], counts: number[], blocks: number,
  *   decoder: import('geotiff').BaseDecoder }>} blocks: how many blocks hold the first sample (the
  *   only one read); decoder: the library's for the file's compression and predictor
  */
-export async function blockLayout(image, { width, height }, fail) {
+export async function blockLayout(image, directory, { width, height }, fail) {
   const dir = image.fileDirectory;
   const tiled = image.isTiled;
   const kind = tiled ? 'tile' : 'strip';
@@ -45,8 +49,8 @@ export async function blockLayout(image, { width, height }, fail) {
     fail(`bad TIFF: ${kind}s of ${blockWidth}x${blockHeight} samples are absurd (over 2 GB each)`);
   }
 
-  const offsets = await dir.loadValue(tiled ? 'TileOffsets' : 'StripOffsets');
-  const counts = await dir.loadValue(tiled ? 'TileByteCounts' : 'StripByteCounts');
+  const offsets = directory.values(tiled ? TILE_OFFSETS : STRIP_OFFSETS);
+  const counts = directory.values(tiled ? TILE_BYTE_COUNTS : STRIP_BYTE_COUNTS);
   if (!offsets || !counts) fail(`bad TIFF: no ${kind} offsets`);
   const blocks = Math.ceil(width / blockWidth) * Math.ceil(height / blockHeight);
   if (offsets.length < blocks || counts.length < blocks) {
@@ -85,7 +89,7 @@ export async function checkBlocks(image, layout, bytes, fail, pace) {
   const kind = tiled ? 'tile' : 'strip';
   const slices = [];
   for (let i = 0; i < blocks; i++) {
-    const offset = Number(offsets[i]), count = Number(counts[i]);
+    const offset = offsets[i], count = counts[i];
     if (offset + count > bytes.length) fail(`truncated: ${kind} ${i} ends at byte ${offset + count}, the file has ${bytes.length}`);
     slices.push(bytes.subarray(offset, offset + count));
   }

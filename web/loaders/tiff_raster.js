@@ -40,7 +40,7 @@ export async function readBlocks(image, layout, bytes, sink, { format, bits, nod
     for (let bx = 0; bx < across; bx++) {
       const x0 = bx * blockWidth, cols = Math.min(blockWidth, width - x0);
       const samples = sink.samples, i = by * across + bx;
-      const offset = Number(offsets[i]), count = Number(counts[i]);
+      const offset = offsets[i], count = counts[i];
       if (count === 0) { // a sparse file's empty block (GDAL SPARSE_OK)
         for (let y = 0; y < rows; y++) samples.fill(nodata ?? 0, (y0 + y) * width + x0, (y0 + y) * width + x0 + cols);
         continue;
