@@ -4,6 +4,7 @@
 import { readFileSync } from 'node:fs';
 
 const DIR = new URL('../../tests/fixtures/formats/', import.meta.url);
+const DEMS = new URL('../../tests/fixtures/', import.meta.url);
 
 /** Sizes of the reference grids (<name>.f32, float32 metres, row-major). */
 const GRIDS = { everest: [200, 200], jacksboro: [250, 190], canyon: [192, 192], etopo: [240, 120], volcano: [87, 61] };
@@ -16,6 +17,11 @@ export function fixture(name) {
 /** A file entry { name, bytes } of a fixture. */
 export function fixtureFile(name) {
   return { name, bytes: fixture(name) };
+}
+
+/** A file entry of the real DEMs in tests/fixtures (PNG, .f32 and their .json sidecars). */
+export function demFile(name) {
+  return { name, bytes: new Uint8Array(readFileSync(new URL(name, DEMS))) };
 }
 
 /**

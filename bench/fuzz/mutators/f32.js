@@ -3,7 +3,7 @@
 // signalling NaNs), the length (a few bytes or samples off), and the sidecar (size fields that
 // are negative, fractional, huge, strings; a wrong shape with the right sample count).
 // Seeds: the fixture pair and sidecars written here for the other reference grids.
-import { fixtureFile, fixture } from '../fixtures.js';
+import { fixtureFile, fixture, demFile } from '../fixtures.js';
 import { mutateSidecar, sidecarEntries, sidecarText } from './sidecar.js';
 
 export const extension = 'f32';
@@ -19,6 +19,9 @@ export function seeds() {
     { files: [{ name: 'everest.f32', bytes: fixture('everest.f32') }, sidecar('everest', 200, 200)] },
     { files: [{ name: 'volcano.f32', bytes: fixture('volcano.f32') }, sidecar('volcano', 87, 61)] },
     { files: [{ name: 'small.f32', bytes: new Uint8Array(small.buffer) }, sidecar('small', 10, 8)] },
+    // The real DEMs, whose sidecars carry many more fields; the larger ones less often.
+    ...[['volcano_maungawhau', 1], ['jacksboro_fault', 0.5], ['grandcanyon_512', 0.25]]
+      .map(([name, weight]) => ({ files: [demFile(`${name}.f32`), demFile(`${name}.json`)], weight })),
   ];
 }
 

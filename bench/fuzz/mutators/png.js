@@ -4,7 +4,7 @@
 // that the mutation reaches the decoder. Seeds: the fixtures (16/8-bit grey, Terrain-RGB,
 // Terrarium) and small ones written here (1/2/4-bit, grey+alpha, tRNS, RGBA, split IDAT).
 import { zlibSync, unzlibSync } from 'fflate';
-import { fixtureFile, grid, quantise } from '../fixtures.js';
+import { fixtureFile, demFile, grid, quantise } from '../fixtures.js';
 import {
   readChunks, writeChunks, encodePng, parseIhdr, ihdrData, rowBytes, textChunk, fixCrcs, CHANNELS,
 } from '../formats/png_chunks.js';
@@ -37,6 +37,10 @@ const terrarium = (h) => { const v = Math.round((h + 32768) * 256); return [(v >
 export function seeds() {
   const out = ['everest_16bit.png', 'jacksboro_8bit.png', 'canyon_terrain-rgb.png', 'etopo_terrarium.png']
     .map((name) => ({ files: [fixtureFile(name)] }));
+  // The real DEMs with their sidecars (height range, spacing); the larger ones less often.
+  for (const [name, weight] of [['volcano_maungawhau', 1], ['jacksboro_fault', 0.5], ['grandcanyon_512', 0.25]]) {
+    out.push({ files: [demFile(`${name}.png`), demFile(`${name}.json`)], weight });
+  }
   const g = grid('everest', 24, 16, 90, 90);
   const [w, h] = [g.width, g.height];
   const png = (name, o) => out.push({ files: [{ name, bytes: encodePng({ width: w, height: h, ...o }) }] });
@@ -245,7 +249,7 @@ const STEPS = [
 export function mutate(seed, random, seedList) {
   const main = seed.files[0];
   const { chunks, rest } = readChunks(main.bytes);
-  const s = { chunks, name: main.name, sidecar: null, options: { ...seed.options }, seeds: seedList };
+  const s = { chunks, name: main.name, sidecar: seed.files[1]?.bytes ?? null, options: { ...seed.options }, seeds: seedList };
   const how = [];
   for (let k = random.weighted([[6, 1], [3, 2], [1, 3]]); k > 0; k--) {
     const [, step] = random.weighted(STEPS.map((entry) => [entry[0], entry]));
