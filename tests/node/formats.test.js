@@ -196,6 +196,22 @@ test('a big-endian GeoTIFF loads as its little-endian twin (the library misread 
   assert.ok(a.samples.every((v, i) => v === b.samples[i]), 'same samples');
 });
 
+test('no-data filling: where row and column hold no data, the nearest row with data, found in linear time', async () => {
+  const f32 = (width, values) => [{ name: 'n.f32', bytes: new Uint8Array(Float32Array.from(values).buffer) },
+    { name: 'n.json', bytes: new TextEncoder().encode(JSON.stringify({ width, height: values.length / width })) }];
+  // Column 1 holds no data; rows 0, 2, 4, 5 none either. Row 2 is as near row 1 as row 3: the one above.
+  const N = NaN;
+  const h = await loadHeightfield(f32(3, [N, N, N, 1, N, 3, N, N, N, 5, N, 7, N, N, N, N, N, N, 9, N, 9]));
+  assert.deepEqual(Array.from({ length: 7 }, (_, y) => h.samples[y * 3 + 1]), [2, 2, 2, 6, 6, 9, 9]);
+  // A 2 x 40000 field with one sample: searching outwards from every empty row took seconds.
+  const tall = new Array(2 * 40000).fill(NaN);
+  tall[2 * 20000] = 42;
+  const start = performance.now();
+  const t = await loadHeightfield(f32(2, tall));
+  assert.ok(t.samples.every((v) => v === 42));
+  assert.ok(performance.now() - start < 2000, `${(performance.now() - start).toFixed(0)} ms`);
+});
+
 test('a sidecar overrides the spacing of the file', async () => {
   const h = await loadHeightfield([file('canyon_u16_tiled_deflate.tif'),
     { name: 'canyon_u16_tiled_deflate.json', bytes: new TextEncoder().encode('{"cell_size_m": 61.7}') }]);

@@ -90,15 +90,18 @@ export async function fillNodata(sink, width, height, nodata, name) {
   for (let x = 0; x < width; x++) {
     if (lastValidRow[x] < height - 1 && lastValidRow[x] >= 0) blendColumn(x, lastValidRow[x], height);
   }
-  // A sample whose row and column both hold no data: copy the nearest row that had data.
-  for (let y = 0; y < height; y++) {
-    if (!emptyRows[y]) continue;
-    let source = -1;
-    for (let d = 1; source < 0; d++) {
-      if (y - d >= 0 && !emptyRows[y - d]) source = y - d;
-      else if (y + d < height && !emptyRows[y + d]) source = y + d;
-    }
-    for (let x = 0; x < width; x++) if (lastValidRow[x] < 0) samples[y * width + x] = samples[source * width + x];
+  // A sample whose row and column both hold no data: copy the nearest row that had data (the
+  // one above on a tie). Found for every row in two sweeps: searching outwards from each empty
+  // row took 2.5 s for a 2 x 20000 field with one sample.
+  const emptyColumns = [];
+  for (let x = 0; x < width; x++) if (lastValidRow[x] < 0) emptyColumns.push(x);
+  if (emptyColumns.length === 0) return missing;
+  const nearest = new Int32Array(height).fill(-1); // the nearest row with data above, then either side
+  for (let y = 0, above = -1; y < height; y++) nearest[y] = emptyRows[y] ? above : (above = y);
+  for (let y = height - 1, below = -1; y >= 0; y--) {
+    if (!emptyRows[y]) { below = y; continue; }
+    if (below >= 0 && (nearest[y] < 0 || below - y < y - nearest[y])) nearest[y] = below;
+    for (const x of emptyColumns) samples[y * width + x] = samples[nearest[y] * width + x];
   }
   return missing;
 }
