@@ -53,15 +53,6 @@ function showStatus(message, isError = false) {
   statusBox.classList.toggle('error', isError);
 }
 
-/** Fetches [{ name, url }] as the { name, bytes } files the loaders take. */
-async function fetchFiles(files) {
-  return Promise.all(files.map(async ({ name, url }) => {
-    const response = await fetch(url);
-    if (!response.ok) throw new Error(`cannot fetch ${url}: HTTP ${response.status}`);
-    return { name, bytes: new Uint8Array(await response.arrayBuffer()) };
-  }));
-}
-
 async function main() {
   const gl = canvas.getContext('webgl2', { antialias: true });
   if (!gl) throw new Error('this browser has no WebGL2');
@@ -75,8 +66,7 @@ async function main() {
   const urlWriter = new UrlWriter();
   let pipeline = null; // made below, once the cameras and the HUD exist
   const requestRender = () => pipeline.request();
-  let source = null;         // the data's URL, while the terrain on screen came from one
-  let pendingSource = null;  // the URL being opened
+  let source = null;         // the data's URL, while the terrain on screen came from one (the address bar's src)
   let current = null;        // { terrain, field, loadMs, world, streamVersion, blendsEnd }
   const view = { colorByLevel: false, outline: false, frame: 0, morphFrames: MORPH_FRAMES, verticalScale: settings.exaggeration,
     layout: LAYOUT, hideTerrain: false };
@@ -136,9 +126,10 @@ async function main() {
     rig.active = orbit;
   }
 
-  function show(loaded) {
+  /** Shows a loaded terrain; `from`: the URL it came from, null for a file (no URL to share). */
+  function show(loaded, from) {
     const { terrain, field } = loaded;
-    source = pendingSource; // a dropped or picked file has no URL to share
+    source = from;
     terrain.resetMesh(settings.embedding);
     applyLodSettings(terrain, settings);
     terrain.setStreamLayout(view.layout);
@@ -207,7 +198,7 @@ async function main() {
       renderer.invalidate();
       hud.setTerrain(current.field, terrain, current.loadMs);
       intake.showSpacing(terrain);
-    } else if (terrain && !['wireframe', 'colorByLevel', 'freeze', ...SHADING_KEYS].includes(key)) {
+    } else if (terrain && !['wireframe', 'colorByLevel', 'freeze', 'urlTimeout', 'urlMaxMB', ...SHADING_KEYS].includes(key)) {
       applyLodSettings(terrain, settings);
     }
   }
@@ -265,7 +256,7 @@ async function main() {
   document.getElementById('help-close').onclick = toggleHelp;
 
   // Drop, file picker, ?src=, progress, RAW size dialog and error display (file_intake.js).
-  const intake = createFileIntake({ core, state, show, showStatus, setCellSize: (metres) => onSetting('cellSize', metres),
+  const intake = createFileIntake({ core, state, settings, show, showStatus, setCellSize: (metres) => onSetting('cellSize', metres),
     currentSpacing: () => current.terrain });
 
   const setSetting = (key, value) => onSetting(key, value);
@@ -302,18 +293,17 @@ async function main() {
     },
   });
 
-  // ?src=URL opens that file instead of the default terrain (which still loads if it fails).
+  // ?src=URL opens that file instead of the default terrain. A file the user opens meanwhile
+  // cancels it; the default terrain loads when, once every load has ended, none is on screen
+  // (the src failed or was cancelled: its message stays in the status line).
   const src = urlState.src;
-  pendingSource = src;
-  const opened = src && await intake.openUrl(src);
-  pendingSource = null;
-  if (!opened && det && src) throw new Error(state.error); // a flight is meaningless over another terrain
-  if (!opened) {
-    const error = state.error;
-    await intake.open(await fetchFiles(DEFAULT_TERRAIN));
-    if (error) { state.error = error; showStatus(error, true); }
+  const outcome = src ? await intake.openUrl(src) : null;
+  if (det && src && outcome !== 'shown') throw new Error(state.error ?? `${src}: loading cancelled`); // a flight is meaningless over another terrain
+  await intake.idle();
+  while (!current) {
+    if (await intake.openLinks(DEFAULT_TERRAIN) === 'failed') throw new Error(`the default terrain did not load: ${state.error}`);
+    await intake.idle(); // a file dropped meanwhile cancelled the default: shown, or failed (then the default again)
   }
-  if (!current) throw new Error(`the default terrain did not load: ${state.error}`);
   if (urlState.camera && !det) {
     applyCameraState(rig, urlState.camera);
     if (rig.mode === 'walk') rig.active.settle();

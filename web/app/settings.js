@@ -14,6 +14,13 @@ export const RANGES = {
   // light grazes ridges from the side, so relief reads at a glance.
   sunAzimuth: { min: 0, max: 360, step: 1, value: 250, label: 'sun azimuth (°)', url: 'sunaz' },
   sunElevation: { min: 0, max: 90, step: 0.5, value: 25, label: 'sun elevation (°)', url: 'sunel' },
+  // Loads from a URL (?src=, issue 29): give up after this long without an answer or a new byte,
+  // and refuse a body larger than this (by its Content-Length before it is read, and while it
+  // streams). 60 s and 1 GiB as `hexlod regress` (bin/dem_source.js): the core holds a 16385²
+  // 16-bit field (512 MB), and the page holds the file beside the core's copy of it.
+  // `urlIfChanged`: in the address bar only when not the default.
+  urlTimeout: { min: 1, max: 600, step: 1, value: 60, label: 'URL time limit (s)', url: 'timeout', urlIfChanged: true },
+  urlMaxMB: { min: 1, max: 4096, step: 1, value: 1024, label: 'URL size cap (MB)', url: 'maxmb', urlIfChanged: true },
 };
 
 /** Shading modes of the terrain (web/render/renderer.js SHADING_MODES), the first the default. */

@@ -2,6 +2,7 @@
 //   tau, budget, exag          settings.js ranges
 //   cam=orbit,x,y,z,distance,yaw,pitch   or   cam=fly|walk,x,y,z,yaw,pitch   metres, radians
 //   src=URL                    the data source, when it came from a URL
+//   timeout, maxmb             limits of URL loads, only when not the defaults
 // Other parameters (layout, timing) are kept as they are. Every value is checked: a bad one
 // gets a message and its default.
 import { RANGES, checkSetting } from './settings.js';
@@ -10,6 +11,7 @@ import { MIN_PITCH, MAX_PITCH } from '../cameras/orbit.js';
 const WRITE_EVERY_MS = 300;
 const LIMIT = 1e9; // metres: past this a position is not a place on any terrain
 const URL_KEYS = Object.entries(RANGES).filter(([, r]) => r.url).map(([key, r]) => [key, r.url]);
+const IF_CHANGED = new Set(Object.keys(RANGES).filter((key) => RANGES[key].urlIfChanged));
 
 /**
  * Reads the view from a query string.
@@ -96,7 +98,10 @@ export class UrlWriter {
     const { settings, camera, src } = this.pending;
     this.pending = null;
     const params = new URLSearchParams(location.search);
-    for (const [key, name] of URL_KEYS) params.set(name, String(settings[key]));
+    for (const [key, name] of URL_KEYS) {
+      if (IF_CHANGED.has(key) && settings[key] === RANGES[key].value) params.delete(name);
+      else params.set(name, String(settings[key]));
+    }
     params.set('cam', cameraParam(camera));
     if (src) params.set('src', src); else params.delete('src');
     const url = `${location.pathname}?${params.toString().replace(/%2C/g, ',')}${location.hash}`;

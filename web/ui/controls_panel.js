@@ -53,6 +53,10 @@ export function createControlsPanel(container, settings, { camera, onChange, act
   mesh.add(settings, 'embedding', ['exact', 'shifted']).name('embedding').onChange(changed('embedding'));
   const cellSize = mesh.add(settings, 'cellSize', 0.01, 1e6).name('cell size (m)').onFinishChange(changed('cellSize'));
 
+  const urls = gui.addFolder('Loading from a URL').close(); // ?src=: limits of the next load
+  slider(urls, 'urlTimeout');
+  slider(urls, 'urlMaxMB');
+
   const tools = gui.addFolder('Screenshot, reset, help').close();
   for (const [label, action] of Object.entries(actions)) tools.add({ [label]: action }, label);
 

@@ -1,32 +1,75 @@
 // How height-field files reach the page: drag & drop, the file picker, ?src=URL. Shows a
-// progress bar for loads slower than a blink, asks for the size of a RAW file that does not
-// say it, and shows a bad file's message while the current terrain, camera and settings stay.
-// The page (main.js) hands in `show` (switch to a loaded terrain) and gets `open`/`openUrl`.
+// progress bar and a Cancel button for loads slower than a blink, asks for the size of a RAW
+// file that does not say it, and shows a bad file's message while the current terrain, camera
+// and settings stay. One load at a time (load_sequence.js): opening a file cancels the load in
+// flight, so a late answer never replaces what the user opened since. URLs are fetched within
+// the settings' time limit and size cap (url_fetch.js), with a NAME.json sidecar from beside
+// the data when its server has one.
+// The page (main.js) hands in `show` (switch to a loaded terrain) and gets `openUrl`/`openLinks`.
 import { loadTerrain } from '../loaders/terrain_source.js';
 import { ACCEPT_EXTENSIONS, ACCEPTED } from '../loaders/index.js';
 import { extensionOf, baseNameOf } from '../loaders/common.js';
+import { LoadSequence } from './load_sequence.js';
+import { fetchLimited, formatMB, LimitError } from './url_fetch.js';
+import { RANGES } from '../app/settings.js';
 
 const PROGRESS_AFTER_MS = 100; // slower than a blink: show the bar
+const MB = 2 ** 20;
 
 /** Metres as the spacing field shows them: six significant digits, no trailing zeros. */
 const formatMetres = (metres) => String(Number(metres.toPrecision(6)));
 
+/** Looks at a height field's answer before its body is read: an error, or a page, is no height field. */
+function acceptHeightField(response) {
+  if (!response.ok) throw new Error(`HTTP ${response.status}`);
+  // A server's "not found" page often comes back as 200 text/html; no height field is HTML.
+  if (/text\/html/.test(response.headers.get('content-type') ?? '')) throw new Error('the server sent an HTML page');
+  return true;
+}
+
+/** A sidecar is read when the server has one: a JSON answer, not its "not found" page. */
+const acceptSidecar = (response) => response.ok && /json/.test(response.headers.get('content-type') ?? '');
+
 /**
- * @param {{ core: import('../core/core.js').HexlodCore, state: object, show: (loaded: object) => void,
+ * @param {{ core: import('../core/core.js').HexlodCore, state: object, settings: object,
+ *   show: (loaded: object, source: string|null) => void,
  *   showStatus: (message: string, isError?: boolean) => void, setCellSize: (metres: number) => boolean,
  *   currentSpacing: () => {spacingX: number, spacingY: number} }} page
- *   setCellSize: the panel's cell size setting (east-west metres; north-south keeps its ratio),
- *   false when refused (the page shows why); currentSpacing: the terrain on screen's
- * @returns {{ open: (files: Array<{name: string, bytes: Uint8Array}>, options?: object) => Promise<boolean>,
- *   openUrl: (url: string) => Promise<boolean>, showSpacing: (terrain: object, assumed?: boolean) => void }}
+ *   settings: the page's (urlTimeout in seconds and urlMaxMB, read at each URL load); show: the
+ *   loaded terrain and the URL it came from (null for a file); setCellSize: the panel's cell
+ *   size setting (east-west metres; north-south keeps its ratio), false when refused (the page
+ *   shows why); currentSpacing: the terrain on screen's
+ * @returns {{ openUrl, openLinks, idle: () => Promise<void>, showSpacing: (terrain: object, assumed?: boolean) => void }}
+ *   openUrl and openLinks resolve to 'shown', 'failed' (the status line says why) or
+ *   'cancelled' (by the Cancel button, or by a file opened meanwhile)
  */
-export function createFileIntake({ core, state, show, showStatus, setCellSize, currentSpacing }) {
+export function createFileIntake({ core, state, settings, show, showStatus, setCellSize, currentSpacing }) {
   const $ = (id) => document.getElementById(id);
   const picker = $('file-input'), progress = $('load-progress'), encodingSelect = $('png-encoding');
+  const cancelButton = $('load-cancel');
   const spacingInput = $('spacing-input'), spacingForm = $('spacing-form'), spacingRatio = $('spacing-ratio');
   const rawDialog = $('raw-dialog'), rawForm = $('raw-form');
   state.loading = false;
   state.progress = 0;
+
+  // The progress bar and the Cancel button, shown when a load takes longer than a blink.
+  let indicatorTimer = 0;
+  const indicator = {
+    start(cancellable) {
+      clearTimeout(indicatorTimer);
+      progress.value = 0;
+      indicatorTimer = setTimeout(() => { progress.hidden = false; cancelButton.hidden = !cancellable; }, PROGRESS_AFTER_MS);
+    },
+    hide() {
+      clearTimeout(indicatorTimer);
+      progress.hidden = cancelButton.hidden = true;
+    },
+  };
+  const loads = new LoadSequence((busy) => {
+    state.loading = busy;
+    if (!busy) indicator.hide();
+  });
+  cancelButton.onclick = () => loads.cancel();
 
   /**
    * The terrain's spacing in the field: east-west metres, and north-south beside it when the
@@ -42,93 +85,166 @@ export function createFileIntake({ core, state, show, showStatus, setCellSize, c
     spacingInput.title = square ? 'metres between samples' : 'metres between columns (east–west); rows scale with them';
   }
 
-  /** Loads files into a new terrain; on failure the current one stays and the message shows. */
-  async function open(files, options = {}) {
-    if (state.loading) {
-      showStatus('Still loading the previous file…', true);
-      return false;
-    }
+  /** A load that was aborted: says so when the user cancelled it (a newer load speaks for itself). */
+  function cancelled(signal, name) {
+    if (signal.reason?.byUser) showStatus(`${name}: loading cancelled`);
+    return 'cancelled';
+  }
+
+  function failed(message) {
+    state.error = message;
+    showStatus(message, true);
+    console.warn(`hexlod: ${message}`);
+    return 'failed';
+  }
+
+  /**
+   * Decodes files into a new terrain and shows it, unless `signal` aborts first (the decoder
+   * stops at its next pause). On failure the current terrain stays and the message shows.
+   * `quiet`: the status line is left as it is (the default terrain under a failed src's message).
+   */
+  async function decode(files, options, signal, source, quiet) {
     const names = files.map((f) => f.name).join(' + ');
-    state.loading = true;
+    if (!quiet) showStatus(`Loading ${names}…`);
     state.progress = 0;
-    showStatus(`Loading ${names}…`);
-    const timer = setTimeout(() => { progress.hidden = false; }, PROGRESS_AFTER_MS);
     const onProgress = (fraction, phase) => {
+      if (signal.aborted) throw signal.reason;
       state.progress = fraction;
       progress.value = fraction;
       progress.title = phase;
     };
-    const encoding = encodingSelect.value;
     try {
-      const loaded = await loadTerrain(core, files, { ...options, encoding, onProgress, guessSpacing: true });
-      show(loaded);
-      showSpacing(loaded.terrain, !loaded.field.spacingFromFile);
-      state.error = null;
-      showStatus('');
-      return true;
-    } catch (error) {
-      if (error.needsSize && !options.width) {
-        clearTimeout(timer);
-        progress.hidden = true;
-        const size = await askRawSize(error.file, error.samples);
-        state.loading = false;
-        if (size) return open(files, { ...options, ...size });
+      const loaded = await loadTerrain(core, files, { ...options, encoding: encodingSelect.value, onProgress, guessSpacing: true });
+      if (signal.aborted) {
+        loaded.terrain.destroy();
+        return cancelled(signal, names);
       }
-      state.error = error.message;
-      showStatus(error.message, true);
-      console.warn(`hexlod: ${error.message}`);
-      return false;
-    } finally {
-      clearTimeout(timer);
-      progress.hidden = true;
-      state.loading = false;
+      show(loaded, source);
+      showSpacing(loaded.terrain, !loaded.field.spacingFromFile);
+      if (!quiet) {
+        state.error = null;
+        showStatus('');
+      }
+      return 'shown';
+    } catch (error) {
+      if (signal.aborted) return cancelled(signal, names);
+      if (error.needsSize && !options.width) {
+        indicator.hide();
+        const size = await askRawSize(error.file, error.samples, signal);
+        if (signal.aborted) return cancelled(signal, names);
+        if (size) {
+          indicator.start(true);
+          return decode(files, { ...options, ...size }, signal, source, quiet);
+        }
+      }
+      return failed(error.message);
     }
   }
 
-  /** Asks the width and height of a RAW file of `samples` samples; null when cancelled. */
-  function askRawSize(name, samples) {
+  /**
+   * Fetches [{ name, url, optional }] within `limits` ({ timeoutMs, maxBytes }) and decodes
+   * them: the first is the height field, an optional one (the sidecar) is left out when its
+   * server has none.
+   */
+  async function fetchAndDecode(links, limits, signal, source, quiet) {
+    const name = links[0].name;
+    if (!quiet) showStatus(`Loading ${name}…`);
+    let shown = '';
+    const onBytes = (received, total) => {
+      const text = `Loading ${name}… ${formatMB(received)}${total ? ` of ${formatMB(total)}` : ''} MB`;
+      if (!quiet && text !== shown) showStatus(shown = text);
+      if (total) progress.value = received / total;
+      else progress.removeAttribute('value'); // a bar that says "busy": the size is unknown
+      progress.title = 'downloading';
+    };
+    const files = [];
+    for (const link of links) {
+      try {
+        const bytes = await fetchLimited(link.url, link.optional ? { ...limits, signal, accept: acceptSidecar }
+          : { ...limits, signal, accept: acceptHeightField, onBytes });
+        if (bytes) files.push({ name: link.name, bytes });
+      } catch (error) {
+        if (signal.aborted) return cancelled(signal, name);
+        const where = error instanceof LimitError ? '; the limits are under Controls › Loading from a URL' : '';
+        if (!link.optional) return failed(`${link.name}: cannot fetch ${link.url} (${error.message}${where})`);
+        // A sidecar that cannot be read is one the server does not have: the file opens without it.
+      }
+    }
+    return decode(files, {}, signal, source, quiet);
+  }
+
+  /** Opens dropped or picked files (File objects): read, then decoded, as one load. */
+  function openPicked(list) {
+    const picked = [...list];
+    return loads.run(async (signal) => {
+      indicator.start(true);
+      const names = picked.map((f) => f.name).join(' + ');
+      showStatus(`Loading ${names}…`);
+      const files = await Promise.all(picked.map(async (file) => ({ name: file.name, bytes: new Uint8Array(await file.arrayBuffer()) })));
+      return signal.aborted ? cancelled(signal, names) : decode(files, {}, signal, null, false);
+    });
+  }
+
+  /**
+   * Opens a height field at `url` (?src=) with its NAME.json sidecar from beside it (resolved
+   * against the data's URL: a file on another server has its sidecar there, not on the page's).
+   */
+  function openUrl(url) {
+    return loads.run((signal) => {
+      indicator.start(true);
+      let dataUrl, segment, name;
+      try {
+        dataUrl = new URL(url, location.href);
+        segment = dataUrl.pathname.split('/').pop(); // percent-encoded, as the URL has it
+        name = decodeURIComponent(segment) || 'download';
+      } catch (error) {
+        return failed(`src=${url}: not a URL to fetch (${error.message})`);
+      }
+      const links = [{ name, url }];
+      if (extensionOf(name) !== 'json') {
+        // './' keeps a name with a colon from reading as a URL scheme.
+        links.push({ name: `${baseNameOf(name)}.json`, url: new URL(`./${baseNameOf(segment)}.json`, dataUrl).href, optional: true });
+      }
+      const limits = { timeoutMs: settings.urlTimeout * 1000, maxBytes: settings.urlMaxMB * MB };
+      return fetchAndDecode(links, limits, signal, url, false);
+    });
+  }
+
+  /**
+   * Opens files fetched from [{ name, url }] (the default terrain), with no status line of its
+   * own unless it fails, and no Cancel button: the page needs a terrain. The page's own files:
+   * the default time limit, and no size cap (the user's is for theirs).
+   */
+  function openLinks(links) {
+    return loads.run((signal) => {
+      indicator.start(false);
+      return fetchAndDecode(links, { timeoutMs: RANGES.urlTimeout.value * 1000, maxBytes: Infinity }, signal, null, true);
+    });
+  }
+
+  /** Asks the width and height of a RAW file of `samples` samples; null when cancelled (or the load is). */
+  function askRawSize(name, samples, signal) {
     $('raw-name').textContent = `${name} holds ${samples.toLocaleString('en')} 16-bit samples.`;
     const width = $('raw-width'), height = $('raw-height');
     width.value = '';
     height.value = '';
     width.oninput = () => { if (samples % Number(width.value) === 0) height.value = samples / Number(width.value); };
     return new Promise((resolve) => {
+      const answer = (size) => {
+        signal.removeEventListener('abort', onAbort);
+        rawDialog.close();
+        resolve(size);
+      };
+      const onAbort = () => answer(null);
       rawForm.onsubmit = (e) => {
         e.preventDefault();
-        rawDialog.close();
-        resolve({ width: Number(width.value), height: Number(height.value) });
+        answer({ width: Number(width.value), height: Number(height.value) });
       };
-      $('raw-cancel').onclick = () => { rawDialog.close(); resolve(null); };
+      $('raw-cancel').onclick = () => answer(null);
+      signal.addEventListener('abort', onAbort);
       rawDialog.showModal();
     });
   }
-
-  /** Fetches a height field (and its NAME.json sidecar, when the server has one) and opens it. */
-  async function openUrl(url) {
-    const name = decodeURIComponent(new URL(url, location.href).pathname.split('/').pop() || 'download');
-    try {
-      const response = await fetch(url);
-      if (!response.ok) throw new Error(`HTTP ${response.status}`);
-      // A server's "not found" page often comes back as 200 text/html; no height field is HTML.
-      if (/text\/html/.test(response.headers.get('content-type') ?? '')) throw new Error('the server sent an HTML page');
-      const files = [{ name, bytes: new Uint8Array(await response.arrayBuffer()) }];
-      if (extensionOf(name) !== 'json') {
-        const sidecarUrl = new URL(`${baseNameOf(new URL(url, location.href).pathname)}.json`, location.href);
-        const sidecar = await fetch(sidecarUrl).catch(() => null);
-        if (sidecar?.ok && /json/.test(sidecar.headers.get('content-type') ?? '')) {
-          files.push({ name: `${baseNameOf(name)}.json`, bytes: new Uint8Array(await sidecar.arrayBuffer()) });
-        }
-      }
-      return await open(files);
-    } catch (error) {
-      const message = `${name}: cannot fetch ${url} (${error.message})`;
-      state.error = message;
-      showStatus(message, true);
-      return false;
-    }
-  }
-
-  const readFiles = (list) => Promise.all([...list].map(async (file) => ({ name: file.name, bytes: new Uint8Array(await file.arrayBuffer()) })));
 
   window.addEventListener('dragover', (e) => {
     e.preventDefault();
@@ -139,13 +255,13 @@ export function createFileIntake({ core, state, show, showStatus, setCellSize, c
     e.preventDefault();
     document.body.classList.remove('dragging');
     const dropped = e.dataTransfer?.files ?? [];
-    if (dropped.length) await open(await readFiles(dropped));
+    if (dropped.length) await openPicked(dropped);
   });
   picker.accept = ACCEPT_EXTENSIONS.join(',');
   $('open-button').title = `Open a height field: ${ACCEPTED}`;
   $('open-button').onclick = () => picker.click();
-  picker.onchange = async () => {
-    if (picker.files.length) await open(await readFiles(picker.files));
+  picker.onchange = () => {
+    if (picker.files.length) openPicked(picker.files); // takes the list at once: it is emptied next
     picker.value = '';
   };
   // The same setting as the panel's cell size (the form is novalidate: our message, not the
@@ -161,5 +277,5 @@ export function createFileIntake({ core, state, show, showStatus, setCellSize, c
     else if (setCellSize(Number(text))) return; // main.js shows the new spacing
     spacingInput.value = formatMetres(currentSpacing().spacingX); // what is in effect again
   };
-  return { open, openUrl, showSpacing };
+  return { openUrl, openLinks, idle: () => loads.idle(), showSpacing };
 }
