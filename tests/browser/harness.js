@@ -10,12 +10,16 @@ import { fileURLToPath } from 'node:url';
 export const projectDir = fileURLToPath(new URL('../..', import.meta.url));
 export const outDir = `${projectDir}tests/out`;
 
-/** The Vite dev server on a free port; returns { url, close() }. */
-async function startDevServer() {
+/**
+ * The Vite dev server on a free port; returns { url, close() }. It serves the tree as it is when
+ * a page asks: no file watching and no hot reload (`hmr: true` turns both on), so an edit
+ * elsewhere in the work tree never reloads a page in the middle of a test.
+ */
+async function startDevServer({ hmr = false } = {}) {
   const server = await createServer({
     configFile: `${projectDir}vite.config.js`,
     root: `${projectDir}public`,
-    server: { port: await freePort(), strictPort: true, host: '127.0.0.1' },
+    server: { port: await freePort(), strictPort: true, host: '127.0.0.1', ...(hmr ? {} : { hmr: false, watch: null }) },
     // Its own dependency cache: another Vite server on this checkout's node_modules (the
     // viewer, a benchmark) re-optimising the shared one mid-test breaks lazy imports.
     cacheDir: `${outDir}/vite-cache`,
@@ -30,10 +34,11 @@ async function startDevServer() {
  * Starts the page and the browser; returns { url, fixturesUrl, browser, close() }.
  * `site: 'dev'` (default) is the Vite dev server; `site: 'built'` serves the production build in
  * dist/ (./build.sh site) from a plain static file server under the sub-path /hexlod/, as a
- * static host would, with the test fixtures under /fixtures/.
+ * static host would, with the test fixtures under /fixtures/. `hmr`: the dev server watches
+ * files and its client keeps a hot-reload connection, as for a developer.
  */
-export async function startViewer({ site = 'dev' } = {}) {
-  const server = site === 'built' ? await startStaticSite() : await startDevServer();
+export async function startViewer({ site = 'dev', hmr = false } = {}) {
+  const server = site === 'built' ? await startStaticSite() : await startDevServer({ hmr });
   const browser = await launchChromium();
   mkdirSync(outDir, { recursive: true });
   return {
