@@ -272,6 +272,10 @@ async function main() {
   };
 
   for (let index = 0; index < teleports; index++) {
+    if (index > 0 && index % 500 === 0) {
+      process.stderr.write(`teleports: ${index} of ${teleports}, ${failures.length} failures, ` +
+        `${((performance.now() - started) / 60000).toFixed(1)} min\n`);
+    }
     const segment = Math.floor(index / perTerrain);
     if (index % perTerrain === 0) {
       const random = rngFor(seed, 1, segment);
