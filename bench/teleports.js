@@ -8,7 +8,7 @@
 //                           [--fields a.png,b.f32,...] [--verbose]
 //
 // Each teleport puts the camera somewhere new, one of: inside the field's box (heights times
-// the vertical scale), far outside (up to a million field extents away), below the ground,
+// the vertical scale), far outside (up to a million field extents, or 5e11 m, away), below the ground,
 // edge-on (level with the terrain, looking across it), straight down, straight up, a hair
 // above the ground with the target micrometres away, a target astronomically far; each with a
 // random field of view (0.5 to 170 degrees), aspect (0.2 to 5), viewport height (1 to 8640 px)
@@ -133,8 +133,8 @@ function teleportCamera(random, box, groundAt) {
       eye = inBox();
       target = along(eye, unitVector(random), logUniform(random, 1, extent));
       break;
-    case 'far':
-      eye = along(centre, unitVector(random), extent * logUniform(random, 2, 1e6));
+    case 'far': // up to a million extents away, within the core's coordinates (1e12 m, hexlod.h)
+      eye = along(centre, unitVector(random), Math.min(extent * logUniform(random, 2, 1e6), 5e11));
       target = random() < 0.7 ? centre : inBox();
       break;
     case 'below':
