@@ -22,7 +22,6 @@ import { readBlocks } from './tiff_raster.js';
 addDecoder(5, async () => TiffLzwDecoder, lzwParameters, false);
 
 const GEOGRAPHIC_MODEL = 2; // GTModelTypeGeoKey: 1 projected, 2 geographic
-const GEO_TAGS = ['ModelPixelScale', 'ModelTiepoint', 'ModelTransformation', 'GeoKeyDirectory', 'GeoDoubleParams', 'GeoAsciiParams'];
 const LINEAR_UNITS_M = { 9001: 1, 9002: 0.3048, 9003: 0.3048006096012192 }; // EPSG unit codes
 
 /** True when bytes start with a TIFF or BigTIFF header. */
@@ -65,13 +64,11 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   const sampleType = sampleTypeOf(format, bits);
   if (!sampleType) fail(`unsupported TIFF sample type: ${['', 'unsigned', 'signed', 'float'][format] ?? `format ${format}`} ${bits}-bit`);
   const nodata = parseNodata(await guard('bad TIFF no-data tag (42113)', () => dir.loadValue('GDAL_NODATA')), fail);
-  // The library reads the geotransform synchronously: a tag stored away from its directory must be loaded first.
-  await guard('bad TIFF georeference', () => Promise.all(GEO_TAGS.map((tag) => dir.loadValue(tag))));
   const geo = spacingOf(image, height);
 
   // Every strip or tile must hold what its geometry needs before memory is reserved.
   const layout = await guard('bad TIFF layout', () => blockLayout(image, directory, { width, height }, fail));
-  await guard('bad TIFF image data', () => checkBlocks(image, layout, bytes, fail, pacer(options.onCheckProgress)));
+  await guard('bad TIFF image data', () => checkBlocks(image, layout, directory, bytes, fail, pacer(options.onCheckProgress)));
 
   const sink = new SampleSink(allocate, sampleType, width, height, options);
   await guard('corrupt image data', () => readBlocks(image, layout, bytes, sink, { format, bits, nodata }));

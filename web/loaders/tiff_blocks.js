@@ -74,16 +74,17 @@ export async function blockLayout(image, directory, { width, height }, fail) {
 }
 
 /**
- * Checks every block of the first sample: inside the file, and decoding to the bytes its
+ * Checks every block of the first sample: inside the file and clear of the directory, and decoding to the bytes its
  * geometry needs (a strip at the bottom may hold only the image's remaining rows, or a whole
  * strip). Nothing is allocated but one block at a time for codecs that cannot be counted.
  * @param {import('geotiff').GeoTIFFImage} image
  * @param {Awaited<ReturnType<typeof blockLayout>>} layout
+ * @param {ReturnType<typeof import('./tiff_directory.js').readDirectory>} directory
  * @param {Uint8Array} bytes the file
  * @param {(problem: string) => never} fail
  * @param {(fraction: number) => Promise<void>} pace
  */
-export async function checkBlocks(image, layout, bytes, fail, pace) {
+export async function checkBlocks(image, layout, directory, bytes, fail, pace) {
   const { tiled, blockWidth, blockHeight, bytesPerPixel, compression, offsets, counts, blocks } = layout;
   const height = image.getHeight();
   const kind = tiled ? 'tile' : 'strip';
@@ -91,6 +92,9 @@ export async function checkBlocks(image, layout, bytes, fail, pace) {
   for (let i = 0; i < blocks; i++) {
     const offset = offsets[i], count = counts[i];
     if (offset + count > bytes.length) fail(`truncated: ${kind} ${i} ends at byte ${offset + count}, the file has ${bytes.length}`);
+    // A block cut short whose byte count was kept would read the directory as samples.
+    const shared = count > 0 && directory.structureIn(offset, offset + count);
+    if (shared) fail(`bad TIFF: ${kind} ${i} (bytes ${offset}..${offset + count - 1}) overlaps ${shared}`);
     slices.push(bytes.subarray(offset, offset + count));
   }
 

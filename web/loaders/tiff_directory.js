@@ -4,7 +4,8 @@
 // 2^31 took gigabytes), and it reads an array stored away from its directory as little-endian
 // whatever the file's byte order (the strip offsets of a valid big-endian file came out as
 // 134217728 for 8). So every entry must fit in the file, as libtiff checks, and the entries
-// the block check needs (offsets and byte counts) are read here.
+// the block check needs (offsets and byte counts) are read here, with where the directory and
+// its values lie (no strip or tile shares a byte with them in a sound file).
 
 /** Bytes a value of each TIFF field type takes (TIFF 6.0, and BigTIFF's 16 to 18). */
 const FIELD_TYPE_BYTES = { 1: 1, 2: 1, 3: 2, 4: 4, 5: 8, 6: 1, 7: 1, 8: 2, 9: 4, 10: 8, 11: 4, 12: 8, 13: 4, 16: 8, 17: 8, 18: 8 };
@@ -13,8 +14,9 @@ const SHORT = 3, LONG = 4, LONG8 = 16;
 /**
  * @param {Uint8Array} bytes a file with a TIFF or BigTIFF signature and at least 8 bytes
  * @param {(problem: string) => never} fail
- * @returns {{ values: (tag: number) => number[] | undefined }} values: an entry's SHORT, LONG
- *   or LONG8 values as numbers, undefined when the directory has no such entry
+ * @returns {{ values: (tag: number) => number[] | undefined, structureIn: (start: number, end: number) => string | null }}
+ *   values: an entry's SHORT, LONG or LONG8 values as numbers, undefined when the directory has
+ *   no such entry; structureIn: what of the directory lies in bytes [start, end), or null
  */
 export function readDirectory(bytes, fail) {
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.length);
@@ -29,6 +31,7 @@ export function readDirectory(bytes, fail) {
   }
 
   const found = new Map(); // tag -> { type, count, at: where its values are }
+  const structure = [['the image directory', ifd, first + entries * entryBytes + (big ? 8 : 4)]]; // [what, start, end)
   for (let i = 0; i < entries; i++) {
     const e = first + i * entryBytes;
     const tag = view.getUint16(e, little), type = view.getUint16(e + 2, little);
@@ -39,6 +42,7 @@ export function readDirectory(bytes, fail) {
       fail(`bad TIFF: tag ${tag} holds ${count} values (${size} bytes from byte ${at}), past the end of the file (${bytes.length} bytes)`);
     }
     found.set(tag, { type, count, at });
+    if (size > inline) structure.push([`the values of tag ${tag}`, at, at + size]);
   }
 
   const read = { [SHORT]: (p) => view.getUint16(p, little), [LONG]: (p) => view.getUint32(p, little), [LONG8]: u64 };
@@ -48,6 +52,10 @@ export function readDirectory(bytes, fail) {
       if (!entry || !read[entry.type]) return undefined;
       const size = FIELD_TYPE_BYTES[entry.type];
       return Array.from({ length: entry.count }, (_, k) => read[entry.type](entry.at + k * size));
+    },
+    structureIn(start, end) {
+      const hit = structure.find(([, s, e]) => s < end && start < e);
+      return hit ? `${hit[0]} (bytes ${hit[1]}..${hit[2] - 1})` : null;
     },
   };
 }
