@@ -89,12 +89,15 @@ function valueFor(tag, m, r) {
  * alone: a tile at the image's edge is padded, and a cut may take only padding.
  */
 const stripped = (m) => !entryOf(m, TAGS.TileOffsets) && !entryOf(m, TAGS.TileWidth);
+/** Tags that say how many bytes a strip needs: once one changes, no claim about a cut strip holds. */
+const GEOMETRY = [256, 257, 258, 259, 277, 278, 284, 317, 322, 323, 339];
 
 const STEPS = [
   [8, function setTag(m, r) {
     const tag = r.pick(KNOWN_TAGS);
     const [type, value] = valueFor(tag, m, r);
     setEntry(m, tag, type, type === TYPES.ASCII ? String(value) : value);
+    if (GEOMETRY.includes(tag)) m.geometryChanged = true;
     return `tag ${tag} = ${type === TYPES.ASCII ? JSON.stringify(value) : `type ${type} [${value.slice(0, 6).join(', ')}]`}`;
   }],
   [6, function entryField(m, r) {
@@ -106,14 +109,17 @@ const STEPS = [
     else if (field === 'count') e.countOverride = r.pick([0, 1, e.count + 1, e.count - 1, e.count * 2, ...EDGE_UINTS.slice(-6)]) >>> 0;
     else e.offsetOverride = r.pick(EDGE_UINTS);
     e.auto = false;
+    m.geometryChanged = true;
     return `entry ${e.tag} ${field} forged`;
   }],
   [2, function removeEntry(m, r) {
     const [e] = m.entries.splice(r.int(m.entries.length), 1);
+    m.geometryChanged = true;
     return e ? `entry ${e.tag} removed` : null;
   }],
   [1, function duplicateOrShuffle(m, r) {
     const i = r.int(m.entries.length), j = r.int(m.entries.length);
+    m.geometryChanged = true;
     if (r.chance(0.5)) { m.entries.splice(j, 0, { ...m.entries[i], auto: false }); return `entry ${m.entries[i]?.tag} twice`; }
     [m.entries[i], m.entries[j]] = [m.entries[j], m.entries[i]];
     return 'entries out of order';
@@ -162,6 +168,7 @@ const STEPS = [
   [1, function byteOrderOrBig(m, r) {
     if (r.chance(0.5)) { m.big = !m.big; return m.big ? 'as BigTIFF' : 'as classic TIFF'; }
     m.le = !m.le;
+    m.geometryChanged = true;
     return 'byte order flipped, values not converted';
   }],
 ];
@@ -199,7 +206,7 @@ export function mutate(seed, random) {
   }
   const bytes = writeTiff(m);
   if (random.chance(0.1)) { how.push(patchHeader(bytes, m, random)); m.invalid = null; }
-  return { files: [{ name: main.name, bytes }], options: {}, how, invalid: m.invalid || null };
+  return { files: [{ name: main.name, bytes }], options: {}, how, invalid: (!m.geometryChanged && m.invalid) || null };
 }
 
 /**
