@@ -153,6 +153,7 @@ const STEPS = [
     else if (op === 'zero') list.fill(0);
     else list[r.int(list.length)] += 1 << 24;
     setEntry(m, tag, r.chance(0.8) ? e.type : r.pick([TYPES.SHORT, TYPES.LONG, TYPES.LONG8]), list);
+    m.geometryChanged = true; // the tables no longer describe the blocks
     return `${tag === TAGS.TileOffsets || tag === TAGS.StripOffsets ? 'offsets' : 'byte counts'}: ${op}`;
   }],
   [3, function recompress(m, r) {
