@@ -9,7 +9,9 @@
 //             bytes (+ 1 MiB) for a file it then refused, WASM memory grew at all for a refused
 //             file, grew more than 4x the samples for an accepted one, a terrain was left behind,
 //             or the core's allocator holds more than 64 KiB more than before the case (a leak;
-//             small growth is let pass: the core keeps its last error message, for one);
+//             small growth is let pass: the core keeps its last error message, for one); or an
+//             accepted field more than 4096x its files + 1 MiB (no codec expands that much: deflate
+//             at most 1032x, LZW about 2730x; only a size the data never proved, e.g. sparse blocks);
 //             or the worker's JS memory (heap and array buffers, this thread's alone) grew by more
 //             than 4x the input + 64 MiB (garbage of the case included: a decoder may make copies).
 // Hangs, deaths of the worker and the process's memory are watched from outside (watched_worker.js).
@@ -18,6 +20,7 @@ import { HeightfieldError } from '../../web/loaders/index.js';
 import { CoreError } from '../../web/core/core.js';
 
 const MIB = 1 << 20;
+const MAX_EXPANSION = 4096; // bytes of samples per byte of file, above any codec's
 /** This thread's JS memory: in a worker, process.memoryUsage() counts its own isolate's heap and buffers. */
 const jsBytes = () => { const m = process.memoryUsage(); return m.heapUsed + m.arrayBuffers; };
 const BYTES = { u8: 1, u16: 2, i16: 2, f32: 4 };
@@ -126,6 +129,7 @@ export async function judgeCase(core, spy, c, declaredSize) {
     else if (held > 64 * 1024) blowup = `the core holds ${mb(held)} more than before the case (a leak)`;
     else if (kind === 'refused' && spy.requestedBytes > 4 * inputBytes + MIB) blowup = `the core was asked for ${mb(spy.requestedBytes)} for a refused input of ${inputBytes} bytes`;
     else if (kind === 'refused' && wasmGrowth > 0) blowup = `WASM memory grew by ${mb(wasmGrowth)} for a refused input of ${inputBytes} bytes`;
+    else if (kind === 'accepted' && sampleBytes > MAX_EXPANSION * inputBytes + MIB) blowup = `a field of ${mb(sampleBytes)} from ${inputBytes} bytes of files`;
     else if (wasmGrowth > 4 * justified + MIB) blowup = `WASM memory grew by ${mb(wasmGrowth)} for ${mb(sampleBytes)} of samples`;
     else if (jsGrowth > 4 * inputBytes + 64 * MIB) blowup = `the worker's JS memory grew by ${mb(jsGrowth)} for an input of ${inputBytes} bytes`;
     if (blowup) { detail = `${blowup} (${kind}: ${detail})`; kind = 'blowup'; }
