@@ -5,27 +5,34 @@
 // table and a verdict; exit 1 when something grew after warm-up, 2 for a bad command line.
 //
 //   node bench/soak.js [--frames 216000] [--seed 1] [--samples 24] [--terrain-every 3600]
-//                      [--settings-every 600] [--warmup 0.25] [--fields a.png,b.f32,...]
+//                      [--settings-every 600] [--warmup-cycles 1] [--fields a.png,b.f32,...]
 //
 // The flight: each terrain is loaded from its file (the fixtures of tests/fixtures and the
 // page's default terrain, round robin), flown for --terrain-every frames and destroyed. The
 // camera circles the field at a height that rises and sinks (20 m to a tenth of the field's
 // extent above the ground), looking ahead and down, with a teleport every 900 frames
 // and now and then a straight-down view. Every --settings-every frames the settings change
-// at random: tau, the time and operation budgets, the vertical scale, frustum and back-face
-// culling, geomorph frames, index layout, normals, a triangle cap with auto tau, max-error
-// mode, the viewport, and the embedding (a new mesh). Every frame is one core call (camera,
-// LOD update, stream), then the stream is acknowledged, as the page does after its upload.
+// at random: tau, the operation budget, the vertical scale, frustum and back-face culling,
+// geomorph frames, index layout, normals, a triangle cap with auto tau, max-error mode, the
+// viewport, and the embedding (a new mesh). Every frame is one core call (camera, LOD update,
+// stream), then the stream is acknowledged, as the page does after its upload.
+// A cycle is one pass over the fields. Every random choice is seeded by the seed and the
+// frame's place in its cycle, and budgets are operation counts (a time budget would make the
+// meshes depend on the machine's speed), so every cycle repeats the same frames: after the
+// first, memory has no reason to grow, and any growth is a leak or fragmentation.
 //
 // Memory, read after a garbage collection:
-//   - between terrains (the old one destroyed, the next not yet loaded): the core's allocator,
-//     bytes in use (hexlod_diag_heap), which must come back to the same figure every time;
 //   - every frames / --samples frames: WASM memory size (never shrinks: its high-water mark),
-//     the allocator's bytes in use, the terrain's own accounting (hexlod_frame.memory_bytes),
-//     the Node heap, array buffers and RSS.
-// Verdict, over the samples after the warm-up (--warmup of the frames, and at least until every
-// field was loaded once): the bytes in use between terrains vary by at most 4 KB; WASM memory
-// grows by at most 5 %; the Node heap by at most 4 MB; RSS by at most 10 %.
+//     the allocator's bytes in use (hexlod_diag_heap), the terrain's own accounting
+//     (hexlod_frame.memory_bytes), the Node heap, array buffers and RSS;
+//   - at the end of each terrain's flight, before it is destroyed: the allocator's bytes in
+//     use, which must be the same at the same place of every cycle;
+//   - between terrains (the old one destroyed, the next not yet loaded): the allocator's bytes
+//     in use, which must come back to the same figure every time.
+// Verdict, after the warm-up (--warmup-cycles cycles): the bytes in use between terrains vary
+// by at most 4 KB, and at the end of each flight differ from the first cycle's by at most
+// 4 KB; from the first terrain switch after the warm-up to the last, WASM memory does not grow
+// at all, the Node heap grows by at most 4 MB and RSS by at most 10 %.
 import { performance } from 'node:perf_hooks';
 import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -45,15 +52,15 @@ const USAGE = `usage: node bench/soak.js [options]
   --samples N          memory samples over the run (default 24)
   --terrain-every N    frames on one terrain before the next is loaded (default 3600)
   --settings-every N   frames between settings changes (default 600)
-  --warmup F           share of the frames before the verdict looks (default 0.25)
+  --warmup-cycles N    passes over the fields before the verdict looks (default 1)
   --fields A,B,...     height fields (default: the fixtures and the page's default terrain)`;
 const OPTIONS = { frames: 'string', seed: 'string', samples: 'string', 'terrain-every': 'string', 'settings-every': 'string',
-  warmup: 'string', fields: 'string' };
+  'warmup-cycles': 'string', fields: 'string' };
 const FPS = 60;
 const TELEPORT_EVERY = 900;
 const MB = 2 ** 20;
 // The verdict's limits (see above).
-const LIMITS = { heapInUseBytes: 4096, wasmShare: 0.05, nodeHeapBytes: 4 * MB, rssShare: 0.1 };
+const LIMITS = { heapInUseBytes: 4096, wasmBytes: 0, nodeHeapBytes: 4 * MB, rssShare: 0.1 };
 
 function parse(args) {
   const { values, positionals } = parseOptions(args, OPTIONS);
@@ -66,7 +73,7 @@ function parse(args) {
     samples: int('samples', 24),
     terrainEvery: int('terrain-every', 3600),
     settingsEvery: int('settings-every', 600),
-    warmup: values.warmup === undefined ? 0.25 : parseNumber('warmup', values.warmup, { min: 0, max: 0.9 }),
+    warmupCycles: int('warmup-cycles', 1, 0),
     fields: values.fields ? values.fields.split(',').map((f) => (f.startsWith('/') ? f : join(process.cwd(), f))) : DEFAULT_FIELDS,
   };
 }
@@ -80,8 +87,7 @@ function randomSettings(random) {
     embedding: random() < 0.7 ? 'exact' : 'shifted',
     tau: pick(random, [0.5, 1, 1, 2, 4, 8]),
     maxError: random() < 0.1 ? pick(random, [1, 5, 20]) : 0,
-    budgetMs: pick(random, [0, 2, 4, 4, 8]),
-    maxOperations: pick(random, [0, 0, 200, 2000]),
+    maxOperations: pick(random, [0, 200, 2000, 2000, 20000]),
     verticalScale: pick(random, [0.5, 1, 2, 2, 5]),
     culling: random() < 0.9,
     backfaceCulling: random() < 0.8,
@@ -98,7 +104,7 @@ function applySettings(terrain, s) {
   terrain.setLodTolerance(s.tau); // tau mode; max-error mode below when chosen
   if (s.maxError > 0) terrain.setLodMaxError(s.maxError);
   terrain.setLodVerticalScale(s.verticalScale);
-  terrain.setLodBudget(s.budgetMs, s.maxOperations);
+  terrain.setLodBudget(0, s.maxOperations);
   terrain.setLodCulling(s.culling);
   terrain.setLodBackfaceCulling(s.backfaceCulling);
   terrain.setMorphFrames(s.morphFrames);
@@ -178,11 +184,17 @@ async function main() {
     const out = new Float64Array(core.buffer, heapPointer, 2);
     return { inUse: out[0], held: out[1] };
   };
-  const random = seededRandom(seed);
+  // The generator of a choice made at frame f: the same at the same place of every cycle.
+  const cycleFrames = fields.length * terrainEvery;
+  const randomAt = (stream, f) => {
+    let h = Math.imul(seed ^ 0x9e3779b9, 0x85ebca6b) ^ Math.imul(stream + 1, 0xc2b2ae35) ^ Math.imul((f % cycleFrames) + 1, 0x27d4eb2f);
+    h = Math.imul(h ^ (h >>> 15), 0x2c1b3c6d);
+    return seededRandom(h ^ (h >>> 13));
+  };
   const camera = { eye: [0, 0, 0], target: [0, 0, 0], up: [0, 1, 0], fovY: Math.PI / 3, aspect: 16 / 9, viewportHeight: 1080, near: 1, far: 2 };
-  const samples = [], switches = [];
+  const samples = [], switches = [], ends = [];
   let terrain = null, fieldIndex = -1, settings = null, flight = null, stats = null;
-  let loaded = 0, firstCycleFrame = Infinity, frameMs = 0, framesTimed = 0, loadMs = 0, maxTriangles = 0;
+  let loaded = 0, frameMs = 0, framesTimed = 0, loadMs = 0, maxTriangles = 0;
   const started = performance.now();
 
   const sample = (f, where) => {
@@ -198,6 +210,7 @@ async function main() {
   for (let f = 0; f < frames; f++) {
     if (f % terrainEvery === 0) {
       if (terrain) {
+        ends.push(sample(f, 'end'));
         terrain.destroy();
         terrain = null;
       }
@@ -206,16 +219,17 @@ async function main() {
       const l0 = performance.now();
       ({ terrain } = await loadFiles(core, fields[fieldIndex].files, {}));
       loadMs += performance.now() - l0;
-      if (++loaded === fields.length) firstCycleFrame = f + terrainEvery; // every field loaded once by then
+      loaded++;
       settings = null;
     }
-    if (settings === null || f % settingsEvery === 0) {
-      const next = randomSettings(random);
+    const onTerrain = f % terrainEvery; // frames since this terrain was loaded: settings and teleports keep step with it
+    if (settings === null || onTerrain % settingsEvery === 0) {
+      const next = randomSettings(randomAt(1, f));
       if (settings === null || next.embedding !== settings.embedding) terrain.resetMesh(next.embedding);
       applySettings(terrain, next);
       settings = next;
     }
-    if (flight === null || f % TELEPORT_EVERY === 0 || f % terrainEvery === 0) flight = newFlight(random, f, terrain);
+    if (onTerrain % TELEPORT_EVERY === 0) flight = newFlight(randomAt(2, f), f, terrain);
     flyCamera(camera, f, flight, terrain, settings);
     const t0 = performance.now();
     stats = terrain.frame(camera);
@@ -232,6 +246,7 @@ async function main() {
         `WASM ${(s.wasm / MB).toFixed(0)} MB, in use ${(s.inUse / MB).toFixed(1)} MB, heap ${(s.nodeHeap / MB).toFixed(1)} MB\n`);
     }
   }
+  ends.push(sample(frames, 'end'));
   terrain.destroy();
   switches.push(sample(frames, 'between'));
   core.module._free(heapPointer);
@@ -250,24 +265,34 @@ async function main() {
   console.log(line(header));
   for (const r of rows) console.log(line(r));
   console.log(`between terrains (allocator bytes in use): ${switches.map((s) => s.inUse).join(', ')}`);
+  console.log(`as each flight ends (allocator MB in use): ${ends.map((s) => mb(s.inUse)).join(', ')}`);
 
   // The verdict, after the warm-up.
-  const warmFrame = Math.max(Math.floor(options.warmup * frames), firstCycleFrame === Infinity ? frames : firstCycleFrame);
-  const after = samples.filter((s) => s.frame >= warmFrame);
+  const warmFrame = options.warmupCycles * cycleFrames;
+  const after = samples.filter((s) => s.frame > warmFrame);
   const betweenAfter = switches.filter((s) => s.frame >= warmFrame);
+  // Flights that ended after the warm-up against the same flight of the first cycle.
+  const endsAfter = ends.filter((s) => s.frame > warmFrame && s.frame % terrainEvery === 0);
+  const endDrift = Math.max(0, ...endsAfter.map((s) => Math.abs(s.inUse - ends[((s.frame - terrainEvery) % cycleFrames) / terrainEvery].inUse)));
+  const cycles = (frames / cycleFrames).toFixed(2);
   if (after.length < 2 || betweenAfter.length < 2) {
-    console.log(`\nverdict: too short to judge (warm-up ends at frame ${warmFrame}; give more --frames or a smaller --terrain-every)`);
+    console.log(`\nverdict: too short to judge (${cycles} cycles of ${cycleFrames} frames; the warm-up ends at frame ${warmFrame})`);
     return 0;
   }
-  const first = after[0], last = after.at(-1);
+  // Growth from the first terrain switch after the warm-up to the last: the same moment of a
+  // cycle (no terrain loaded), after a garbage collection.
+  const first = betweenAfter[0], last = betweenAfter.at(-1);
   const spread = (list, key) => Math.max(...list.map((s) => s[key])) - Math.min(...list.map((s) => s[key]));
   const checks = [
     ['allocator bytes in use between terrains, spread', spread(betweenAfter, 'inUse'), LIMITS.heapInUseBytes, (v) => `${v} B`],
-    ['WASM memory growth', last.wasm - first.wasm, LIMITS.wasmShare * first.wasm, (v) => `${mb(v)} MB`],
+    [`allocator bytes in use as each flight ends, against the first cycle (${endsAfter.length} flights)`, endDrift, LIMITS.heapInUseBytes,
+      (v) => `${v} B`],
+    ['WASM memory growth', last.wasm - first.wasm, LIMITS.wasmBytes, (v) => `${mb(v)} MB`],
     ['Node heap growth', last.nodeHeap - first.nodeHeap, LIMITS.nodeHeapBytes, (v) => `${mb(v)} MB`],
     ['RSS growth', last.rss - first.rss, LIMITS.rssShare * first.rss, (v) => `${mb(v)} MB`],
   ];
-  console.log(`\nverdict after warm-up (frame ${warmFrame} on, ${after.length} samples, ${betweenAfter.length} terrain switches):`);
+  console.log(`\nverdict after warm-up (${options.warmupCycles} of ${cycles} cycles of ${cycleFrames} frames: frame ${warmFrame} on, ` +
+    `${after.length} samples, ${betweenAfter.length} terrain switches):`);
   let flat = true;
   for (const [label, value, limit, show] of checks) {
     const ok = value <= limit;
