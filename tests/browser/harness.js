@@ -55,6 +55,15 @@ export async function startViewer({ site = 'dev', hmr = false } = {}) {
 /** Opens a page that records console errors, page errors and failed requests in `problems`. */
 export async function openPage(browser, url, viewport = { width: 960, height: 600 }) {
   const page = await browser.newPage({ viewport });
+  // The page's Content-Security-Policy refuses the <style> element of Playwright's addStyleTag;
+  // a test's own styles (hiding the page's boxes) go in as a constructed stylesheet, which
+  // script may add under the policy.
+  const addStyleTag = page.addStyleTag.bind(page);
+  page.addStyleTag = (options) => (options.content === undefined ? addStyleTag(options) : page.evaluate((css) => {
+    const sheet = new CSSStyleSheet();
+    sheet.replaceSync(css);
+    document.adoptedStyleSheets = [...document.adoptedStyleSheets, sheet];
+  }, options.content));
   const problems = [];
   page.on('console', (message) => {
     if (message.type() === 'error') problems.push(`console.error: ${message.text()}`);

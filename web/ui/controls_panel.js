@@ -12,7 +12,9 @@ import { CAMERA_MODES } from '../cameras/rig.js';
  * @returns {{gui: GUI, refresh: () => void, setCellSizeRange: (metres: number) => void}}
  */
 export function createControlsPanel(container, settings, { camera, onChange, actions }) {
-  const gui = new GUI({ container, title: 'Controls' });
+  // Its stylesheet is imported by public/style.css: the Content-Security-Policy refuses the
+  // <style> element lil-gui would inject.
+  const gui = new GUI({ container, title: 'Controls', injectStyles: false });
   const changed = (key) => (value) => onChange(key, value);
   const slider = (folder, key) => {
     const r = RANGES[key];
