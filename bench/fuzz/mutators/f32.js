@@ -32,6 +32,7 @@ const STEPS = [
     const out = s.bytes.slice();
     const view = new DataView(out.buffer);
     const n = out.length >> 2;
+    if (n === 0) return null; // shorter than one sample: nothing to change
     const op = r.pick(['special', 'special', 'all NaN', 'all but one NaN', 'bits']);
     if (op === 'special') {
       const v = r.pick(SPECIALS);
@@ -91,7 +92,8 @@ export function mutate(seed, random) {
   const how = [];
   for (let k = random.weighted([[6, 1], [3, 2], [1, 3]]); k > 0; k--) {
     const [, step] = random.weighted(STEPS.map((entry) => [entry[0], entry]));
-    how.push(step(s, random));
+    const done = step(s, random);
+    if (done) how.push(done);
   }
   const files = [{ name: main.name, bytes: s.bytes }];
   if (random.chance(0.97)) files.push({ name: side.name, bytes: s.sidecar });
