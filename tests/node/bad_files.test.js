@@ -49,6 +49,15 @@ function withTiffTags(name, tags) {
   return withTiffBytes(read(DIR + name), tags);
 }
 
+/** Where the values of a tag stored out of its entry lie in a little-endian TIFF. */
+function tagValuesAt(bytes, tag) {
+  const v = new DataView(bytes.buffer, bytes.byteOffset, bytes.length), ifd = v.getUint32(4, true);
+  for (let i = 0; i < v.getUint16(ifd, true); i++) {
+    if (v.getUint16(ifd + 2 + 12 * i, true) === tag) return v.getUint32(ifd + 2 + 12 * i + 8, true);
+  }
+  throw new Error(`no tag ${tag}`);
+}
+
 /** withTiffTags on the bytes of a TIFF. */
 function withTiffBytes(src, tags) {
   const doubles = Object.values(tags).filter((t) => 'double' in t);
@@ -248,12 +257,18 @@ if (isMainThread) {
     const entries = read(`${DIR}everest_i16_strips.tif`).slice();
     new DataView(entries.buffer).setUint16(new DataView(entries.buffer).getUint32(4, true), 0xffff, true);
     await refused([{ name: 'e.tif', bytes: entries }], 'e.tif', /^e\.tif: truncated: the image directory's 65535 entries run past the end \(80410 bytes\)$/);
+    // A sparse file (empty blocks are no-data) with no block that is not empty.
+    const sparse = read(`${DIR}everest_i16_strips.tif`).slice(), pv = new DataView(sparse.buffer);
+    const countsAt = tagValuesAt(sparse, 279);
+    for (let s = 0; s < 13; s++) pv.setUint32(countsAt + 4 * s, s === 5 ? 6400 : 0, true);
+    const strip5 = new Int16Array(sparse.slice(pv.getUint32(tagValuesAt(sparse, 273) + 4 * 5, true)).buffer, 0, 3200);
+    const voids = strip5.filter((v) => v === -32768).length;
+    assert.equal((await loadHeightfield([{ name: 'p.tif', bytes: sparse }])).missing, 200 * 200 - 3200 + voids, 'one strip of data, the rest filled');
+    for (let s = 0; s < 13; s++) pv.setUint32(countsAt + 4 * s, 0, true);
+    assert.equal(await refused([{ name: 'p.tif', bytes: sparse }], 'p.tif', /^p\.tif: every strip is empty \(a sparse file with no data\): nothing to show$/), 0);
     // A strip cut short whose byte count was kept reads the directory's values as samples.
     const shifted = read(`${DIR}everest_i16_strips.tif`).slice(), sv = new DataView(shifted.buffer);
-    const offsetsAt = (() => {
-      const ifd = sv.getUint32(4, true);
-      for (let i = 0; i < sv.getUint16(ifd, true); i++) if (sv.getUint16(ifd + 2 + 12 * i, true) === 273) return sv.getUint32(ifd + 2 + 12 * i + 8, true);
-    })();
+    const offsetsAt = tagValuesAt(shifted, 273);
     sv.setUint32(offsetsAt + 4 * 12, sv.getUint32(offsetsAt + 4 * 12, true) + 100, true); // the last strip, 100 bytes on
     assert.equal(await refused([{ name: 's.tif', bytes: shifted }], 's.tif',
       new RegExp(`bad TIFF: strip 12 \\(bytes \\d+\\.\\.\\d+\\) overlaps the values of tag 273 \\(bytes ${offsetsAt}\\.\\.${offsetsAt + 51}\\)$`)), 0);

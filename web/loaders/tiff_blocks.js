@@ -98,6 +98,9 @@ export async function checkBlocks(image, layout, directory, bytes, fail, pace) {
     slices.push(bytes.subarray(offset, offset + count));
   }
 
+  // A sparse file's empty blocks are no-data (GDAL SPARSE_OK); with no other block it holds
+  // nothing, and would be refused only after its whole field was allocated.
+  if (slices.every((block) => block.length === 0)) fail(`every ${kind} is empty (a sparse file with no data): nothing to show`);
   const measure = measurer(layout);
   const full = blockWidth * blockHeight * bytesPerPixel;
   for (let i = 0; i < blocks; i++) {
