@@ -74,9 +74,10 @@ export async function blockLayout(image, directory, { width, height }, fail) {
 }
 
 /**
- * Checks every block of the first sample: inside the file and clear of the directory, and decoding to the bytes its
- * geometry needs (a strip at the bottom may hold only the image's remaining rows, or a whole
- * strip). Nothing is allocated but one block at a time for codecs that cannot be counted.
+ * Checks every block of the first sample: inside the file, clear of the directory, and decoding
+ * to the bytes its geometry needs (a strip at the bottom may hold only the image's remaining
+ * rows, or a whole strip). Nothing is allocated but one block at a time for codecs that cannot
+ * be counted.
  * @param {import('geotiff').GeoTIFFImage} image
  * @param {Awaited<ReturnType<typeof blockLayout>>} layout
  * @param {ReturnType<typeof import('./tiff_directory.js').readDirectory>} directory
@@ -104,7 +105,7 @@ export async function checkBlocks(image, layout, directory, bytes, fail, pace) {
   const measure = measurer(layout);
   const full = blockWidth * blockHeight * bytesPerPixel;
   for (let i = 0; i < blocks; i++) {
-    if (slices[i].length === 0) continue; // a sparse file's empty block (GDAL SPARSE_OK): the library fills it with no-data
+    if (slices[i].length === 0) continue; // an empty block: the reader fills it with no-data
     const rows = tiled ? blockHeight : Math.min(blockHeight, height - i * blockHeight);
     const needed = blockWidth * rows * bytesPerPixel;
     let length;

@@ -14,9 +14,10 @@ const SHORT = 3, LONG = 4, LONG8 = 16;
 /**
  * @param {Uint8Array} bytes a file with a TIFF or BigTIFF signature and at least 8 bytes
  * @param {(problem: string) => never} fail
- * @returns {{ values: (tag: number) => number[] | undefined, structureIn: (start: number, end: number) => string | null }}
- *   values: an entry's SHORT, LONG or LONG8 values as numbers, undefined when the directory has
- *   no such entry; structureIn: what of the directory lies in bytes [start, end), or null
+ * @returns {{ values: (tag: number) => number[] | undefined,
+ *   structureIn: (start: number, end: number) => string | null }} values: an entry's SHORT, LONG
+ *   or LONG8 values as numbers, undefined when the directory has no such entry; structureIn:
+ *   what of the directory lies in bytes [start, end), or null
  */
 export function readDirectory(bytes, fail) {
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.length);
