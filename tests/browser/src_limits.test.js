@@ -190,6 +190,7 @@ test('a file dropped while a src loads wins: neither a late failure nor a late s
     assert.ok(!view.statusIsError, `${route}: no message about the src: ${view.status}`);
     await srcLeavesAddressBar(page);
     assert.ok(data.log.some((r) => r.path === path && r.aborted), `${route}: the src download was cancelled by the drop`);
+    assert.equal(await page.evaluate(() => window.hexlod.memory().liveTerrains), 1, 'the core holds the terrain on screen alone');
     assert.deepEqual(unexpected(problems), []);
     await page.close();
   }
@@ -208,6 +209,7 @@ test('files dropped in quick succession: the last one is shown, the first is can
   const view = await seen(page);
   assert.match(view.terrain, /^volcano_maungawhau\.png  87 × 61/);
   assert.equal(view.status, '');
+  assert.equal(await page.evaluate(() => window.hexlod.memory().liveTerrains), 1, 'the cancelled decode freed its terrain');
   assert.deepEqual(problems, []);
   await page.close();
 });

@@ -262,7 +262,7 @@ async function main() {
   const setSetting = (key, value) => onSetting(key, value);
   const resetView = () => { if (current) frameDefault(current); syncPanel(); requestRender(); };
   if (window.hexlod === state) {
-    installTestApi(state, { gl, rig, settings, view, requestRender, setSetting, screenshot, urlWriter,
+    installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting, screenshot, urlWriter,
       terrain: () => current?.terrain,
       setLayout: (layout) => { view.layout = layout; current?.terrain.setStreamLayout(layout); requestRender(); } });
   }
