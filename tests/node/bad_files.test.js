@@ -257,6 +257,17 @@ if (isMainThread) {
     const entries = read(`${DIR}everest_i16_strips.tif`).slice();
     new DataView(entries.buffer).setUint16(new DataView(entries.buffer).getUint32(4, true), 0xffff, true);
     await refused([{ name: 'e.tif', bytes: entries }], 'e.tif', /^e\.tif: truncated: the image directory's 65535 entries run past the end \(80410 bytes\)$/);
+    // Predictors the library cannot undo (it threw after the field was allocated, or left garbage).
+    const PREDICTOR = 317;
+    for (const [value, problem] of [[5, /unsupported TIFF predictor 5$/], [3, /bad TIFF: predictor 3 is for floating-point samples$/]]) {
+      assert.equal(await refused([{ name: 'p.tif', bytes: withTiffTags('etopo_i32_strips_lzw.tif', { [PREDICTOR]: { value } }) }], 'p.tif', problem), 0);
+    }
+    // A deflate tile whose zlib checksum is wrong: the check (fflate) takes it, and so does the decode now (pako refused it).
+    const adler = read(`${DIR}canyon_u16_tiled_deflate.tif`).slice(), av = new DataView(adler.buffer);
+    const tile4 = av.getUint32(tagValuesAt(adler, 324) + 16, true) + av.getUint32(tagValuesAt(adler, 325) + 16, true);
+    adler[tile4 - 1] ^= 0xff;
+    const [good, checked] = [await loadHeightfield([file('canyon_u16_tiled_deflate.tif')]), await loadHeightfield([{ name: 'a.tif', bytes: adler }])];
+    assert.ok(good.samples.every((v, i) => v === checked.samples[i]), 'the same samples');
     // A sparse file (empty blocks are no-data) with no block that is not empty.
     const sparse = read(`${DIR}everest_i16_strips.tif`).slice(), pv = new DataView(sparse.buffer);
     const countsAt = tagValuesAt(sparse, 279);

@@ -13,13 +13,15 @@
 import { fromArrayBuffer, addDecoder } from 'geotiff';
 import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, degreesToMetres, shown } from './common.js';
 import { SampleSink, pacer } from './pacing.js';
-import { TiffLzwDecoder, lzwParameters } from './tiff_lzw.js';
+import { TiffLzwDecoder } from './tiff_lzw.js';
+import { TiffDeflateDecoder } from './tiff_deflate.js';
 import { readDirectory } from './tiff_directory.js';
-import { blockLayout, checkBlocks } from './tiff_blocks.js';
+import { blockLayout, checkBlocks, decoderParametersOf } from './tiff_blocks.js';
 import { readBlocks } from './tiff_raster.js';
 
-// Compression 5 (LZW) through our bounded decoder (see tiff_lzw.js).
-addDecoder(5, async () => TiffLzwDecoder, lzwParameters, false);
+// LZW and deflate through our decoders (see tiff_lzw.js, tiff_deflate.js).
+addDecoder(5, async () => TiffLzwDecoder, decoderParametersOf, false);
+addDecoder([8, 32946], async () => TiffDeflateDecoder, decoderParametersOf, false);
 
 const GEOGRAPHIC_MODEL = 2; // GTModelTypeGeoKey: 1 projected, 2 geographic
 const LINEAR_UNITS_M = { 9001: 1, 9002: 0.3048, 9003: 0.3048006096012192 }; // EPSG unit codes

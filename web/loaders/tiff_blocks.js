@@ -57,10 +57,20 @@ export async function blockLayout(image, directory, { width, height }, fail) {
     fail(`bad TIFF: ${Math.min(offsets.length, counts.length)} ${kind}s listed, ${blocks} needed`);
   }
   const compression = (await dir.loadValue('Compression')) ?? 1;
-  // What the library's decoders (and ours for LZW, see tiff_lzw.js) need to know of a block.
+  // The library undoes predictor 2 on samples of 8, 16 or 32 bits, all alike, and predictor 3
+  // (floating point) on whole bytes; anything else it throws on while decoding, after the field
+  // is allocated, or leaves as it is (garbage).
+  const predictor = (await dir.loadValue('Predictor')) || 1;
+  const alike = bits.every((b) => b === bits[0] && b % 8 === 0);
+  if (![1, 2, 3].includes(predictor)) fail(`unsupported TIFF predictor ${shown(predictor)}`);
+  if (predictor === 2 && !(alike && [8, 16, 32].includes(bits[0]))) fail(`unsupported TIFF: predictor 2 on ${bits.join('+')}-bit samples`);
+  if (predictor === 3 && !(alike && ((await dir.loadValue('SampleFormat'))?.[0] ?? 1) === 3)) {
+    fail('bad TIFF: predictor 3 is for floating-point samples');
+  }
+  // What the library's decoders (and ours, see tiff_lzw.js and tiff_deflate.js) need to know of a block.
   const decoderParameters = {
     tileWidth: blockWidth, tileHeight: blockHeight, planarConfiguration: planar, bitsPerSample: bits,
-    predictor: (await dir.loadValue('Predictor')) || 1, bytesPerPixel: pixelBits / 8,
+    predictor, bytesPerPixel: pixelBits / 8,
     samplesPerPixel: (await dir.loadValue('SamplesPerPixel')) ?? 1,
     JPEGTables: await dir.loadValue('JPEGTables'), LercParameters: await dir.loadValue('LercParameters'),
   };
@@ -139,4 +149,24 @@ function measurer({ compression, decoder }) {
   }
   // Any other codec the library knows: decode the block (one at a time) and measure it.
   return async (block) => (await decoder.decodeBlock(block.slice().buffer)).byteLength;
+}
+
+/**
+ * Block geometry for our decoders (LZW, deflate) when the library's own readRasters asks for it
+ * (its registry of decoders is global); strips never taller than the image.
+ */
+export async function decoderParametersOf(dir) {
+  const tiled = dir.hasTag('TileOffsets');
+  const imageHeight = await dir.loadValue('ImageLength');
+  const bits = Array.from(await dir.loadValue('BitsPerSample') ?? [1]);
+  const planar = (await dir.loadValue('PlanarConfiguration')) ?? 1;
+  return {
+    tileWidth: await dir.loadValue(tiled ? 'TileWidth' : 'ImageWidth'),
+    tileHeight: tiled ? await dir.loadValue('TileLength')
+      : Math.min(imageHeight, (await dir.loadValue('RowsPerStrip')) || imageHeight),
+    planarConfiguration: planar,
+    bitsPerSample: bits,
+    predictor: (await dir.loadValue('Predictor')) || 1,
+    bytesPerPixel: Math.ceil((planar === 2 ? bits[0] : bits.reduce((a, b) => a + b, 0)) / 8),
+  };
 }

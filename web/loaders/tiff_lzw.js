@@ -106,26 +106,6 @@ export function lzwLength(input, limit) {
   return Math.min(o, limit);
 }
 
-/**
- * Block geometry for the decoder when the library's readRasters uses it (the registry is global);
- * strips never taller than the image.
- */
-export async function lzwParameters(dir) {
-  const tiled = dir.hasTag('TileOffsets');
-  const imageHeight = await dir.loadValue('ImageLength');
-  const bits = Array.from(await dir.loadValue('BitsPerSample') ?? [1]);
-  const planar = (await dir.loadValue('PlanarConfiguration')) ?? 1;
-  return {
-    tileWidth: await dir.loadValue(tiled ? 'TileWidth' : 'ImageWidth'),
-    tileHeight: tiled ? await dir.loadValue('TileLength')
-      : Math.min(imageHeight, (await dir.loadValue('RowsPerStrip')) || imageHeight),
-    planarConfiguration: planar,
-    bitsPerSample: bits,
-    predictor: (await dir.loadValue('Predictor')) || 1,
-    bytesPerPixel: Math.ceil((planar === 2 ? bits[0] : bits.reduce((a, b) => a + b, 0)) / 8),
-  };
-}
-
 /** The library's decoder interface; parameters as tiff_blocks.js gives them (bytesPerPixel included). */
 export class TiffLzwDecoder extends BaseDecoder {
   decodeBlock(buffer) {
