@@ -10,6 +10,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, existsSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { createCore, CoreError } from '../../web/core/core.js';
+import { RANGES, defaultSettings, applyLodSettings } from '../../web/app/settings.js';
 
 const root = new URL('../../', import.meta.url);
 const fixtures = new URL('tests/fixtures/', root);
@@ -173,5 +174,21 @@ test('a scale that puts heights beyond 1e9 m is refused and the terrain stays', 
   assert.equal(terrain.heightAt(430, 300), height);
   assert.ok(Number.isNaN(terrain.heightAt(NaN, 300)), 'a NaN position has no height');
   assertUnchanged(terrain, before, 'scale');
+  terrain.destroy();
+});
+
+test("the page's setting ranges (web/app/settings.js) lie within what the core accepts, at both ends", async () => {
+  const terrain = await load('volcano_maungawhau');
+  terrain.resetMesh('exact');
+  let applied = 0;
+  for (const key of ['tau', 'budgetMs', 'maxOperations', 'maxTriangles', 'exaggeration']) {
+    for (const value of [RANGES[key].min, RANGES[key].max]) {
+      const settings = { ...defaultSettings(), [key]: value };
+      assert.doesNotThrow(() => applyLodSettings(terrain, settings), `${key} = ${value}`);
+      applied++;
+    }
+  }
+  assert.equal(applied, 10);
+  terrain.frame({ ...GOOD, eye: [430, 300, 900], target: [430, 120, 300], far: 1e5 });
   terrain.destroy();
 });
