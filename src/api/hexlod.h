@@ -84,7 +84,8 @@ typedef struct hexlod_settings {
     double vertical_scale;       /* heights are drawn times this, 0.001 to 1000 (0: 1) */
     double budget_ms;            /* time per LOD update, up to 60000 (0: no limit) */
     int32_t max_operations;      /* splits and merges per LOD update, >= 0 (0: no limit); every update makes progress */
-    int32_t max_triangles;       /* no split starts while more are drawn, >= 0 (0: no cap) */
+    int32_t max_triangles;       /* no split starts while more are drawn (one that started finishes the splits
+                                    the balance rule needs first, so the count may pass the cap by those), >= 0 (0: no cap) */
     int32_t auto_tau;            /* non-zero: tau rises while the cap or the time budget is exceeded and falls back (§6) */
     int32_t no_frustum_culling;  /* non-zero: cells outside the view are refined as inside */
     int32_t no_backface_culling; /* non-zero: no cone-of-normals culling (exact embedding, cells of up to 4096 samples) */

@@ -123,7 +123,7 @@ void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<in
         for (int32_t k = 0; k < merge.count; ++k) merge.vertices[k] = vertexMap[size_t(merge.vertices[k])];
     }
     // Cells queued for the next update; a freed cell is gone with its record.
-    for (std::vector<int32_t>* list : {&changes_, &fresh_, &mergeList_}) {
+    for (std::vector<int32_t>* list : {&changes_, &fresh_, &mergeList_, &capChains_}) {
         size_t kept = 0;
         for (int32_t c : *list)
             if (size_t(c) < cellMap.size() && cellMap[size_t(c)] != kNone) (*list)[kept++] = cellMap[size_t(c)];
@@ -139,7 +139,8 @@ void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<in
 size_t Refiner::memoryBytes() const {
     return cache_.memoryBytes() + records_.capacity() * sizeof(TestRecord) + state_.capacity() + summaries_.memoryBytes() +
            CameraOdometers::memoryBytes() +
-           (changes_.capacity() + fresh_.capacity() + looked_.capacity() + freedScratch_.capacity() + mergeList_.capacity() + mergeChanged_.capacity()) *
+           (changes_.capacity() + fresh_.capacity() + looked_.capacity() + freedScratch_.capacity() + mergeList_.capacity() + mergeChanged_.capacity() +
+            capChains_.capacity()) *
                sizeof(int32_t) +
            heap_.capacity() * sizeof(Candidate) + pending_.capacity() * sizeof(PendingMerge) + pyramid_.memoryBytes();
 }
@@ -631,10 +632,18 @@ bool Refiner::outOfBudget(double share) {
 // first), or, for a semi-hexagon, the join that the split of the cell across it would make.
 // A split keeps the split cell's record as the centre child (§4.1), so the bound it had is its
 // parent's now (§5.1: refinement data kept per centre vertex across levels).
+// Under a triangle cap, no split starts while the cap is reached, but one that started (a step
+// the balance rule needed first was taken) finishes: otherwise a merge that frees triangles
+// below the cap is undone by the balance step of a cell that then waits at the cap, and the
+// merge is wanted again (issue 29's teleports found the cycle under geomorphing: one split
+// and one merge of the same cell every update, never converged).
 bool Refiner::refineStep(int32_t c) {
     const Hexagon& h = mesh_->cell(c);
-    if (settings_.maxTriangles > 0 && mesh_->triangleCount() >= settings_.maxTriangles) return false;
+    const auto chain = std::find(capChains_.begin(), capChains_.end(), c);
+    const bool started = chain != capChains_.end();
+    if (settings_.maxTriangles > 0 && mesh_->triangleCount() >= settings_.maxTriangles && !started) return false;
     SplitStep step;
+    int32_t target = c; // the cell whose split refines c
     if (h.kind != CellKind::Semi) {
         if (!mesh_->canSplit(c)) return false;
         step = mesh_->firstStepToSplit(c);
@@ -642,13 +651,17 @@ bool Refiner::refineStep(int32_t c) {
         const int32_t across = h.opposite[wrapSlot(h.firstVisible + 3) - 1];
         if (across == kNone || mesh_->isLongEdge(across)) {
             if (!mesh_->join(c)) return false;
+            if (started) capChains_.erase(chain);
             noteChanges();
             return true;
         }
-        const int32_t other = hexIdx(across);
-        if (!mesh_->canSplit(other)) return false;
-        step = mesh_->firstStepToSplit(other);
+        target = hexIdx(across);
+        if (!mesh_->canSplit(target)) return false;
+        step = mesh_->firstStepToSplit(target);
     }
+    const bool last = step.kind == SplitStep::Split && step.cell == target; // c's own step: the chain ends
+    if (started && last) capChains_.erase(chain);
+    else if (!started && !last && settings_.maxTriangles > 0) capChains_.push_back(c);
     PackedBound kept;
     CellShape keptShape;
     const bool keep = step.kind == SplitStep::Split && cache_.hasOwn(step.cell);
@@ -777,6 +790,7 @@ bool Refiner::progressed() const { return operations_ > 0 || visits_ - visitsAtS
 void Refiner::restart() {
     for (const PendingMerge& merge : pending_) callOff(merge);
     pending_.clear();
+    capChains_.clear();
     sweepCursor_ = 0;
     noteChanges(false);
     fresh_.clear();
@@ -860,7 +874,10 @@ bool Refiner::drain() {
         const int32_t c = heap_.back().cell;
         const float pixels = heap_.back().pixels;
         heap_.pop_back();
-        if (!mesh_->isLive(c) || !(state_[size_t(c)] & kFailing)) continue; // stale: changed and re-tested since
+        if (!mesh_->isLive(c) || !(state_[size_t(c)] & kFailing)) { // stale: changed and re-tested since
+            if (!capChains_.empty()) capChains_.erase(std::remove(capChains_.begin(), capChains_.end(), c), capChains_.end());
+            continue;
+        }
         ++visits_;
         if (!refineStep(c)) {
             // Held back by the triangle cap: it waits (due again at the next update).

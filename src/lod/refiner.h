@@ -45,7 +45,7 @@ struct RefinerSettings {
     double verticalScale = 1.0;
     double budgetMs = 0.0;        // <= 0: no time limit
     int32_t maxOperations = 0;    // <= 0: no limit
-    int32_t maxTriangles = 0;     // <= 0: no cap (a cell failing under the cap waits; the update still converges)
+    int32_t maxTriangles = 0;     // <= 0: no cap (a cell failing under the cap waits, but a split that started finishes; the update still converges)
     bool autoTau = false;
     bool culling = true;          // frustum culling
     bool backfaceCulling = true;  // cone-of-normals culling (exact embedding, cells of up to 4096 samples)
@@ -209,6 +209,7 @@ private:
     std::vector<int32_t> changes_, fresh_; // the mesh's change log; the changed cells to retest, each once
     std::vector<int32_t> looked_;          // the cells around the changes that retestChanged looked at
     std::vector<int32_t> mergeChanged_;    // mergeNow's copy of the log of one merge
+    std::vector<int32_t> capChains_;       // failing cells whose split began under a triangle cap: it may finish (refineStep)
     std::vector<Candidate> heap_;     // failing cells, largest projected error on top
     std::vector<int32_t> mergeList_;  // cells whose merge is wanted (kept across updates when a budget stopped the coarsening)
     Geomorph* morph_ = nullptr;

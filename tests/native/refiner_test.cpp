@@ -371,11 +371,12 @@ TEST(Refiner, TheTriangleCapStopsSplittingAndAutoTauRaisesTau) {
     limited.settings().autoTau = true;
     limited.setView(viewOf(cam));
     for (int32_t n = 0; n < 200 && !limited.update().converged; ++n) {
-        // One split adds at most a ring's worth of triangles past the cap.
-        ASSERT_LE(capped.triangleCount(), uncapped / 4 + 64);
+        // A split adds at most a ring's worth of triangles (64), and one that started below the
+        // cap finishes the steps the balance rule needs first: a few rings' worth past the cap.
+        ASSERT_LE(capped.triangleCount(), uncapped / 4 + 256);
     }
     EXPECT_GT(limited.currentTau(), 1.0) << "auto tau raised tau while the cap held the mesh back";
-    EXPECT_LE(capped.triangleCount(), uncapped / 4 + 64);
+    EXPECT_LE(capped.triangleCount(), uncapped / 4 + 256);
     ASSERT_EQ(capped.checkInvariants(), nullptr);
 }
 
@@ -633,5 +634,37 @@ TEST(Refiner, ANearPlaneCloserThanTheMergeTestsDepthDoesNotMakeSplitsAndMergesCy
         EXPECT_TRUE(stats.converged) << k.what << ": " << stats.splits << " splits and " << stats.merges << " merges in update " << updates;
         ASSERT_EQ(lod.mesh.checkInvariants(), nullptr) << k.what;
         EXPECT_EQ(lod.refiner.update().operations, 0) << k.what << ": converged means nothing left to do";
+    }
+}
+
+TEST(Refiner, UnderATriangleCapWithGeomorphingAMergeIsNotUndoneByTheSplitItMadeRoomFor) {
+    // At the cap, a merge freed triangles, a waiting cell's balance step split the merged cell
+    // again, the cap stopped the waiting cell, and the merge was wanted again: one split and one
+    // merge every update, never converged (issue 29's teleports; these caps did it on the Grand
+    // Canyon). A split that started under the cap now finishes.
+    auto terrain = test::loadTerrain(test::kGrandCanyon);
+    ASSERT_NE(terrain, nullptr);
+    const Heightfield& f = terrain->field();
+    const double w = (f.width() - 1) * f.scale().spacingX, h = (f.height() - 1) * f.scale().spacingY;
+    for (const auto& [cam, cap] : {std::pair<int, int32_t>{0, 1500}, {1, 1969}, {3, 1606}, {4, 1719}}) {
+        const double ex = w * (0.2 + 0.12 * cam), ez = h * (0.9 - 0.1 * cam);
+        Camera c{{ex, f.heightAtPosition(ex, ez) + 100.0 + 200.0 * cam, ez}, {0.5 * w, f.heightAtPosition(0.5 * w, 0.4 * h), 0.4 * h}};
+        c.farPlane = 1e7;
+        ASSERT_EQ(terrain->resetMesh(Embedding::Exact), nullptr);
+        TerrainSettings settings;
+        settings.morphFrames = 4;
+        settings.lod.maxTriangles = cap;
+        terrain->configure(settings);
+        terrain->setView(viewOf(c));
+        int32_t updates = 0;
+        for (; updates < 300 && !terrain->converged(); ++updates) {
+            terrain->updateLod();
+            terrain->syncStream();
+        }
+        EXPECT_TRUE(terrain->converged()) << "camera " << cam << ", cap " << cap << ": " << terrain->refiner().lastUpdate().splits
+                                          << " splits and " << terrain->refiner().lastUpdate().merges << " merges in update " << updates;
+        ASSERT_EQ(terrain->mesh().checkInvariants(), nullptr);
+        EXPECT_LE(terrain->mesh().triangleCount(), cap + 256) << "a started split finishes: a few rings' worth past the cap at most";
+        EXPECT_EQ(terrain->updateLod().operations, 0) << "converged means nothing left to do";
     }
 }
