@@ -5,7 +5,7 @@
 // that replay it; it asserts nothing else (exit 1 when a check failed, 2 for a bad command line).
 //
 //   node bench/teleports.js [--teleports 10000] [--seed 1] [--converge-every 25] [--per-terrain 500]
-//                           [--fields a.png,b.f32,...] [--verbose]
+//                           [--fields a.png,b.f32,...] [--from INDEX] [--verbose]
 //
 // Each teleport puts the camera somewhere new, one of: inside the field's box (heights times
 // the vertical scale), far outside (up to a million field extents, or 5e11 m, away), below the ground,
@@ -27,7 +27,9 @@
 // unless a triangle cap holds cells back.
 // Terrains change every --per-terrain teleports (round robin over --fields); each segment
 // resets the mesh with a random embedding and random settings: tau, vertical scale, budget,
-// morph frames, layout, culling, normals, sometimes a triangle cap with auto tau.
+// morph frames, layout, culling, normals, sometimes a triangle cap with auto tau. Every random
+// choice is seeded by the seed and the teleport's (or segment's) index, and a segment starts
+// from a new mesh, so --from replays a failure from the start of its segment alone.
 import { performance } from 'node:perf_hooks';
 import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -45,9 +47,10 @@ const USAGE = `usage: node bench/teleports.js [options]
   --converge-every N   converge and check the error bound every N teleports (default 25; 0: never)
   --per-terrain N      teleports before the next terrain and settings (default 500)
   --fields A,B,...     height fields (default: the fixtures and the page's default terrain)
+  --from INDEX         start at the segment holding teleport INDEX (a replay; the same other options)
   --verbose            one line per teleport`;
 const OPTIONS = { teleports: 'string', seed: 'string', 'converge-every': 'string', 'per-terrain': 'string', fields: 'string',
-  verbose: 'boolean' };
+  from: 'string', verbose: 'boolean' };
 const MAX_CONVERGE_FRAMES = 2000;
 
 function parse(args) {
@@ -61,6 +64,7 @@ function parse(args) {
     seed: int('seed', 1, 0),
     convergeEvery: int('converge-every', 25, 0),
     perTerrain: int('per-terrain', 500, 1),
+    from: int('from', 0, 0),
     fields: values.fields ? values.fields.split(',').map((f) => (f.startsWith('/') ? f : join(process.cwd(), f))) : DEFAULT_FIELDS,
     verbose: Boolean(values.verbose),
   };
@@ -271,8 +275,9 @@ async function main() {
     return ok;
   };
 
-  for (let index = 0; index < teleports; index++) {
-    if (index > 0 && index % 500 === 0) {
+  const first = Math.floor(options.from / perTerrain) * perTerrain; // a segment starts from a new mesh
+  for (let index = first; index < teleports; index++) {
+    if (index > first && index % 500 === 0) {
       process.stderr.write(`teleports: ${index} of ${teleports}, ${failures.length} failures, ` +
         `${((performance.now() - started) / 60000).toFixed(1)} min\n`);
     }
@@ -359,7 +364,7 @@ async function main() {
   const totalMs = performance.now() - started;
 
   const rows = [
-    ['teleports', counts.teleports],
+    ['teleports', counts.teleports + (first > 0 ? ` (from ${first})` : '')],
     ['frames (LOD updates)', counts.frames],
     ['mesh invariant checks passed', counts.mesh],
     ['stream watertightness checks passed', counts.stream],
@@ -383,11 +388,11 @@ async function main() {
   console.log(`  kinds: ${KINDS.map((k) => `${k} ${byKind[k]}`).join(', ')}`);
   if (failures.length > 0) {
     const fields = options.fields === DEFAULT_FIELDS ? '' : ` --fields ${options.fields.join(',')}`;
-    console.log('\nfailures (replay: the same seed and fields, --teleports index + 1):');
+    console.log('\nfailures (replay: the same options, --from index --teleports index + 1):');
     for (const f of failures.slice(0, 50)) {
       console.log(`  teleport ${f.index} on ${f.terrain}, ${f.check}: ${f.message}`);
       console.log(`    node bench/teleports.js --seed ${seed} --per-terrain ${perTerrain} --converge-every ${convergeEvery}` +
-        ` --teleports ${f.index + 1}${fields}`);
+        ` --from ${f.index} --teleports ${f.index + 1}${fields}`);
       console.log(`    camera ${JSON.stringify(f.camera)}`);
     }
     return 1;
