@@ -62,7 +62,35 @@ function withTags(tiff, tags) {
 }
 
 const WIDTH = 256, HEIGHT = 257, ROWS_PER_STRIP = 278, TILE_WIDTH = 322, TILE_LENGTH = 323, GDAL_NODATA = 42113;
+const TILE_OFFSETS = 324, TILE_BYTE_COUNTS = 325;
 const SHORT = 3, SSHORT = 8;
+
+/**
+ * A sparse copy of a tiled TIFF (little-endian, LONG tile tables): declared `size` x `size`,
+ * its tile tables rewritten at the end of the file, the tiles at the new indices of `keep`
+ * (new index -> original tile index) pointing at the original's data, every other tile empty.
+ */
+function sparseTiles(tiff, tileSize, size, keep) {
+  const v = new DataView(tiff.buffer, tiff.byteOffset, tiff.byteLength), ifd = v.getUint32(4, true);
+  const tableOf = (tag) => {
+    for (let i = 0; i < v.getUint16(ifd, true); i++) {
+      const e = ifd + 2 + 12 * i;
+      if (v.getUint16(e, true) === tag) return v.getUint32(e + 8, true);
+    }
+    throw new Error(`no tag ${tag}`);
+  };
+  const offsetsAt = tableOf(TILE_OFFSETS), countsAt = tableOf(TILE_BYTE_COUNTS);
+  const tiles = (size / tileSize) ** 2;
+  const b = new Uint8Array(tiff.length + 8 * tiles);
+  b.set(tiff);
+  const out = new DataView(b.buffer);
+  for (const [index, original] of Object.entries(keep)) {
+    out.setUint32(tiff.length + 4 * index, v.getUint32(offsetsAt + 4 * original, true), true);
+    out.setUint32(tiff.length + 4 * (tiles + Number(index)), v.getUint32(countsAt + 4 * original, true), true);
+  }
+  return withTags(b, { [WIDTH]: { value: size }, [HEIGHT]: { value: size },
+    [TILE_OFFSETS]: { count: tiles, value: tiff.length }, [TILE_BYTE_COUNTS]: { count: tiles, value: tiff.length + 4 * tiles } });
+}
 
 // --- text ---------------------------------------------------------------------------------
 
@@ -110,6 +138,12 @@ write('everest_i16_strips_width_double_-200.tif', withTags(plainStrips, { [WIDTH
 write('everest_i16_strips_height_sshort_-200.tif', withTags(plainStrips, { [HEIGHT]: { type: SSHORT, value: -200 } }));
 write('everest_i16_strips_rows_per_strip_double_16.5.tif', withTags(plainStrips, { [ROWS_PER_STRIP]: { double: 16.5 } }));
 write('everest_i16_strips_nodata_short.tif', withTags(plainStrips, { [GDAL_NODATA]: { type: SHORT, count: 1, value: 7 } }));
+// Sparse (GDAL SPARSE_OK): an 8192 x 8192 raster of 64 x 64 tiles, 16 384 tile entries, and
+// data in one tile, or in two at opposite corners. Either was a 128 MiB field of a file of
+// 130 KB, all but a tile or two interpolated.
+const lastTile = (8192 / 64) ** 2 - 1;
+write('canyon_u16_tiled_deflate_sparse_8192_one_tile.tif', sparseTiles(deflateTiles, 64, 8192, { 300: 4 }));
+write('canyon_u16_tiled_deflate_sparse_8192_corners.tif', sparseTiles(deflateTiles, 64, 8192, { 0: 0, [lastTile]: 8 }));
 
 const asc = ascRows(new TextDecoder().decode(read('jacksboro_voids.asc')), 4);
 write('jacksboro_voids_4rows_1e999.asc', withLastRowValue(asc, 100, '1e999'));

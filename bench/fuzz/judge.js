@@ -60,8 +60,13 @@ function insanity(result, declared) {
   const { terrain, field } = result;
   const problems = [];
   if (!Number.isInteger(field.width) || !Number.isInteger(field.height) || field.width < 1 || field.height < 1) problems.push(`size ${field.width}x${field.height}`);
-  if (declared && (declared.width !== field.width || declared.height !== field.height)) {
-    problems.push(`size ${field.width}x${field.height}, declared ${declared.width}x${declared.height}`);
+  // A sparse TIFF loads as its data's extent: the raster it says it was cut from is the declared one, and holds it.
+  const whole = field.cropped ?? { column: 0, row: 0, width: field.width, height: field.height };
+  if (declared && (declared.width !== whole.width || declared.height !== whole.height)) {
+    problems.push(`size ${whole.width}x${whole.height}, declared ${declared.width}x${declared.height}`);
+  }
+  if (whole.column < 0 || whole.row < 0 || whole.column + field.width > whole.width || whole.row + field.height > whole.height) {
+    problems.push(`a ${field.width}x${field.height} field at ${whole.column},${whole.row} of a ${whole.width}x${whole.height} raster`);
   }
   if (terrain.width !== Math.max(field.width, 2) || terrain.height !== Math.max(field.height, 2)) problems.push(`terrain ${terrain.width}x${terrain.height} for a ${field.width}x${field.height} field`);
   if (!Number.isFinite(terrain.minHeight) || !Number.isFinite(terrain.maxHeight) || terrain.minHeight > terrain.maxHeight) {

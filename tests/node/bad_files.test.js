@@ -268,14 +268,26 @@ if (isMainThread) {
     adler[tile4 - 1] ^= 0xff;
     const [good, checked] = [await loadHeightfield([file('canyon_u16_tiled_deflate.tif')]), await loadHeightfield([{ name: 'a.tif', bytes: adler }])];
     assert.ok(good.samples.every((v, i) => v === checked.samples[i]), 'the same samples');
-    // A sparse file (empty blocks are no-data) with no block that is not empty.
+    // A sparse file (empty blocks are no-data): the field is the data's extent, its empty
+    // blocks inside filled; with no block that is not empty, nothing.
+    const whole = await loadHeightfield([file('everest_i16_strips.tif')]);
     const sparse = read(`${DIR}everest_i16_strips.tif`).slice(), pv = new DataView(sparse.buffer);
     const countsAt = tagValuesAt(sparse, 279);
-    for (let s = 0; s < 13; s++) pv.setUint32(countsAt + 4 * s, s === 5 ? 6400 : 0, true);
-    const strip5 = new Int16Array(sparse.slice(pv.getUint32(tagValuesAt(sparse, 273) + 4 * 5, true)).buffer, 0, 3200);
-    const voids = strip5.filter((v) => v === -32768).length;
-    assert.equal((await loadHeightfield([{ name: 'p.tif', bytes: sparse }])).missing, 200 * 200 - 3200 + voids, 'one strip of data, the rest filled');
-    for (let s = 0; s < 13; s++) pv.setUint32(countsAt + 4 * s, 0, true);
+    const keepStrips = (kept) => { for (let s = 0; s < 13; s++) pv.setUint32(countsAt + 4 * s, kept.includes(s) ? (s === 12 ? 3200 : 6400) : 0, true); };
+    keepStrips([5]);
+    const one = await loadHeightfield([{ name: 'p.tif', bytes: sparse }]);
+    assert.deepEqual([one.width, one.height, one.cropped], [200, 16, { column: 0, row: 80, width: 200, height: 200 }], 'strip 5 alone');
+    const raw = (strip) => new Int16Array(sparse.slice(pv.getUint32(tagValuesAt(sparse, 273) + 4 * strip, true)).buffer, 0, 3200);
+    const voids = raw(5).filter((v) => v === -32768).length;
+    assert.ok(voids > 0 && one.missing === voids, 'its voids filled');
+    assert.ok(one.samples.every((v, i) => v === whole.samples[80 * 200 + i] || raw(5)[i] === -32768), 'strip 5 as it is in the whole file');
+    keepStrips([3, 9]);
+    const two = await loadHeightfield([{ name: 'p.tif', bytes: sparse }]);
+    assert.deepEqual([two.width, two.height], [200, 7 * 16], 'strips 3 to 9');
+    const strip3 = raw(3);
+    assert.ok(two.samples.subarray(0, 3200).every((v, i) => v === whole.samples[48 * 200 + i] || strip3[i] === -32768), 'strip 3 first');
+    assert.ok(two.missing >= 5 * 3200, 'the empty strips between them filled');
+    keepStrips([]);
     assert.equal(await refused([{ name: 'p.tif', bytes: sparse }], 'p.tif', /^p\.tif: every strip is empty \(a sparse file with no data\): nothing to show$/), 0);
     // A strip cut short whose byte count was kept reads the directory's values as samples.
     const shifted = read(`${DIR}everest_i16_strips.tif`).slice(), sv = new DataView(shifted.buffer);
@@ -304,6 +316,9 @@ if (isMainThread) {
       [{ [NODATA]: { double: -32768 } }, /the no-data tag \(42113\) holds -32768, not the text of a number/]]) {
       await refused([{ name: 'n.tif', bytes: withTiffTags('everest_i16_strips.tif', tags) }], 'n.tif', problem);
     }
+    // Many values of another type (here the file's first 4000 bytes as doubles): the first few, and how many.
+    await refused([{ name: 'm.tif', bytes: withTiffTags('everest_i16_strips.tif', { [NODATA]: { type: 12, count: 500, value: 0 } }) }], 'm.tif',
+      /^m\.tif: bad TIFF: the no-data tag \(42113\) holds \[[^\]]{0,120}, … 500 values\], not the text of a number$/);
     // Text, as GDAL writes it: a number ("-32768" and its NUL), "nan"; not words. Each text is
     // appended to the file and the tag pointed at it.
     const nodataText = (value) => {

@@ -16,7 +16,7 @@ import { SampleSink, pacer } from './pacing.js';
 import { TiffLzwDecoder } from './tiff_lzw.js';
 import { TiffDeflateDecoder } from './tiff_deflate.js';
 import { readDirectory } from './tiff_directory.js';
-import { blockLayout, checkBlocks, decoderParametersOf } from './tiff_blocks.js';
+import { blockLayout, checkBlocks, dataExtent, decoderParametersOf } from './tiff_blocks.js';
 import { readBlocks } from './tiff_raster.js';
 
 // LZW and deflate through our decoders (see tiff_lzw.js, tiff_deflate.js).
@@ -66,16 +66,18 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   const sampleType = sampleTypeOf(format, bits);
   if (!sampleType) fail(`unsupported TIFF sample type: ${['', 'unsigned', 'signed', 'float'][format] ?? `format ${format}`} ${bits}-bit`);
   const nodata = parseNodata(await guard('bad TIFF no-data tag (42113)', () => dir.loadValue('GDAL_NODATA')), fail);
-  const geo = spacingOf(image, height);
 
   // Every strip or tile must hold what its geometry needs before memory is reserved.
   const layout = await guard('bad TIFF layout', () => blockLayout(image, directory, { width, height }, fail));
   await guard('bad TIFF image data', () => checkBlocks(image, layout, directory, bytes, fail, pacer(options.onCheckProgress)));
 
-  const sink = new SampleSink(allocate, sampleType, width, height, options);
-  await guard('corrupt image data', () => readBlocks(image, layout, bytes, sink, { format, bits, nodata }));
-  if (sampleType === 'f32') rejectInfinities(sink.samples, width, fail);
-  return { width, height, sampleType, samples: sink.samples, nodata, ...geo };
+  const extent = dataExtent(layout, { width, height }, fail);
+  const geo = spacingOf(image, extent.y + extent.height / 2);
+  const sink = new SampleSink(allocate, sampleType, extent.width, extent.height, options);
+  await guard('corrupt image data', () => readBlocks(image, layout, bytes, sink, extent, { format, bits, nodata }));
+  if (sampleType === 'f32') rejectInfinities(sink.samples, extent.width, fail);
+  const cropped = extent.cropped ? { column: extent.x, row: extent.y, width, height } : null;
+  return { width: extent.width, height: extent.height, sampleType, samples: sink.samples, nodata, cropped, ...geo };
 }
 
 /**
@@ -103,7 +105,7 @@ function sampleTypeOf(format, bits) {
 }
 
 /** Metres between columns and rows from the geotransform, or nulls without one. */
-function spacingOf(image, height) {
+function spacingOf(image, middleRow) {
   let resolution, origin;
   try {
     resolution = image.getResolution();
@@ -116,7 +118,7 @@ function spacingOf(image, height) {
   let keys = null;
   try { keys = image.getGeoKeys(); } catch { keys = null; }
   if (keys?.GTModelTypeGeoKey === GEOGRAPHIC_MODEL) {
-    const midLatitude = origin[1] + resolution[1] * (height / 2); // resolution[1] < 0: rows go south
+    const midLatitude = origin[1] + resolution[1] * middleRow; // resolution[1] < 0: rows go south
     return { ...degreesToMetres(rx, ry, Math.max(-90, Math.min(90, midLatitude))), geographic: true };
   }
   const unit = LINEAR_UNITS_M[keys?.ProjLinearUnitsGeoKey] ?? 1;

@@ -44,6 +44,9 @@ export const ACCEPT_EXTENSIONS = Object.keys(KIND_OF_EXTENSION).map((e) => `.${e
  *   are always no-data in addition. Missing samples are already filled (see `missing`).
  * @property {number} missing how many no-data samples were filled by interpolation
  * @property {string|null} encoding 'terrain-rgb' | 'terrarium' for encoded PNGs
+ * @property {{ column: number, row: number, width: number, height: number }|null} cropped for a
+ *   sparse GeoTIFF whose empty blocks surround its data: where the field starts in the file's
+ *   raster, and the raster's declared size; null when the field is the whole raster
  * @property {string} source file name of the height field
  * @property {'png'|'f32'|'raw'|'pgm'|'hgt'|'asc'|'geotiff'} format
  */
@@ -144,6 +147,7 @@ export async function loadHeightfield(files, options = {}) {
     nodata,
     missing,
     encoding: decoded.encoding ?? null,
+    cropped: decoded.cropped ?? null,
     source: main.name,
     format: main.kind,
   };

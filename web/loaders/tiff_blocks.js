@@ -109,9 +109,6 @@ export async function checkBlocks(image, layout, directory, bytes, fail, pace) {
     slices.push(bytes.subarray(offset, offset + count));
   }
 
-  // A sparse file's empty blocks are no-data (GDAL SPARSE_OK); with no other block it holds
-  // nothing, and would be refused only after its whole field was allocated.
-  if (slices.every((block) => block.length === 0)) fail(`every ${kind} is empty (a sparse file with no data): nothing to show`);
   const measure = measurer(layout);
   const full = blockWidth * blockHeight * bytesPerPixel;
   for (let i = 0; i < blocks; i++) {
@@ -131,6 +128,44 @@ export async function checkBlocks(image, layout, directory, bytes, fail, pace) {
     }
     await pace((i + 1) / blocks);
   }
+}
+
+// A sparse file (GDAL SPARSE_OK) may leave blocks empty: they are no-data. Its declared size is
+// then proven only where blocks hold data, so the field is the data's extent (the smallest
+// rectangle of blocks around every block that holds data), and that extent must be mostly data:
+// a file of a few real blocks spread over a huge declared raster would otherwise reserve memory
+// thousands of times its size and fill it by interpolating from almost nothing.
+export const SPARSE_MIN_SHARE = 1 / 16; // the least share of the extent's blocks that must hold data
+
+/**
+ * The part of the raster the field is made of: all of it, unless empty blocks of a sparse file
+ * lie around the data.
+ * @param {Awaited<ReturnType<typeof blockLayout>>} layout
+ * @param {{ width: number, height: number }} size the image size
+ * @param {(problem: string) => never} fail
+ * @returns {{ x: number, y: number, width: number, height: number, cropped: boolean }} in samples
+ */
+export function dataExtent({ tiled, blockWidth, blockHeight, counts, blocks }, { width, height }, fail) {
+  const kind = tiled ? 'tile' : 'strip';
+  const across = Math.ceil(width / blockWidth);
+  let minX = Infinity, minY = Infinity, maxX = -1, maxY = -1, withData = 0;
+  for (let i = 0; i < blocks; i++) {
+    if (counts[i] === 0) continue;
+    const bx = i % across, by = Math.floor(i / across);
+    minX = Math.min(minX, bx); maxX = Math.max(maxX, bx); minY = Math.min(minY, by); maxY = Math.max(maxY, by);
+    withData++;
+  }
+  if (withData === 0) fail(`every ${kind} is empty (a sparse file with no data): nothing to show`);
+  const inExtent = (maxX - minX + 1) * (maxY - minY + 1);
+  if (withData < inExtent * SPARSE_MIN_SHARE) {
+    fail(`too sparse to open: only ${withData} of the ${inExtent} ${kind}s around its data hold samples ` +
+      `(at least 1 in ${Math.round(1 / SPARSE_MIN_SHARE)} must); cut the area you need with gdal_translate -srcwin`);
+  }
+  const x = minX * blockWidth, y = minY * blockHeight;
+  const extent = {
+    x, y, width: Math.min(width, (maxX + 1) * blockWidth) - x, height: Math.min(height, (maxY + 1) * blockHeight) - y,
+  };
+  return { ...extent, cropped: extent.width !== width || extent.height !== height };
 }
 
 /**

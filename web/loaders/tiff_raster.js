@@ -22,24 +22,28 @@ const LITTLE_ENDIAN_HOST = new Uint8Array(new Uint16Array([1]).buffer)[0] === 1;
  * @param {import('geotiff').GeoTIFFImage} image
  * @param {Awaited<ReturnType<typeof import('./tiff_blocks.js').blockLayout>>} layout its blocks, checked
  * @param {Uint8Array} bytes the file
- * @param {import('./pacing.js').SampleSink} sink
+ * @param {import('./pacing.js').SampleSink} sink samples of the extent only
+ * @param {{ x: number, y: number, width: number, height: number }} extent the part of the image
+*   read (tiff_blocks.js dataExtent: whole blocks, except at the image's right and bottom edges)
  * @param {{ format: number, bits: number, nodata: number|null }} sample SampleFormat and
  *   BitsPerSample of the first sample; nodata fills a sparse file's empty blocks
  */
-export async function readBlocks(image, layout, bytes, sink, { format, bits, nodata }) {
+export async function readBlocks(image, layout, bytes, sink, extent, { format, bits, nodata }) {
   const { blockWidth, blockHeight, bytesPerPixel, offsets, counts, decoder } = layout;
-  const width = image.getWidth(), height = image.getHeight();
-  const across = Math.ceil(width / blockWidth), down = Math.ceil(height / blockHeight);
+  const across = Math.ceil(image.getWidth() / blockWidth);
+  const { width, height } = extent;
+  const firstX = extent.x / blockWidth, firstY = extent.y / blockHeight;
+  const acrossExtent = Math.ceil(width / blockWidth), downExtent = Math.ceil(height / blockHeight);
   const sampleBytes = bits / 8;
   // One sample a pixel in the file's byte order is a typed array; anything else goes sample by sample.
   const Typed = bytesPerPixel === sampleBytes && image.littleEndian === LITTLE_ENDIAN_HOST ? TYPED_ARRAYS[format][bits] : null;
   const getter = GETTERS[format][bits];
 
-  for (let by = 0; by < down; by++) {
+  for (let by = 0; by < downExtent; by++) {
     const y0 = by * blockHeight, rows = Math.min(blockHeight, height - y0);
-    for (let bx = 0; bx < across; bx++) {
+    for (let bx = 0; bx < acrossExtent; bx++) {
       const x0 = bx * blockWidth, cols = Math.min(blockWidth, width - x0);
-      const samples = sink.samples, i = by * across + bx;
+      const samples = sink.samples, i = (firstY + by) * across + firstX + bx;
       const offset = offsets[i], count = counts[i];
       if (count === 0) { // a sparse file's empty block (GDAL SPARSE_OK)
         for (let y = 0; y < rows; y++) samples.fill(nodata ?? 0, (y0 + y) * width + x0, (y0 + y) * width + x0 + cols);

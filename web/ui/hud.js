@@ -54,7 +54,8 @@ export class Hud {
     const spacing = field.spacingFromFile ? '' : ' (assumed: the file has none)';
     this.terrainName = field.source;
     this.info.textContent = [
-      `${field.source}  ${terrain.width} × ${terrain.height} ${field.sampleType}`,
+      `${field.source}  ${terrain.width} × ${terrain.height} ${field.sampleType}` +
+        (field.cropped ? ` (the data of a sparse ${field.cropped.width} × ${field.cropped.height})` : ''),
       `spacing ${terrain.spacingX.toFixed(1)} × ${terrain.spacingY.toFixed(1)} m${spacing}, ` +
         `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m, loaded in ${loadMs.toFixed(0)} ms`,
     ].join('\n');
