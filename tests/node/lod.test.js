@@ -133,7 +133,7 @@ test('every LOD setting reaches the core: vertical scale, culling, triangle cap 
   const base = terrain.meshStats().triangles;
   const stats = terrain.lodStats();
   assert.equal(stats.tau, 1);
-  assert.ok(stats.updateMs >= 0);
+  assert.ok(stats.updateMs > 0 && stats.updateMs < 60000, `the update was timed: ${stats.updateMs} ms`);
 
   terrain.setLodVerticalScale(3);
   converge(terrain);
