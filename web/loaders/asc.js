@@ -5,6 +5,7 @@
 
 import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, degreesToMetres } from './common.js';
 import { SampleSink, pacer } from './pacing.js';
+import { crsOfEpsg, makeGeoref, UNKNOWN_CRS } from './georef.js';
 
 const KEYS = ['ncols', 'nrows', 'xllcorner', 'xllcenter', 'yllcorner', 'yllcenter', 'cellsize', 'dx', 'dy', 'nodata_value'];
 
@@ -97,7 +98,13 @@ export async function decodeAsc(bytes, name, allocate, options = {}) {
   const geographic = dx <= 0.1 && dy <= 0.1 && x0 >= -180 && x0 + width * dx <= 360 &&
     y0 >= -90 && y0 + height * dy <= 90;
   const spacing = geographic ? degreesToMetres(dx, dy, y0 + (height * dy) / 2) : { spacingX: dx, spacingY: dy };
-  return { width, height, sampleType: 'f32', samples: sink.samples, nodata, ...spacing, geographic };
+  // The header places the south-west cell, by its corner or its centre; rows are written north first.
+  // An ASCII grid names no CRS (that is its .prj's job): degrees are taken as WGS 84, anything else is unknown.
+  const corner = header.xllcenter === undefined ? 0.5 : 0;
+  const georef = 'xllcorner' in header || 'xllcenter' in header
+    ? makeGeoref(geographic ? crsOfEpsg(4326) : UNKNOWN_CRS, x0 + corner * dx, y0 + corner * dy + (height - 1) * dy, dx, -dy, 'ASCII header')
+    : null;
+  return { width, height, sampleType: 'f32', samples: sink.samples, nodata, ...spacing, geographic, georef };
 }
 
 const LITTLE_ENDIAN_HOST = new Uint8Array(new Uint16Array([1]).buffer)[0] === 1;

@@ -18,6 +18,8 @@ import { TiffDeflateDecoder } from './tiff_deflate.js';
 import { readDirectory } from './tiff_directory.js';
 import { blockLayout, checkBlocks, dataExtent, decoderParametersOf } from './tiff_blocks.js';
 import { readBlocks } from './tiff_raster.js';
+import { georefOfTiff } from './tiff_georef.js';
+import { shiftGeoref } from './georef.js';
 
 // LZW and deflate through our decoders (see tiff_lzw.js, tiff_deflate.js).
 addDecoder(5, async () => TiffLzwDecoder, decoderParametersOf, false);
@@ -77,7 +79,8 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   await guard('corrupt image data', () => readBlocks(image, layout, bytes, sink, extent, { format, bits, nodata }));
   if (sampleType === 'f32') rejectInfinities(sink.samples, extent.width, fail);
   const cropped = extent.cropped ? { column: extent.x, row: extent.y, width, height } : null;
-  return { width: extent.width, height: extent.height, sampleType, samples: sink.samples, nodata, cropped, ...geo };
+  const georef = shiftGeoref(georefOfTiff(image), extent.x, extent.y);
+  return { width: extent.width, height: extent.height, sampleType, samples: sink.samples, nodata, cropped, georef, ...geo };
 }
 
 /**

@@ -5,18 +5,25 @@
 import { HeightfieldError, degreesToMetres, fileNameOf } from './common.js';
 import { SampleSink } from './pacing.js';
 import { copyRows } from './copy_rows.js';
+import { crsOfEpsg, makeGeoref } from './georef.js';
 
 export const HGT_VOID = -32768;
 const SIDES = [1201, 3601];
 
-/** Latitude of the south edge from a tile name like N27E086 / s12w077, or null (also for a
- *  name no tile has, such as N95E000, whose cosine would make the spacing absurd). */
-export function tileLatitude(name) {
+/** The south-west corner of a tile from its name like N27E086 / s12w077 ({ lat, lon } in
+ *  degrees), or null (also for a name no tile has, such as N95E000, whose cosine would make
+ *  the spacing absurd). */
+export function tileCorner(name) {
   const m = /^([NS])(\d{2})([EW])(\d{3})/i.exec(fileNameOf(name));
   if (!m) return null;
   const lat = m[1].toUpperCase() === 'N' ? Number(m[2]) : -Number(m[2]);
   const lon = m[3].toUpperCase() === 'E' ? Number(m[4]) : -Number(m[4]);
-  return lat >= -90 && lat <= 89 && lon >= -180 && lon <= 179 ? lat : null;
+  return lat >= -90 && lat <= 89 && lon >= -180 && lon <= 179 ? { lat, lon } : null;
+}
+
+/** Latitude of the south edge from a tile name, or null (see tileCorner). */
+export function tileLatitude(name) {
+  return tileCorner(name)?.lat ?? null;
 }
 
 /**
@@ -36,6 +43,9 @@ export async function decodeHgt(bytes, name, allocate, options = {}) {
   const { spacingX, spacingY } = degreesToMetres(step, step, south === null ? 0 : south + 0.5);
   const sink = new SampleSink(allocate, 'i16', side, side, options);
   await copyRows(bytes, 0, sink, side, side, false);
+  // Samples lie on whole arc-seconds, the first row on the tile's north edge, the first column on its west edge (WGS 84).
+  const corner = tileCorner(name);
+  const georef = corner && makeGeoref(crsOfEpsg(4326), corner.lon, corner.lat + 1, step, -step, 'tile name');
   return { width: side, height: side, sampleType: 'i16', samples: sink.samples, nodata: HGT_VOID,
-    spacingX, spacingY, spacingFromFile: south !== null };
+    spacingX, spacingY, spacingFromFile: south !== null, georef };
 }

@@ -12,7 +12,7 @@ import { decodePgm, hasPgmSignature } from './pgm.js';
 import { decodeHgt } from './hgt.js';
 import { decodeAsc, hasAscHeader } from './asc.js';
 import { decodeGeoTiff, hasTiffSignature } from './geotiff.js';
-import { parseSidecar } from './sidecar.js';
+import { parseSidecar, sidecarGeoref } from './sidecar.js';
 import { fillNodata } from './nodata.js';
 import { SampleSink } from './pacing.js';
 
@@ -44,6 +44,8 @@ export const ACCEPT_EXTENSIONS = Object.keys(KIND_OF_EXTENSION).map((e) => `.${e
  *   are always no-data in addition. Missing samples are already filled (see `missing`).
  * @property {number} missing how many no-data samples were filled by interpolation
  * @property {string|null} encoding 'terrain-rgb' | 'terrarium' for encoded PNGs
+ * @property {import('./georef.js').Georef|null} georef where the samples lie on the Earth (the
+ *   sidecar's crs and bounds, else the file's own), null when nothing says
  * @property {{ column: number, row: number, width: number, height: number }|null} cropped for a
  *   sparse GeoTIFF whose empty blocks surround its data: where the field starts in the file's
  *   raster, and the raster's declared size; null when the field is the whole raster
@@ -148,6 +150,7 @@ export async function loadHeightfield(files, options = {}) {
     missing,
     encoding: decoded.encoding ?? null,
     cropped: decoded.cropped ?? null,
+    georef: sidecarGeoref(sidecar, decoded.width, decoded.height) ?? decoded.georef ?? null,
     source: main.name,
     format: main.kind,
   };

@@ -1,8 +1,9 @@
 // The .json sidecar that travels with a height field (NAME.f32 + NAME.json,
 // optionally NAME.png + NAME.json). Only the fields the loaders use are read;
-// the rest (crs, bounds, licence, ...) is ignored.
+// the rest (licence, origin, ...) is ignored.
 
 import { HeightfieldError } from './common.js';
+import { crsOfEpsg, makeGeoref, parseEpsg, UNKNOWN_CRS } from './georef.js';
 
 /**
  * @typedef {object} Sidecar
@@ -14,6 +15,9 @@ import { HeightfieldError } from './common.js';
  * @property {number|null} spacingX metres between columns (cell_size_x_m, else cell_size_m), null if absent
  * @property {number|null} spacingY metres between rows (cell_size_y_m, else cell_size_m), null if absent
  * @property {number|null} nodata raw no-data value, if given
+ * @property {{ west: number, east: number, south: number, north: number }|null} bounds the
+ *   grid's outer cell edges in its CRS (`bounds`, `bounds_deg` or `bounds_epsgNNNN`), if given
+ * @property {import('./georef.js').Crs} crs from `crs` ("EPSG:32611 ..."), or unknown
  */
 
 /**
@@ -62,5 +66,37 @@ export function parseSidecar(bytes, name) {
     fail(`${spacingX === null ? 'cell_size_y_m' : 'cell_size_x_m'} given without ${spacingX === null ? 'cell_size_x_m' : 'cell_size_y_m'} or cell_size_m`);
   }
   const nodata = finite('nodata') ?? null;
-  return { name, width, height, min, max, spacingX, spacingY, nodata };
+  const epsg = parseEpsg(json.crs) ?? parseEpsg(json.epsg);
+  const boundsKeys = Object.keys(json).filter((key) => /^bounds(_deg|_epsg\d+)?$/i.test(key));
+  if (boundsKeys.length > 1) fail(`several bounds given (${boundsKeys.join(', ')}); keep the one in the grid's crs`);
+  const bounds = boundsKeys.length ? parseBounds(json[boundsKeys[0]], boundsKeys[0], fail) : null;
+  const keyEpsg = parseEpsg(boundsKeys[0]?.replace(/^bounds_epsg/i, 'EPSG:') ?? null);
+  if (epsg !== null && keyEpsg !== null && keyEpsg !== epsg) fail(`${boundsKeys[0]} is not in the crs (${json.crs})`);
+  const code = epsg ?? keyEpsg ?? (boundsKeys[0]?.toLowerCase() === 'bounds_deg' ? 4326 : null);
+  const crs = code === null ? UNKNOWN_CRS : crsOfEpsg(code);
+  return { name, width, height, min, max, spacingX, spacingY, nodata, bounds, crs };
+}
+
+/** A bounds object: four finite numbers, east of west and north of south. */
+function parseBounds(value, key, fail) {
+  if (value === null || typeof value !== 'object') fail(`${key} must be an object with west, east, south and north`);
+  const edges = {};
+  for (const edge of ['west', 'east', 'south', 'north']) {
+    if (typeof value[edge] !== 'number' || !Number.isFinite(value[edge])) fail(`${key}.${edge} must be a finite number (got ${JSON.stringify(value[edge])})`);
+    edges[edge] = value[edge];
+  }
+  if (!(edges.east > edges.west) || !(edges.north > edges.south)) fail(`${key}: east must lie east of west and north north of south`);
+  return edges;
+}
+
+/**
+ * The georeference a sidecar gives a width x height grid (north row first): its bounds are the
+ * outer edges of the outer cells, so sample centres lie half a cell inside.
+ * @returns {import('./georef.js').Georef|null}
+ */
+export function sidecarGeoref(sidecar, width, height) {
+  if (!sidecar?.bounds) return null;
+  const { west, east, south, north } = sidecar.bounds;
+  const dx = (east - west) / width, dy = -(north - south) / height;
+  return makeGeoref(sidecar.crs, west + dx / 2, north + dy / 2, dx, dy, 'sidecar');
 }
