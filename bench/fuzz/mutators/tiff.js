@@ -8,6 +8,7 @@ import { fixtureFile, grid } from '../fixtures.js';
 import {
   readTiff, writeTiff, buildTiff, setEntry, entryOf, values, compress, TYPES, TAGS, TYPE_SIZE,
 } from '../formats/tiff_file.js';
+import { inflateSync, constants } from 'node:zlib';
 import { nearSize, EDGE_UINTS, NUMBER_TEXTS } from '../values.js';
 
 export const extension = 'tif';
@@ -89,6 +90,23 @@ function valueFor(tag, m, r) {
  * alone: a tile at the image's edge is padded, and a cut may take only padding.
  */
 const stripped = (m) => !entryOf(m, TAGS.TileOffsets) && !entryOf(m, TAGS.TileWidth);
+/**
+ * True when a compressed block cut short still decodes to all it held: a cut of the zlib
+ * checksum, or of the last bits after the data, loses nothing (libtiff and we read the block
+ * whole). Deflate is inflated here to see; for LZW a cut of at most the end-of-information
+ * code's two bytes makes no claim either way.
+ */
+function stillWhole(m, whole, cut) {
+  const entry = entryOf(m, TAGS.Compression);
+  const compression = entry ? Number(values(m, entry)[0] ?? 1) : 1;
+  if (compression === 5) return whole.length - cut.length <= 2;
+  if (compression !== 8 && compression !== 32946) return false;
+  // zlib with a sync flush at the end gives what a cut stream holds instead of failing on it.
+  const inflated = (bytes) => {
+    try { return inflateSync(bytes, { finishFlush: constants.Z_SYNC_FLUSH }); } catch { return Buffer.alloc(0); }
+  };
+  return inflated(whole).equals(inflated(cut));
+}
 /** Tags that say how many bytes a strip needs: once one changes, no claim about a cut strip holds. */
 const GEOMETRY = [256, 257, 258, 259, 277, 278, 284, 317, 322, 323, 339];
 
@@ -130,7 +148,10 @@ const STEPS = [
     const op = r.pick(['cut', 'cut', 'flip', 'empty', 'drop', 'swap', 'pad']);
     if (!b) return null;
     // An empty block is a sparse one (GDAL's SPARSE_OK), read as no-data: no claim for those.
-    if (op === 'cut') { m.blocks[i] = b.slice(0, r.int(b.length)); m.invalid = stripped(m) && m.blocks[i].length > 0 && `strip ${i} was cut short`; }
+    if (op === 'cut') {
+      m.blocks[i] = b.slice(0, r.int(b.length));
+      m.invalid = stripped(m) && m.blocks[i].length > 0 && !stillWhole(m, b, m.blocks[i]) && `strip ${i} was cut short`;
+    }
     else if (op === 'flip') { const c = b.slice(); for (let k = r.range(1, 8); k > 0; k--) c[r.int(c.length)] ^= 1 << r.int(8); m.blocks[i] = c; }
     else if (op === 'empty') m.blocks[i] = new Uint8Array(0);
     else if (op === 'drop') { m.blocks.splice(i, 1); m.invalid = `block ${i} is missing`; }
