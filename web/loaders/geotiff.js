@@ -10,20 +10,15 @@
 // Spacing comes from the geotransform: metres (or feet) for projected grids, degrees for
 // geographic ones (EPSG:4326 and friends), turned into metres at the raster's mid latitude.
 
-import { fromArrayBuffer, addDecoder } from 'geotiff';
+import { fromArrayBuffer } from 'geotiff';
 import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, degreesToMetres, shown } from './common.js';
 import { SampleSink, pacer } from './pacing.js';
-import { TiffLzwDecoder } from './tiff_lzw.js';
-import { TiffDeflateDecoder } from './tiff_deflate.js';
+import './tiff_decoders.js';
 import { readDirectory } from './tiff_directory.js';
-import { blockLayout, checkBlocks, dataExtent, decoderParametersOf } from './tiff_blocks.js';
+import { blockLayout, checkBlocks, dataExtent } from './tiff_blocks.js';
 import { readBlocks } from './tiff_raster.js';
 import { georefOfTiff } from './tiff_georef.js';
 import { shiftGeoref } from './georef.js';
-
-// LZW and deflate through our decoders (see tiff_lzw.js, tiff_deflate.js).
-addDecoder(5, async () => TiffLzwDecoder, decoderParametersOf, false);
-addDecoder([8, 32946], async () => TiffDeflateDecoder, decoderParametersOf, false);
 
 const GEOGRAPHIC_MODEL = 2; // GTModelTypeGeoKey: 1 projected, 2 geographic
 const LINEAR_UNITS_M = { 9001: 1, 9002: 0.3048, 9003: 0.3048006096012192 }; // EPSG unit codes
