@@ -1,0 +1,85 @@
+// How an image is laid out on the GPU, decided from its size alone, before it is decoded:
+//   - an image no larger than MAX_TEXTURE_SIZE a side is one texture layer of its own size;
+//   - a larger one is cut into square tiles of MAX_TEXTURE_SIZE (layers of a texture array),
+//     each with an apron of APRON pixels copied from its neighbours, so that filtering and the
+//     first mip levels never read past a tile's edge (no seam); for the coarser levels, where
+//     a screen pixel spans more than the apron, the shader reads an overview of the whole
+//     image (at most OVERVIEW_MAX a side) instead.
+// And whether it fits: the GPU memory it takes (RGBA8 with mipmaps: 4/3 of 4 bytes a texel) is
+// checked against a budget, and the pixels the browser decodes at once against a cap, so that a
+// person hears "too big" before the tab runs out of memory.
+
+import { ImageError } from './image_error.js';
+
+export const APRON = 8;
+export const OVERVIEW_MAX = 2048;
+/** Pixels the browser may decode at once (PNG, JPEG, WebP are decoded whole): 1 GiB of RGBA. */
+export const MAX_DECODED_PIXELS = 2 ** 28;
+/** GPU memory an image may take, by default. */
+export const DEFAULT_BUDGET_BYTES = 1.5 * 2 ** 30;
+const MIPMAPPED = 4 / 3;
+
+/**
+ * @typedef {object} ImageTiling
+ * @property {number} width image pixels
+ * @property {number} height
+ * @property {number} tileWidth texels a layer (the image's own size when it is one layer)
+ * @property {number} tileHeight
+ * @property {number} apron pixels each tile repeats of its neighbours (0 for one layer)
+ * @property {number} stride image pixels between the starts of neighbouring tiles
+ * @property {number} tilesX
+ * @property {number} tilesY
+ * @property {{ width: number, height: number }|null} overview the whole image, smaller, for coarse views
+ * @property {number} gpuBytes tiles and overview, mipmaps included
+ */
+
+/**
+ * @param {number} width
+ * @param {number} height
+ * @param {{ maxTextureSize: number, maxLayers: number, budgetBytes?: number, wholeDecode: boolean, name: string }} limits
+ *   wholeDecode: the browser decodes the file in one piece (PNG, JPEG, WebP), not in bands (TIFF)
+ * @returns {ImageTiling}
+ * @throws {ImageError} when it does not fit
+ */
+export function planImageTiling(width, height, { maxTextureSize, maxLayers, budgetBytes = DEFAULT_BUDGET_BYTES, wholeDecode, name }) {
+  const size = `${width} × ${height}`;
+  const megapixels = (width * height) / 1e6;
+  const shrink = (factor) => `${Math.floor(width / factor)} × ${Math.floor(height / factor)}`;
+  if (wholeDecode && width * height > MAX_DECODED_PIXELS) {
+    const factor = Math.ceil(Math.sqrt((width * height) / MAX_DECODED_PIXELS));
+    throw new ImageError(name, `${size} pixels (${megapixels.toFixed(0)} Mpx) is more than the browser can decode at once ` +
+      `(${(MAX_DECODED_PIXELS / 1e6).toFixed(0)} Mpx); save it as a tiled GeoTIFF, read in bands, or at ${shrink(factor)} or less`);
+  }
+  let tiling;
+  if (width <= maxTextureSize && height <= maxTextureSize) {
+    tiling = { width, height, tileWidth: width, tileHeight: height, apron: 0, stride: Math.max(width, height), tilesX: 1, tilesY: 1, overview: null };
+  } else {
+    const tile = maxTextureSize, stride = tile - 2 * APRON;
+    const scale = Math.min(1, OVERVIEW_MAX / Math.max(width, height));
+    tiling = { width, height, tileWidth: tile, tileHeight: tile, apron: APRON, stride,
+      tilesX: Math.ceil(width / stride), tilesY: Math.ceil(height / stride),
+      overview: { width: Math.max(1, Math.round(width * scale)), height: Math.max(1, Math.round(height * scale)) } };
+  }
+  const layers = tiling.tilesX * tiling.tilesY;
+  tiling.gpuBytes = Math.round((layers * tiling.tileWidth * tiling.tileHeight + (tiling.overview ? tiling.overview.width * tiling.overview.height : 0)) * 4 * MIPMAPPED);
+  if (layers > maxLayers) {
+    throw new ImageError(name, `${size} pixels need ${layers} tiles of ${maxTextureSize}², more than this GPU's ${maxLayers}; ` +
+      `use an image of at most ${shrink(Math.sqrt(layers / maxLayers))}`);
+  }
+  if (tiling.gpuBytes > budgetBytes) {
+    const factor = Math.sqrt(tiling.gpuBytes / budgetBytes);
+    throw new ImageError(name, `${size} pixels need ${(tiling.gpuBytes / 2 ** 30).toFixed(1)} GB of GPU memory with mipmaps, ` +
+      `more than the ${(budgetBytes / 2 ** 30).toFixed(1)} GB an image may take; use one of at most ${shrink(factor)} ` +
+      `(e.g. gdal_translate -outsize ${Math.floor(100 / factor)}% ${Math.floor(100 / factor)}%)`);
+  }
+  return tiling;
+}
+
+/**
+ * The image pixels a tile holds, apron included (clipped to the image): [x0, y0, x1, y1).
+ * @param {ImageTiling} tiling
+ */
+export function tileSource(tiling, tx, ty) {
+  const x0 = tx * tiling.stride - tiling.apron, y0 = ty * tiling.stride - tiling.apron;
+  return [Math.max(0, x0), Math.max(0, y0), Math.min(tiling.width, x0 + tiling.tileWidth), Math.min(tiling.height, y0 + tiling.tileHeight)];
+}
