@@ -1,6 +1,6 @@
 // How an image is laid out on the GPU, decided from its size alone, before it is decoded:
 //   - an image no larger than MAX_TEXTURE_SIZE a side is one texture layer of its own size;
-//   - a larger one is cut into square tiles of MAX_TEXTURE_SIZE (layers of a texture array),
+//   - a larger one is cut into tiles of at most MAX_TEXTURE_SIZE (layers of a texture array),
 //     each with an apron of APRON pixels copied from its neighbours, so that filtering and the
 //     first mip levels never read past a tile's edge (no seam); for the coarser levels, where
 //     a screen pixel spans more than the apron, the shader reads an overview of the whole
@@ -26,7 +26,8 @@ const MIPMAPPED = 4 / 3;
  * @property {number} tileWidth texels a layer (the image's own size when it is one layer)
  * @property {number} tileHeight
  * @property {number} apron pixels each tile repeats of its neighbours (0 for one layer)
- * @property {number} stride image pixels between the starts of neighbouring tiles
+ * @property {number} strideX image pixels between the starts of neighbouring tiles, across
+ * @property {number} strideY and down
  * @property {number} tilesX
  * @property {number} tilesY
  * @property {{ width: number, height: number }|null} overview the whole image, smaller, for coarse views
@@ -52,18 +53,21 @@ export function planImageTiling(width, height, { maxTextureSize, maxLayers, budg
   }
   let tiling;
   if (width <= maxTextureSize && height <= maxTextureSize) {
-    tiling = { width, height, tileWidth: width, tileHeight: height, apron: 0, stride: Math.max(width, height), tilesX: 1, tilesY: 1, overview: null };
+    tiling = { width, height, tileWidth: width, tileHeight: height, apron: 0, strideX: width, strideY: height, tilesX: 1, tilesY: 1, overview: null };
   } else {
-    const tile = maxTextureSize, stride = tile - 2 * APRON;
+    // As few tiles as the limit allows, then as small as they can be: a 16384² image is 3 x 3
+    // tiles of 5478², not of 8192² (2.25 times the memory).
+    const most = maxTextureSize - 2 * APRON;
+    const tilesX = Math.ceil(width / most), tilesY = Math.ceil(height / most);
+    const strideX = Math.ceil(width / tilesX), strideY = Math.ceil(height / tilesY);
     const scale = Math.min(1, OVERVIEW_MAX / Math.max(width, height));
-    tiling = { width, height, tileWidth: tile, tileHeight: tile, apron: APRON, stride,
-      tilesX: Math.ceil(width / stride), tilesY: Math.ceil(height / stride),
+    tiling = { width, height, tileWidth: strideX + 2 * APRON, tileHeight: strideY + 2 * APRON, apron: APRON, strideX, strideY, tilesX, tilesY,
       overview: { width: Math.max(1, Math.round(width * scale)), height: Math.max(1, Math.round(height * scale)) } };
   }
   const layers = tiling.tilesX * tiling.tilesY;
   tiling.gpuBytes = Math.round((layers * tiling.tileWidth * tiling.tileHeight + (tiling.overview ? tiling.overview.width * tiling.overview.height : 0)) * 4 * MIPMAPPED);
   if (layers > maxLayers) {
-    throw new ImageError(name, `${size} pixels need ${layers} tiles of ${maxTextureSize}², more than this GPU's ${maxLayers}; ` +
+    throw new ImageError(name, `${size} pixels need ${layers} tiles (at most ${maxTextureSize}² each), more than this GPU's ${maxLayers}; ` +
       `use an image of at most ${shrink(Math.sqrt(layers / maxLayers))}`);
   }
   if (tiling.gpuBytes > budgetBytes) {
@@ -80,6 +84,6 @@ export function planImageTiling(width, height, { maxTextureSize, maxLayers, budg
  * @param {ImageTiling} tiling
  */
 export function tileSource(tiling, tx, ty) {
-  const x0 = tx * tiling.stride - tiling.apron, y0 = ty * tiling.stride - tiling.apron;
+  const x0 = tx * tiling.strideX - tiling.apron, y0 = ty * tiling.strideY - tiling.apron;
   return [Math.max(0, x0), Math.max(0, y0), Math.min(tiling.width, x0 + tiling.tileWidth), Math.min(tiling.height, y0 + tiling.tileHeight)];
 }
