@@ -12,7 +12,7 @@
 import { ImageError } from './image_error.js';
 
 export const APRON = 8;
-export const OVERVIEW_MAX = 2048;
+export const OVERVIEW_MAX = 4096;
 /** Pixels the browser may decode at once (PNG, JPEG, WebP are decoded whole): 1 GiB of RGBA. */
 export const MAX_DECODED_PIXELS = 2 ** 28;
 /** GPU memory an image may take, by default. */
@@ -60,7 +60,7 @@ export function planImageTiling(width, height, { maxTextureSize, maxLayers, budg
     const most = maxTextureSize - 2 * APRON;
     const tilesX = Math.ceil(width / most), tilesY = Math.ceil(height / most);
     const strideX = Math.ceil(width / tilesX), strideY = Math.ceil(height / tilesY);
-    const scale = Math.min(1, OVERVIEW_MAX / Math.max(width, height));
+    const scale = Math.min(1, Math.min(OVERVIEW_MAX, maxTextureSize) / Math.max(width, height));
     tiling = { width, height, tileWidth: strideX + 2 * APRON, tileHeight: strideY + 2 * APRON, apron: APRON, strideX, strideY, tilesX, tilesY,
       overview: { width: Math.max(1, Math.round(width * scale)), height: Math.max(1, Math.round(height * scale)) } };
   }
