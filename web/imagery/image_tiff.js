@@ -23,8 +23,9 @@ const BAND_PIXELS = 1 << 21;
  * @param {Uint8Array} bytes the file
  * @param {string} name for messages
  * @param {object} options
- * @param {(width: number, height: number) => void} options.begin called once, after the file has
- *   proven its size and before the first band (the caller checks it fits and reserves textures)
+ * @param {(width: number, height: number, georef: import('../loaders/georef.js').Georef|null) => void} options.begin
+ *   called once, after the file has proven its size and before the first band (the caller
+ *   checks that it fits and lies on the field, and reserves textures)
  * @param {(y: number, rows: number, rgba: Uint8Array) => void | Promise<void>} options.onBand
  *   rows y..y+rows-1 as RGBA, width * rows * 4 bytes (the array is the caller's to keep or drop)
  * @param {(fraction: number) => Promise<void>} [options.pace] between slices of work
@@ -67,7 +68,8 @@ export async function readTiffImage(bytes, name, { begin, onBand, pace = async (
   const layout = await guard('bad TIFF layout', () => blockLayout(image, directory, { width, height }, fail));
   await guard('bad TIFF image data', () => checkBlocks(image, layout, directory, bytes, fail, pace));
   const nodata = parseImageNodata(await tag('GDAL_NODATA'));
-  begin(width, height);
+  const georef = georefOfTiff(image);
+  begin(width, height, georef);
 
   const bandRows = Math.min(height, layout.blockHeight * Math.max(1, Math.round(BAND_PIXELS / width / layout.blockHeight)));
   for (let y = 0; y < height; y += bandRows) {
@@ -78,7 +80,7 @@ export async function readTiffImage(bytes, name, { begin, onBand, pace = async (
     await onBand(y, rows, toRgba(raster, channels, nodata));
     await pace((y + rows) / height);
   }
-  return { width, height, georef: georefOfTiff(image), kind, nodata };
+  return { width, height, georef, kind, nodata };
 }
 
 /** RGB or RGBA samples as RGBA; pixels whose colour samples all equal the no-data value are transparent. */

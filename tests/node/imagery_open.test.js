@@ -1,0 +1,70 @@
+// Opening an image to drape, end to end without a GPU (web/imagery/open_image.js with a
+// recording stand-in for the textures): what reaches the GPU, in what order, and that a refused
+// image reserves nothing.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { openImage } from '../../web/imagery/open_image.js';
+import { ImageError } from '../../web/imagery/image_error.js';
+import { crsOfEpsg, makeGeoref } from '../../web/loaders/georef.js';
+
+const DIR = new URL('../fixtures/imagery/', import.meta.url);
+const file = (name) => ({ name, blob: new Blob([readFileSync(new URL(name, DIR))]) });
+const text = (name, s) => ({ name, blob: new Blob([s]) });
+
+/** Records what the loader asks of the GPU. */
+function fakeGpu(maxTextureSize = 4096) {
+  const calls = [];
+  return {
+    calls,
+    limits: () => ({ maxTextureSize, maxLayers: 256 }),
+    begin: (tiling) => calls.push(['begin', tiling.tilesX, tiling.tilesY]),
+    uploadBand: (y, rows) => calls.push(['band', y, rows]),
+    uploadBitmap: async (bitmap) => calls.push(['bitmap', bitmap.width, bitmap.height]),
+    finish: () => calls.push(['finish']),
+    remove: () => calls.push(['remove']),
+  };
+}
+
+// A 10 m field in UTM 18N over the Haiti image's west half, and the Himalaya (EPSG:4326).
+const haitiField = { width: 150, height: 200, spacingX: 10, spacingY: 10, georef: makeGeoref(crsOfEpsg(32618), 792995, 2050377, 10, -10, 'GeoTIFF') };
+const himalaya = { width: 2048, height: 2048, spacingX: 806.9, spacingY: 926, georef: makeGeoref(crsOfEpsg(4326), 72.9375, 37.9125, 1 / 120, -1 / 120, 'sidecar') };
+
+test('a GeoTIFF image on a field in its CRS: bands to the GPU, then its description', async () => {
+  const gpu = fakeGpu();
+  const draped = await openImage(file('haiti_rgb_5m_tiled_deflate.tif'), null, haitiField, gpu);
+  assert.deepEqual(gpu.calls[0], ['begin', 1, 1]);
+  assert.deepEqual(gpu.calls.at(-1), ['finish']);
+  assert.equal(gpu.calls.filter((c) => c[0] === 'band').reduce((n, c) => n + c[2], 0), 403, 'every row once');
+  assert.equal(draped.metresPerPixel, 5);
+  assert.ok(draped.placement.coverage > 0.99, `the field lies inside the image (coverage ${draped.placement.coverage})`);
+  assert.equal(draped.note, null);
+});
+
+test('a JPEG with its world file on the default terrain, decoded by the browser', async () => {
+  const gpu = fakeGpu();
+  const draped = await openImage(file('bmng_himalaya_4arcmin.jpg'), file('bmng_himalaya_4arcmin.jgw'), himalaya, gpu,
+    { decodeBitmap: async () => ({ width: 256, height: 257, close() {} }) });
+  assert.deepEqual(gpu.calls, [['begin', 1, 1], ['bitmap', 256, 257]]);
+  assert.match(draped.note, /the image names no CRS: taken to be in EPSG:4326/);
+  assert.ok(draped.placement.coverage > 0.999);
+  assert.ok(draped.metresPerPixel > 6400 && draped.metresPerPixel < 6550, `${draped.metresPerPixel} m a pixel (1/15° at 29° N)`);
+});
+
+test('refused images reserve nothing: another CRS, off the field, too big, broken, a lying header', async () => {
+  const refused = async (image, world, field, gpu, problem, options) => {
+    await assert.rejects(openImage(image, world, field, gpu, options), (e) => e instanceof ImageError && problem.test(e.message));
+    assert.ok(!gpu.calls.some((c) => c[0] === 'begin') || gpu.calls.at(-1)[0] === 'remove', `nothing left reserved: ${JSON.stringify(gpu.calls)}`);
+  };
+  await refused(file('haiti_rgb_5m_tiled_deflate.tif'), null, himalaya, fakeGpu(), /in EPSG:32618 and the terrain in EPSG:4326/);
+  await refused(file('bmng_everest_4arcmin.jpg'), file('bmng_everest_4arcmin.jgw'), haitiField, fakeGpu(), /lies outside the terrain/,
+    { decodeBitmap: async () => ({ width: 26, height: 26, close() {} }) });
+  await refused(file('haiti_rgb_5m_tiled_deflate.tif'), null, haitiField, fakeGpu(), /more than the 0\.0 GB an image may take/, { budgetBytes: 1000 });
+  await refused(text('broken.jpg', new Uint8Array([0xff, 0xd8, 0xff, 0xe0, 0, 16, 1, 2, 3])), null, himalaya, fakeGpu(), /^broken\.jpg: /);
+  await refused(file('bmng_himalaya_4arcmin.jpg'), text('bmng_himalaya_4arcmin.jgw', '1\n0\n0\n-1\nx\n0\n'), himalaya, fakeGpu(),
+    /^bmng_himalaya_4arcmin\.jgw: line 5: "x" is not a number/);
+  await refused(file('bmng_himalaya_4arcmin.jpg'), file('bmng_himalaya_4arcmin.jgw'), himalaya, fakeGpu(), /its header says 256 × 257 but it decodes to 10 × 10/,
+    { decodeBitmap: async () => ({ width: 10, height: 10, close() {} }) });
+  await refused(file('bmng_himalaya_4arcmin.jpg'), null, himalaya, fakeGpu(), /the browser cannot decode it \(EncodingError: bad data\)/,
+    { decodeBitmap: async () => { throw new Error('EncodingError: bad data'); } });
+});

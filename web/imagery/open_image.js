@@ -1,0 +1,109 @@
+// Opening an image to drape, from its file (and world file) to textures on the GPU:
+//   header -> size and kind -> the tiling and whether it fits (before decoding) -> the
+//   georeference (GeoTIFF tags or world file) -> its place on the field (refused when it misses
+//   it or is in another CRS) -> decode (the browser's for PNG, JPEG, WebP; bands for GeoTIFF)
+//   into the textures.
+// Nothing of the image shown before is touched until the new one has proven it fits and lies on
+// the field; a failure after that (a corrupt band) removes the half-made textures, and the
+// caller shows the image it had, if it keeps one, or none.
+
+import { degreesToMetres } from '../loaders/common.js';
+import { readImageHeader, HEADER_BYTES } from './image_header.js';
+import { planImageTiling } from './image_tiling.js';
+import { parseWorldFile } from './world_file.js';
+import { placeImage } from './placement.js';
+import { readTiffImage } from './image_tiff.js';
+import { ImageError } from './image_error.js';
+
+/**
+ * @typedef {object} DrapedImage
+ * @property {string} name
+ * @property {number} width pixels
+ * @property {number} height
+ * @property {import('./placement.js').Placement} placement
+ * @property {number|null} metresPerPixel across, on the ground (null when stretched over a field without spacing)
+ * @property {number} gpuBytes
+ * @property {string|null} note what the status line should say (stretched, CRS assumed)
+ */
+
+/**
+ * @param {{ name: string, blob: Blob }} image the image file
+ * @param {{ name: string, blob: Blob }|null} worldFile
+ * @param {{ width: number, height: number, spacingX: number, spacingY: number, georef: object|null }} field
+ * @param {object} gpu the textures (render/shading/image_textures.js): limits(), begin(tiling),
+ *   uploadBitmap(bitmap), uploadBand(y, rows, rgba), finish(), remove()
+ * @param {{ budgetBytes?: number, pace?: (fraction: number) => Promise<void>, decodeBitmap?: (blob: Blob) => Promise<ImageBitmap> }} [options]
+ * @returns {Promise<DrapedImage>}
+ * @throws {ImageError}
+ */
+export async function openImage(image, worldFile, field, gpu, options = {}) {
+  const { name, blob } = image;
+  if (blob.size === 0) throw new ImageError(name, 'empty file');
+  const head = new Uint8Array(await blob.slice(0, HEADER_BYTES).arrayBuffer());
+  const header = readImageHeader(head, name);
+  const worldGeoref = worldFile ? parseWorldFile(new Uint8Array(await worldFile.blob.arrayBuffer()), worldFile.name) : null;
+  const limits = { ...gpu.limits(), budgetBytes: options.budgetBytes, name };
+
+  if (header.format === 'tiff') {
+    const bytes = new Uint8Array(await blob.arrayBuffer());
+    let placement = null, tiling = null, begun = false;
+    try {
+      const info = await readTiffImage(bytes, name, {
+        pace: options.pace,
+        begin: (width, height, georef) => {
+          tiling = planImageTiling(width, height, { ...limits, wholeDecode: false });
+          placement = placeImage(field, { name, width, height, georef: worldGeoref ?? georef });
+          gpu.begin(tiling);
+          begun = true;
+        },
+        onBand: (y, rows, rgba) => gpu.uploadBand(y, rows, rgba),
+      });
+      gpu.finish();
+      return described(name, info.width, info.height, worldGeoref ?? info.georef, placement, tiling, field);
+    } catch (error) {
+      if (begun) gpu.remove();
+      throw error;
+    }
+  }
+
+  const tiling = planImageTiling(header.width, header.height, { ...limits, wholeDecode: true });
+  const placement = placeImage(field, { name, width: header.width, height: header.height, georef: worldGeoref });
+  let bitmap;
+  try {
+    bitmap = await (options.decodeBitmap ?? decodeBitmap)(blob);
+  } catch (e) {
+    throw new ImageError(name, `the browser cannot decode it (${String(e?.message ?? e).split('\n')[0].slice(0, 100)})`);
+  }
+  try {
+    if (bitmap.width !== header.width || bitmap.height !== header.height) {
+      throw new ImageError(name, `its header says ${header.width} × ${header.height} but it decodes to ${bitmap.width} × ${bitmap.height}`);
+    }
+    gpu.begin(tiling);
+    await gpu.uploadBitmap(bitmap);
+  } catch (error) {
+    gpu.remove();
+    throw error instanceof ImageError ? error : new ImageError(name, `could not be put on the GPU (${String(error?.message ?? error).slice(0, 100)})`);
+  } finally {
+    bitmap.close?.();
+  }
+  return described(name, header.width, header.height, worldGeoref, placement, tiling, field);
+}
+
+/** The browser's decoder, off the main thread, with the image's EXIF orientation applied. */
+function decodeBitmap(blob) {
+  return createImageBitmap(blob, { imageOrientation: 'from-image', premultiplyAlpha: 'none', colorSpaceConversion: 'default' });
+}
+
+function described(name, width, height, georef, placement, tiling, field) {
+  let metresPerPixel = null;
+  if (placement.how === 'georeferenced' && georef) {
+    // An image that names no CRS is in the field's (placement.js).
+    const geographic = georef.crs.epsg === null ? field.georef?.crs.geographic : georef.crs.geographic;
+    metresPerPixel = geographic
+      ? degreesToMetres(georef.dx, Math.abs(georef.dy), georef.y0 + (georef.dy * height) / 2).spacingX
+      : georef.dx;
+  } else if (field.spacingX > 0) {
+    metresPerPixel = (field.spacingX * (field.width - 1)) / width;
+  }
+  return { name, width, height, placement, metresPerPixel, gpuBytes: tiling.gpuBytes, note: placement.note };
+}
