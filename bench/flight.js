@@ -10,8 +10,8 @@ import {
   UsageError, parseOptions, parseNumber, parseViewport, parseCellSize, parseEmbedding, loadForCommand,
   FILE_OPTIONS, FILE_USAGE, parseFileOptions,
   extentOf, cameraFor, quantile, round,
-} from '../bin/cli_common.js';
-import { decodeFans } from '../bin/mesh_export.js';
+} from '../lib/cli_common.js';
+import { decodeFans } from '../lib/mesh_export.js';
 import { STREAM_VERTEX_BYTES, STREAM_VERTEX_WORDS } from '../web/core/core.js';
 import { gridMeshError, padToPowerOfTwoPlusOne } from './rtin_error.js';
 import { seededRandom } from '../web/app/seeded_random.js';

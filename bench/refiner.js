@@ -24,7 +24,7 @@ import { spawnSync } from 'node:child_process';
 import { tmpdir, cpus } from 'node:os';
 import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { loadForCommand, extentOf } from '../bin/cli_common.js';
+import { loadForCommand, extentOf } from '../lib/cli_common.js';
 import { flightPath, heightsInMetres } from './flight.js';
 
 const root = fileURLToPath(new URL('../', import.meta.url));

@@ -38,8 +38,8 @@ import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { setFlagsFromString } from 'node:v8';
 import { runInNewContext } from 'node:vm';
-import { UsageError, parseOptions, parseNumber, readInputs, loadFiles, extentOf } from '../bin/cli_common.js';
-import { createNodeCore } from '../bin/node_core.js';
+import { UsageError, parseOptions, parseNumber, readInputs, loadFiles, extentOf } from '../lib/cli_common.js';
+import { createNodeCore } from '../lib/node_core.js';
 import { seededRandom } from '../web/app/seeded_random.js';
 
 const root = fileURLToPath(new URL('../', import.meta.url));

@@ -33,8 +33,8 @@
 import { performance } from 'node:perf_hooks';
 import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { UsageError, parseOptions, parseNumber, readInputs, loadFiles, extentOf } from '../bin/cli_common.js';
-import { createNodeCore } from '../bin/node_core.js';
+import { UsageError, parseOptions, parseNumber, readInputs, loadFiles, extentOf } from '../lib/cli_common.js';
+import { createNodeCore } from '../lib/node_core.js';
 import { CoreError, FRAME } from '../web/core/core.js';
 import { seededRandom } from '../web/app/seeded_random.js';
 

@@ -4,7 +4,7 @@ import { createServer } from 'vite';
 import { startStaticSite } from './static_site.js';
 import { decode } from 'fast-png';
 import { mkdirSync } from 'node:fs';
-import { freePort, launchChromium } from '../../bin/chromium.js';
+import { freePort, launchChromium } from '../../lib/chromium.js';
 import { fileURLToPath } from 'node:url';
 
 export const projectDir = fileURLToPath(new URL('../..', import.meta.url));

@@ -14,8 +14,8 @@ import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { decode } from 'fast-png';
-import { readPng, writePng } from '../../bin/regress_compare.js';
-import { startBrowser } from '../../bin/regress_browser.js';
+import { readPng, writePng } from '../../lib/regress_compare.js';
+import { startBrowser } from '../../lib/regress_browser.js';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
 const flights = join(root, 'tests/regress/flights');

@@ -10,7 +10,7 @@ import { copyFileSync, existsSync, lstatSync, mkdirSync, mkdtempSync, readdirSyn
   statSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
-import { freePort, launchChromium } from '../../bin/chromium.js';
+import { freePort, launchChromium } from '../../lib/chromium.js';
 import { openPage, outDir, pixelStats, pageReady, projectDir } from './harness.js';
 
 let tree; // the copy of the repository

@@ -16,7 +16,7 @@ import { deflateRawSync, constants as zlibConstants } from 'node:zlib';
 import { loadHeightfield, HeightfieldError } from '../../web/loaders/index.js';
 import { checkSize } from '../../web/loaders/common.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
-import { createNodeCore } from '../../bin/node_core.js';
+import { createNodeCore } from '../../lib/node_core.js';
 import { seededRandom } from '../../web/app/seeded_random.js';
 
 const ROOT = new URL('../../', import.meta.url);
