@@ -25,7 +25,7 @@ import { tmpdir, cpus } from 'node:os';
 import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { loadForCommand, extentOf } from '../lib/cli_common.js';
-import { flightPath, heightsInMetres } from './flight.js';
+import { flightPath, heightsInMetres } from '../lib/bench_flight.js';
 
 const root = fileURLToPath(new URL('../', import.meta.url));
 // HEXLOD_BENCH: another build of the benchmark (e.g. a copy of the one before a change).
