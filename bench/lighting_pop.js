@@ -12,7 +12,7 @@
 // by more than 16 levels, and the mean change per pixel and frame.
 //   node bench/lighting_pop.js [--frames 40] [--size 480x270]
 import { decode } from 'fast-png';
-import { startViewer, openPage } from '../tests/browser/harness.js';
+import { startViewer, openPage } from '../lib/page_harness.js';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => { const k = args.indexOf(`--${name}`); return k >= 0 ? args[k + 1] : fallback; };

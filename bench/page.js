@@ -7,7 +7,7 @@
 // TRIANGLES list. WebGL2 runs on SwiftShader (the CPU) here, so draw times are the CPU
 // rasteriser's; the ratios are what carries over. It prints figures and asserts nothing.
 import { parseArgs } from 'node:util';
-import { startViewer, openPage } from '../tests/browser/harness.js';
+import { startViewer, openPage } from '../lib/page_harness.js';
 
 const USAGE = `usage: node bench/page.js [--viewport WxH] [--frames N] [--draws N]
   --viewport WxH  page size in CSS pixels (default 1280x720)

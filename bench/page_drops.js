@@ -16,7 +16,7 @@
 // Usage: node bench/page_drops.js [--drops N]   (headless Chromium, SwiftShader, 320 x 200)
 import { readFileSync } from 'node:fs';
 import { crc32 } from 'node:zlib';
-import { startViewer, openPage, dropFiles, drawFrames, projectDir } from '../tests/browser/harness.js';
+import { startViewer, openPage, dropFiles, drawFrames, projectDir } from '../lib/page_harness.js';
 
 const args = process.argv.slice(2);
 const DROPS = Number(args[args.indexOf('--drops') + 1]) || 100;

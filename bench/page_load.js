@@ -8,7 +8,7 @@
 import { mkdirSync, openSync, writeSync, writeFileSync, closeSync, readFileSync, rmSync } from 'node:fs';
 import { execFileSync } from 'node:child_process';
 import { decode } from 'fast-png';
-import { startViewer, openPage, projectDir } from '../tests/browser/harness.js';
+import { startViewer, openPage, projectDir } from '../lib/page_harness.js';
 
 const args = process.argv.slice(2);
 const runs = Number(args[args.indexOf('--runs') + 1]) || 3;

@@ -7,7 +7,7 @@
 // Also prints the core's share (LOD update and fan stream) of the same frames.
 // --modes lists more modes to compare (web/app/settings.js SHADING_MODES); the ratio is of the first two.
 //   node bench/shading.js [--frames 20] [--size 640x360] [--modes natural,plain,hillshade]
-import { startViewer, openPage } from '../tests/browser/harness.js';
+import { startViewer, openPage } from '../lib/page_harness.js';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => { const k = args.indexOf(`--${name}`); return k >= 0 ? args[k + 1] : fallback; };

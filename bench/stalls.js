@@ -9,7 +9,7 @@
 // With --timing the page waits for the GPU after drawing (?timing=1, gl.finish), so that the
 // drawing's share includes SwiftShader's rasterisation.
 //   node bench/stalls.js [--seconds 12] [--sizes 480x300,960x600] [--timing]
-import { startViewer, openPage } from '../tests/browser/harness.js';
+import { startViewer, openPage } from '../lib/page_harness.js';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => { const k = args.indexOf(`--${name}`); return k >= 0 ? args[k + 1] : fallback; };

@@ -8,7 +8,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { startViewer, pageReady, terrainCoverage, dropFiles, terrainShown, nextFrame, outDir, projectDir } from './harness.js';
+import { startViewer, pageReady, terrainCoverage, dropFiles, terrainShown, nextFrame, outDir, projectDir } from '../../lib/page_harness.js';
 
 const VIEWPORT = { width: 480, height: 300 };
 const fixture = (name) => ({ name, bytes: readFileSync(`${projectDir}tests/fixtures/${name}`) });

@@ -7,7 +7,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync, existsSync, mkdirSync } from 'node:fs';
 import { decode } from 'fast-png';
-import { startViewer, openPage, outDir, projectDir } from './harness.js';
+import { startViewer, openPage, outDir, projectDir } from '../../lib/page_harness.js';
 
 const SIZE = { width: 480, height: 270 };
 const REFERENCES = `${projectDir}tests/fixtures/reference/`;

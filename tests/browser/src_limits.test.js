@@ -9,7 +9,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { createServer } from 'node:http';
 import { readFileSync } from 'node:fs';
-import { startViewer, openPage, dropFiles, terrainShown, outDir, projectDir } from './harness.js';
+import { startViewer, openPage, dropFiles, terrainShown, outDir, projectDir } from '../../lib/page_harness.js';
 
 const VIEWPORT = { width: 480, height: 300 };
 const FIXTURES = `${projectDir}tests/fixtures/`;

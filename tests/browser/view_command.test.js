@@ -11,7 +11,7 @@ import { copyFileSync, existsSync, lstatSync, mkdirSync, mkdtempSync, readdirSyn
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { freePort, launchChromium } from '../../lib/chromium.js';
-import { openPage, outDir, pixelStats, pageReady, projectDir } from './harness.js';
+import { openPage, outDir, pixelStats, pageReady, projectDir } from '../../lib/page_harness.js';
 
 let tree; // the copy of the repository
 const servers = new Set(); // `view` processes still running, stopped in after() if a test failed

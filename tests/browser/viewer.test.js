@@ -2,7 +2,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { decode } from 'fast-png';
-import { startViewer, openPage, outDir, pixelStats, skyFromTop, pageReady, nextFrame } from './harness.js';
+import { startViewer, openPage, outDir, pixelStats, skyFromTop, pageReady, nextFrame } from '../../lib/page_harness.js';
 
 let viewer;
 before(async () => { viewer = await startViewer(); });
