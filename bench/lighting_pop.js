@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Lighting pops (issue 14): the largest per-pixel change of the lighting between consecutive
+// Lighting pops: the largest per-pixel change of the lighting between consecutive
 // frames while the mesh refines under a slow flight, with the mesh's normals (paper §7: averaged
 // from the adjacent triangles, so every split and merge changes them at once) and with the
 // normals of the full-resolution field (a texture; the mesh does not change them).

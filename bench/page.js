@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Benchmark of the page in headless Chromium (issue 5's figures): per frame the core's LOD
+// Benchmark of the page in headless Chromium: per frame the core's LOD
 // update, the stream update, the upload and the draw (waited for with a one-pixel readPixels,
 // ?timing=1), the interval between animation frames (what a person sees)
 // along a scripted flight over the default terrain, the bytes uploaded per frame, and the

@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Page soak (issue 29): 100 files dropped on the page in a row, good and bad alternating (the
+// Page soak: 100 files dropped on the page in a row, good and bad alternating (the
 // format fixtures, and broken copies of them: truncated, empty, garbage, a lone sidecar, a PNG
 // that declares 100000 x 100000 samples). After each drop has ended (shown, or refused with
 // its message) and a few frames are drawn, the page's memory is read:

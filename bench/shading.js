@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Frame time of the full shading (issue 14: scattering, field normals, shadows, AO, procedural
+// Frame time of the full shading (scattering, field normals, shadows, AO, procedural
 // ground, sky, tone mapping) against the plain one (the former Lambert shading with mesh
 // normals and a clear colour), as a ratio from one headless run. The page waits for the GPU
 // after drawing (?timing=1), so drawMs includes SwiftShader's rasterisation. The view holds

@@ -1,6 +1,6 @@
 #!/usr/bin/env node
-// Frame stalls during a scripted flight in headless Chromium (issue 6's goal: none over
-// 100 ms after load). Opens the page on the default terrain, waits until it is ready (not
+// Frame stalls during a scripted flight in headless Chromium (the goal: none over 100 ms
+// after load). Opens the page on the default terrain, waits until it is ready (not
 // converged: the flight starts while the mesh still refines), flies the fly camera low over the
 // Himalaya for a fixed time, and reports from the page's requestAnimationFrame timestamps the
 // longest frame-to-frame interval and how many exceeded 100 ms, with the core's share (LOD

@@ -1,4 +1,4 @@
-// ?src=URL has limits (issue 29): a time limit without progress, a size cap checked against
+// ?src=URL has limits: a time limit without progress, a size cap checked against
 // Content-Length before the body and while it streams, a Cancel button, and a file the user
 // opens meanwhile wins over a late answer. The address bar names a src only while its terrain
 // is on screen, and a cross-origin file's NAME.json comes from beside it. The data comes from

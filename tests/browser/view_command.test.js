@@ -1,4 +1,4 @@
-// `./hexlod.sh view` as a person runs it in a fresh clone (issue 34): it builds only the page's
+// `./hexlod.sh view` as a person runs it in a fresh clone: it builds only the page's
 // WebAssembly module, and what it serves draws the default terrain. Runs in a copy of the
 // repository's files with no build/ or dist/, so a file the page needs and the reduced build
 // misses fails here.
