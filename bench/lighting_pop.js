@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Lighting pops (issue 14): the largest per-pixel change of the lighting between consecutive
+// Lighting pops: the largest per-pixel change of the lighting between consecutive
 // frames while the mesh refines under a slow flight, with the mesh's normals (paper §7: averaged
 // from the adjacent triangles, so every split and merge changes them at once) and with the
 // normals of the full-resolution field (a texture; the mesh does not change them).
@@ -12,7 +12,7 @@
 // by more than 16 levels, and the mean change per pixel and frame.
 //   node bench/lighting_pop.js [--frames 40] [--size 480x270]
 import { decode } from 'fast-png';
-import { startViewer, openPage } from '../tests/browser/harness.js';
+import { startViewer, openPage } from '../lib/page_harness.js';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => { const k = args.indexOf(`--${name}`); return k >= 0 ? args[k + 1] : fallback; };

@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Benchmark of the page in headless Chromium (issue 5's figures): per frame the core's LOD
+// Benchmark of the page in headless Chromium: per frame the core's LOD
 // update, the stream update, the upload and the draw (waited for with a one-pixel readPixels,
 // ?timing=1), the interval between animation frames (what a person sees)
 // along a scripted flight over the default terrain, the bytes uploaded per frame, and the
@@ -7,7 +7,7 @@
 // TRIANGLES list. WebGL2 runs on SwiftShader (the CPU) here, so draw times are the CPU
 // rasteriser's; the ratios are what carries over. It prints figures and asserts nothing.
 import { parseArgs } from 'node:util';
-import { startViewer, openPage } from '../tests/browser/harness.js';
+import { startViewer, openPage } from '../lib/page_harness.js';
 
 const USAGE = `usage: node bench/page.js [--viewport WxH] [--frames N] [--draws N]
   --viewport WxH  page size in CSS pixels (default 1280x720)

@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Page soak (issue 29): 100 files dropped on the page in a row, good and bad alternating (the
+// Page soak: 100 files dropped on the page in a row, good and bad alternating (the
 // format fixtures, and broken copies of them: truncated, empty, garbage, a lone sidecar, a PNG
 // that declares 100000 x 100000 samples). After each drop has ended (shown, or refused with
 // its message) and a few frames are drawn, the page's memory is read:
@@ -16,7 +16,7 @@
 // Usage: node bench/page_drops.js [--drops N]   (headless Chromium, SwiftShader, 320 x 200)
 import { readFileSync } from 'node:fs';
 import { crc32 } from 'node:zlib';
-import { startViewer, openPage, dropFiles, drawFrames, projectDir } from '../tests/browser/harness.js';
+import { startViewer, openPage, dropFiles, drawFrames, projectDir } from '../lib/page_harness.js';
 
 const args = process.argv.slice(2);
 const DROPS = Number(args[args.indexOf('--drops') + 1]) || 100;

@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Benchmark of height-field files in the page (headless Chromium, SwiftShader), issue 7:
+// Benchmark of height-field files in the page (headless Chromium, SwiftShader):
 //   1. drop to first frame of public/terrain/globe_himalaya_2048.png + .json (decode included);
 //   2. a 16385 x 16385 16-bit field, made by tiling and mirroring the same Himalaya, written
 //      as a RAW .r16 file, opened with ?src=, then flown for a few frames: load time and peak
@@ -8,7 +8,7 @@
 import { mkdirSync, openSync, writeSync, writeFileSync, closeSync, readFileSync, rmSync } from 'node:fs';
 import { execFileSync } from 'node:child_process';
 import { decode } from 'fast-png';
-import { startViewer, openPage, projectDir } from '../tests/browser/harness.js';
+import { startViewer, openPage, projectDir } from '../lib/page_harness.js';
 
 const args = process.argv.slice(2);
 const runs = Number(args[args.indexOf('--runs') + 1]) || 3;

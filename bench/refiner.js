@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Figures of the refinement loop under a moving camera (issue 12), printed, never asserted:
+// Figures of the refinement loop under a moving camera, printed, never asserted:
 // for each height field, the flights of `hexlod bench` (seed 1, 300 m above the ground, 300
 // frames, 1920x1080, fov 60 deg) at 5, 50 and 500 m a frame (fewer frames when the field is
 // too small for 300) and the default length (80 % of the shorter side), replayed natively by build/native/hexlod_bench --flight from the mesh
@@ -15,7 +15,7 @@
 //     cell) and the share of frames within tau, and the bytes per drawn triangle.
 //
 // The stream keeps no vertex normals, as in the viewer, which lights the terrain from the
-// field's own normals (--normals on: the stream keeps them, as builds before issue 12's did).
+// field's own normals (--normals on: the stream keeps them, as older builds did).
 //
 //   node bench/refiner.js [FIELD ...] [--frames N] [--steps 5,50,500,0] [--budget-ms MS] [--normals on|off]
 // FIELD defaults to public/terrain/globe_himalaya_2048.png and tests/fixtures/grandcanyon_512.png.
@@ -24,8 +24,8 @@ import { spawnSync } from 'node:child_process';
 import { tmpdir, cpus } from 'node:os';
 import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { loadForCommand, extentOf } from '../bin/cli_common.js';
-import { flightPath, heightsInMetres } from './flight.js';
+import { loadForCommand, extentOf } from '../lib/cli_common.js';
+import { flightPath, heightsInMetres } from '../lib/bench_flight.js';
 
 const root = fileURLToPath(new URL('../', import.meta.url));
 // HEXLOD_BENCH: another build of the benchmark (e.g. a copy of the one before a change).

@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Frame time of the full shading (issue 14: scattering, field normals, shadows, AO, procedural
+// Frame time of the full shading (scattering, field normals, shadows, AO, procedural
 // ground, sky, tone mapping) against the plain one (the former Lambert shading with mesh
 // normals and a clear colour), as a ratio from one headless run. The page waits for the GPU
 // after drawing (?timing=1), so drawMs includes SwiftShader's rasterisation. The view holds
@@ -7,7 +7,7 @@
 // Also prints the core's share (LOD update and fan stream) of the same frames.
 // --modes lists more modes to compare (web/app/settings.js SHADING_MODES); the ratio is of the first two.
 //   node bench/shading.js [--frames 20] [--size 640x360] [--modes natural,plain,hillshade]
-import { startViewer, openPage } from '../tests/browser/harness.js';
+import { startViewer, openPage } from '../lib/page_harness.js';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => { const k = args.indexOf(`--${name}`); return k >= 0 ? args[k + 1] : fallback; };

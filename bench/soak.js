@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Soak (issue 29): the WASM core (build/wasm-diag, through web/core/core.js and the loaders, as
+// Soak: the WASM core (build/wasm-diag, through web/core/core.js and the loaders, as
 // the page drives them) flown for an hour of 60 fps frames over changing settings and terrains,
 // with memory read at intervals. After warm-up, memory must be flat. It prints the figures as a
 // table and a verdict; exit 1 when something grew after warm-up, 2 for a bad command line.
@@ -38,8 +38,9 @@ import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { setFlagsFromString } from 'node:v8';
 import { runInNewContext } from 'node:vm';
-import { UsageError, parseOptions, parseNumber, readInputs, loadFiles, extentOf } from '../bin/cli_common.js';
-import { createNodeCore } from '../bin/node_core.js';
+import { UsageError, parseOptions, parseNumber, readInputs, loadFiles, extentOf } from '../lib/cli_common.js';
+import { createNodeCore } from '../lib/node_core.js';
+import { scriptOptions } from '../lib/script_options.js';
 import { seededRandom } from '../web/app/seeded_random.js';
 
 const root = fileURLToPath(new URL('../', import.meta.url));
@@ -160,18 +161,8 @@ function newFlight(random, f, terrain) {
 }
 
 async function main() {
-  let options;
-  try {
-    options = parse(process.argv.slice(2));
-  } catch (error) {
-    if (!(error instanceof UsageError)) throw error;
-    console.error(`soak: ${error.message}\n${USAGE}`);
-    return 2;
-  }
-  if (!options) {
-    console.log(USAGE);
-    return 0;
-  }
+  const { options, exitCode } = scriptOptions('soak', USAGE, parse);
+  if (!options) return exitCode;
   setFlagsFromString('--expose-gc');
   const gc = runInNewContext('gc'); // memory is read after a full collection
   const { frames, seed, terrainEvery, settingsEvery } = options;

@@ -1,6 +1,6 @@
 #!/usr/bin/env node
-// Frame stalls during a scripted flight in headless Chromium (issue 6's goal: none over
-// 100 ms after load). Opens the page on the default terrain, waits until it is ready (not
+// Frame stalls during a scripted flight in headless Chromium (the goal: none over 100 ms
+// after load). Opens the page on the default terrain, waits until it is ready (not
 // converged: the flight starts while the mesh still refines), flies the fly camera low over the
 // Himalaya for a fixed time, and reports from the page's requestAnimationFrame timestamps the
 // longest frame-to-frame interval and how many exceeded 100 ms, with the core's share (LOD
@@ -9,7 +9,7 @@
 // With --timing the page waits for the GPU after drawing (?timing=1, gl.finish), so that the
 // drawing's share includes SwiftShader's rasterisation.
 //   node bench/stalls.js [--seconds 12] [--sizes 480x300,960x600] [--timing]
-import { startViewer, openPage } from '../tests/browser/harness.js';
+import { startViewer, openPage } from '../lib/page_harness.js';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => { const k = args.indexOf(`--${name}`); return k >= 0 ? args[k + 1] : fallback; };

@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Teleports (issue 29): the WASM core (build/wasm-diag, through web/core/core.js as the page
+// Teleports: the WASM core (build/wasm-diag, through web/core/core.js as the page
 // drives it) flown through seeded random camera jumps, with the mesh and the stream checked
 // after every LOD update. It prints its figures and the failures, each with the seed and index
 // that replay it; it asserts nothing else (exit 1 when a check failed, 2 for a bad command line).
@@ -33,8 +33,9 @@
 import { performance } from 'node:perf_hooks';
 import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { UsageError, parseOptions, parseNumber, readInputs, loadFiles, extentOf } from '../bin/cli_common.js';
-import { createNodeCore } from '../bin/node_core.js';
+import { UsageError, parseOptions, parseNumber, readInputs, loadFiles, extentOf } from '../lib/cli_common.js';
+import { createNodeCore } from '../lib/node_core.js';
+import { scriptOptions } from '../lib/script_options.js';
 import { CoreError, FRAME } from '../web/core/core.js';
 import { seededRandom } from '../web/app/seeded_random.js';
 
@@ -217,18 +218,8 @@ function absurdCamera(random, good) {
 }
 
 async function main() {
-  let options;
-  try {
-    options = parse(process.argv.slice(2));
-  } catch (error) {
-    if (!(error instanceof UsageError)) throw error;
-    console.error(`teleports: ${error.message}\n${USAGE}`);
-    return 2;
-  }
-  if (!options) {
-    console.log(USAGE);
-    return 0;
-  }
+  const { options, exitCode } = scriptOptions('teleports', USAGE, parse);
+  if (!options) return exitCode;
   const { teleports, seed, convergeEvery, perTerrain, verbose } = options;
   const core = await createNodeCore();
   const started = performance.now();

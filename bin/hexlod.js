@@ -1,14 +1,14 @@
 #!/usr/bin/env node
 // hexlod command line: the page's loaders and WASM core, in Node.
 //   hexlod info <file> [--json]   size, spacing, height range and load time of a height field
-//   hexlod mesh <file> ...        refine (max error or camera), write OBJ and JSON (mesh_command.js)
-//   hexlod bench <file> ...       a scripted flight, and @mapbox/martini on the same data (bench/flight.js)
-//   hexlod regress <file> <flight> ...  flights in headless Chromium and Node against references (regress.js)
-import { createNodeCore } from './node_core.js';
-import { UsageError, readInputs, parseOptions, FILE_OPTIONS, FILE_USAGE, parseFileOptions, loadFiles } from './cli_common.js';
-import { mesh, MESH_USAGE } from './mesh_command.js';
-import { bench, BENCH_USAGE } from '../bench/flight.js';
-import { regress, REGRESS_USAGE } from './regress.js';
+//   hexlod mesh <file> ...        refine (max error or camera), write OBJ and JSON (lib/mesh_command.js)
+//   hexlod bench <file> ...       a scripted flight, and @mapbox/martini on the same data (lib/bench_command.js)
+//   hexlod regress <file> <flight> ...  flights in headless Chromium and Node against references (lib/regress.js)
+import { createNodeCore } from '../lib/node_core.js';
+import { UsageError, readInputs, parseOptions, FILE_OPTIONS, FILE_USAGE, parseFileOptions, loadFiles } from '../lib/cli_common.js';
+import { mesh, MESH_USAGE } from '../lib/mesh_command.js';
+import { bench, BENCH_USAGE } from '../lib/bench_command.js';
+import { regress, REGRESS_USAGE } from '../lib/regress.js';
 
 const INFO_USAGE = `usage: hexlod info <heightfield> [--json] [--width N --height N] [--encoding E]
   A height field: PNG (16/8-bit grayscale, Terrain-RGB, Terrarium), GeoTIFF (.tif), SRTM .hgt,

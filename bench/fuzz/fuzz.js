@@ -1,8 +1,8 @@
 #!/usr/bin/env node
-// The loaders' fuzzer (issue 29): structure-aware mutations of every format the page opens,
-// loaded as the page loads them (web/loaders/terrain_source.js into the WebAssembly core), each
-// case in a worker with a time limit and a memory watch. Not part of CI; a short seeded run is
-// tests/node/fuzz.test.js.
+// The loaders' fuzzer: structure-aware mutations of every format the page opens, loaded as the
+// page loads them (web/loaders/terrain_source.js into the WebAssembly core), each case in a
+// worker with a time limit and a memory watch. Not part of CI; a short seeded run is
+// tests/node/fuzz.test.js. The cases, workers, verdicts and shrinking are in lib/fuzz/.
 //
 //   node bench/fuzz/fuzz.js --format png --count 100000 --seed 1
 //   node bench/fuzz/fuzz.js --replay png:1:4711
@@ -10,10 +10,12 @@
 import { readdirSync, readFileSync, existsSync } from 'node:fs';
 import { join, dirname } from 'node:path';
 import { parseArgs } from 'node:util';
-import { runFuzz, runFiles, saveReproducer, decodeOptions, checkSeeds, flatName } from './runner.js';
-import { formatReport } from './report.js';
-import { WatchedWorker } from './watched_worker.js';
-import { makeCase, parseCaseId, FORMAT_NAMES, FORMATS } from './cases.js';
+import {
+  runFuzz, runFiles, saveReproducer, decodeOptions, checkSeeds, flatName, WORKER,
+} from '../../lib/fuzz/runner.js';
+import { formatReport } from '../../lib/fuzz/report.js';
+import { WatchedWorker } from '../../lib/fuzz/watched_worker.js';
+import { makeCase, parseCaseId, FORMAT_NAMES, FORMATS } from '../../lib/fuzz/cases.js';
 
 const HELP = `usage: node bench/fuzz/fuzz.js [options]
   --format LIST      formats, comma-separated, or all (default): ${FORMAT_NAMES.join(', ')}
@@ -55,7 +57,7 @@ async function replay(id) {
   try { parsed = parseCaseId(id); } catch (e) { console.error(e.message); process.exit(2); }
   const c = makeCase(parsed.format, parsed.seed, parsed.index);
   console.log(`${id}: ${c.files.map((f) => `${f.name} (${f.bytes.length} bytes)`).join(', ')}; options ${JSON.stringify(c.options)}\nmutations: ${c.how}`);
-  const watched = new WatchedWorker(new URL('./worker.js', import.meta.url), { caseMs });
+  const watched = new WatchedWorker(WORKER, { caseMs });
   const outcome = await runFiles(watched, c.format, c.files, c.options, caseMs, c.invalid);
   await watched.close();
   console.log(`${outcome.kind}: ${outcome.detail} (${outcome.ms?.toFixed(0)} ms)`);
@@ -77,7 +79,7 @@ async function runDir(dir) {
   // What makes an acceptance wrong comes from the bytes where the format can tell, else from the case.
   const claim = FORMATS[format].mustRefuseFiles;
   const invalid = claim ? claim(files, options) : meta.invalid ?? null;
-  const watched = new WatchedWorker(new URL('./worker.js', import.meta.url), { caseMs });
+  const watched = new WatchedWorker(WORKER, { caseMs });
   const outcome = await runFiles(watched, format, files, options, caseMs, invalid);
   await watched.close();
   console.log(`${files.map((f) => f.name).join(' + ')}: ${outcome.kind}: ${outcome.detail} (${outcome.ms?.toFixed(0)} ms)`);

@@ -20,7 +20,7 @@
 // --floor also times, per frame, only what any update must do for the operations the refiner
 // performed: the operations themselves on a copy of the mesh and the bounds of the new cells
 // (update_floor.h), in ms per million triangles, beside the update's own figure.
-// The near and far planes are those of `hexlod bench` (bin/cli_common.js); --viewer-planes
+// The near and far planes are those of `hexlod bench` (lib/cli_common.js); --viewer-planes
 // uses the page's fly camera's instead (web/cameras/clip_planes.js).
 #include <algorithm>
 #include <array>
@@ -171,7 +171,7 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
     settings.lod.backfaceCulling = backface;
     settings.normals = normals;
     terrain.configure(settings);
-    // Near and far planes as `hexlod bench` sets them (bin/cli_common.js, cameraFor): far ten
+    // Near and far planes as `hexlod bench` sets them (lib/cli_common.js, cameraFor): far ten
     // times the farthest corner of the field's box.
     const double extentX = double(field.width() - 1) * field.scale().spacingX, extentZ = double(field.height() - 1) * field.scale().spacingY;
     // With --viewer-planes, the planes the page's fly camera sets (web/cameras/clip_planes.js):

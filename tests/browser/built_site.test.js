@@ -5,7 +5,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { startViewer, openPage, outDir, projectDir, terrainCoverage, pageReady, dropFiles, terrainShown,
-  converged, eyeClearance, nextFrame } from './harness.js';
+  converged, eyeClearance, nextFrame } from '../../lib/page_harness.js';
 
 const FIXTURES = `${projectDir}tests/fixtures/`;
 const read = (name) => ({ name, bytes: readFileSync(FIXTURES + name) });

@@ -3,7 +3,7 @@
 // gestures orbit, pinch and pan, and the cursor readout names the ground under the pointer.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { startViewer, openPage, outDir, drawFrames } from './harness.js';
+import { startViewer, openPage, outDir, drawFrames } from '../../lib/page_harness.js';
 
 let viewer, page, problems;
 before(async () => {

@@ -4,7 +4,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { startViewer, openPage, outDir, pixelStats, dropFiles, terrainShown, projectDir, drawFrames } from './harness.js';
+import { startViewer, openPage, outDir, pixelStats, dropFiles, terrainShown, projectDir, drawFrames } from '../../lib/page_harness.js';
 
 let viewer, page, problems;
 before(async () => {

@@ -1,4 +1,4 @@
-// The page runs under a strict Content-Security-Policy (issue 29): scripts from the site only,
+// The page runs under a strict Content-Security-Policy: scripts from the site only,
 // WebAssembly compiled from them, no inline script or style, fetches to any http(s) host. The
 // default journey (open, the terrain on screen, drop a file, move the camera, reset, save a
 // screenshot) runs on the dev server (the policy as a header and in the page, with Vite's client
@@ -8,7 +8,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { startViewer, pageReady, terrainCoverage, dropFiles, terrainShown, nextFrame, outDir, projectDir } from './harness.js';
+import { startViewer, pageReady, terrainCoverage, dropFiles, terrainShown, nextFrame, outDir, projectDir } from '../../lib/page_harness.js';
 
 const VIEWPORT = { width: 480, height: 300 };
 const fixture = (name) => ({ name, bytes: readFileSync(`${projectDir}tests/fixtures/${name}`) });

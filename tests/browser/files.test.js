@@ -4,7 +4,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { startViewer, openPage, outDir, projectDir, dropFiles } from './harness.js';
+import { startViewer, openPage, outDir, projectDir, dropFiles } from '../../lib/page_harness.js';
 
 const FIXTURES = `${projectDir}tests/fixtures/formats/`;
 let viewer;

@@ -3,7 +3,7 @@
 // changed, raises no WebGL error, and the last frame shows terrain.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { startViewer, openPage, outDir, pixelStats } from './harness.js';
+import { startViewer, openPage, outDir, pixelStats } from '../../lib/page_harness.js';
 
 let viewer;
 before(async () => { viewer = await startViewer(); });

@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { decode } from 'fast-png';
 import { startViewer, openPage, outDir, projectDir, terrainCoverage, pageReady, dropFiles, terrainShown,
-  converged, eyeClearance, nextFrame } from './harness.js';
+  converged, eyeClearance, nextFrame } from '../../lib/page_harness.js';
 
 const FIXTURES = `${projectDir}tests/fixtures/`;
 const VIEWPORT = { width: 960, height: 540 };

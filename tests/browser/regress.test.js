@@ -14,8 +14,8 @@ import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { decode } from 'fast-png';
-import { readPng, writePng } from '../../bin/regress_compare.js';
-import { startBrowser } from '../../bin/regress_browser.js';
+import { readPng, writePng } from '../../lib/regress_compare.js';
+import { startBrowser } from '../../lib/regress_browser.js';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
 const flights = join(root, 'tests/regress/flights');
@@ -205,7 +205,7 @@ test('the window API and URL parameters: ready, frame(n) in order, pixels, ops= 
 /** A copy of what the page and the command need, with node_modules linked, to try a change to the page on. */
 function projectCopy() {
   const dir = mkdtempSync(join(tmpdir(), 'hexlod-copy-'));
-  for (const part of ['bin', 'bench', 'web', 'shaders', 'public', 'build/wasm', 'build/wasm-diag', 'vite.config.js', 'package.json']) {
+  for (const part of ['bin', 'lib', 'web', 'shaders', 'public', 'build/wasm', 'build/wasm-diag', 'vite.config.js', 'package.json']) {
     cpSync(join(root, part), join(dir, part), { recursive: true });
   }
   symlinkSync(join(root, 'node_modules'), join(dir, 'node_modules'));

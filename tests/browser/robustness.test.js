@@ -4,7 +4,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { decode } from 'fast-png';
-import { startViewer, openPage, outDir, pixelStats, drawFrames } from './harness.js';
+import { startViewer, openPage, outDir, pixelStats, drawFrames } from '../../lib/page_harness.js';
 
 let viewer;
 before(async () => { viewer = await startViewer(); });

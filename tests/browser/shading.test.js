@@ -1,4 +1,4 @@
-// The paper's look (issue 14, §7), rendered headless: fixed views compared with committed
+// The paper's look (§7), rendered headless: fixed views compared with committed
 // reference images within a tolerance, and colour statistics of known regions that fail when
 // the sky, the shadows or the ground colours are missing. Small viewports: SwiftShader draws on
 // the CPU. UPDATE_REFERENCES=1 writes the references instead of comparing (look at them
@@ -7,7 +7,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync, existsSync, mkdirSync } from 'node:fs';
 import { decode } from 'fast-png';
-import { startViewer, openPage, outDir, projectDir } from './harness.js';
+import { startViewer, openPage, outDir, projectDir } from '../../lib/page_harness.js';
 
 const SIZE = { width: 480, height: 270 };
 const REFERENCES = `${projectDir}tests/fixtures/reference/`;
@@ -173,7 +173,7 @@ test('analysis modes, mesh normals and a tiled normal texture', async () => {
   const query = `?${COMMON}&cam=orbit,1477858.625,8159.95,1117360.375,98996.587,0.4,0.3`;
   const single = await openView(query);
   const natural = await single.shot('natural');
-  // Lit from the field's normals, the core keeps none of its own (issue 12: 24 B a vertex).
+  // Lit from the field's normals, the core keeps none of its own (24 B a vertex).
   assert.equal(await single.page.evaluate(() => window.hexlod.streamNormals), false, 'no mesh normals while unused');
   const modes = {};
   for (const mode of ['hillshade', 'hypsometric', 'slope', 'plain']) {

@@ -1,4 +1,4 @@
-// ?src=URL has limits (issue 29): a time limit without progress, a size cap checked against
+// ?src=URL has limits: a time limit without progress, a size cap checked against
 // Content-Length before the body and while it streams, a Cancel button, and a file the user
 // opens meanwhile wins over a late answer. The address bar names a src only while its terrain
 // is on screen, and a cross-origin file's NAME.json comes from beside it. The data comes from
@@ -9,7 +9,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { createServer } from 'node:http';
 import { readFileSync } from 'node:fs';
-import { startViewer, openPage, dropFiles, terrainShown, outDir, projectDir } from './harness.js';
+import { startViewer, openPage, dropFiles, terrainShown, outDir, projectDir } from '../../lib/page_harness.js';
 
 const VIEWPORT = { width: 480, height: 300 };
 const FIXTURES = `${projectDir}tests/fixtures/`;

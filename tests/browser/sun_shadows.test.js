@@ -7,7 +7,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { decode } from 'fast-png';
-import { startViewer, openPage, dropFiles, terrainShown, drawFrames, outDir, projectDir } from './harness.js';
+import { startViewer, openPage, dropFiles, terrainShown, drawFrames, outDir, projectDir } from '../../lib/page_harness.js';
 
 const SIZE = { width: 320, height: 200 };
 const fixture = (name) => `${projectDir}tests/fixtures/${name}`;

@@ -2,7 +2,7 @@
 // the page writes them back as the view moves; bad parameters get a message and the defaults.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { startViewer, openPage } from './harness.js';
+import { startViewer, openPage } from '../../lib/page_harness.js';
 
 let viewer;
 before(async () => { viewer = await startViewer(); });

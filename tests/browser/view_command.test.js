@@ -1,4 +1,4 @@
-// `./hexlod.sh view` as a person runs it in a fresh clone (issue 34): it builds only the page's
+// `./hexlod.sh view` as a person runs it in a fresh clone: it builds only the page's
 // WebAssembly module, and what it serves draws the default terrain. Runs in a copy of the
 // repository's files with no build/ or dist/, so a file the page needs and the reduced build
 // misses fails here.
@@ -10,8 +10,8 @@ import { copyFileSync, existsSync, lstatSync, mkdirSync, mkdtempSync, readdirSyn
   statSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
-import { freePort, launchChromium } from '../../bin/chromium.js';
-import { openPage, outDir, pixelStats, pageReady, projectDir } from './harness.js';
+import { freePort, launchChromium } from '../../lib/chromium.js';
+import { openPage, outDir, pixelStats, pageReady, projectDir } from '../../lib/page_harness.js';
 
 let tree; // the copy of the repository
 const servers = new Set(); // `view` processes still running, stopped in after() if a test failed

@@ -2,7 +2,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { decode } from 'fast-png';
-import { startViewer, openPage, outDir, pixelStats, skyFromTop, pageReady, nextFrame } from './harness.js';
+import { startViewer, openPage, outDir, pixelStats, skyFromTop, pageReady, nextFrame } from '../../lib/page_harness.js';
 
 let viewer;
 before(async () => { viewer = await startViewer(); });
@@ -33,7 +33,7 @@ test('the default view refines a real terrain until converged, not one flat colo
   // The opening view shows the Himalaya: snow on the peaks, rock and ground, sky above them.
   assert.ok(stats.snowFraction > 0.003, `${(100 * stats.snowFraction).toFixed(2)} % snow: no high peaks in view`);
   assert.ok(stats.groundFraction > 0.08, `${(100 * stats.groundFraction).toFixed(1)} % ground colours`);
-  const sky = skyFromTop(png); // the scattering model's sky, not a clear colour (issue 14)
+  const sky = skyFromTop(png); // the scattering model's sky, not a clear colour
   assert.ok(sky > 0.02 && sky < 0.5, `${(100 * sky).toFixed(1)} % sky`);
   assert.deepEqual(problems, []);
   await page.close();

@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { vec4 } from 'gl-matrix';
-import { createNodeCore } from '../../bin/node_core.js';
+import { createNodeCore } from '../../lib/node_core.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
 import { createWorld } from '../../web/cameras/ground.js';
 import { OrbitCamera } from '../../web/cameras/orbit.js';

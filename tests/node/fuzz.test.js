@@ -1,12 +1,12 @@
-// A short seeded run of the loaders' fuzzer (bench/fuzz, issue 29) over every format, as the
-// page loads files (loadTerrain into the WebAssembly core), each case in a worker with a time
-// limit and a memory watch: every input is refused with a clear one-line message or loads as a
-// sane field, and none crashes, hangs or takes memory its size does not justify. The long runs
-// are `node bench/fuzz/fuzz.js` (BENCHMARKS-style figures in the issue, not in CI).
+// A short seeded run of the loaders' fuzzer (lib/fuzz) over every format, as the page loads
+// files (loadTerrain into the WebAssembly core), each case in a worker with a time limit and a
+// memory watch: every input is refused with a clear one-line message or loads as a sane field,
+// and none crashes, hangs or takes memory its size does not justify. The long runs are
+// `node bench/fuzz/fuzz.js` (too long for CI).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { runFuzz } from '../../bench/fuzz/runner.js';
-import { FORMAT_NAMES } from '../../bench/fuzz/cases.js';
+import { runFuzz } from '../../lib/fuzz/runner.js';
+import { FORMAT_NAMES } from '../../lib/fuzz/cases.js';
 
 // About 3 000 cases, fewer where one costs more (an SRTM tile is 1201 x 1201 samples).
 const COUNT = { png: 600, tiff: 600, hgt: 120, asc: 400, pgm: 500, raw: 500, f32: 300 };

@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, readdirSync } from 'node:fs';
 import { HeightfieldError } from '../../web/loaders/index.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
-import { createNodeCore } from '../../bin/node_core.js';
+import { createNodeCore } from '../../lib/node_core.js';
 
 const ROOT = new URL('../../', import.meta.url);
 const MUTATED = new URL('tests/fixtures/mutated/', ROOT);

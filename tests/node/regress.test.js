@@ -12,13 +12,13 @@ import { createServer } from 'node:http';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { createNodeCore } from '../../bin/node_core.js';
-import { readInputs } from '../../bin/cli_common.js';
+import { createNodeCore } from '../../lib/node_core.js';
+import { readInputs } from '../../lib/cli_common.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
 import { parseFlight, FlightCamera, FlightError, replayFlight } from '../../web/app/deterministic/flight.js';
 import { DEFAULT_TOLERANCE, toleranceFor } from '../../web/app/deterministic/tolerance.js';
-import { compareImages, describeImage, flightChanges, flightRecordOf } from '../../bin/regress_compare.js';
-import { readDem } from '../../bin/dem_source.js';
+import { compareImages, describeImage, flightChanges, flightRecordOf } from '../../lib/regress_compare.js';
+import { readDem } from '../../lib/dem_source.js';
 import { parse as junitParse } from 'junit2json';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));

@@ -1,13 +1,14 @@
-// Shared set-up of the browser tests: a Vite server on a free localhost port and Debian's
-// Chromium driven by playwright-core (never a browser that a tool downloads).
+// The page under test, shared by the browser tests and the page benchmarks: a Vite server on
+// a free localhost port and Debian's Chromium driven by playwright-core (never a browser that
+// a tool downloads).
 import { createServer } from 'vite';
 import { startStaticSite } from './static_site.js';
 import { decode } from 'fast-png';
 import { mkdirSync } from 'node:fs';
-import { freePort, launchChromium } from '../../bin/chromium.js';
+import { freePort, launchChromium } from './chromium.js';
 import { fileURLToPath } from 'node:url';
 
-export const projectDir = fileURLToPath(new URL('../..', import.meta.url));
+export const projectDir = fileURLToPath(new URL('..', import.meta.url));
 export const outDir = `${projectDir}tests/out`;
 
 /**
@@ -193,9 +194,10 @@ export const eyeClearance = (page) => page.evaluate(() => {
   return over ? eye[1] - world.ground(eye[0], eye[2]) : null;
 });
 /**
- * The fraction of a PNG screenshot that is sky drawn by the scattering model (issue 14): in each
- * column, the run of blue pixels (blue above red and green) from the top edge down to the first
- * pixel that is not. Blue-grey shadows and haze on the terrain below do not count.
+ * The fraction of a PNG screenshot that is sky drawn by the scattering model (the page's sky,
+ * not a clear colour): in each column, the run of blue pixels (blue above red and green) from
+ * the top edge down to the first pixel that is not. Blue-grey shadows and haze on the terrain
+ * below do not count.
  */
 export function skyFromTop(png) {
   const { width, height, data, channels } = decode(png);

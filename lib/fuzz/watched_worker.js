@@ -1,10 +1,9 @@
-// A worker thread with a per-case watchdog and a memory watch (generalised from
-// tests/node/watched_worker.js). The worker posts { start: key } before each case, any other
-// messages while it works, and { done: true } when the job is finished. A case that runs longer
-// than caseMs (a decoder stuck in a loop), a worker that dies (an uncaught error, a JS heap past
-// its limit) and a process whose resident memory grows more than memoryCapBytes during one case
-// stop the job: the worker is terminated, the job's promise says which case stopped it and
-// how, and the next job starts a fresh worker.
+// A worker thread with a per-case watchdog and a memory watch. The worker posts { start: key }
+// before each case, any other messages while it works, and { done: true } when the job is
+// finished. A case that runs longer than caseMs (a decoder stuck in a loop), a worker that
+// dies (an uncaught error, a JS heap past its limit) and a process whose resident memory grows
+// more than memoryCapBytes during one case stop the job: the worker is terminated, the job's
+// promise says which case stopped it and how, and the next job starts a fresh worker.
 import { Worker } from 'node:worker_threads';
 import { memoryUsage } from 'node:process';
 

@@ -4,7 +4,7 @@
 // is made anew after a WASM trap or when its memory has grown large, so that every case is
 // measured from a small, sound core.
 import { parentPort } from 'node:worker_threads';
-import { createNodeCore } from '../../bin/node_core.js';
+import { createNodeCore } from '../node_core.js';
 import { makeCase, FORMATS } from './cases.js';
 import { judgeCase, spyOnCore } from './judge.js';
 

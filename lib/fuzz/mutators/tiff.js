@@ -10,6 +10,7 @@ import {
 } from '../formats/tiff_file.js';
 import { inflateSync, constants } from 'node:zlib';
 import { nearSize, EDGE_UINTS, NUMBER_TEXTS } from '../values.js';
+import { applySteps } from './steps.js';
 
 export const extension = 'tif';
 
@@ -219,13 +220,7 @@ export function mutate(seed, random) {
   const main = seed.files[0];
   seed.parsed ??= seed.model ?? readTiff(main.bytes);
   const m = copyModel(seed.parsed);
-  const how = [];
-  for (let k = random.weighted([[5, 1], [3, 2], [2, 3]]); k > 0; k--) {
-    const [, step] = random.weighted(STEPS.map((entry) => [entry[0], entry]));
-    m.invalid = null; // only the last step's verdict holds: a later one may repair the file
-    const done = step(m, random);
-    if (done) how.push(done);
-  }
+  const how = applySteps(m, random, STEPS, { counts: [[5, 1], [3, 2], [2, 3]], lastVerdict: true });
   const bytes = writeTiff(m);
   if (random.chance(0.1)) { how.push(patchHeader(bytes, m, random)); m.invalid = null; }
   return { files: [{ name: main.name, bytes }], options: {}, how, invalid: (!m.geometryChanged && m.invalid) || null };

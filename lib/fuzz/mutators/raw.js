@@ -5,6 +5,7 @@
 // (one needs its size from the options, one is square) and a small one written here.
 import { fixtureFile, grid, quantise } from '../fixtures.js';
 import { mutateSidecar, sidecarEntries } from './sidecar.js';
+import { applySteps } from './steps.js';
 
 export const extension = 'r16';
 
@@ -56,11 +57,7 @@ const STEPS = [
 export function mutate(seed, random) {
   const [main, side] = seed.files;
   const s = { name: main.name, bytes: main.bytes, sidecar: side?.bytes ?? null, options: { ...seed.options }, count: main.bytes.length / 2 };
-  const how = [];
-  for (let k = random.weighted([[6, 1], [3, 2], [1, 3]]); k > 0; k--) {
-    const [, step] = random.weighted(STEPS.map((entry) => [entry[0], entry]));
-    how.push(step(s, random));
-  }
+  const how = applySteps(s, random, STEPS);
   const files = [{ name: s.name, bytes: s.bytes }];
   if (s.sidecar) files.push({ name: s.name.replace(/\.[^.]*$/, '.json'), bytes: s.sidecar });
   return { files, options: s.options, how, invalid: mustRefuseFiles(files) };

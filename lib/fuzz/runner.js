@@ -1,5 +1,6 @@
 // Runs fuzz cases in watched workers and tallies them per format; shrinks and saves the
-// failing ones. Shared by the command (fuzz.js) and the test (tests/node/fuzz.test.js).
+// failing ones. Shared by the command (bench/fuzz/fuzz.js) and the test
+// (tests/node/fuzz.test.js).
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { WatchedWorker } from './watched_worker.js';
@@ -7,7 +8,8 @@ import { makeCase, parseCaseId, seedsOf, FORMATS } from './cases.js';
 import { minimiseFiles } from './minimise.js';
 import { signatureOf } from './judge.js';
 
-const WORKER = new URL('./worker.js', import.meta.url);
+/** The worker module that runs cases (worker.js), for a WatchedWorker. */
+export const WORKER = new URL('./worker.js', import.meta.url);
 const BATCH = 250; // cases per job: a job is the unit the workers take turns on
 export const FAILURE_KINDS = ['crash', 'hang', 'blowup', 'insane'];
 

@@ -2,7 +2,7 @@
 // report.html (per flight its changes, a table of per-frame figures, and per capture the
 // reference, the new image and the diff, labelled, with a slider and a diff overlay to compare),
 // a JUnit XML file for CI test reporters and a JSON file for scripts. All read one run object
-// (bin/regress.js): {options, error, results, exitCode, startedAt, seconds}.
+// (lib/regress.js): {options, error, results, exitCode, startedAt, seconds}.
 import { RECORD_FIELDS } from '../web/app/deterministic/flight.js';
 
 /** '1 flight', '2 flights'. */

@@ -4,6 +4,7 @@
 // heights. Seeds: a 1201x1201 tile (3") and, rarely, a 3601x3601 one (1", 26 MB), both written
 // here from the Everest fixture, since SRTM has no small form.
 import { grid } from '../fixtures.js';
+import { applySteps } from './steps.js';
 
 export const extension = 'hgt';
 
@@ -64,12 +65,7 @@ const STEPS = [
 
 export function mutate(seed, random) {
   const t = { name: seed.files[0].name, bytes: seed.files[0].bytes.slice() };
-  const how = [];
-  for (let k = random.weighted([[6, 1], [3, 2], [1, 3]]); k > 0; k--) {
-    const [, step] = random.weighted(STEPS.map((entry) => [entry[0], entry]));
-    const done = step(t, random);
-    if (done) how.push(done);
-  }
+  const how = applySteps(t, random, STEPS);
   const files = [{ name: t.name, bytes: t.bytes }];
   return { files, options: {}, how, invalid: mustRefuseFiles(files) };
 }

@@ -5,6 +5,7 @@
 // Seeds: the fixture pair and sidecars written here for the other reference grids.
 import { fixtureFile, fixture, demFile } from '../fixtures.js';
 import { mutateSidecar, sidecarEntries, sidecarText } from './sidecar.js';
+import { applySteps } from './steps.js';
 
 export const extension = 'f32';
 
@@ -89,12 +90,7 @@ export function mustRefuseFiles(files) {
 export function mutate(seed, random) {
   const [main, side] = seed.files;
   const s = { bytes: main.bytes, sidecar: side.bytes };
-  const how = [];
-  for (let k = random.weighted([[6, 1], [3, 2], [1, 3]]); k > 0; k--) {
-    const [, step] = random.weighted(STEPS.map((entry) => [entry[0], entry]));
-    const done = step(s, random);
-    if (done) how.push(done);
-  }
+  const how = applySteps(s, random, STEPS);
   const files = [{ name: main.name, bytes: s.bytes }];
   if (random.chance(0.97)) files.push({ name: side.name, bytes: s.sidecar });
   return { files, options: {}, how, invalid: mustRefuseFiles(files) };

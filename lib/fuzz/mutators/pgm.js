@@ -6,6 +6,7 @@
 import { fixtureFile, grid, quantise } from '../fixtures.js';
 import { nearSize } from '../values.js';
 import { mutateSidecar } from './sidecar.js';
+import { applySteps } from './steps.js';
 
 export const extension = 'pgm';
 
@@ -96,12 +97,7 @@ export function mutate(seed, random) {
   const [main, side] = seed.files;
   seed.parsed ??= parse(main.bytes);
   const p = { ...seed.parsed, fields: seed.parsed.fields.slice(), separators: seed.parsed.separators.slice(), sidecar: side?.bytes ?? null };
-  const how = [];
-  for (let k = random.weighted([[6, 1], [3, 2], [1, 3]]); k > 0; k--) {
-    const [, step] = random.weighted(STEPS.map((entry) => [entry[0], entry]));
-    const done = step(p, random);
-    if (done) how.push(done);
-  }
+  const how = applySteps(p, random, STEPS);
   const files = [{ name: main.name, bytes: pgm(p) }];
   if (p.sidecar) files.push({ name: main.name.replace(/\.pgm$/, '.json'), bytes: p.sidecar });
   return { files, options: {}, how, invalid: mustRefuse(p) };

@@ -10,6 +10,7 @@ import {
 } from '../formats/png_chunks.js';
 import { nearSize, NUMBER_TEXTS } from '../values.js';
 import { mutateSidecar } from './sidecar.js';
+import { applySteps } from './steps.js';
 
 export const extension = 'png';
 
@@ -254,13 +255,7 @@ export function mutate(seed, random, seedList) {
   const main = seed.files[0];
   const { chunks, rest } = readChunks(main.bytes);
   const s = { chunks, name: main.name, sidecar: seed.files[1]?.bytes ?? null, options: { ...seed.options }, seeds: seedList };
-  const how = [];
-  for (let k = random.weighted([[6, 1], [3, 2], [1, 3]]); k > 0; k--) {
-    const [, step] = random.weighted(STEPS.map((entry) => [entry[0], entry]));
-    s.invalid = null; // only the last step's verdict holds: a later one may repair the file
-    const done = step(s, random);
-    if (done) how.push(done);
-  }
+  const how = applySteps(s, random, STEPS, { lastVerdict: true });
   const files = [{ name: s.name, bytes: writeChunks(s.chunks, { rest }) }];
   if (s.sidecar) files.push({ name: s.name.replace(/\.[^.]*$/, '.json'), bytes: s.sidecar });
   return { files, options: s.options, how, invalid: s.invalid };

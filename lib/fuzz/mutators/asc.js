@@ -5,6 +5,7 @@
 // Seeds: the fixture (250x190 with voids) and small grids written here.
 import { fixture, grid } from '../fixtures.js';
 import { nearSize, NUMBER_TEXTS } from '../values.js';
+import { applySteps } from './steps.js';
 
 export const extension = 'asc';
 
@@ -148,12 +149,7 @@ function mustRefuse(g, seedRows) {
 export function mutate(seed, random) {
   seed.parsed ??= parse(seed.files[0].bytes);
   const g = { header: seed.parsed.header.map((p) => p.slice()), rows: seed.parsed.rows.slice(), eol: '\n', sep: ' ' };
-  const how = [];
-  for (let k = random.weighted([[6, 1], [3, 2], [1, 3]]); k > 0; k--) {
-    const [, step] = random.weighted(STEPS.map((entry) => [entry[0], entry]));
-    const done = step(g, random);
-    if (done) how.push(done);
-  }
+  const how = applySteps(g, random, STEPS);
   return { files: [{ name: seed.files[0].name, bytes: encoder.encode(text(g.header, g.rows, g.eol, g.sep)) }], options: {}, how,
     invalid: mustRefuse(g, seed.parsed.rows) };
 }
