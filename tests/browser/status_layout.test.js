@@ -5,7 +5,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { decode } from 'fast-png';
-import { startViewer, openPage, pageReady, dropFiles } from './harness.js';
+import { startViewer, openPage, pageReady, dropFiles } from '../../lib/page_harness.js';
 
 const VIEWPORTS = [
   { width: 1280, height: 720 }, { width: 960, height: 540 }, { width: 390, height: 844 }, { width: 320, height: 568 },
