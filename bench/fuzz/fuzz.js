@@ -22,7 +22,7 @@ const HELP = `usage: node bench/fuzz/fuzz.js [options]
   --count N          cases per format (default 1000)
   --seed S           the run's seed (default 1); case i of a format is the same in every run
   --from I           first case index (default 0)
-  --time-limit MS    a case that takes longer is a hang (default 5000)
+  --time-limit MS    a case that takes longer, plus 400 ms a megabyte of input, is a hang (default 5000)
   --memory-cap-mb M  a case during which the process grows more is a blow-up (default 2048)
   --jobs N           workers at once (default 1)
   --out DIR          minimised reproducers go here (default fuzz-out)

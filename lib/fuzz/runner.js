@@ -19,7 +19,7 @@ function emptyCounts() {
 
 /** The outcome of a case that stopped its worker. */
 function stoppedOutcome(stop, caseMs) {
-  if (stop.kind === 'hang') return { kind: 'hang', detail: `no answer within ${caseMs} ms`, signature: 'hang', ms: stop.ms };
+  if (stop.kind === 'hang') return { kind: 'hang', detail: `no answer within ${stop.limitMs ?? caseMs} ms`, signature: 'hang', ms: stop.ms };
   if (stop.kind === 'memory') {
     const detail = stop.error ? `worker ran out of JS heap (${stop.error.message})` : 'process memory grew past the cap during the case';
     return { kind: 'blowup', detail, signature: signatureOf(detail), ms: stop.ms };

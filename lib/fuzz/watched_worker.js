@@ -8,6 +8,14 @@ import { Worker } from 'node:worker_threads';
 import { memoryUsage } from 'node:process';
 
 const POLL_MS = 50;
+/** Time a case may take per megabyte of input, beyond caseMs: a valid 26 MB SRTM tile with
+ *  scattered voids takes seconds to load on a busy machine, and a hang is a loop, not a big file. */
+export const MS_PER_MB = 400;
+
+/** The time limit of a case of `bytes` bytes of input. */
+export function caseLimitMs(caseMs, bytes) {
+  return Math.round(caseMs + ((bytes ?? 0) / 2 ** 20) * MS_PER_MB);
+}
 
 export class WatchedWorker {
   /**
@@ -26,7 +34,7 @@ export class WatchedWorker {
    * Posts one job and waits for its end.
    * @param {any} job the message to the worker
    * @param {(message: any) => void} onMessage gets every message other than start and done
-   * @returns {Promise<null | { kind: 'hang'|'died'|'memory', key: any, error?: Error, ms: number }>} null
+   * @returns {Promise<null | { kind: 'hang'|'died'|'memory', key: any, error?: Error, ms: number, limitMs: number }>} null
    *   when the job finished, else what stopped it during case `key` (undefined: between cases)
    * @throws when a fresh worker dies before its first case: the worker itself is broken
    */
@@ -39,7 +47,7 @@ export class WatchedWorker {
     }
     const worker = this.worker;
     return new Promise((resolve, reject) => {
-      let key, started = 0, rssAtStart = 0, timer = null, finished = false;
+      let key, started = 0, rssAtStart = 0, timer = null, finished = false, limitMs = this.caseMs;
       const poll = setInterval(() => {
         if (key !== undefined && memoryUsage.rss() - rssAtStart > this.memoryCapBytes) stop('memory');
       }, POLL_MS);
@@ -56,7 +64,7 @@ export class WatchedWorker {
         const ms = performance.now() - started;
         this.worker = null;
         worker.terminate();
-        finish({ kind, key, error: worker.error, ms });
+        finish({ kind, key, error: worker.error, ms, limitMs });
       };
       const onWorkerMessage = (m) => {
         if (m && 'start' in m) {
@@ -65,7 +73,8 @@ export class WatchedWorker {
           started = performance.now();
           rssAtStart = memoryUsage.rss();
           clearTimeout(timer);
-          timer = setTimeout(() => stop('hang'), this.caseMs);
+          limitMs = caseLimitMs(this.caseMs, m.bytes);
+          timer = setTimeout(() => stop('hang'), limitMs);
         } else if (m && m.done) {
           finish(null);
         } else {

@@ -17,7 +17,7 @@ async function freshCore() {
 }
 
 async function runOne(key, c) {
-  parentPort.postMessage({ start: key });
+  parentPort.postMessage({ start: key, bytes: c.files.reduce((n, f) => n + f.bytes.length, 0) });
   const outcome = await judgeCase(core, spy, c, FORMATS[c.format].declaredSize);
   outcome.how = c.how;
   parentPort.postMessage({ result: key, outcome });
