@@ -13,7 +13,7 @@
 //   - natively with a 4 ms budget: the share of frames whose drawn mesh is within tau after the
 //     update (the screen error is the paper's §5 bound of every live cell recomputed from the
 //     samples), the largest screen error, and the bytes per drawn triangle of the mesh, the
-//     refiner and the fan stream, live and at capacity.
+//     refiner and the fan stream, live and at capacity, and at the last frame by owner.
 //
 // The fields: the Himalaya (the default terrain, 2048^2), the Grand Canyon (512^2) and, unless
 // --large 0, a larger field made here deterministically: the Himalaya tiled and mirrored at
@@ -170,18 +170,22 @@ try {
       const camerasPath = join(dir, 'cameras.txt');
       writeFileSync(camerasPath, path.cameras.map(({ eye, target }) => [...eye, ...target].join(' ')).join('\n') + '\n');
       const free = runNative(fieldPath, terrain, camerasPath, ['--budget-ms', '0', '--budget-ops', '0']);
-      const budgeted = runNative(fieldPath, terrain, camerasPath, ['--budget-ms', String(budgetMs), '--measure-error']);
+      const budgeted = runNative(fieldPath, terrain, camerasPath, ['--budget-ms', String(budgetMs), '--measure-error', '--verbose']);
       const [wallP50, wallP95] = grab(free, /update ms p50 (\S+) p95 (\S+);/);
       const [p50, p95] = grab(free, /update thread CPU ms p50 (\S+) p95 (\S+)/);
       const [min, , max] = grab(free, trianglesLine);
       const err = grab(budgeted, /screen error of the drawn mesh after the update: p50 (\S+) p95 (\S+) max (\S+) px; within tau in (\S+) %/);
       const tris = grab(budgeted, trianglesLine);
       const bytes = grab(budgeted, /live p50 (\S+) max (\S+); at capacity p50 (\S+) max (\S+)/);
+      // Who holds the bytes at the last frame, at capacity (the refiner's share includes the
+      // field's min/max pyramid, which grows with the field, not the mesh).
+      const [meshB, , refinerB, streamB, lastTris] = grab(budgeted, /bytes at the end: mesh (\d+) \(vertex pool (\d+);.*\), refiner (\d+), stream (\d+); (\d+) triangles/);
       rows.push({
         field: label, step: Math.round(path.step), frames: count,
         native: { p50, p95, wallP50, wallP95, min, max },
         wasm: wasm ? wasmFlight(terrain, path.cameras) : null,
         budgeted: { within: err[3], p95: err[1], max: err[2], triangles: tris[1], live: bytes[0], capacity: bytes[2], capacityMax: bytes[3] },
+        owners: { mesh: meshB / lastTris, refiner: refinerB / lastTris, stream: streamB / lastTris, triangles: lastTris },
       });
       process.stderr.write(`  ${label} ${Math.round(path.step)} m/frame done\n`);
     }
@@ -212,5 +216,13 @@ for (const r of rows) {
   const b = r.budgeted;
   console.log(`| ${r.field} | ${r.step} (${r.frames}) | ${b.within.toFixed(1)} % | ${b.p95.toFixed(2)} / ${b.max.toFixed(2)} | ` +
     `${n(b.triangles)} | ${b.live.toFixed(1)}, ${b.capacity.toFixed(1)} / ${b.capacityMax.toFixed(1)} |`);
+}
+console.log(`\nBytes per drawn triangle at the last frame of each ${budgetMs} ms flight, at capacity, by owner (native):`);
+console.log('| field | m / frame (frames) | triangles | mesh | refiner (with the min/max pyramid) | stream | all |');
+console.log('| --- | --- | --- | --- | --- | --- | --- |');
+for (const r of rows) {
+  const o = r.owners;
+  console.log(`| ${r.field} | ${r.step} (${r.frames}) | ${n(o.triangles)} | ${o.mesh.toFixed(1)} | ${o.refiner.toFixed(1)} | ${o.stream.toFixed(1)} | ` +
+    `${(o.mesh + o.refiner + o.stream).toFixed(1)} |`);
 }
 console.log(`\nload average at the end ${loadavg().map((v) => v.toFixed(2)).join(' ')}`);
