@@ -32,9 +32,9 @@ View viewFrom(const glm::dvec3& eye, const glm::dvec3& target) {
 // the C ABI wires them), with names for its pieces.
 struct Lod {
     std::unique_ptr<Terrain> terrain;
-    HexMesh& mesh;
-    Refiner& refiner;
-    Geomorph& morph;
+    const HexMesh& mesh;
+    const Refiner& refiner;
+    const Geomorph& morph;
     Lod(const test::Fixture& fixture, int32_t frames, int32_t maxOperations)
         : terrain(test::loadTerrain(fixture)), mesh(terrain->mesh()), refiner(terrain->refiner()), morph(terrain->morph()) {
         terrain->resetMesh(Embedding::Exact);
