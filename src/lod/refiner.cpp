@@ -13,15 +13,6 @@
 
 namespace hexlod {
 
-namespace {
-
-bool sameShape(const CellShape& a, const CellShape& b) {
-    return a.kind == b.kind && a.firstVisible == b.firstVisible && a.center.q == b.center.q && a.center.r == b.center.r &&
-           a.step == b.step;
-}
-
-} // namespace
-
 void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     mesh_ = &mesh;
     field_ = &field;
@@ -74,40 +65,6 @@ void Refiner::setView(const View& view) {
     planeNormY_ = std::sqrt(1.0 + view.tanHalfY * view.tanHalfY);
     haveView_ = true;
     if (!sameShapeOfView || planesMoved) invalidateAll();
-}
-
-void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<int32_t>& vertexMap) {
-    const size_t cells = size_t(mesh_->cellCapacity());
-    // The sweep goes on from the group of the first kept cell at or after where it stopped.
-    int32_t cursor = 0;
-    for (size_t c = size_t(std::max(sweepCursor_, 0)) * SweepSummaries::kGroup; c < cellMap.size(); ++c) {
-        if (cellMap[c] != kNone) {
-            cursor = cellMap[c];
-            break;
-        }
-    }
-    sweepCursor_ = SweepSummaries::groupOf(cursor);
-    const size_t room = mesh_->cellPoolRoom(); // the records' arrays keep the pool's room
-    cache_.renumber(cellMap, cells, room);
-    renumberPool(records_, cellMap, cells, room);
-    renumberPool(state_, cellMap, cells, room);
-    summaries_.release(); // every group read again
-    summaries_.resize(cells, room);
-    // A merge whose cell or vertex is gone (the mesh changed around it in the last update) is
-    // called off by the next update, as it would have been without the renumbering.
-    pending_.renumber(cellMap, vertexMap);
-    // Cells queued for the next update; a freed cell is gone with its record.
-    for (std::vector<int32_t>* list : {&changes_, &fresh_, &mergeList_, &capChains_}) {
-        size_t kept = 0;
-        for (int32_t c : *list)
-            if (size_t(c) < cellMap.size() && cellMap[size_t(c)] != kNone) (*list)[kept++] = cellMap[size_t(c)];
-        list->resize(kept);
-    }
-    size_t kept = 0;
-    for (const Candidate& candidate : heap_)
-        if (cellMap[size_t(candidate.cell)] != kNone) heap_[kept++] = {candidate.pixels, cellMap[size_t(candidate.cell)]};
-    heap_.resize(kept);
-    std::make_heap(heap_.begin(), heap_.end(), lowerPriority);
 }
 
 size_t Refiner::memoryBytes() const {
@@ -327,62 +284,6 @@ bool Refiner::canRefine(int32_t c) const {
     return mesh_->canSplit(hexIdx(across));
 }
 
-// A merge of c draws c's parent, and the outer halves of the joined hexagons in c's ring that
-// it breaks: all of them must pass, or the next refine pass would split c again. The parent
-// first (parentVerdict), then the halves (halvesVerdict) of a merge that canMerge allows.
-CellVerdict Refiner::parentVerdict(int32_t c, double& dist) {
-    const CellShape parent = parentShapeOfCell(*mesh_, c);
-    return judge(footprintOf(*field_, mesh_->embedding(), parent), parentBound(c, parent), nullptr, true, dist);
-}
-
-// The joined hexagons in c's ring that a merge of c breaks, each with the half it leaves.
-int32_t Refiner::ringHalves(int32_t c, RingHalf out[6]) const {
-    const Hexagon& h = mesh_->cell(c);
-    const int32_t first = h.kind == CellKind::Full ? 1 : h.firstVisible;
-    const int32_t edges = h.kind == CellKind::Full ? 6 : 3;
-    int32_t count = 0;
-    for (int32_t i = 0; i < edges; ++i) {
-        const int32_t o = h.opposite[wrapSlot(first + i) - 1];
-        if (o == kNone) continue;
-        const int32_t n = hexIdx(o);
-        const Hexagon& ring = mesh_->cell(n);
-        if (ring.kind != CellKind::Full || ring.splitCount != 0) continue; // a semi or a boundary cell: removed
-        const int32_t k = mesh_->breakDiameterSlot(n);
-        const bool facingFirstHalf = wrapSlot(edgeSlot(o) - k + 7) <= 3; // edge slots k, k+1, k+2
-        RingHalf& half = out[count++];
-        half.ringCell = n;
-        half.which = facingFirstHalf ? 1 : 0;
-        half.shape.kind = CellKind::Semi;
-        half.shape.firstVisible = half.which == 0 ? k : wrapSlot(k + 3);
-        half.shape.center = mesh_->cellCenter(n);
-        half.shape.step = mesh_->cellStep(n);
-    }
-    return count;
-}
-
-CellVerdict Refiner::halvesVerdict(int32_t c, CellVerdict all, double& dist) {
-    RingHalf halves[6];
-    const int32_t count = ringHalves(c, halves);
-    for (int32_t i = 0; i < count; ++i) {
-        const RingHalf& outer = halves[i];
-        // As the cache gives it back (also once the half is a cell of its own): a tighter bound
-        // here would merge what the next test splits again.
-        if (!cache_.hasHalf(outer.ringCell, outer.which))
-            cache_.setHalf(outer.ringCell, outer.which, computeCellError(*field_, mesh_->embedding(), pyramid_, outer.shape));
-        double halfDist;
-        const CellVerdict half = judge(footprintOf(*field_, mesh_->embedding(), outer.shape), cache_.half(outer.ringCell), nullptr, true, halfDist);
-        if (!half.pass) {
-            dist = halfDist;
-            return half;
-        }
-        // One record for all: the smallest margin, checked with the largest distance (a turn
-        // then moves and tilts each centre by at most the record's allowance; see testCell).
-        tighten(all, half);
-        dist = std::max(dist, halfDist);
-    }
-    return all;
-}
-
 // Tests a cell's own bound and, for a merge candidate, its merge; sets its record and state.
 void Refiner::testCell(int32_t c, const HeldOwn* held) {
     double dist;
@@ -462,16 +363,6 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
     setRecord(c, record.margin, record.odometer, dist, ownMargin);
 }
 
-bool Refiner::outOfBudget(double share) {
-    if (settings_.maxOperations > 0 && operations_ >= std::max(1, int32_t(double(settings_.maxOperations) * share))) return true;
-    // Reading the clock costs more than testing a cell: look at it every 32 visits.
-    if (settings_.budgetMs > 0.0 && (visits_ & 31) == 0) {
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
-        if (ms >= settings_.budgetMs * share) return true;
-    }
-    return false;
-}
-
 // One operation towards refining cell c: a split of it (or of what the balance rule needs
 // first), or, for a semi-hexagon, the join that the split of the cell across it would make.
 // A split keeps the split cell's record as the centre child (§4.1), so the bound it had is its
@@ -519,87 +410,6 @@ bool Refiner::refineStep(int32_t c) {
         cache_.setPackedParent(step.cell, kept);
     return true;
 }
-
-// A merge turns the cell's record back into its parent (§4.6): the parent bound it cached is
-// its own bound now (§5.1), and the half its merge test bounded in each broken ring hexagon is
-// the own bound of the semi-hexagon that half becomes.
-bool Refiner::mergeNow(int32_t c) {
-    struct Kept {
-        CellShape shape;
-        PackedBound bound;
-    } kept[7];
-    int32_t count = 0;
-    if (cache_.hasParent(c)) kept[count++] = {parentShapeOfCell(*mesh_, c), cache_.packedParent(c)};
-    RingHalf halves[6];
-    const int32_t ring = ringHalves(c, halves);
-    for (int32_t i = 0; i < ring; ++i)
-        if (cache_.hasHalf(halves[i].ringCell, halves[i].which)) kept[count++] = {halves[i].shape, cache_.packedHalf(halves[i].ringCell)};
-    if (!mesh_->merge(c)) return false;
-    // The cells the merge changed, from the mesh's log (fresh_ lists a cell once, and it may
-    // be there from an earlier merge of this update); only when there is a bound to carry.
-    if (count > 0) mergeChanged_.assign(changes_.begin(), changes_.end());
-    noteChanges();
-    if (count == 0) return true;
-    for (int32_t r : mergeChanged_) {
-        if (!mesh_->isLive(r)) continue;
-        const CellShape shape = shapeOfCell(*mesh_, r);
-        for (int32_t k = 0; k < count; ++k)
-            if (sameShape(shape, kept[k].shape)) cache_.setPackedOwn(r, kept[k].bound);
-    }
-    return true;
-}
-
-// §7: "If a vertex v is to be removed, inverse blending is triggered by a merge [...], which
-// [is] finished when the vertex has faded out." Without geomorphing the merge happens now.
-bool Refiner::beginMerge(int32_t c) {
-    if (!fades_ || !fades_->enabled()) return mergeNow(c);
-    if (!mesh_->canMerge(c)) return false;
-    pending_.begin(*mesh_, *fades_, c);
-    state_[size_t(c)] |= kPending;
-    return false; // nothing changed in the mesh yet
-}
-
-void Refiner::callOff(const PendingMerges::Merge& merge) {
-    PendingMerges::cancelFades(*mesh_, *fades_, merge);
-    if (merge.cell == kNone) return; // its record is gone (renumber)
-    state_[size_t(merge.cell)] &= uint8_t(~(kPending | kCancel));
-    // Due, and tested again in this update (retestChanged follows advancePendingMerges): an
-    // update that called a merge off must not report converged before its cell's test.
-    makeDueForRetest(merge.cell);
-    queueFresh(merge.cell);
-}
-
-// The fading merges: called off when the mesh around them changed or their record's re-test
-// found them no longer wanted (they are re-tested only when due, like every cell); merged
-// once faded, each merge an operation of the budget.
-void Refiner::advancePendingMerges() {
-    pending_.keepIf([&](const PendingMerges::Merge& merge) {
-        if (merge.cell == kNone || (state_[size_t(merge.cell)] & kCancel) || !pending_.stillFrees(*mesh_, merge)) {
-            callOff(merge); // the mesh changed around it, or the view wants the detail back
-            return false;
-        }
-        const bool faded = fades_ == nullptr || !fades_->enabled() || PendingMerges::fadedOut(*mesh_, *fades_, merge);
-        if (!faded || (progressed() && outOfBudget())) return true;
-        state_[size_t(merge.cell)] &= uint8_t(~(kPending | kCancel));
-        if (mergeNow(merge.cell)) ++operations_;
-        return false;
-    });
-}
-
-void Refiner::adaptTau() {
-    if (settings_.viewIndependent || !settings_.autoTau) {
-        currentTau_ = settings_.tau;
-        return;
-    }
-    const bool overCap = settings_.maxTriangles > 0 && mesh_->triangleCount() >= settings_.maxTriangles;
-    const bool overTime = settings_.budgetMs > 0.0 && last_.milliseconds >= settings_.budgetMs && !last_.converged;
-    if (overCap || overTime) currentTau_ = std::min(currentTau_ * 1.1, settings_.tau * 64.0);
-    else if (last_.converged) currentTau_ = std::max(currentTau_ / 1.05, settings_.tau);
-}
-
-// Every update makes progress before a budget may stop it: an operation, or a few hundred
-// cells tested (the next update resumes after them).
-bool Refiner::progressed() const { return operations_ > 0 || visits_ - visitsAtStart_ >= kMinVisits; }
 
 void Refiner::restart() {
     for (const PendingMerges::Merge& merge : pending_.merges()) callOff(merge);
@@ -707,37 +517,6 @@ bool Refiner::drain() {
         }
     }
     return true;
-}
-
-// §6: merges in descending level order, each when what it makes passes. False when the
-// budget stopped it.
-bool Refiner::coarsen() {
-    std::sort(mergeList_.begin(), mergeList_.end(), [&](int32_t a, int32_t b) {
-        const int32_t la = mesh_->isLive(a) ? mesh_->cell(a).level : -1, lb = mesh_->isLive(b) ? mesh_->cell(b).level : -1;
-        return la > lb || (la == lb && a < b);
-    });
-    mergeList_.erase(std::unique(mergeList_.begin(), mergeList_.end()), mergeList_.end());
-    size_t k = 0;
-    for (; k < mergeList_.size(); ++k) {
-        if (progressed() && outOfBudget()) break;
-        const int32_t c = mergeList_[k];
-        if (!mesh_->isLive(c) || !(state_[size_t(c)] & kWanted)) continue; // changed since
-        ++visits_;
-        state_[size_t(c)] &= uint8_t(~kWanted);
-        if (!mesh_->canMerge(c)) {
-            state_[size_t(c)] |= kBlocked;
-            continue;
-        }
-        if (beginMerge(c)) {
-            ++operations_;
-            retestChanged();
-        }
-    }
-    const bool done = k == mergeList_.size();
-    // What the budget left keeps kWanted and its place, for the next update's coarsening (the
-    // sweep does not look for it: that was a read of every cell's state in every update).
-    mergeList_.erase(mergeList_.begin(), mergeList_.begin() + ptrdiff_t(k));
-    return done;
 }
 
 UpdateStats Refiner::update() {

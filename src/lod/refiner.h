@@ -20,6 +20,11 @@
 // they have faded; it is called off if the mesh or the view no longer allow it.
 // Refinement data is cached per cell record (§5.1), recomputed only for cells an operation
 // changed, and carried across a split (the split cell's bound is its parent's) and a merge.
+//
+// The class is implemented in parts: refiner.cpp (the update, the sweep and the test records,
+// the tests, the refining steps), refiner_merges.cpp (merge tests, merges and the coarsening),
+// refiner_budget.cpp (the time and operation budget, auto tau), refiner_renumber.cpp (after a
+// compaction of the mesh) and refiner_achieved_error.cpp (the HUD's achieved error).
 #pragma once
 
 #include <chrono>
@@ -180,7 +185,9 @@ private:
     bool sweep();
     bool drain();
     bool coarsen();
-    bool progressed() const;
+    // Every update makes progress before a budget may stop it: an operation, or a few hundred
+    // cells tested (the next update resumes after them).
+    bool progressed() const { return operations_ > 0 || visits_ - visitsAtStart_ >= kMinVisits; }
     void adaptTau();
     double tau() const { return settings_.autoTau ? currentTau_ : settings_.tau; }
 

@@ -2,7 +2,8 @@
 // be removed, inverse blending is triggered by a merge [...], which [is] finished when the
 // vertex has faded out." The refiner asks to fade vertices out, to call a fade off, and whether
 // one has finished; how a vertex blends, and the frame clock that moves the blends, belong to
-// the implementation (stream/geomorph.h; Terrain ticks its clock once per LOD update).
+// the implementation (the geomorph blends, class Geomorph; Terrain ticks its clock once per
+// LOD update).
 #pragma once
 
 #include <cstdint>
