@@ -42,7 +42,7 @@ const char* Terrain::resetMesh(Embedding embedding) {
 void Terrain::attachMesh() {
     // Every consumer starts from the base mesh; the blend clock starts again.
     refiner_.attach(mesh_, *field_);
-    refiner_.setGeomorph(&morph_);
+    refiner_.setVertexFades(&morph_);
     morph_.resetClock();
     morph_.changedVertices().clear();
     stream_.attach(mesh_);
@@ -59,6 +59,7 @@ void Terrain::configure(const TerrainSettings& settings) {
 
 UpdateStats Terrain::updateLod() {
     if (!renumbering_.empty()) releasePool(renumbering_);
+    morph_.advance(); // the blends' clock (§7): one frame per update, before the merges look at it
     return refiner_.update();
 }
 

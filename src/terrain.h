@@ -53,11 +53,12 @@ public:
     /// compares it to know when to start again.
     uint32_t meshEpoch() const { return meshEpoch_; }
 
-    /// Applies the settings. The refiner compares them at its next update and re-tests every
-    /// cell when one that decides a split changed; the layout and normals switches rewrite the
-    /// stream only when they change.
+    /// Applies the settings: the only way to change them (the pieces are handed out read-only).
+    /// The refiner compares them at its next update and re-tests every cell when one that
+    /// decides a split changed; the layout and normals switches rewrite the stream only when
+    /// they change.
     void configure(const TerrainSettings& settings);
-    /// The settings in force (read from the pieces, so direct changes to them show).
+    /// The settings in force, as the pieces hold them (configure() wrote them there).
     TerrainSettings settings() const {
         return {refiner_.settings(), morph_.frames(), stream_.layout(), stream_.normals(), compactPools_};
     }
@@ -69,6 +70,15 @@ public:
     /// the mesh shrank by a sixteenth (compact()): memory held between frames is what the mesh
     /// needs, not what it needed a frame ago.
     void syncStream();
+    /// The stream's dirty ranges since the last acknowledgeStream (FanStream::dirtyVertices;
+    /// collecting them sorts them, hence not const).
+    const std::vector<ElementRange>& dirtyVertexRanges() { return stream_.dirtyVertices(); }
+    const std::vector<ElementRange>& dirtyIndexRanges() { return stream_.dirtyIndices(); }
+    /// The renderer uploaded every dirty range of the stream: forget them.
+    void acknowledgeStream() { stream_.acknowledge(); }
+    /// Writes the stream's level-ordered view (FanStream::buildLevelView), for the diagnostic
+    /// views of the page; the stream then hands it out.
+    void buildLevelView(bool outline) { stream_.buildLevelView(mesh_, outline); }
     /// Renumbers the mesh densely and every consumer with it, giving the pools' free records
     /// back. syncStream does it (with compactPools) when the mesh shrank by a sixteenth; call it
     /// between frames only, after syncStream.
@@ -83,6 +93,12 @@ public:
     /// drawn surface will not change until the camera or a setting does.
     bool converged() const { return refiner_.lastUpdate().converged && refiner_.pendingMerges() == 0; }
 
+    /// Records the mesh operations of every update (HexMesh::setOperationLog), for a benchmark
+    /// that performs them again on a copy of the mesh; null: none.
+    void setOperationLog(std::vector<MeshOperation>* log) { mesh_.setOperationLog(log); }
+    /// Every cell is due at the next update (Refiner::restart): it is tested again from its
+    /// cached bounds (§5.1). A converged mesh stays as it is.
+    void retestEveryCell() { refiner_.restart(); }
     /// The uniform split, `rounds` times (Fig. 4), outside the refiner. Returns the splits.
     int64_t refineUniform(int32_t rounds);
     /// Height in metres (unscaled) of the surface as drawn now at (x, z) metres, blends
@@ -91,13 +107,11 @@ public:
     /// Bytes of the mesh structures, the refiner's caches and the stream.
     size_t memoryBytes() const;
 
-    HexMesh& mesh() { return mesh_; }
+    /// The pieces, read-only: what changes them goes through the methods above, so that the
+    /// pieces stay wired to each other and configure() stays the one way to set the settings.
     const HexMesh& mesh() const { return mesh_; }
-    Refiner& refiner() { return refiner_; }
     const Refiner& refiner() const { return refiner_; }
-    Geomorph& morph() { return morph_; }
     const Geomorph& morph() const { return morph_; }
-    FanStream& stream() { return stream_; }
     const FanStream& stream() const { return stream_; }
 
     Terrain(const Terrain&) = delete; // the pieces point at each other

@@ -162,10 +162,10 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
     if (cameras.empty()) return fail("no cameras in ", path);
 
     if (const char* error = terrain.resetMesh(hexlod::Embedding::Exact)) return fail(error, nullptr);
-    hexlod::HexMesh& mesh = terrain.mesh();
-    hexlod::Refiner& refiner = terrain.refiner();
-    hexlod::FanStream& stream = terrain.stream();
-    hexlod::Geomorph& morph = terrain.morph();
+    const hexlod::HexMesh& mesh = terrain.mesh();
+    const hexlod::Refiner& refiner = terrain.refiner();
+    const hexlod::FanStream& stream = terrain.stream();
+    const hexlod::Geomorph& morph = terrain.morph();
     hexlod::TerrainSettings settings = terrain.settings();
     settings.lod.tau = tau;
     settings.lod.backfaceCulling = backface;
@@ -217,7 +217,7 @@ int flight(hexlod::Terrain& terrain, int argc, char** argv) {
     std::vector<double> updateMs, updateCpuMs, streamMs, triangles, splits, merges, jumps, tested, convergedMsPerMillion, screenError,
         liveBytes, capacityBytes, convergedCpuMsPerMillion, floorMsPerMillion, floorOperationsMsPerMillion, newShapes;
     std::unique_ptr<hexlod::bench::UpdateFloor> updateFloor;
-    if (measureFloor) updateFloor = std::make_unique<hexlod::bench::UpdateFloor>(mesh, field, backface);
+    if (measureFloor) updateFloor = std::make_unique<hexlod::bench::UpdateFloor>(terrain, field, backface);
     for (const auto& cam : cameras) {
         const uint32_t renumberingsBefore = terrain.renumberings();
         hexlod::View view;

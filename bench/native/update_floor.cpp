@@ -15,8 +15,8 @@ uint64_t shapeKey(const CellShape& s) {
 
 } // namespace
 
-UpdateFloor::UpdateFloor(HexMesh& mesh, const Heightfield& field, bool slopes)
-    : mesh_(mesh), copy_(mesh), field_(field), slopes_(slopes) {
+UpdateFloor::UpdateFloor(Terrain& terrain, const Heightfield& field, bool slopes)
+    : terrain_(terrain), mesh_(terrain.mesh()), copy_(terrain.mesh()), field_(field), slopes_(slopes) {
     pyramid_.build(field);
     copy_.setChangeLog(0, &changed_);
     copy_.setChangeLog(1, nullptr);
@@ -26,10 +26,10 @@ UpdateFloor::UpdateFloor(HexMesh& mesh, const Heightfield& field, bool slopes)
     copy_.releaseFreedVertices();
     for (int32_t c = 0; c < copy_.cellCapacity(); ++c)
         if (copy_.isLive(c)) remember(c);
-    mesh_.setOperationLog(&operations_);
+    terrain_.setOperationLog(&operations_);
 }
 
-UpdateFloor::~UpdateFloor() { mesh_.setOperationLog(nullptr); }
+UpdateFloor::~UpdateFloor() { terrain_.setOperationLog(nullptr); }
 
 bool UpdateFloor::remember(int32_t cell) {
     const CellShape shape = shapeOfCell(copy_, cell);

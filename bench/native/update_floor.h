@@ -1,5 +1,5 @@
 // UpdateFloor: the least an update of the paper's refinement loop (§6) could cost for the
-// operations a flight makes, measured by doing only that on a copy of the mesh (issue 12).
+// operations a flight makes, measured by doing only that on a copy of the mesh.
 //
 // Per frame it performs again the mesh operations the refiner performed (HexMesh::replay,
 // timed), then computes the bound (§5, with the slope box when back-face culling is on) of
@@ -17,13 +17,14 @@
 #include "field/min_max_pyramid.h"
 #include "lod/cell_bounds.h"
 #include "mesh/hex_mesh.h"
+#include "terrain.h"
 
 namespace hexlod::bench {
 
 class UpdateFloor {
 public:
     /// Starts from the mesh as it is (its cells' bounds count as known) and logs its operations.
-    UpdateFloor(HexMesh& mesh, const Heightfield& field, bool slopes);
+    UpdateFloor(Terrain& terrain, const Heightfield& field, bool slopes);
     ~UpdateFloor();
     UpdateFloor(const UpdateFloor&) = delete;
     UpdateFloor& operator=(const UpdateFloor&) = delete;
@@ -45,7 +46,8 @@ private:
     volatile float checksum_ = 0.0f;
     bool diverged_ = false;
 
-    HexMesh& mesh_;
+    Terrain& terrain_;
+    const HexMesh& mesh_;
     HexMesh copy_;
     const Heightfield& field_;
     MinMaxPyramid pyramid_;

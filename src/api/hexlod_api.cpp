@@ -47,7 +47,7 @@ void fillFrame(hexlod_terrain* terrain, int32_t steps, hexlod_frame* out) {
     const hexlod::HexMesh& mesh = core.mesh();
     const hexlod::Refiner& refiner = core.refiner();
     const hexlod::UpdateStats& last = refiner.lastUpdate();
-    hexlod::FanStream& stream = core.stream(); // collecting the dirty ranges sorts them
+    const hexlod::FanStream& stream = core.stream();
     out->update_ms = last.milliseconds;
     out->tau_px = refiner.currentTau();
     out->frame = double(core.morph().frame());
@@ -77,12 +77,12 @@ void fillFrame(hexlod_terrain* terrain, int32_t steps, hexlod_frame* out) {
     }
     out->vertex_count = mesh.vertexCapacity();
     out->index_count = stream.indexCount();
-    out->dirty_vertex_pairs = int32_t(stream.dirtyVertices().size());
-    out->dirty_index_pairs = int32_t(stream.dirtyIndices().size());
+    out->dirty_vertex_pairs = int32_t(core.dirtyVertexRanges().size()); // collecting the dirty ranges sorts them
+    out->dirty_index_pairs = int32_t(core.dirtyIndexRanges().size());
     out->vertices_ptr = mesh.vertexData();
     out->indices_ptr = stream.indices().data();
-    out->dirty_vertices_ptr = rangePairs(stream.dirtyVertices());
-    out->dirty_indices_ptr = rangePairs(stream.dirtyIndices());
+    out->dirty_vertices_ptr = rangePairs(core.dirtyVertexRanges());
+    out->dirty_indices_ptr = rangePairs(core.dirtyIndexRanges());
     out->normals_ptr = stream.normalData();
 }
 
@@ -199,7 +199,7 @@ int32_t hexlod_terrain_frame(hexlod_terrain* terrain, const hexlod_camera* camer
 
 int32_t hexlod_terrain_acknowledge(hexlod_terrain* terrain) {
     if (const char* error = needMesh(terrain)) return fail(error);
-    terrain->core->stream().acknowledge();
+    terrain->core->acknowledgeStream();
     return 0;
 }
 
@@ -229,8 +229,8 @@ int32_t hexlod_terrain_height_at(const hexlod_terrain* terrain, double x_m, doub
 int32_t hexlod_terrain_level_view(hexlod_terrain* terrain, int32_t outline, hexlod_level_view* out) {
     if (const char* error = needMesh(terrain)) return fail(error);
     if (!out) return fail("hexlod_terrain_level_view needs a hexlod_level_view to fill");
-    hexlod::FanStream& stream = terrain->core->stream();
-    stream.buildLevelView(terrain->core->mesh(), outline != 0);
+    terrain->core->buildLevelView(outline != 0);
+    const hexlod::FanStream& stream = terrain->core->stream();
     out->indices = stream.levelIndices().data();
     out->level_offsets = stream.levelOffsets().data();
     out->outline = stream.outline().data();

@@ -16,7 +16,7 @@ void CameraOdometers::move(const View& from, const View& to) {
     // The world's up vector in view coordinates is (right.y, up.y, forward.y).
     stepTilt_ += glm::length(glm::dvec3(dr.y, du.y, df.y));
     // In the new view's coordinates a fixed point moves by -v, besides the turn's share. A side
-    // plane's slack (Refiner::judge: e.g. (tanX z - x) / sqrt(1 + tanX^2) for the right plane)
+    // plane's slack (judgeCell, cell_verdict.cpp: e.g. (tanX z - x) / sqrt(1 + tanX^2) for the right plane)
     // has a unit gradient n; the point moves inwards across it by -n.v, never more than |v|.
     const double x = glm::dot(step, to.right), y = glm::dot(step, to.up), z = glm::dot(step, to.forward);
     const double sx = std::sqrt(1.0 + to.tanHalfX * to.tanHalfX), sy = std::sqrt(1.0 + to.tanHalfY * to.tanHalfY);

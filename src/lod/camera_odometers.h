@@ -13,7 +13,7 @@
 // norm of the change of the view basis), whatever the odometer; it is added to each.
 //
 // Turning also tilts the world's up vector in view coordinates, which changes how large a
-// vertical error looks on the screen (Refiner::judge). A turn of the view basis bounds that
+// vertical error looks on the screen (cell_verdict.h). A turn of the view basis bounds that
 // tilt, so a margin m on the travel odometer allows a tilt of m / D. A camera that flies and
 // yaws, as a flight does, tilts nothing, and leaving room for that tilt costs a quarter of the
 // margins of far merge tests. So while the camera has not tilted for kQuietUpdates updates,
@@ -39,7 +39,7 @@
 
 namespace hexlod {
 
-/// What a margin is measured by. The planes in the order of Refiner::judge's slacks. Steady
+/// What a margin is measured by. The planes in the order of judgeCell's slacks (cell_verdict.cpp). Steady
 /// charges at least what each of the others does.
 enum class Odometer : uint8_t { Travel = 0, RightPlane, LeftPlane, TopPlane, BottomPlane, Steady };
 

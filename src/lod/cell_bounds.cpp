@@ -265,7 +265,7 @@ CellError computeCellError(const Heightfield& field, Embedding embedding, const 
     CellError e{vertexLow, vertexHigh, 0.0f};
     // A hexagon (or boundary half) of step 1: its triangles are elementary triangles of the
     // lattice, whose only samples are their corners (Pick's theorem: no room for another), and
-    // the drawn surface passes through them. Its error is exactly 0, which judge() reads as a
+    // the drawn surface passes through them. Its error is exactly 0, which judgeCell() reads as a
     // verdict that no camera changes. (A step-1 semi-hexagon's long edge runs through a sample
     // that is not a corner: it is scanned.)
     if (shape.step == 1 && shape.kind != CellKind::Semi) return e;

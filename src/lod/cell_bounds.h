@@ -36,6 +36,11 @@ struct Footprint {
 /// larger ones are bounded through the min/max pyramid.
 constexpr double kExactScanSamples = 4096.0;
 
+inline bool sameShape(const CellShape& a, const CellShape& b) {
+    return a.kind == b.kind && a.firstVisible == b.firstVisible && a.center.q == b.center.q && a.center.r == b.center.r &&
+           a.step == b.step;
+}
+
 /// The shape of a live cell, and of the cell a merge of it would make.
 CellShape shapeOfCell(const HexMesh& mesh, int32_t cell);
 CellShape parentShapeOfCell(const HexMesh& mesh, int32_t cell);

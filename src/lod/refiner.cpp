@@ -13,38 +13,6 @@
 
 namespace hexlod {
 
-namespace {
-
-constexpr double kForever = 1e30; // a margin no camera uses up (a verdict that does not depend on the view)
-// How far the far plane may come closer before every cell is due (cells far away are often
-// near the far plane: a loose factor would leave their merge tests without margins).
-constexpr double kFarShrink = 15.0 / 16.0;
-
-// The largest margin in (0, cap] found to hold by bisection (the test is monotone: a
-// verdict that holds within m holds within anything less), 0 when none, to an eighth of the
-// cap. Four evaluations at most; three when the cap is known not to hold (tryCap false). A
-// finer search costs more than the re-tests its longer margins save: on the Grand Canyon at
-// 50 m a frame, 5 steps test 918 cells a frame, 3 steps 967, in 8 % less time; 2 steps 1,098.
-template <typename Holds>
-double largestMargin(double cap, Holds&& holds, bool tryCap = true) {
-    if (!(cap > 0.0)) return 0.0;
-    if (tryCap && cap < kForever && holds(cap)) return cap;
-    double lo = 0.0, hi = std::min(cap, 1e12);
-    for (int32_t k = 0; k < 3; ++k) {
-        const double m = 0.5 * (lo + hi);
-        if (holds(m)) lo = m;
-        else hi = m;
-    }
-    return lo;
-}
-
-bool sameShape(const CellShape& a, const CellShape& b) {
-    return a.kind == b.kind && a.firstVisible == b.firstVisible && a.center.q == b.center.q && a.center.r == b.center.r &&
-           a.step == b.step;
-}
-
-} // namespace
-
 void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     mesh_ = &mesh;
     field_ = &field;
@@ -86,9 +54,9 @@ void Refiner::setView(const View& view) {
                                  view.pixelsPerTangent == view_.pixelsPerTangent;
     // Margins of failing merge tests assume a far plane that culls no cell with samples in any
     // view since (one beyond the field: the page's and the command line's are) or, else, far
-    // >= kFarShrink * farRef_ (judge()). Without the first, a camera flying towards the middle
+    // >= kFarShrink * farRef_ (cell_verdict.cpp). Without the first, a camera flying towards the middle
     // of the field would make every cell due each time far shrank by a sixteenth. They do not
-    // depend on the near plane (judge()).
+    // depend on the near plane (cell_verdict.cpp).
     const bool farCovers = field_ && view.farPlane >= farthestData(view.eye);
     const bool planesMoved = !farCovers && (farCoversData_ || view.farPlane < kFarShrink * farRef_);
     farCoversData_ = farCovers;
@@ -99,56 +67,19 @@ void Refiner::setView(const View& view) {
     if (!sameShapeOfView || planesMoved) invalidateAll();
 }
 
-void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<int32_t>& vertexMap) {
-    const size_t cells = size_t(mesh_->cellCapacity());
-    // The sweep goes on from the group of the first kept cell at or after where it stopped.
-    int32_t cursor = 0;
-    for (size_t c = size_t(std::max(sweepCursor_, 0)) * SweepSummaries::kGroup; c < cellMap.size(); ++c) {
-        if (cellMap[c] != kNone) {
-            cursor = cellMap[c];
-            break;
-        }
-    }
-    sweepCursor_ = SweepSummaries::groupOf(cursor);
-    const size_t room = mesh_->cellPoolRoom(); // the records' arrays keep the pool's room
-    cache_.renumber(cellMap, cells, room);
-    renumberPool(records_, cellMap, cells, room);
-    renumberPool(state_, cellMap, cells, room);
-    summaries_.release(); // every group read again
-    summaries_.resize(cells, room);
-    // A merge whose cell or vertex is gone (the mesh changed around it in the last update) keeps
-    // kNone for it: the next update calls it off, as it would have without the renumbering.
-    for (PendingMerge& merge : pending_) {
-        merge.cell = cellMap[size_t(merge.cell)];
-        for (int32_t k = 0; k < merge.count; ++k) merge.vertices[k] = vertexMap[size_t(merge.vertices[k])];
-    }
-    // Cells queued for the next update; a freed cell is gone with its record.
-    for (std::vector<int32_t>* list : {&changes_, &fresh_, &mergeList_, &capChains_}) {
-        size_t kept = 0;
-        for (int32_t c : *list)
-            if (size_t(c) < cellMap.size() && cellMap[size_t(c)] != kNone) (*list)[kept++] = cellMap[size_t(c)];
-        list->resize(kept);
-    }
-    size_t kept = 0;
-    for (const Candidate& candidate : heap_)
-        if (cellMap[size_t(candidate.cell)] != kNone) heap_[kept++] = {candidate.pixels, cellMap[size_t(candidate.cell)]};
-    heap_.resize(kept);
-    std::make_heap(heap_.begin(), heap_.end(), lowerPriority);
-}
-
 size_t Refiner::memoryBytes() const {
     return cache_.memoryBytes() + records_.capacity() * sizeof(TestRecord) + state_.capacity() + summaries_.memoryBytes() +
            CameraOdometers::memoryBytes() +
-           (changes_.capacity() + fresh_.capacity() + looked_.capacity() + freedScratch_.capacity() + mergeList_.capacity() + mergeChanged_.capacity() +
+           (changes_.capacity() + fresh_.capacity() + looked_.capacity() + mergeList_.capacity() + mergeChanged_.capacity() +
             capChains_.capacity()) *
                sizeof(int32_t) +
-           heap_.capacity() * sizeof(Candidate) + pending_.capacity() * sizeof(PendingMerge) + pyramid_.memoryBytes();
+           heap_.capacity() * sizeof(Candidate) + pending_.memoryBytes() + pyramid_.memoryBytes();
 }
 
 size_t Refiner::liveMemoryBytes() const {
     const size_t cells = size_t(mesh_ ? mesh_->liveCells() : 0);
     return cells * (sizeof(RefinementCache::Entry) + sizeof(TestRecord) + 1) + size_t(double(cells) * SweepSummaries::bytesPerRecord() + 0.5) +
-           pending_.size() * sizeof(PendingMerge) + pyramid_.memoryBytes() + CameraOdometers::memoryBytes();
+           pending_.liveMemoryBytes() + pyramid_.memoryBytes() + CameraOdometers::memoryBytes();
 }
 
 void Refiner::invalidateAll() {
@@ -259,158 +190,6 @@ SlopeBox Refiner::ownSlopes(int32_t c, const Footprint& footprint) {
     return cache_.ownSlopes(c);
 }
 
-// The criteria of §5 for one bound (see view_criteria.h), and the margin of the verdict: how
-// far the sphere's centre may move in view coordinates (the eye by as much in the world, the
-// world's up vector in view coordinates by at most CameraOdometers::tiltAllowed(margin, dist)
-// on the odometer the verdict is measured by) before the verdict can change.
-//  - outside a side plane of the frustum: the distance beyond it (the planes are fixed in view
-//    coordinates; near and far planes move with the camera, so they give no margin);
-//  - back-facing: the smallest (v.n - r|n|)/|n| over the slope box's corners (v = centre - eye);
-//  - projected error within tau: a margin m for which the bound over every sphere of radius
-//    r + m around the centre, at depth >= z - r - m and with the up vector tilted by up to
-//    CameraOdometers::tiltAllowed(m, dist, moving), stays within tau (projectedErrorPixels' corner
-//    argument, plus the tilt's share);
-//  - failing (asked for with failMargin, for merge tests): a margin that keeps the sphere
-//    inside the side planes and the far plane, not back-facing, and a lower bound of the
-//    projected error (at the centre's screen tangent, the nearest depth at most
-//    max(z - r + m, mergeNearest_): merge tests do not use the near plane) above tau, given
-//    far >= kFarShrink farRef_ (or a far plane beyond the field, setView).
-// Without a margin known, 0: the cell is due at the next update.
-Refiner::Verdict Refiner::judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin,
-                                double& distOut) const {
-    ++tested_;
-    const Odometer moving = odometers_.moving();
-    Verdict v;
-    v.odometer = moving;
-    if (settings_.viewIndependent) {
-        v.pass = !(e.error > settings_.maxError);
-        v.pixels = e.error;
-        v.margin = kForever;
-        distOut = 0.0;
-        return v;
-    }
-    glm::dvec3 center;
-    double radius;
-    boundingSphere(f, e, settings_.verticalScale, center, radius);
-    const glm::dvec3 d = center - view_.eye;
-    distOut = double(roundedUp(glm::length(d)));
-    const double dist = distOut;
-    const double x = glm::dot(d, view_.right), y = glm::dot(d, view_.up), z = glm::dot(d, view_.forward);
-    double inside = kForever; // smallest slack inside the side planes
-    if (settings_.culling) {
-        const double sx = planeNormX_, sy = planeNormY_;
-        const double slack[4] = {(view_.tanHalfX * z - x) / sx + radius, (view_.tanHalfX * z + x) / sx + radius,
-                                 (view_.tanHalfY * z - y) / sy + radius, (view_.tanHalfY * z + y) / sy + radius};
-        double outside = 0.0;
-        int32_t culledBy = 0;
-        for (int32_t p = 0; p < 4; ++p) {
-            inside = std::min(inside, slack[p]);
-            if (-slack[p] > outside) outside = -slack[p], culledBy = p;
-        }
-        // Culled until the centre comes back across that plane: the plane's odometer.
-        if (outside > 0.0) return {true, 0.0, outside, Odometer(int32_t(Odometer::RightPlane) + culledBy)};
-        // In front of the near plane: an own test only (merge tests do not use the near plane).
-        if ((!failMargin && z + radius < view_.nearPlane) || z - radius > view_.farPlane) return {true, 0.0, 0.0, moving};
-    }
-    double front = kForever; // how far the eye may move before a front-facing cell can turn its back
-    if (settings_.backfaceCulling && slopes && slopes->known()) {
-        double back = kForever, frontFacing = -kForever;
-        bool backFacing = true;
-        for (double dx : {double(slopes->dxLow), double(slopes->dxHigh)})
-            for (double dz : {double(slopes->dzLow), double(slopes->dzHigh)}) {
-                const glm::dvec3 n(-settings_.verticalScale * dx, 1.0, -settings_.verticalScale * dz);
-                const double length = glm::length(n);
-                const double s = (glm::dot(d, n) - radius * length) / length;
-                if (s <= 0.0) backFacing = false;
-                back = std::min(back, s);
-                frontFacing = std::max(frontFacing, -s);
-            }
-        if (backFacing) return {true, 0.0, back, moving};
-        front = frontFacing;
-    }
-    const double error = double(e.error) * settings_.verticalScale;
-    // A merge test bounds the error at the sphere's nearest depth however close to the eye, not
-    // at the near plane: its verdict, and the margin of a failing one, then hold whatever near
-    // plane later views have (the page's follows the height above the ground). It must be the
-    // stricter test, so that a merge it allows is not split again by the own test: with a near
-    // plane closer than mergeNearest_ (a walk a few centimetres above the ground), the near
-    // plane. (Issue 29's teleports found the cycle: 1984 splits and merges every update.) A
-    // passing merge's margin holds for any near plane (upper() ignores it), and a failing one's
-    // lower bound, taken at mergeNearest_, holds for every nearer depth.
-    const double nearest = failMargin ? std::min(mergeNearest_, view_.nearPlane) : view_.nearPlane;
-    v.pixels = projectedErrorPixels(view_, center, radius, error, nearest);
-    const double t = tau();
-    v.pass = !(v.pixels > t);
-    if (error <= 0.0) {
-        v.margin = kForever;
-        return v;
-    }
-    const double ux = view_.right.y, uy = view_.up.y, uz = view_.forward.y;
-    if (v.pass) {
-        // Upper bound of the projected error over every view within margin m (the sum of the
-        // two squares is largest where each is: the corner maximum of projectedErrorPixels).
-        auto upper = [&](double m) {
-            const double zLow = z - radius - m;
-            if (!(zLow > 0.0)) return kForever;
-            const double r = radius + m, toLow = 1.0 / zLow, toHigh = 1.0 / (z + r);
-            auto range = [&](double c, double& lo, double& hi) {
-                const double a = c - r, b = c + r;
-                lo = a * (a < 0.0 ? toLow : toHigh);
-                hi = b * (b > 0.0 ? toLow : toHigh);
-            };
-            double xLo, xHi, yLo, yHi;
-            range(x, xLo, xHi);
-            range(y, yLo, yHi);
-            const double gx = std::max((ux - xLo * uz) * (ux - xLo * uz), (ux - xHi * uz) * (ux - xHi * uz));
-            const double gy = std::max((uy - yLo * uz) * (uy - yLo * uz), (uy - yHi * uz) * (uy - yHi * uz));
-            const double tMax2 = std::max(xLo * xLo, xHi * xHi) + std::max(yLo * yLo, yHi * yHi);
-            const double tilt = dist > 0.0 ? CameraOdometers::tiltAllowed(m, dist, moving) : kForever;
-            return view_.pixelsPerTangent * error * (std::sqrt(gx + gy) + tilt * std::sqrt(1.0 + tMax2)) * toLow;
-        };
-        // At that cap the depth alone has used up the room the error had below tau, so the bound
-        // there (its other terms only grow with m) is above tau: no need to try it.
-        v.margin = largestMargin((z - radius) * (1.0 - v.pixels / t), [&](double m) { return upper(m) <= t; }, false);
-        return v;
-    }
-    if (!failMargin) return v;
-    // Lower bound of the projected error over every view within margin m.
-    if (!(z > 0.0)) return v;
-    const double tcx = x / z, tcy = y / z;
-    const double pcx = ux - tcx * uz, pcy = uy - tcy * uz;
-    const double pc = std::sqrt(pcx * pcx + pcy * pcy);
-    const double tangentSpeed = std::sqrt((1.0 + std::abs(tcx)) * (1.0 + std::abs(tcx)) + (1.0 + std::abs(tcy)) * (1.0 + std::abs(tcy)));
-    const double tangent = std::sqrt(tcx * tcx + tcy * tcy);
-    auto lower = [&](double m) {
-        // The centre stays in front of the eye (its screen tangent is then in the box the bound
-        // maximises over), and the sphere short of the far plane when culling.
-        if (z - m < mergeNearest_ || (settings_.culling && !farCoversData_ && z - radius + m > kFarShrink * farRef_)) return 0.0;
-        const double dt = m * tangentSpeed / (z - m);
-        const double tc = tangent + dt;
-        const double tilt = dist > 0.0 ? CameraOdometers::tiltAllowed(m, dist, moving) : kForever;
-        const double g = pc - std::abs(uz) * dt - tilt * std::sqrt(1.0 + tc * tc);
-        return g > 0.0 ? view_.pixelsPerTangent * error * g / std::max(z - radius + m, mergeNearest_) : 0.0;
-    };
-    const double atCenter = view_.pixelsPerTangent * error * pc / std::max(z - radius, mergeNearest_);
-    // Strictly inside the side planes and in front: a margin just below those slacks.
-    // As in the passing case, the bound at the first of these caps is not above tau: only a
-    // cap set by a side plane or the back faces is worth trying.
-    const double depthCap = (z - radius) * (atCenter / t - 1.0);
-    const double cap = std::min({depthCap, 0.999 * inside, 0.999 * front});
-    v.margin = largestMargin(cap, [&](double m) { return lower(m) > t; }, cap < depthCap);
-    return v;
-}
-
-void Refiner::tighten(Verdict& into, const Verdict& other) {
-    if (other.margin >= kForever) return;
-    if (into.margin >= kForever) {
-        into.margin = other.margin, into.odometer = other.odometer;
-        return;
-    }
-    // Steady charges at least what any other odometer does, travel at least what a plane's does.
-    if (into.odometer != other.odometer)
-        into.odometer = into.odometer == Odometer::Steady || other.odometer == Odometer::Steady ? Odometer::Steady : Odometer::Travel;
-    into.margin = std::min(into.margin, other.margin);
-}
 
 namespace {
 // A margin as a record keeps it (CameraOdometers::storedMargin; kForever as the largest float).
@@ -473,6 +252,28 @@ bool Refiner::retest(int32_t c) {
     return kept;
 }
 
+CellVerdict Refiner::judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin, double& dist) {
+    ++tested_;
+    return judgeCell(verdictContext_, {f, e, slopes, failMargin}, dist);
+}
+
+// The view and thresholds the verdicts of this update are made for: none changes during it.
+void Refiner::refreshVerdictContext() {
+    VerdictContext& v = verdictContext_;
+    v.view = &view_;
+    v.planeNormX = planeNormX_, v.planeNormY = planeNormY_;
+    v.moving = odometers_.moving();
+    v.viewIndependent = settings_.viewIndependent;
+    v.tau = tau();
+    v.maxError = settings_.maxError;
+    v.verticalScale = settings_.verticalScale;
+    v.culling = settings_.culling;
+    v.backfaceCulling = settings_.backfaceCulling;
+    v.mergeNearest = mergeNearest_;
+    v.farCoversData = farCoversData_;
+    v.farRef = farRef_;
+}
+
 // Whether a step could refine the cell: false at the finest level (the split cannot happen,
 // whatever the view), or for a semi-hexagon across from a cell at the finest level.
 bool Refiner::canRefine(int32_t c) const {
@@ -483,66 +284,10 @@ bool Refiner::canRefine(int32_t c) const {
     return mesh_->canSplit(hexIdx(across));
 }
 
-// A merge of c draws c's parent, and the outer halves of the joined hexagons in c's ring that
-// it breaks: all of them must pass, or the next refine pass would split c again. The parent
-// first (parentVerdict), then the halves (halvesVerdict) of a merge that canMerge allows.
-Refiner::Verdict Refiner::parentVerdict(int32_t c, double& dist) {
-    const CellShape parent = parentShapeOfCell(*mesh_, c);
-    return judge(footprintOf(*field_, mesh_->embedding(), parent), parentBound(c, parent), nullptr, true, dist);
-}
-
-// The joined hexagons in c's ring that a merge of c breaks, each with the half it leaves.
-int32_t Refiner::ringHalves(int32_t c, RingHalf out[6]) const {
-    const Hexagon& h = mesh_->cell(c);
-    const int32_t first = h.kind == CellKind::Full ? 1 : h.firstVisible;
-    const int32_t edges = h.kind == CellKind::Full ? 6 : 3;
-    int32_t count = 0;
-    for (int32_t i = 0; i < edges; ++i) {
-        const int32_t o = h.opposite[wrapSlot(first + i) - 1];
-        if (o == kNone) continue;
-        const int32_t n = hexIdx(o);
-        const Hexagon& ring = mesh_->cell(n);
-        if (ring.kind != CellKind::Full || ring.splitCount != 0) continue; // a semi or a boundary cell: removed
-        const int32_t k = mesh_->breakDiameterSlot(n);
-        const bool facingFirstHalf = wrapSlot(edgeSlot(o) - k + 7) <= 3; // edge slots k, k+1, k+2
-        RingHalf& half = out[count++];
-        half.ringCell = n;
-        half.which = facingFirstHalf ? 1 : 0;
-        half.shape.kind = CellKind::Semi;
-        half.shape.firstVisible = half.which == 0 ? k : wrapSlot(k + 3);
-        half.shape.center = mesh_->cellCenter(n);
-        half.shape.step = mesh_->cellStep(n);
-    }
-    return count;
-}
-
-Refiner::Verdict Refiner::halvesVerdict(int32_t c, Verdict all, double& dist) {
-    RingHalf halves[6];
-    const int32_t count = ringHalves(c, halves);
-    for (int32_t i = 0; i < count; ++i) {
-        const RingHalf& outer = halves[i];
-        // As the cache gives it back (also once the half is a cell of its own): a tighter bound
-        // here would merge what the next test splits again.
-        if (!cache_.hasHalf(outer.ringCell, outer.which))
-            cache_.setHalf(outer.ringCell, outer.which, computeCellError(*field_, mesh_->embedding(), pyramid_, outer.shape));
-        double halfDist;
-        const Verdict half = judge(footprintOf(*field_, mesh_->embedding(), outer.shape), cache_.half(outer.ringCell), nullptr, true, halfDist);
-        if (!half.pass) {
-            dist = halfDist;
-            return half;
-        }
-        // One record for all: the smallest margin, checked with the largest distance (a turn
-        // then moves and tilts each centre by at most the record's allowance; see testCell).
-        tighten(all, half);
-        dist = std::max(dist, halfDist);
-    }
-    return all;
-}
-
 // Tests a cell's own bound and, for a merge candidate, its merge; sets its record and state.
 void Refiner::testCell(int32_t c, const HeldOwn* held) {
     double dist;
-    Verdict own;
+    CellVerdict own;
     if (held) {
         // Its own verdict holds for what is left of its margin: a pass (or a failure at the
         // finest level, which is a pass with no margin limit to the rest of this test).
@@ -571,7 +316,7 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
         if (state & kPending) state |= kCancel;
         return;
     }
-    Verdict record = own;
+    CellVerdict record = own;
     if (!own.pass) record.margin = kForever; // failing at the finest level: nothing to do, whatever the view
     const double ownMargin = record.margin;
     const Hexagon& h = mesh_->cell(c);
@@ -582,7 +327,7 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
         const bool pending = state & kPending;
         bool blocked = !pending && !cache_.hasParent(c) && !mesh_->canMerge(c);
         double mergeDist = 0.0;
-        Verdict merge;
+        CellVerdict merge;
         if (!blocked) {
             merge = parentVerdict(c, mergeDist);
             blocked = merge.pass && !pending && !mesh_->canMerge(c);
@@ -608,7 +353,7 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
             // Not due means (movement on the record's odometer) + (turn, plus kTiltWeight tilt
             // when steady) * (D + travel) < rho for D >= every tested centre's distance at the
             // test: each centre moved less than rho <= its margin, and the up vector tilted by
-            // less than tiltAllowed(rho, D) <= tiltAllowed(margin, its distance), as judge()
+            // less than tiltAllowed(rho, D) <= tiltAllowed(margin, its distance), as judgeCell()
             // assumed. tighten keeps the odometer that charges the most: a plane's only when
             // every verdict is a cull by that plane.
             tighten(record, merge);
@@ -618,16 +363,6 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
     setRecord(c, record.margin, record.odometer, dist, ownMargin);
 }
 
-bool Refiner::outOfBudget(double share) {
-    if (settings_.maxOperations > 0 && operations_ >= std::max(1, int32_t(double(settings_.maxOperations) * share))) return true;
-    // Reading the clock costs more than testing a cell: look at it every 32 visits.
-    if (settings_.budgetMs > 0.0 && (visits_ & 31) == 0) {
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
-        if (ms >= settings_.budgetMs * share) return true;
-    }
-    return false;
-}
-
 // One operation towards refining cell c: a split of it (or of what the balance rule needs
 // first), or, for a semi-hexagon, the join that the split of the cell across it would make.
 // A split keeps the split cell's record as the centre child (§4.1), so the bound it had is its
@@ -635,8 +370,8 @@ bool Refiner::outOfBudget(double share) {
 // Under a triangle cap, no split starts while the cap is reached, but one that started (a step
 // the balance rule needed first was taken) finishes: otherwise a merge that frees triangles
 // below the cap is undone by the balance step of a cell that then waits at the cap, and the
-// merge is wanted again (issue 29's teleports found the cycle under geomorphing: one split
-// and one merge of the same cell every update, never converged).
+// merge is wanted again (under geomorphing, one split and one merge of the same cell every
+// update, never converged).
 bool Refiner::refineStep(int32_t c) {
     const Hexagon& h = mesh_->cell(c);
     const auto chain = std::find(capChains_.begin(), capChains_.end(), c);
@@ -676,119 +411,8 @@ bool Refiner::refineStep(int32_t c) {
     return true;
 }
 
-// A merge turns the cell's record back into its parent (§4.6): the parent bound it cached is
-// its own bound now (§5.1), and the half its merge test bounded in each broken ring hexagon is
-// the own bound of the semi-hexagon that half becomes.
-bool Refiner::mergeNow(int32_t c) {
-    struct Kept {
-        CellShape shape;
-        PackedBound bound;
-    } kept[7];
-    int32_t count = 0;
-    if (cache_.hasParent(c)) kept[count++] = {parentShapeOfCell(*mesh_, c), cache_.packedParent(c)};
-    RingHalf halves[6];
-    const int32_t ring = ringHalves(c, halves);
-    for (int32_t i = 0; i < ring; ++i)
-        if (cache_.hasHalf(halves[i].ringCell, halves[i].which)) kept[count++] = {halves[i].shape, cache_.packedHalf(halves[i].ringCell)};
-    if (!mesh_->merge(c)) return false;
-    // The cells the merge changed, from the mesh's log (fresh_ lists a cell once, and it may
-    // be there from an earlier merge of this update); only when there is a bound to carry.
-    if (count > 0) mergeChanged_.assign(changes_.begin(), changes_.end());
-    noteChanges();
-    if (count == 0) return true;
-    for (int32_t r : mergeChanged_) {
-        if (!mesh_->isLive(r)) continue;
-        const CellShape shape = shapeOfCell(*mesh_, r);
-        for (int32_t k = 0; k < count; ++k)
-            if (sameShape(shape, kept[k].shape)) cache_.setPackedOwn(r, kept[k].bound);
-    }
-    return true;
-}
-
-// §7: "If a vertex v is to be removed, inverse blending is triggered by a merge [...], which
-// [is] finished when the vertex has faded out." Without geomorphing the merge happens now.
-bool Refiner::beginMerge(int32_t c) {
-    if (!morph_ || !morph_->enabled()) return mergeNow(c);
-    if (!mesh_->canMerge(c)) return false;
-    PendingMerge merge{c, 0, {}};
-    freedScratch_.clear();
-    mesh_->verticesFreedByMerge(c, freedScratch_);
-    for (int32_t v : freedScratch_) {
-        merge.vertices[merge.count++] = v;
-        morph_->blendOut(*mesh_, v, mesh_->parentsAround(v, c));
-    }
-    pending_.push_back(merge);
-    state_[size_t(c)] |= kPending;
-    return false; // nothing changed in the mesh yet
-}
-
-// Whether the merge would still free exactly the vertices that are fading out.
-bool Refiner::stillFrees(const PendingMerge& merge) {
-    if (merge.cell == kNone || !mesh_->canMerge(merge.cell)) return false; // kNone: gone (renumber)
-    freedScratch_.clear();
-    mesh_->verticesFreedByMerge(merge.cell, freedScratch_);
-    return std::equal(freedScratch_.begin(), freedScratch_.end(), merge.vertices, merge.vertices + merge.count);
-}
-
-void Refiner::callOff(const PendingMerge& merge) {
-    for (int32_t i = 0; i < merge.count; ++i)
-        if (merge.vertices[i] != kNone && mesh_->isVertexLive(merge.vertices[i])) morph_->cancelBlendOut(*mesh_, merge.vertices[i]);
-    if (merge.cell == kNone) return; // its record is gone (renumber)
-    state_[size_t(merge.cell)] &= uint8_t(~(kPending | kCancel));
-    // Due, and tested again in this update (retestChanged follows advancePendingMerges): an
-    // update that called a merge off must not report converged before its cell's test.
-    makeDueForRetest(merge.cell);
-    queueFresh(merge.cell);
-}
-
-// The fading merges: called off when the mesh around them changed or their record's re-test
-// found them no longer wanted (they are re-tested only when due, like every cell); merged
-// once faded, each merge an operation of the budget.
-void Refiner::advancePendingMerges() {
-    size_t kept = 0;
-    for (size_t i = 0; i < pending_.size(); ++i) {
-        const PendingMerge merge = pending_[i];
-        if (merge.cell == kNone || (state_[size_t(merge.cell)] & kCancel) || !stillFrees(merge)) {
-            callOff(merge); // the mesh changed around it, or the view wants the detail back
-            continue;
-        }
-        bool faded = morph_ == nullptr || !morph_->enabled();
-        if (!faded) {
-            faded = true;
-            for (int32_t k = 0; k < merge.count; ++k) {
-                const StreamVertex& v = mesh_->streamVertex(merge.vertices[k]);
-                if (!morph_->blendingOut(v)) // reversed by a called-off merge
-                    morph_->blendOut(*mesh_, merge.vertices[k], mesh_->parentsAround(merge.vertices[k], merge.cell));
-                faded = faded && morph_->fadedOut(v);
-            }
-        }
-        if (!faded || (progressed() && outOfBudget())) {
-            pending_[kept++] = merge;
-            continue;
-        }
-        state_[size_t(merge.cell)] &= uint8_t(~(kPending | kCancel));
-        if (mergeNow(merge.cell)) ++operations_;
-    }
-    pending_.resize(kept);
-}
-
-void Refiner::adaptTau() {
-    if (settings_.viewIndependent || !settings_.autoTau) {
-        currentTau_ = settings_.tau;
-        return;
-    }
-    const bool overCap = settings_.maxTriangles > 0 && mesh_->triangleCount() >= settings_.maxTriangles;
-    const bool overTime = settings_.budgetMs > 0.0 && last_.milliseconds >= settings_.budgetMs && !last_.converged;
-    if (overCap || overTime) currentTau_ = std::min(currentTau_ * 1.1, settings_.tau * 64.0);
-    else if (last_.converged) currentTau_ = std::max(currentTau_ / 1.05, settings_.tau);
-}
-
-// Every update makes progress before a budget may stop it: an operation, or a few hundred
-// cells tested (the next update resumes after them).
-bool Refiner::progressed() const { return operations_ > 0 || visits_ - visitsAtStart_ >= kMinVisits; }
-
 void Refiner::restart() {
-    for (const PendingMerge& merge : pending_) callOff(merge);
+    for (const PendingMerges::Merge& merge : pending_.merges()) callOff(merge);
     pending_.clear();
     capChains_.clear();
     sweepCursor_ = 0;
@@ -895,37 +519,6 @@ bool Refiner::drain() {
     return true;
 }
 
-// §6: merges in descending level order, each when what it makes passes. False when the
-// budget stopped it.
-bool Refiner::coarsen() {
-    std::sort(mergeList_.begin(), mergeList_.end(), [&](int32_t a, int32_t b) {
-        const int32_t la = mesh_->isLive(a) ? mesh_->cell(a).level : -1, lb = mesh_->isLive(b) ? mesh_->cell(b).level : -1;
-        return la > lb || (la == lb && a < b);
-    });
-    mergeList_.erase(std::unique(mergeList_.begin(), mergeList_.end()), mergeList_.end());
-    size_t k = 0;
-    for (; k < mergeList_.size(); ++k) {
-        if (progressed() && outOfBudget()) break;
-        const int32_t c = mergeList_[k];
-        if (!mesh_->isLive(c) || !(state_[size_t(c)] & kWanted)) continue; // changed since
-        ++visits_;
-        state_[size_t(c)] &= uint8_t(~kWanted);
-        if (!mesh_->canMerge(c)) {
-            state_[size_t(c)] |= kBlocked;
-            continue;
-        }
-        if (beginMerge(c)) {
-            ++operations_;
-            retestChanged();
-        }
-    }
-    const bool done = k == mergeList_.size();
-    // What the budget left keeps kWanted and its place, for the next update's coarsening (the
-    // sweep does not look for it: that was a read of every cell's state in every update).
-    mergeList_.erase(mergeList_.begin(), mergeList_.begin() + ptrdiff_t(k));
-    return done;
-}
-
 UpdateStats Refiner::update() {
     start_ = std::chrono::steady_clock::now();
     operations_ = 0;
@@ -938,7 +531,7 @@ UpdateStats Refiner::update() {
     checkSettings();
     if (odometers_.beginUpdate()) invalidateAll(); // stamps wrapped: no record can be read back
     heap_.clear(); // (merges a budget left wait in mergeList_)
-    if (morph_) morph_->advance(); // one frame per update
+    refreshVerdictContext();
     // One sweep tests what is due; then the work it queued, and what that work makes, until
     // none is left. Converged: the sweep went full circle within this update and every
     // failing test was resolved (refined) and every wanted merge started; fades under way and

@@ -13,12 +13,18 @@
 // the test's verdict can change; a compact record per cell (12 bytes, swept in index order)
 // says when the camera has used it up. A cell culled by a side plane counts only the eye's
 // movement towards that plane's inside (camera_odometers.h). The margins are bounds (see
-// judge()), so a mesh that passed stays within tau until its cells are due.
+// cell_verdict.h), so a mesh that passed stays within tau until its cells are due.
 //
-// With geomorphing (§7), a merge first fades out the vertices it will free and happens in the
-// update where they have faded; it is called off if the mesh or the view no longer allow it.
+// The verdicts and their margins come from cell_verdict.h. With geomorphing (§7), a merge
+// first fades out the vertices it will free (pending_merges.h) and happens in the update where
+// they have faded; it is called off if the mesh or the view no longer allow it.
 // Refinement data is cached per cell record (§5.1), recomputed only for cells an operation
 // changed, and carried across a split (the split cell's bound is its parent's) and a merge.
+//
+// The class is implemented in parts: refiner.cpp (the update, the sweep and the test records,
+// the tests, the refining steps), refiner_merges.cpp (merge tests, merges and the coarsening),
+// refiner_budget.cpp (the time and operation budget, auto tau), refiner_renumber.cpp (after a
+// compaction of the mesh) and refiner_achieved_error.cpp (the HUD's achieved error).
 #pragma once
 
 #include <chrono>
@@ -29,9 +35,10 @@
 #include "lod/camera_odometers.h"
 #include "lod/float_rounding.h"
 #include "lod/cell_bounds.h"
+#include "lod/cell_verdict.h"
+#include "lod/pending_merges.h"
 #include "lod/refinement_cache.h"
 #include "lod/sweep_summaries.h"
-#include "stream/geomorph.h"
 #include "mesh/hex_mesh.h"
 #include "field/min_max_pyramid.h"
 #include "lod/view_criteria.h"
@@ -65,8 +72,9 @@ public:
     /// Attaches to a mesh over `field` (both outlive the refiner's use) and builds the
     /// min/max pyramid (one pass over the samples).
     void attach(HexMesh& mesh, const Heightfield& field);
-    /// The blends to drive (their clock ticks once per update); null: merges happen at once.
-    void setGeomorph(Geomorph* morph) { morph_ = morph; }
+    /// The fades that merges wait for (§7; their clock is the caller's, ticked once per
+    /// update); null: merges happen at once.
+    void setVertexFades(VertexFades* fades) { fades_ = fades; }
 
     RefinerSettings& settings() { return settings_; }
     const RefinerSettings& settings() const { return settings_; }
@@ -89,7 +97,7 @@ public:
     const UpdateStats& lastUpdate() const { return last_; }
     double currentTau() const { return currentTau_; }
     /// Merges waiting for their vertices to fade out.
-    int32_t pendingMerges() const { return int32_t(pending_.size()); }
+    int32_t pendingMerges() const { return pending_.size(); }
     size_t memoryBytes() const;
     /// Of memoryBytes(), what the live cells and pending merges use (pools counted by use, not capacity).
     size_t liveMemoryBytes() const;
@@ -114,7 +122,7 @@ private:
         float dist() const { return fromHalfBits(dist16); }
         float ownRho() const { return fromHalfBits(ownRho16); }
     };
-    static_assert(sizeof(TestRecord) == 12, "issue 12 counts the bytes of a cell");
+    static_assert(sizeof(TestRecord) == 12, "the bytes per cell (docs/DESIGN.md) count a 12-byte record");
     enum State : uint8_t {
         kFailing = 1,  // its own test failed: waiting for a refining step
         kWanted = 2,   // its merge is wanted (not started yet)
@@ -125,22 +133,6 @@ private:
         kHalfFailed = 64, // its merge failed on a half of a ring cell: tested again when a ring cell changes
         kLooked = 128,    // in looked_: retestChanged has looked at it
     };
-    // A verdict of the criteria (§5) for one bound, and how far it holds.
-    struct Verdict {
-        bool pass = true;
-        double pixels = 0.0; // projected error (0 when culled)
-        double margin = 0.0; // metres of view-space movement of the centre during which it cannot change
-        Odometer odometer = Odometer::Travel; // what measures that movement
-    };
-    // Two verdicts in one record: the smaller margin, on the odometer both are measured by
-    // (any plane's odometer runs behind the travel, so the travel bounds both otherwise).
-    static void tighten(Verdict& into, const Verdict& other);
-    // A merge started under geomorphing: the vertices it frees, fading out (§7).
-    struct PendingMerge {
-        int32_t cell;
-        int32_t count;
-        int32_t vertices[12]; // six corners and up to six centres of the ring cells it breaks
-    };
     struct Candidate {
         float pixels;
         int32_t cell;
@@ -150,7 +142,9 @@ private:
         return a.pixels < b.pixels || (a.pixels == b.pixels && a.cell > b.cell);
     }
 
-    Verdict judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin, double& distOut) const;
+    // judgeCell (cell_verdict.h) in this update's context, counted in tested_.
+    CellVerdict judge(const Footprint& f, const CellError& e, const SlopeBox* slopes, bool failMargin, double& dist);
+    void refreshVerdictContext();
     // The cached bounds (§5.1), computed when not cached; as the cache gives them back.
     CellError parentBound(int32_t cell, const CellShape& parent);
     CellError ownBound(int32_t cell);
@@ -166,8 +160,8 @@ private:
     bool ownHolds(const TestRecord& record, HeldOwn& held) const;
     void testCell(int32_t cell, const HeldOwn* held = nullptr);
     bool retest(int32_t cell); // testCell keeping the own verdict when ownHolds; true when kept
-    Verdict parentVerdict(int32_t cell, double& dist);
-    Verdict halvesVerdict(int32_t cell, Verdict parent, double& dist);
+    CellVerdict parentVerdict(int32_t cell, double& dist);
+    CellVerdict halvesVerdict(int32_t cell, CellVerdict parent, double& dist);
     // A joined hexagon in a merge candidate's ring that its merge breaks, and the half it leaves.
     struct RingHalf {
         int32_t ringCell;
@@ -186,13 +180,14 @@ private:
     bool beginMerge(int32_t cell);   // merges now, or starts fading out (then false)
     bool mergeNow(int32_t cell);     // the merge itself, its parent bound carried over (§5.1)
     void advancePendingMerges();     // completes faded merges, calls off the stale ones
-    void callOff(const PendingMerge& merge);
-    bool stillFrees(const PendingMerge& merge);
+    void callOff(const PendingMerges::Merge& merge);
     bool outOfBudget(double share = 1.0); // share: of the time and operation budgets
     bool sweep();
     bool drain();
     bool coarsen();
-    bool progressed() const;
+    // Every update makes progress before a budget may stop it: an operation, or a few hundred
+    // cells tested (the next update resumes after them).
+    bool progressed() const { return operations_ > 0 || visits_ - visitsAtStart_ >= kMinVisits; }
     void adaptTau();
     double tau() const { return settings_.autoTau ? currentTau_ : settings_.tau; }
 
@@ -212,16 +207,15 @@ private:
     std::vector<int32_t> capChains_;       // failing cells whose split began under a triangle cap: it may finish (refineStep)
     std::vector<Candidate> heap_;     // failing cells, largest projected error on top
     std::vector<int32_t> mergeList_;  // cells whose merge is wanted (kept across updates when a budget stopped the coarsening)
-    Geomorph* morph_ = nullptr;
-    std::vector<PendingMerge> pending_;
-    std::vector<int32_t> freedScratch_;
+    VertexFades* fades_ = nullptr;
+    PendingMerges pending_; // merges waiting for their vertices to fade out (§7)
     double currentTau_ = 1.0;
 
     // How far the camera moved and turned, which the records' margins are measured by.
     CameraOdometers odometers_;
     bool haveView_ = false;
     double farRef_ = 0.0;                 // the far plane when every cell was last made due
-    double mergeNearest_ = 1e-9;          // the smallest depth a merge test's bound uses (judge())
+    double mergeNearest_ = 1e-9;          // the smallest depth a merge test's bound uses (cell_verdict.h)
     bool farCoversData_ = false;           // the far plane culled no cell with samples in any view since farRef_
     double farthestData(const glm::dvec3& eye) const;
     // The settings the records were computed for.
@@ -239,7 +233,8 @@ private:
     uint32_t visits_ = 0, visitsAtStart_ = 0;
     static constexpr uint32_t kMinVisits = 256;
     UpdateStats last_;
-    mutable int32_t tested_ = 0; // criteria evaluations this update
+    int32_t tested_ = 0; // criteria evaluations this update
+    VerdictContext verdictContext_; // what judge() passes on: the view and thresholds of this update
     int32_t ownKept_ = 0;        // re-tests this update that kept the own verdict
     static constexpr int32_t kMaxCyclesPerUpdate = 64;
     static constexpr double kRefineShare = 0.8;

@@ -22,11 +22,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "lod/vertex_fades.h"
 #include "mesh/hex_mesh.h"
 
 namespace hexlod {
 
-class Geomorph {
+// The refiner's merges wait for these blends through VertexFades (lod/vertex_fades.h).
+class Geomorph final : public VertexFades {
 public:
     /// The clock starts here so that a reversed blend's start frame (up to kMaxFrames in the
     /// past) stays positive, which its sign encoding needs.
@@ -36,7 +38,7 @@ public:
     /// Frames a blend takes; 0 turns geomorphing off (vertices appear and vanish at once).
     void setFrames(int32_t frames) { frames_ = std::clamp(frames, 0, kMaxFrames); }
     int32_t frames() const { return frames_; }
-    bool enabled() const { return frames_ > 0; }
+    bool enabled() const override { return frames_ > 0; }
 
     /// The frame counter: one tick per LOD update, i.e. per drawn frame. Keys and the shader's
     /// uniform are floats, exact to 2^24 frames (77 hours at 60 fps); past that, blends still
@@ -79,12 +81,12 @@ public:
     /// A vertex a merge will free: blends back to the coarser surface under it, continuing
     /// from where it is drawn now. Not yet blending out; without parents a and b it has no
     /// coarser surface to go to (a base vertex) and stays.
-    void blendOut(HexMesh& mesh, int32_t v, const VertexParents& parents);
+    void blendOut(HexMesh& mesh, int32_t v, const VertexParents& parents) override;
     /// Reverses a blend-out (the merge was called off), continuing from where it is drawn.
-    void cancelBlendOut(HexMesh& mesh, int32_t v);
-    bool blendingOut(const StreamVertex& v) const { return v.morphKey < 0.0f; }
+    void cancelBlendOut(HexMesh& mesh, int32_t v) override;
+    bool blendingOut(const StreamVertex& v) const override { return v.morphKey < 0.0f; }
     /// Faded out: drawn at the parent midpoint, so freeing it changes nothing on screen.
-    bool fadedOut(const StreamVertex& v) const { return v.morphKey < 0.0f && weight(v) == 0.0f; }
+    bool fadedOut(const StreamVertex& v) const override { return v.morphKey < 0.0f && weight(v) == 0.0f; }
 
     /// Vertices whose blend changed since the last take (the renderer re-uploads them).
     std::vector<int32_t>& changedVertices() { return changed_; }

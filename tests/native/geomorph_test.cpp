@@ -32,9 +32,9 @@ View viewFrom(const glm::dvec3& eye, const glm::dvec3& target) {
 // the C ABI wires them), with names for its pieces.
 struct Lod {
     std::unique_ptr<Terrain> terrain;
-    HexMesh& mesh;
-    Refiner& refiner;
-    Geomorph& morph;
+    const HexMesh& mesh;
+    const Refiner& refiner;
+    const Geomorph& morph;
     Lod(const test::Fixture& fixture, int32_t frames, int32_t maxOperations)
         : terrain(test::loadTerrain(fixture)), mesh(terrain->mesh()), refiner(terrain->refiner()), morph(terrain->morph()) {
         terrain->resetMesh(Embedding::Exact);
@@ -117,7 +117,7 @@ TEST(Geomorph, MergesFreeOnlyFadedVerticesAndEveryBlendFinishes) {
     refiner.attach(mesh, *field);
     Geomorph morph;
     morph.setFrames(n);
-    refiner.setGeomorph(&morph);
+    refiner.setVertexFades(&morph);
     refiner.settings().maxOperations = 300;
     std::vector<int32_t> log;
     mesh.setVertexLog(&log);
@@ -127,6 +127,7 @@ TEST(Geomorph, MergesFreeOnlyFadedVerticesAndEveryBlendFinishes) {
     const std::vector<View> views = flight(*field, 90);
     for (size_t i = 0; i < views.size() + 400; ++i) {
         refiner.setView(views[std::min(i, views.size() - 1)]); // then hold still at the end
+        morph.advance(); // the clock Terrain::updateLod ticks
         const UpdateStats stats = refiner.update();
         mergesDeferred += refiner.pendingMerges();
         for (size_t k = 0; k < log.size(); ++k) {
@@ -145,7 +146,7 @@ TEST(Geomorph, MergesFreeOnlyFadedVerticesAndEveryBlendFinishes) {
         if (i % 10 == 0) {
             ASSERT_EQ(mesh.checkInvariants(), nullptr);
         }
-        // Converged does not wait for fades (issue 12): hold still until they are done too. A
+        // Converged does not wait for fades (a fade changes no cell): hold still until they are done too. A
         // merge called off reverses its fade, which takes n more updates after the last one.
         // Once converged with nothing fading, a camera holding still leaves the mesh alone (a
         // merge called off is tested again before an update reports converged).

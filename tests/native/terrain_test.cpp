@@ -47,7 +47,7 @@ TEST(Terrain, SettingsSurviveAMeshRebuildAndEveryRebuildStartsFromTheBase) {
     EXPECT_GT(terrain->memoryBytes(), 0u);
 }
 
-// Issue 12, pools sized well: a rebuilt mesh starts from the base mesh's few records, holding
+// Pools sized to what the mesh needs: a rebuilt mesh starts from the base mesh's few records, holding
 // none of the memory the refined mesh before it took.
 TEST(Terrain, ARebuiltMeshGivesTheLastMeshsMemoryBack) {
     std::unique_ptr<Terrain> terrain = test::loadTerrain(test::kGrandCanyon);
@@ -76,7 +76,7 @@ TEST(Terrain, ARebuiltMeshGivesTheLastMeshsMemoryBack) {
     EXPECT_LE(terrain->mesh().memoryBytes() + terrain->stream().memoryBytes(), 4 * baseBytes); // base pools and logs
 }
 
-// Issue 12, pools sized well: the pools never shrink by themselves, so after the mesh shrank
+// Pools sized to what the mesh needs: the pools never shrink by themselves, so after the mesh shrank
 // by a quarter the terrain renumbers it densely (Terrain::compact) and every consumer with it.
 // A compaction changes no cell and no vertex: the same mesh, the same blends under way, a
 // converged mesh stays converged; flying on, the stream stays in step with the mesh.
@@ -135,7 +135,7 @@ TEST(Terrain, CompactionGivesTheFreeRecordsBackAndChangesNothingElse) {
     const UpdateStats after = frame(viewAt(30000.0));
     EXPECT_EQ(after.operations, 0) << "every margin and state followed its cell";
     EXPECT_TRUE(after.converged);
-    terrain->refiner().restart(); // every cell due: tested again from its cached bounds (§5.1)
+    terrain->retestEveryCell(); // tested again from its cached bounds (§5.1)
     EXPECT_EQ(frame(viewAt(30000.0)).operations, 0) << "every cached bound followed its cell";
     EXPECT_EQ(terrain->mesh().hash(), still);
     // Down again, compacting on its own when it pays: the stream stays in step with the mesh.
@@ -148,7 +148,8 @@ TEST(Terrain, CompactionGivesTheFreeRecordsBackAndChangesNothingElse) {
     EXPECT_GT(peak, 0);
     EXPECT_EQ(terrain->mesh().checkInvariants(), nullptr);
     const std::vector<uint32_t> indices = terrain->stream().indices();
-    FanStream fresh; // written afresh for the same mesh (it takes over the mesh's change log: last)
-    fresh.attach(terrain->mesh());
+    HexMesh same = terrain->mesh();
+    FanStream fresh; // written afresh for the same mesh (a copy: the stream takes over its change log)
+    fresh.attach(same);
     EXPECT_EQ(indices, fresh.indices());
 }
