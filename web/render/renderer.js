@@ -35,7 +35,7 @@ export const SHADING_MODES = { natural: 0, hypsometric: 1, slope: 2, hillshade: 
 const SHADER_FILES = { 'scattering.glsl': scatteringGlsl, 'field_textures.glsl': fieldTexturesGlsl,
   'ground_color.glsl': groundColorGlsl, 'tonemap.glsl': tonemapGlsl };
 const SKY_COLOR = [0.62, 0.74, 0.88]; // the clear colour of the plain mode (no sky pass)
-const OUTLINE_COLOR = [0.08, 0.09, 0.12, 0.55];
+const OUTLINE_COLOR = new Float32Array([0.08, 0.09, 0.12, 0.55]);
 const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeightRange', 'uTint', 'uTintAmount',
   'uExtent', 'uLineColor', 'uFrame', 'uMorphFrames', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie', 'uScaleHeight',
   'uMieG', 'uSunIrradiance', 'uSunAirMass', 'uSkyLight', 'uExposure', 'uMode', 'uNormalSource', 'uShadows',
@@ -64,6 +64,11 @@ function link(gl, vertex, fragment) {
   }
   return program;
 }
+
+// The atmosphere's constants as the uniforms take them, converted once: a plain array passed to
+// uniform*fv is read element by element by the browser, which boxes every double each frame.
+const ATMOSPHERE_F32 = { betaRayleigh: new Float32Array(BETA_RAYLEIGH), betaMie: new Float32Array(BETA_MIE),
+  scaleHeights: new Float32Array(SCALE_HEIGHTS), sunIrradiance: new Float32Array(SUN_IRRADIANCE) };
 
 /** A colour per level: hues far apart around the wheel, semi-hexagons (odd levels) darker. */
 function levelColor(level) {
@@ -305,12 +310,12 @@ export class TerrainRenderer {
   /** Uniforms the terrain and the sky share: the atmosphere and the tone curve. */
   setAtmosphereUniforms(u) {
     const gl = this.gl, a = this.atmosphere;
-    gl.uniform3fv(u.uBetaRayleigh, BETA_RAYLEIGH);
-    gl.uniform3fv(u.uBetaMie, BETA_MIE);
-    gl.uniform2fv(u.uScaleHeight, SCALE_HEIGHTS);
+    gl.uniform3fv(u.uBetaRayleigh, ATMOSPHERE_F32.betaRayleigh);
+    gl.uniform3fv(u.uBetaMie, ATMOSPHERE_F32.betaMie);
+    gl.uniform2fv(u.uScaleHeight, ATMOSPHERE_F32.scaleHeights);
     gl.uniform1f(u.uMieG, MIE_G);
     gl.uniform3fv(u.uSunDirection, a.sunDirection);
-    gl.uniform3fv(u.uSunIrradiance, SUN_IRRADIANCE);
+    gl.uniform3fv(u.uSunIrradiance, ATMOSPHERE_F32.sunIrradiance);
     gl.uniform1f(u.uSunAirMass, a.sunAirMass);
     gl.uniform1f(u.uExposure, EXPOSURE);
   }
