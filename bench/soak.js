@@ -102,16 +102,9 @@ function randomSettings(random) {
 }
 
 function applySettings(terrain, s) {
-  terrain.setLodTolerance(s.tau); // tau mode; max-error mode below when chosen
-  if (s.maxError > 0) terrain.setLodMaxError(s.maxError);
-  terrain.setLodVerticalScale(s.verticalScale);
-  terrain.setLodBudget(0, s.maxOperations);
-  terrain.setLodCulling(s.culling);
-  terrain.setLodBackfaceCulling(s.backfaceCulling);
-  terrain.setMorphFrames(s.morphFrames);
-  terrain.setStreamLayout(s.layout);
-  terrain.setStreamNormals(s.normals);
-  terrain.setLodLimits(s.maxTriangles, s.autoTau);
+  terrain.configure({ tauPx: s.tau, maxErrorM: s.maxError > 0 ? s.maxError : 0, verticalScale: s.verticalScale,
+    budgetMs: 0, maxOperations: s.maxOperations, noFrustumCulling: !s.culling, noBackfaceCulling: !s.backfaceCulling,
+    morphFrames: s.morphFrames, layout: s.layout, noNormals: !s.normals, maxTriangles: s.maxTriangles, autoTau: s.autoTau });
 }
 
 /**

@@ -107,15 +107,9 @@ function segmentSettings(random) {
 }
 
 function applySettings(terrain, s) {
-  terrain.setLodTolerance(s.tau);
-  terrain.setLodVerticalScale(s.verticalScale);
-  terrain.setLodBudget(0, s.maxOperations);
-  terrain.setMorphFrames(s.morphFrames);
-  terrain.setStreamLayout(s.layout);
-  terrain.setLodCulling(s.culling);
-  terrain.setLodBackfaceCulling(s.backfaceCulling);
-  terrain.setStreamNormals(s.normals);
-  terrain.setLodLimits(s.maxTriangles, s.autoTau);
+  terrain.configure({ tauPx: s.tau, maxErrorM: 0, verticalScale: s.verticalScale, budgetMs: 0,
+    maxOperations: s.maxOperations, morphFrames: s.morphFrames, layout: s.layout, noFrustumCulling: !s.culling,
+    noBackfaceCulling: !s.backfaceCulling, noNormals: !s.normals, maxTriangles: s.maxTriangles, autoTau: s.autoTau });
 }
 
 const KINDS = ['inside', 'far', 'below', 'edge-on', 'down', 'up', 'tiny', 'huge'];
@@ -327,10 +321,10 @@ async function main() {
 
     if (convergeEvery > 0 && (index + 1) % convergeEvery === 0) {
       const c0 = performance.now();
-      terrain.setLodBudget(0, 0);
+      terrain.configure({ budgetMs: 0, maxOperations: 0 });
       let frames = 0;
       for (stats = terrain.frame(null); !stats.converged && frames < MAX_CONVERGE_FRAMES; frames++) stats = terrain.frame(null);
-      terrain.setLodBudget(0, settings.maxOperations);
+      terrain.configure({ budgetMs: 0, maxOperations: settings.maxOperations });
       times.converge += performance.now() - c0;
       counts.frames += frames + 1;
       maxConvergeFrames = Math.max(maxConvergeFrames, frames + 1);

@@ -88,7 +88,7 @@ function benchSettings(args) {
 
 /** Updates without a budget until converged; returns the wall time, updates and operations. */
 function refineToConvergence(terrain) {
-  terrain.setLodBudget(0, 0);
+  terrain.configure({ budgetMs: 0, maxOperations: 0 });
   let updates = 0, operations = 0;
   const start = performance.now();
   while (updates < MAX_UPDATES) {
@@ -269,9 +269,9 @@ function nativeComparison(heights, terrain, path, settings) {
 
   // The same flight in WASM, from the base mesh, without a budget.
   terrain.resetMesh('exact');
-  terrain.setLodTolerance(settings.tau);
-  terrain.setLodBudget(0, 0);
-  terrain.setMorphFrames(0);
+  terrain.configure({ tauPx: settings.tau, maxErrorM: 0 });
+  terrain.configure({ budgetMs: 0, maxOperations: 0 });
+  terrain.configure({ morphFrames: 0 });
   const updateMs = [], streamMs = [], triangles = [];
   for (const { eye, target } of path.cameras) {
     terrain.setLodCamera(nativeStyleCamera(eye, target, settings));
@@ -306,10 +306,10 @@ function nativeComparison(heights, terrain, path, settings) {
  */
 function startFlight(terrain, camera, settings, morphFrames) {
   terrain.resetMesh(settings.embedding);
-  terrain.setLodTolerance(settings.tau);
-  terrain.setLodBudget(0, 0);
-  terrain.setMorphFrames(morphFrames);
-  terrain.setLodBackfaceCulling(settings.backface);
+  terrain.configure({ tauPx: settings.tau, maxErrorM: 0 });
+  terrain.configure({ budgetMs: 0, maxOperations: 0 });
+  terrain.configure({ morphFrames });
+  terrain.configure({ noBackfaceCulling: !settings.backface });
   terrain.setLodCamera(camera);
   refineToConvergence(terrain);
   terrain.updateStream(); // blends start when the stream takes the new vertices, as in the page
@@ -319,7 +319,7 @@ function startFlight(terrain, camera, settings, morphFrames) {
   }
   terrain.acknowledgeStream();
   terrain.measurePopping();
-  terrain.setLodBudget(settings.budgetMs, settings.budgetOps);
+  terrain.configure({ budgetMs: settings.budgetMs, maxOperations: settings.budgetOps });
 }
 
 /** The flight with `morphFrames` blends: the largest vertex jump on screen, max and p99 of frames. */
@@ -356,7 +356,7 @@ export async function bench(args) {
     const start = performance.now();
     terrain.resetMesh(settings.embedding);
     terrain.setLodCamera(cameras[0]);
-    terrain.setLodTolerance(settings.tau);
+    terrain.configure({ tauPx: settings.tau, maxErrorM: 0 });
     const refined = refineToConvergence(terrain);
     terrain.updateStream();
     const ms = performance.now() - start;
@@ -432,8 +432,8 @@ export async function bench(args) {
   // 3. View-independent: ours to a max error, measured on the original samples.
   const start = performance.now();
   terrain.resetMesh(settings.embedding);
-  terrain.setMorphFrames(0);
-  terrain.setLodMaxError(settings.maxError);
+  terrain.configure({ morphFrames: 0 });
+  terrain.configure({ maxErrorM: settings.maxError });
   const refined = refineToConvergence(terrain);
   terrain.updateStream();
   const oursMs = performance.now() - start;

@@ -92,11 +92,11 @@ export function refine(terrain, settings) {
   if (settings.mode === 'view') {
     camera = cameraFor(terrain, settings.eye, settings.target, settings.fov, settings.viewport);
     terrain.setLodCamera(camera);
-    terrain.setLodTolerance(settings.tau);
+    terrain.configure({ tauPx: settings.tau, maxErrorM: 0 });
   } else {
-    terrain.setLodMaxError(settings.maxError);
+    terrain.configure({ maxErrorM: settings.maxError });
   }
-  terrain.setLodBudget(0, settings.budgetSplits ?? 0);
+  terrain.configure({ budgetMs: 0, maxOperations: settings.budgetSplits ?? 0 });
   const run = { updates: 0, operations: 0, splits: 0, merges: 0, converged: false, refineMs: 0, coreMs: 0, camera };
   const limit = settings.budgetSplits !== null ? 1 : MAX_UPDATES;
   while (run.updates < limit) {

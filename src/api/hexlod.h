@@ -16,7 +16,8 @@
  * - A terrain handle owns its samples and the mesh built from them.
  * - Under WebAssembly, pointers are byte offsets into the module's memory; Emscripten 3.1.6
  *   hands them to JS as signed 32-bit numbers: read them as `ptr >>> 0`. The struct layouts
- *   below are the wasm32 ones JS reads (src/api/hexlod_api.cpp asserts the offsets).
+ *   below are the wasm32 ones JS reads; JS takes every size and offset from
+ *   hexlod_struct_layout(), never from a copy of its own.
  * - A frame (hexlod_terrain_frame) allocates nothing unless the mesh's pools grow.
  */
 #ifndef HEXLOD_H
@@ -29,7 +30,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature, a struct layout or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 11
+#define HEXLOD_ABI_VERSION 12
 
 /* The status of every failure. */
 #define HEXLOD_ERROR (-1)
@@ -190,6 +191,13 @@ typedef struct hexlod_level_view {
 
 /* Returns HEXLOD_ABI_VERSION of the compiled core. */
 uint32_t hexlod_abi_version(void);
+
+/* The byte layout of the structs above as this build compiled them, for callers that read and
+ * write them through views on memory (JS): text in static storage, never NULL; it cannot fail.
+ * One line a struct, "<struct> <size in bytes>", followed by one line a field, indented by a
+ * space: "<field> <byte offset> <type> <count>", type f64, i32, u32 or ptr (a pointer: 4 bytes
+ * under wasm32), count the array length (1 for a scalar). Reserved fields are left out. */
+const char* hexlod_struct_layout(void);
 
 /* The message of the last failure in this thread (static storage, never NULL; empty when
  * nothing failed yet). */

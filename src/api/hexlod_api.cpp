@@ -12,7 +12,8 @@
 #include "api/terrain_handle.h"
 #include "mesh/mesh_census.h"
 
-// JS reads the structs through views at fixed wasm32 offsets (web/core/core.js).
+// JS reads the structs through views at the offsets hexlod_struct_layout() reports (web/core/core.js);
+// these pin the wasm32 sizes that the header documents.
 #if UINTPTR_MAX == 0xFFFFFFFFu
 static_assert(sizeof(hexlod_scale) == 48 && offsetof(hexlod_scale, has_nodata) == 40, "hexlod_scale layout");
 static_assert(sizeof(hexlod_field_info) == 32, "hexlod_field_info layout");
@@ -153,11 +154,11 @@ int32_t hexlod_terrain_set_settings(hexlod_terrain* terrain, const hexlod_settin
     const hexlod_settings defaults{};
     const hexlod_settings& in = settings ? *settings : defaults;
     if (const char* error = hexlod::api::checkSettings(in)) return fail(error); // the previous settings stay
-    hexlod::TerrainSettings s;
+    hexlod::TerrainSettings s; // zero means default: the defaults are the C++ structs' own
     s.lod.viewIndependent = in.max_error_m > 0.0;
-    s.lod.tau = in.tau_px > 0.0 ? in.tau_px : 1.0;
-    s.lod.maxError = in.max_error_m > 0.0 ? in.max_error_m : 1.0;
-    s.lod.verticalScale = in.vertical_scale > 0.0 ? in.vertical_scale : 1.0;
+    if (in.tau_px > 0.0) s.lod.tau = in.tau_px;
+    if (in.max_error_m > 0.0) s.lod.maxError = in.max_error_m;
+    if (in.vertical_scale > 0.0) s.lod.verticalScale = in.vertical_scale;
     s.lod.budgetMs = in.budget_ms;
     s.lod.maxOperations = in.max_operations;
     s.lod.maxTriangles = in.max_triangles;

@@ -50,6 +50,11 @@ int32_t hexlod_diag_measure_error(const hexlod_terrain* terrain, int32_t against
  * the frame. 0 or HEXLOD_ERROR. */
 int32_t hexlod_diag_measure_popping(hexlod_terrain* terrain, double* out);
 
+/* Fills *out with the settings in force, every zero given resolved to the default it stands for
+ * (tau_px 1 where 0 was set; max_error_m stays 0 in tau mode): the core's defaults, for tests
+ * that compare a caller's defaults with them. 0 or HEXLOD_ERROR. */
+int32_t hexlod_diag_settings(const hexlod_terrain* terrain, hexlod_settings* out);
+
 #ifdef __cplusplus
 }
 #endif

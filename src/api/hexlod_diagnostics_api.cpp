@@ -13,6 +13,7 @@
 #include "diagnostics/watertightness.h"
 
 using hexlod::api::fail;
+using hexlod::api::kNullHandle;
 using hexlod::api::needMesh;
 
 extern "C" {
@@ -57,6 +58,26 @@ int32_t hexlod_diag_heap(double* out) {
 #else
     return fail("this C library does not report its heap");
 #endif
+    return 0;
+}
+
+int32_t hexlod_diag_settings(const hexlod_terrain* terrain, hexlod_settings* out) {
+    if (!terrain) return fail(kNullHandle);
+    if (!out) return fail("hexlod_diag_settings needs a hexlod_settings to fill");
+    const hexlod::TerrainSettings s = terrain->core->settings();
+    *out = hexlod_settings{};
+    out->tau_px = s.lod.tau;
+    out->max_error_m = s.lod.viewIndependent ? s.lod.maxError : 0.0;
+    out->vertical_scale = s.lod.verticalScale;
+    out->budget_ms = s.lod.budgetMs;
+    out->max_operations = s.lod.maxOperations;
+    out->max_triangles = s.lod.maxTriangles;
+    out->auto_tau = s.lod.autoTau ? 1 : 0;
+    out->no_frustum_culling = s.lod.culling ? 0 : 1;
+    out->no_backface_culling = s.lod.backfaceCulling ? 0 : 1;
+    out->morph_frames = s.morphFrames;
+    out->layout = int32_t(s.layout);
+    out->no_normals = s.normals ? 0 : 1;
     return 0;
 }
 

@@ -16,7 +16,7 @@ const core = await createNodeCore();
 const BASES = ['volcano_maungawhau', 'jacksboro_fault', 'grandcanyon_512'];
 
 test('the WASM core reports the ABI version of src/api/hexlod.h', () => {
-  assert.equal(core.abiVersion, 11);
+  assert.equal(core.abiVersion, 12);
 });
 
 for (const base of BASES) {
@@ -100,7 +100,7 @@ test('the hexagon mesh through the ABI: uniform and local refinement, fans decod
   const uniform = terrain.meshStats();
   assert.equal(uniform.triangles, base.triangles * 16, 'two uniform splits are two 1-to-4 splits');
   // A mixed-level mesh: view-independent refinement to 10 m on top of the uniform split.
-  terrain.setLodMaxError(10);
+  terrain.configure({ maxErrorM: 10 });
   assert.ok(terrain.updateLod() > 0);
   terrain.checkMesh();
   const stats = terrain.meshStats();
@@ -133,7 +133,7 @@ test('the hexagon mesh through the ABI: uniform and local refinement, fans decod
 test('terrain.frame is one core call that returns the same stats object every frame, equal to the per-figure methods', async () => {
   const { terrain } = await loadTerrain(core, [read('jacksboro_fault.png'), read('jacksboro_fault.json')]);
   terrain.resetMesh('exact');
-  terrain.setLodBudget(0, 300);
+  terrain.configure({ budgetMs: 0, maxOperations: 300 });
   const camera = { eye: [15000, 3000, 33000], target: [15000, 400, 9000], fovY: 0.9, aspect: 1.6, viewportHeight: 600, near: 1, far: 1e6 };
   const first = terrain.frame(camera);
   const operations = first.operations, version = first.version;

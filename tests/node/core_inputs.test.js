@@ -10,7 +10,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, existsSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { createCore, CoreError } from '../../web/core/core.js';
-import { RANGES, defaultSettings, applyLodSettings } from '../../web/app/settings.js';
+import { SETTINGS as PAGE_SETTINGS, defaultSettings, coreSettings } from '../../web/app/settings_table.js';
 
 const root = new URL('../../', import.meta.url);
 const fixtures = new URL('tests/fixtures/', root);
@@ -46,7 +46,7 @@ function converge(terrain, camera) {
 
 /** What a refused call must leave: the same mesh and stream, and nothing to do at the next frame. */
 function snapshot(terrain) {
-  return { hash: terrain.meshHash(), version: terrain.streamVersion(), triangles: terrain.meshStats().triangles };
+  return { hash: terrain.meshHash(), version: terrain.query().version, triangles: terrain.meshStats().triangles };
 }
 function assertUnchanged(terrain, before, what) {
   assert.deepEqual(snapshot(terrain), before, `${what}: the mesh and stream are as before`);
@@ -99,7 +99,7 @@ test('cameras with non-finite, non-positive or absurd fields are refused naming 
   terrain.destroy();
 });
 
-test('issue 29: viewportHeight = Infinity no longer refines to full resolution', async () => {
+test('viewportHeight = Infinity is refused, not refined to full resolution', async () => {
   const terrain = await load('grandcanyon_512');
   terrain.resetMesh('exact');
   const camera = { eye: [15000, 5000, 40000], target: [15000, 1000, 15000], fovY: Math.PI / 3, aspect: 16 / 9, viewportHeight: 1080,
@@ -113,23 +113,22 @@ test('issue 29: viewportHeight = Infinity no longer refines to full resolution',
   terrain.destroy();
 });
 
-// hexlod_settings as hexlod.h lays it out (64 bytes), written as given: web/core/core.js turns
-// some values (a negative budget, for one) into defaults before the core sees them.
+// hexlod_settings written as given (configure() hands every value to the core unchanged, in
+// one call); the core's message, or null when it accepted them.
 function setRawSettings(terrain, fields) {
-  const s = { tau: 1, maxError: 0, verticalScale: 1, budgetMs: 0, maxOperations: 0, maxTriangles: 0, autoTau: 0, noCulling: 0,
-    noBackface: 0, morphFrames: 0, layout: 0, noNormals: 0, ...fields };
-  const m = core.module, pointer = m._malloc(64);
-  const f64 = new Float64Array(core.buffer, pointer, 4), i32 = new Int32Array(core.buffer, pointer + 32, 8);
-  f64.set([s.tau, s.maxError, s.verticalScale, s.budgetMs]);
-  i32.set([s.maxOperations, s.maxTriangles, s.autoTau, s.noCulling, s.noBackface, s.morphFrames, s.layout, s.noNormals]);
-  const status = m._hexlod_terrain_set_settings(terrain.handle, pointer);
-  m._free(pointer);
-  return status === 0 ? null : core.lastError();
+  try {
+    terrain.configure({ tauPx: 1, maxErrorM: 0, verticalScale: 1, budgetMs: 0, maxOperations: 0, maxTriangles: 0, autoTau: 0,
+      noFrustumCulling: 0, noBackfaceCulling: 0, morphFrames: 0, layout: 0, noNormals: 0, ...fields });
+    return null;
+  } catch (error) {
+    if (!(error instanceof CoreError)) throw error;
+    return error.message.replace(/^invalid settings: /, '');
+  }
 }
 
 const SETTINGS = [
-  ['tau_px', { tau: -1 }], ['tau_px', { tau: NaN }], ['tau_px', { tau: Infinity }], ['tau_px', { tau: 0.001 }], ['tau_px', { tau: 2e4 }],
-  ['max_error_m', { maxError: -5 }], ['max_error_m', { maxError: Infinity }], ['max_error_m', { maxError: 1e-9 }],
+  ['tau_px', { tauPx: -1 }], ['tau_px', { tauPx: NaN }], ['tau_px', { tauPx: Infinity }], ['tau_px', { tauPx: 0.001 }], ['tau_px', { tauPx: 2e4 }],
+  ['max_error_m', { maxErrorM: -5 }], ['max_error_m', { maxErrorM: Infinity }], ['max_error_m', { maxErrorM: 1e-9 }],
   ['vertical_scale', { verticalScale: -2 }], ['vertical_scale', { verticalScale: NaN }], ['vertical_scale', { verticalScale: 5000 }],
   ['budget_ms', { budgetMs: -4 }], ['budget_ms', { budgetMs: Infinity }], ['budget_ms', { budgetMs: NaN }], ['budget_ms', { budgetMs: 1e6 }],
   ['max_operations', { maxOperations: -100 }], ['max_triangles', { maxTriangles: -1 }],
@@ -139,25 +138,25 @@ const SETTINGS = [
 test('settings outside their ranges are refused by the core naming the field; the settings and mesh stay', async () => {
   const terrain = await load('jacksboro_fault');
   terrain.resetMesh('exact');
-  terrain.setLodTolerance(2);
+  terrain.configure({ tauPx: 2, maxErrorM: 0 });
   converge(terrain, GOOD);
-  assert.equal(setRawSettings(terrain, { tau: 2 }), null, 'the same settings, written raw, are accepted');
+  assert.equal(setRawSettings(terrain, { tauPx: 2 }), null, 'the same settings, written raw, are accepted');
   const before = snapshot(terrain);
   for (const [field, change] of SETTINGS) {
-    const message = setRawSettings(terrain, { tau: 2, ...change });
+    const message = setRawSettings(terrain, { tauPx: 2, ...change });
     assert.match(message ?? 'accepted', new RegExp(`^settings: ${field} is `), `${field} ${JSON.stringify(change)}`);
     assertUnchanged(terrain, before, `${field} ${JSON.stringify(change)}`);
   }
-  // Through the facade's setters: the core's message reaches the caller and the facade keeps
-  // its copy of the settings.
-  assert.throws(() => terrain.setLodTolerance(0.001), /invalid tolerance: settings: tau_px is 0.001; tau must be a positive number of pixels from 0.01 to 10000/);
-  assert.throws(() => terrain.setLodVerticalScale(5000), /vertical_scale is 5000/);
-  assert.throws(() => terrain.setLodMaxError(5e9), /max_error_m is 5e\+09/);
-  assert.throws(() => terrain.setMorphFrames(1001), /morph_frames is 1001/);
-  assert.equal(terrain.settings.tau, 2);
+  // Through configure(): the core's message reaches the caller and the facade keeps its copy of
+  // the settings.
+  assert.throws(() => terrain.configure({ tauPx: 0.001 }), /invalid settings: settings: tau_px is 0.001; tau must be a positive number of pixels from 0.01 to 10000/);
+  assert.throws(() => terrain.configure({ verticalScale: 5000 }), /vertical_scale is 5000/);
+  assert.throws(() => terrain.configure({ maxErrorM: 5e9 }), /max_error_m is 5e\+09/);
+  assert.throws(() => terrain.configure({ morphFrames: 1001 }), /morph_frames is 1001/);
+  assert.equal(terrain.settings.tauPx, 2);
   assert.equal(terrain.settings.verticalScale, 1);
   assert.equal(terrain.settings.morphFrames, 0);
-  assertUnchanged(terrain, before, 'facade setters');
+  assertUnchanged(terrain, before, 'configure');
   terrain.destroy();
 });
 
@@ -177,14 +176,14 @@ test('a scale that puts heights beyond 1e9 m is refused and the terrain stays', 
   terrain.destroy();
 });
 
-test("the page's setting ranges (web/app/settings.js) lie within what the core accepts, at both ends", async () => {
+test("the page's setting ranges (web/app/settings_table.js) lie within what the core accepts, at both ends", async () => {
   const terrain = await load('volcano_maungawhau');
   terrain.resetMesh('exact');
   let applied = 0;
   for (const key of ['tau', 'budgetMs', 'maxOperations', 'maxTriangles', 'exaggeration']) {
-    for (const value of [RANGES[key].min, RANGES[key].max]) {
+    for (const value of [PAGE_SETTINGS[key].min, PAGE_SETTINGS[key].max]) {
       const settings = { ...defaultSettings(), [key]: value };
-      assert.doesNotThrow(() => applyLodSettings(terrain, settings), `${key} = ${value}`);
+      assert.doesNotThrow(() => terrain.configure(coreSettings(settings)), `${key} = ${value}`);
       applied++;
     }
   }

@@ -43,8 +43,8 @@ for (const [base, ext, maxError] of [['volcano_maungawhau', 'f32', 1], ['jacksbo
   test(`max-error mode on ${base}.${ext} converges with every sample within ${maxError} m (measured by the core)`, async () => {
     const terrain = await load(base, ext);
     terrain.resetMesh('exact');
-    terrain.setLodMaxError(maxError);
-    terrain.setLodBudget(0, 0);
+    terrain.configure({ maxErrorM: maxError });
+    terrain.configure({ budgetMs: 0, maxOperations: 0 });
     const run = converge(terrain);
     assert.ok(run.splits > 0);
     assert.equal(terrain.lodConverged(), true);
@@ -56,7 +56,7 @@ for (const [base, ext, maxError] of [['volcano_maungawhau', 'f32', 1], ['jacksbo
     }
     // A looser error needs fewer triangles, and coarsening to it converges too.
     const fine = terrain.meshStats().triangles;
-    terrain.setLodMaxError(maxError * 4);
+    terrain.configure({ maxErrorM: maxError * 4 });
     const coarsening = converge(terrain);
     assert.ok(coarsening.merges > 0);
     assert.ok(terrain.meshStats().triangles < fine);
@@ -68,8 +68,8 @@ for (const [base, ext, maxError] of [['volcano_maungawhau', 'f32', 1], ['jacksbo
 test('max-error mode with the shifted embedding keeps every sample of the stored field within the error', async () => {
     const terrain = await load('jacksboro_fault');
     terrain.resetMesh('shifted');
-    terrain.setLodMaxError(5);
-    terrain.setLodBudget(0, 0);
+    terrain.configure({ maxErrorM: 5 });
+    terrain.configure({ budgetMs: 0, maxOperations: 0 });
     converge(terrain);
     assert.ok(terrain.measureError(true).max <= 5 + 1e-6, `${terrain.measureError(true).max} m`);
     terrain.destroy();
@@ -78,9 +78,9 @@ test('max-error mode with the shifted embedding keeps every sample of the stored
 test('moving the camera far away coarsens the mesh (merges, fewer triangles); coming back refines it again', async () => {
   const terrain = await load('jacksboro_fault');
   terrain.resetMesh('exact');
-  terrain.setLodBudget(0, 0);
+  terrain.configure({ budgetMs: 0, maxOperations: 0 });
   terrain.setLodCamera(NEAR);
-  terrain.setLodTolerance(1);
+  terrain.configure({ tauPx: 1, maxErrorM: 0 });
   const first = converge(terrain);
   assert.ok(first.splits > 0);
   const near = terrain.meshStats().triangles;
@@ -101,9 +101,9 @@ test('a budget of N operations does at most N per update, and repeated updates s
   const N = 150;
   // View-dependent: refine from the base mesh, then coarsen for a far camera, N at a time.
   terrain.resetMesh('exact');
-  terrain.setLodBudget(0, N);
+  terrain.configure({ budgetMs: 0, maxOperations: N });
   terrain.setLodCamera(NEAR);
-  terrain.setLodTolerance(1);
+  terrain.configure({ tauPx: 1, maxErrorM: 0 });
   for (const view of [NEAR, FAR]) {
     terrain.setLodCamera(view);
     const run = converge(terrain, 5000);
@@ -116,7 +116,7 @@ test('a budget of N operations does at most N per update, and repeated updates s
   }
   // Max-error mode under the same budget ends within the error.
   terrain.resetMesh('exact');
-  terrain.setLodMaxError(10);
+  terrain.configure({ maxErrorM: 10 });
   const run = converge(terrain, 5000);
   assert.ok(run.perUpdate.every((u) => u.operations <= N));
   assert.ok(terrain.measureError(false).max <= 10 + 1e-6);
@@ -126,31 +126,31 @@ test('a budget of N operations does at most N per update, and repeated updates s
 test('every LOD setting reaches the core: vertical scale, culling, triangle cap with auto tau', async () => {
   const terrain = await load('jacksboro_fault');
   terrain.resetMesh('exact');
-  terrain.setLodBudget(0, 0);
+  terrain.configure({ budgetMs: 0, maxOperations: 0 });
   terrain.setLodCamera(NEAR);
-  terrain.setLodTolerance(1);
+  terrain.configure({ tauPx: 1, maxErrorM: 0 });
   converge(terrain);
   const base = terrain.meshStats().triangles;
   const stats = terrain.lodStats();
   assert.equal(stats.tau, 1);
   assert.ok(stats.updateMs > 0 && stats.updateMs < 60000, `the update was timed: ${stats.updateMs} ms`);
 
-  terrain.setLodVerticalScale(3);
+  terrain.configure({ verticalScale: 3 });
   converge(terrain);
   assert.ok(terrain.meshStats().triangles > base, 'exaggerated heights need more triangles');
-  terrain.setLodVerticalScale(1);
+  terrain.configure({ verticalScale: 1 });
   converge(terrain);
 
-  terrain.setLodCulling(false);
+  terrain.configure({ noFrustumCulling: true });
   converge(terrain);
   assert.ok(terrain.meshStats().triangles > base, 'without culling, cells outside the view are refined too');
-  terrain.setLodCulling(true);
+  terrain.configure({ noFrustumCulling: false });
   converge(terrain);
 
   // From the base mesh with a cap far below what tau 1 needs: the cap holds splits back and
   // auto tau raises tau above the tolerance that was set.
   terrain.resetMesh('exact');
-  terrain.setLodLimits(5000, true);
+  terrain.configure({ maxTriangles: 5000, autoTau: true });
   for (let i = 0; i < 50; i++) {
     terrain.updateLod();
     terrain.checkMesh();
@@ -158,7 +158,7 @@ test('every LOD setting reaches the core: vertical scale, culling, triangle cap 
   }
   assert.ok(terrain.meshStats().triangles < base / 2, `${terrain.meshStats().triangles} triangles under a cap of 5000`);
   assert.ok(terrain.lodStats().tau > 1, `tau rose to ${terrain.lodStats().tau}`);
-  terrain.setLodLimits(0, false);
+  terrain.configure({ maxTriangles: 0, autoTau: false });
   terrain.destroy();
 });
 
@@ -166,10 +166,11 @@ test('bad LOD settings throw a CoreError with the core message', async () => {
   const terrain = await load('volcano_maungawhau');
   assert.throws(() => terrain.updateLod(), /no hexagon mesh yet/);
   terrain.resetMesh('exact');
-  assert.throws(() => terrain.setLodTolerance(0), CoreError);
-  assert.throws(() => terrain.setLodTolerance(-1), /tau must be a positive/);
-  assert.throws(() => terrain.setLodMaxError(0), /maximum error must be a positive/);
-  assert.throws(() => terrain.setLodVerticalScale(0), /vertical scale must be a positive/);
+  assert.throws(() => terrain.configure({ tauPx: 0.001 }), CoreError);
+  assert.throws(() => terrain.configure({ tauPx: -1 }), /tau must be a positive/);
+  assert.throws(() => terrain.configure({ maxErrorM: -1 }), /maximum error must be a positive/);
+  assert.throws(() => terrain.configure({ verticalScale: -1 }), /vertical scale must be a positive/);
+  assert.throws(() => terrain.configure({ tau: 1 }), /unknown core setting 'tau'/);
   assert.throws(() => terrain.setLodCamera(camera([100, 200, 300], [100, 200, 300])), /degenerate camera/);
   assert.throws(() => terrain.setLodCamera({ ...camera([0, 500, 0], [400, 100, 300]), near: 0 }), /degenerate camera/);
   terrain.destroy();
@@ -182,7 +183,7 @@ test('the mesh hash repeats for the same calls and changes with the mesh', async
     const terrain = await load('volcano_maungawhau');
     terrain.resetMesh('exact');
     const base = terrain.meshHash();
-    terrain.setLodMaxError(2);
+    terrain.configure({ maxErrorM: 2 });
     converge(terrain);
     assert.notEqual(terrain.meshHash(), base);
     assert.match(terrain.meshHash(), /^[0-9a-f]{16}$/);

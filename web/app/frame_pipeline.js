@@ -2,7 +2,7 @@
 // fan stream of §7) → upload → draw, once per requested animation frame. Everything it hands
 // on from frame to frame lives in objects made once here, so a frame makes no garbage of its
 // own (the figures the HUD and tests read are updated in place).
-import { MORPH_FRAMES } from './settings.js';
+import { MORPH_FRAMES } from './settings_table.js';
 import { FRAME } from '../core/core.js';
 
 const FRAME_LOG = 4096; // frames kept in state.frameLog while recording
@@ -76,15 +76,17 @@ export class FramePipeline {
     state.frames += 1;
     if (det) det.endFrame();
     if (moving) this.request();
-    if (this.current && !det) this.urlWriter.write({ settings: this.settings, camera, src: this.source() });
+    if (this.current && !det) this.urlWriter.write(this.settings, camera, this.source());
   }
 
   // The core's part of a frame and its upload (the frame figures go to the HUD and state).
   updateTerrain(camera, width, height, now) {
     const { det, settings, view, renderer, state } = this;
     const current = this.current, { terrain } = current;
-    terrain.setStreamNormals(renderer.usesMeshNormals(view));
-    state.streamNormals = terrain.streamNormals;
+    // The stream keeps the mesh's normals only while they are drawn (32 bytes a vertex saved).
+    const noNormals = !renderer.usesMeshNormals(view);
+    if (terrain.settings.noNormals !== noNormals) terrain.configure({ noNormals });
+    state.streamNormals = !noNormals;
     // §6: one budgeted refinement step for the current camera, then the fans (§7), in one core
     // call. Frozen: the mesh stays as it is while the camera moves (to look at it from outside).
     const frozen = settings.freeze;
@@ -135,8 +137,8 @@ export class FramePipeline {
   // The frame's figures as tests read them, in objects made once.
   publish(stats) {
     const { state } = this, lod = this.lodFigures, mesh = this.meshFigures;
-    for (const key of LOD_FIGURES) lod[key] = stats[key];
-    for (const key of MESH_FIGURES) mesh[key] = stats[key];
+    for (let k = 0; k < LOD_FIGURES.length; k++) lod[LOD_FIGURES[k]] = stats[LOD_FIGURES[k]];
+    for (let k = 0; k < MESH_FIGURES.length; k++) mesh[MESH_FIGURES[k]] = stats[MESH_FIGURES[k]];
     mesh.bytes = stats.memoryBytes;
     state.triangles = mesh.triangles;
     state.mesh = mesh;

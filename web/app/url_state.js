@@ -1,17 +1,15 @@
 // The view in the address bar, so that a link shares it and a reload restores it exactly:
-//   tau, budget, exag          settings.js ranges
+//   tau, budget, exag, ...     the settings with a URL key (settings_table.js)
 //   cam=orbit,x,y,z,distance,yaw,pitch   or   cam=fly|walk,x,y,z,yaw,pitch   metres, radians
 //   src=URL                    the data source, when it came from a URL
-//   timeout, maxmb             limits of URL loads, only when not the defaults
-// Other parameters (layout, timing) are kept as they are. Every value is checked: a bad one
+//   timeout, maxmb, layout     only when not the defaults
+// Other parameters (timing, flight, test) are kept as they are. Every value is checked: a bad one
 // gets a message and its default.
-import { RANGES, checkSetting } from './settings.js';
+import { SETTINGS, URL_KEYS, checkSetting } from './settings_table.js';
 import { MIN_PITCH, MAX_PITCH } from '../cameras/orbit.js';
 
 const WRITE_EVERY_MS = 300;
 const LIMIT = 1e9; // metres: past this a position is not a place on any terrain
-const URL_KEYS = Object.entries(RANGES).filter(([, r]) => r.url).map(([key, r]) => [key, r.url]);
-const IF_CHANGED = new Set(Object.keys(RANGES).filter((key) => RANGES[key].urlIfChanged));
 
 /**
  * Reads the view from a query string.
@@ -78,28 +76,38 @@ export function applyCameraState(rig, state) {
   rig.active = camera;
 }
 
-/** Writes the view into the address bar with history.replaceState, at most every WRITE_EVERY_MS. */
+/**
+ * Writes the view into the address bar with history.replaceState, at most every WRITE_EVERY_MS.
+ * write() runs every frame: it only notes what to write (no object, no closure per call).
+ */
 export class UrlWriter {
   constructor() {
     this.timer = null;
-    this.pending = null;
+    this.pending = false;
+    this.settings = null;
+    this.camera = null;
+    this.src = null;
+    this.flushLater = () => this.flush();
   }
 
-  /** @param {{settings: object, camera: object, src: string|null}} view */
-  write(view) {
-    this.pending = view;
-    if (this.timer === null) this.timer = setTimeout(() => this.flush(), WRITE_EVERY_MS);
+  /** @param {object} settings @param {object} camera the active camera @param {string|null} src the data's URL */
+  write(settings, camera, src) {
+    this.settings = settings;
+    this.camera = camera;
+    this.src = src;
+    this.pending = true;
+    if (this.timer === null) this.timer = setTimeout(this.flushLater, WRITE_EVERY_MS);
   }
 
   flush() {
     clearTimeout(this.timer);
     this.timer = null;
     if (!this.pending) return;
-    const { settings, camera, src } = this.pending;
-    this.pending = null;
+    const { settings, camera, src } = this;
+    this.pending = false;
     const params = new URLSearchParams(location.search);
     for (const [key, name] of URL_KEYS) {
-      if (IF_CHANGED.has(key) && settings[key] === RANGES[key].value) params.delete(name);
+      if (SETTINGS[key].urlIfChanged && settings[key] === SETTINGS[key].default) params.delete(name);
       else params.set(name, String(settings[key]));
     }
     params.set('cam', cameraParam(camera));

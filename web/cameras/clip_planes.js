@@ -28,12 +28,11 @@ export function clearanceOf(eye, world) {
  * far / MAX_DEPTH_RATIO.
  */
 export function finishMatrices(camera, aspect, world, lookDistance, clearance) {
-  const [x, y, z] = camera.position;
+  const x = camera.position[0], y = camera.position[1], z = camera.position[2];
   let far = 0;
-  for (const cx of [0, world.extentX]) {
-    for (const cz of [0, world.extentZ]) {
-      for (const cy of [world.low, world.high]) far = Math.max(far, Math.hypot(cx - x, cy - y, cz - z));
-    }
+  for (let corner = 0; corner < 8; corner++) { // the box's corners, as bits: x, z, y (no arrays per frame)
+    const cx = corner & 4 ? world.extentX : 0, cz = corner & 2 ? world.extentZ : 0, cy = corner & 1 ? world.high : world.low;
+    far = Math.max(far, Math.hypot(cx - x, cy - y, cz - z));
   }
   far = far * 1.05 + 1;
   camera.near = Math.max(far / MAX_DEPTH_RATIO, Math.min(0.3 * Math.max(clearance, 0), 0.5 * lookDistance));

@@ -35,7 +35,10 @@ export function createWorld(terrain, extent, verticalScale, reach) {
     if (memo.x === x && memo.z === z && memo.version === world.version) return memo.value;
     const drawn = terrain.drawnHeightAt(x, z) * verticalScale();
     const field = world.ground(x, z);
-    Object.assign(memo, { x, z, version: world.version, value: Number.isNaN(drawn) ? field : Math.max(drawn, field) });
+    memo.x = x; // field by field: no object per frame
+    memo.z = z;
+    memo.version = world.version;
+    memo.value = Number.isNaN(drawn) ? field : Math.max(drawn, field);
     return memo.value;
   };
   return world;

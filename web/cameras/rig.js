@@ -29,6 +29,13 @@ export class CameraRig {
     this.held = new Set(); // codes of the movement keys held down
     this.fast = false;
     this.move = { forward: 0, right: 0, up: 0 };
+    // Adds a held key's movement to this.move: made once, so a frame's key loop makes no garbage.
+    this.addMove = (code) => {
+      const m = MOVE_KEYS[code];
+      this.move.forward += m[0];
+      this.move.right += m[1];
+      this.move.up += m[2];
+    };
     this.setWorld(emptyWorld());
   }
 
@@ -94,12 +101,7 @@ export class CameraRig {
   step(seconds) {
     if (this.held.size === 0 || this.active.mode === 'orbit') return false;
     this.move.forward = this.move.right = this.move.up = 0;
-    for (const code of this.held) {
-      const [f, r, u] = MOVE_KEYS[code];
-      this.move.forward += f;
-      this.move.right += r;
-      this.move.up += u;
-    }
+    this.held.forEach(this.addMove);
     this.active.move(Math.min(seconds, 0.1), this.move, this.fast);
     return true;
   }

@@ -61,6 +61,8 @@ export class HexlodCore {
   constructor(module) {
     this.module = module;
     this.abiVersion = module._hexlod_abi_version();
+    this.layout = parseLayout(module.UTF8ToString(module._hexlod_struct_layout()));
+    this.scratch = scratchLayout(this.layout);
   }
 
   /** The current WASM memory buffer (a new object after every growth). */
@@ -102,7 +104,7 @@ export class HexlodCore {
     if (!type) throw new CoreError(`unknown sample type '${sampleType}'`);
     const handle = this.module._hexlod_terrain_create(width, height, type.code);
     this.check(handle === 0, `cannot create a ${width}x${height} ${sampleType} terrain`);
-    const scratch = this.module._malloc(SCRATCH.bytes);
+    const scratch = this.module._malloc(this.scratch.bytes);
     if (scratch === 0) {
       this.module._hexlod_terrain_destroy(handle);
       throw new CoreError(`cannot create a ${width}x${height} ${sampleType} terrain: out of memory`);
@@ -111,89 +113,61 @@ export class HexlodCore {
   }
 }
 
-// The structs of src/api/hexlod.h in one block per terrain, allocated once: byte offsets
-// (wasm32 layouts, asserted in src/api/hexlod_api.cpp).
-const SCRATCH = {
-  frame: 0, // hexlod_frame, 192 bytes
-  camera: 192, // hexlod_camera, 112
-  settings: 304, // hexlod_settings, 64
-  scale: 368, // hexlod_scale, 48
-  info: 416, // hexlod_field_info, 32
-  levelView: 448, // hexlod_level_view, 24
-  height: 472, // one double
-  diagnostics: 480, // up to 8 doubles of a diagnostics call
-  bytes: 544,
-};
+/**
+ * hexlod_struct_layout()'s text as {struct: {size, fields: {field: {offset, type, count}}}},
+ * struct names without their hexlod_ prefix: every size and offset JS uses comes from here.
+ */
+export function parseLayout(text) {
+  const structs = {};
+  let struct = null;
+  for (const line of text.split('\n')) {
+    if (line === '') continue;
+    const [name, offset, type, count] = line.trim().split(' ');
+    if (line[0] !== ' ') structs[name.replace(/^hexlod_/, '')] = struct = { size: Number(offset), fields: {} };
+    else struct.fields[name] = { offset: Number(offset), type, count: Number(count) };
+  }
+  return structs;
+}
 
-// hexlod_frame: doubles by Float64Array index, int32 by Int32Array index (from the struct's start).
-const F64 = { updateMs: 0, tau: 1, frame: 2, memoryBytes: 3, triangles: 4, achievedErrorPx: 5 };
-const I32 = {
-  version: 12, converged: 13, operations: 14, splits: 15, merges: 16, cellsTested: 17, pendingMerges: 18,
-  cells: 19, vertices: 20, maxLevel: 21, fullHexagons: 22, semiHexagons: 23, boundarySemiHexagons: 24,
-  hashLow: 25, hashHigh: 26, vertexCount: 27, indexCount: 28, dirtyVertexPairs: 29, dirtyIndexPairs: 30,
-  vertexPointer: 43, indexPointer: 44, dirtyVerticesPointer: 45, dirtyIndicesPointer: 46, normalsPointer: 47,
-};
+/** snake_case C names as camelCase JS names (tau_px -> tauPx). */
+export const camelCase = (name) => name.replace(/_([a-z0-9])/g, (_, c) => c.toUpperCase());
+
+// The structs of one terrain's calls in one block, allocated once: each struct at its byte
+// offset (8-aligned), then one double for heights and up to 8 of a diagnostics call.
+const SCRATCH_STRUCTS = ['frame', 'camera', 'settings', 'scale', 'field_info', 'level_view', 'mesh_settings'];
+function scratchLayout(layout) {
+  const offsets = {};
+  let bytes = 0;
+  for (const name of SCRATCH_STRUCTS) {
+    offsets[name] = bytes;
+    bytes += Math.ceil(layout[name].size / 8) * 8;
+  }
+  offsets.height = bytes;
+  offsets.diagnostics = bytes + 8;
+  offsets.bytes = bytes + 8 + 8 * 8;
+  return offsets;
+}
 
 /**
- * The figures of the last hexlod_terrain_frame call, read through views on WASM memory: the
- * same object every frame, so a frame loop makes no garbage. Read a figure before the next
- * core call on the same terrain. Pointers are byte offsets (already `>>> 0`).
+ * Where one struct's fields lie in the Float64Array (f64) or Int32Array (i32, u32, ptr) over all
+ * WASM memory, for a struct at byte address `base` (8-aligned): {field: element index}.
+ */
+function fieldIndices(struct, base) {
+  const indices = {};
+  for (const [name, { offset, type }] of Object.entries(struct.fields)) {
+    indices[name] = (base + offset) / (type === 'f64' ? 8 : 4);
+  }
+  return indices;
+}
+
+/**
+ * The figures of the last hexlod_terrain_frame call, one property per field of hexlod_frame in
+ * camelCase (update_ms -> updateMs), but for FRAME_NAMES; pointers are byte offsets, already
+ * `>>> 0`; converged is a boolean. Terrain.frame() copies them in, so this is the
+ * same object every frame and a frame loop makes no garbage; read a figure before the next
+ * frame call on the same terrain.
  */
 export class FrameStats {
-  constructor(terrain) {
-    this.terrain = terrain;
-  }
-
-  f64(index) {
-    return this.terrain.scratchF64()[this.terrain.frameF64 + index];
-  }
-
-  i32(index) {
-    return this.terrain.scratchI32()[this.terrain.frameI32 + index];
-  }
-
-  /** Milliseconds of the last LOD update. */
-  get updateMs() { return this.f64(F64.updateMs); }
-  /** The tau in use in pixels (auto tau may have raised it). */
-  get tau() { return this.f64(F64.tau); }
-  /** The blends' frame counter: the shader's u_frame. */
-  get frame() { return this.f64(F64.frame); }
-  /** Bytes of the mesh structures, the refiner's caches and the stream. */
-  get memoryBytes() { return this.f64(F64.memoryBytes); }
-  get triangles() { return this.f64(F64.triangles); }
-  /** With FRAME.census: the achieved screen error in pixels (-1 in max-error mode). */
-  get achievedErrorPx() { return this.f64(F64.achievedErrorPx); }
-  /** The stream's version: it moves whenever anything was written. */
-  get version() { return this.i32(I32.version); }
-  get converged() { return this.i32(I32.converged) === 1; }
-  get operations() { return this.i32(I32.operations); }
-  get splits() { return this.i32(I32.splits); }
-  get merges() { return this.i32(I32.merges); }
-  get cellsTested() { return this.i32(I32.cellsTested); }
-  get pendingMerges() { return this.i32(I32.pendingMerges); }
-  get cells() { return this.i32(I32.cells); }
-  get vertices() { return this.i32(I32.vertices); }
-  get maxLevel() { return this.i32(I32.maxLevel); }
-  /** With FRAME.census: live cells by kind (paper §4.2). */
-  get fullHexagons() { return this.i32(I32.fullHexagons); }
-  get semiHexagons() { return this.i32(I32.semiHexagons); }
-  get boundarySemiHexagons() { return this.i32(I32.boundarySemiHexagons); }
-  /** With FRAME.hash: the mesh hash's halves as unsigned numbers. */
-  get hashLow() { return this.i32(I32.hashLow) >>> 0; }
-  get hashHigh() { return this.i32(I32.hashHigh) >>> 0; }
-  /** Vertex slots of the pool and indices of the index array. */
-  get vertexCount() { return this.i32(I32.vertexCount); }
-  get indexCount() { return this.i32(I32.indexCount); }
-  /** (first, count) pairs written since the last acknowledgeStream(). */
-  get dirtyVertexPairs() { return this.i32(I32.dirtyVertexPairs); }
-  get dirtyIndexPairs() { return this.i32(I32.dirtyIndexPairs); }
-  get vertexPointer() { return this.i32(I32.vertexPointer) >>> 0; }
-  get indexPointer() { return this.i32(I32.indexPointer) >>> 0; }
-  get dirtyVerticesPointer() { return this.i32(I32.dirtyVerticesPointer) >>> 0; }
-  get dirtyIndicesPointer() { return this.i32(I32.dirtyIndicesPointer) >>> 0; }
-  /** The vertex normals (STREAM_NORMAL_BYTES a slot), or 0 while the stream keeps none. */
-  get normalsPointer() { return this.i32(I32.normalsPointer) >>> 0; }
-
   /** The mesh hash as 16 hexadecimal digits (high half first; a string, so not per frame). */
   hash() {
     const hex = (half) => half.toString(16).padStart(8, '0');
@@ -201,15 +175,12 @@ export class FrameStats {
   }
 }
 
-/** What the setters keep, mirrored from hexlod_settings (the core's defaults). */
-function defaultSettings() {
-  return {
-    tau: 1, maxError: 0, verticalScale: 1, budgetMs: 0, maxOperations: 0, maxTriangles: 0, autoTau: false,
-    culling: true, backfaceCulling: true, morphFrames: 0, layout: 'fans', normals: true,
-  };
-}
-
-const positive = (value) => Number.isFinite(value) && value > 0;
+// How each hexlod_frame field is read: 0 a double, 1 an int32, 2 unsigned (u32, pointers), 3 a flag.
+const READ_F64 = 0, READ_I32 = 1, READ_U32 = 2, READ_FLAG = 3;
+const FLAGS = new Set(['converged']);
+// hexlod_frame fields whose JS names are not plain camelCase (the names callers read).
+const FRAME_NAMES = { tau_px: 'tau', vertices_ptr: 'vertexPointer', indices_ptr: 'indexPointer',
+  dirty_vertices_ptr: 'dirtyVerticesPointer', dirty_indices_ptr: 'dirtyIndicesPointer', normals_ptr: 'normalsPointer' };
 
 /** One height field in the core, and the mesh built from it. */
 export class Terrain {
@@ -220,13 +191,30 @@ export class Terrain {
     this.height = height;
     this.sampleType = sampleType;
     this.scratch = scratch >>> 0;
-    this.frameF64 = this.scratch / 8; // the frame struct's first double and int32 in the views
-    this.frameI32 = this.scratch / 4;
     this.f64View = null;
     this.i32View = null;
     this.hasMesh = false;
-    this.settings = defaultSettings();
-    this.stats = new FrameStats(this);
+    const layout = core.layout, at = (name) => this.scratch + core.scratch[name];
+    this.at = { frame: at('frame'), camera: at('camera'), settings: at('settings'), scale: at('scale'),
+      fieldInfo: at('field_info'), levelView: at('level_view'), meshSettings: at('mesh_settings'),
+      height: at('height'), diagnostics: at('diagnostics') };
+    this.fields = {
+      camera: fieldIndices(layout.camera, this.at.camera), settings: fieldIndices(layout.settings, this.at.settings),
+      scale: fieldIndices(layout.scale, this.at.scale), fieldInfo: fieldIndices(layout.field_info, this.at.fieldInfo),
+      levelView: fieldIndices(layout.level_view, this.at.levelView),
+    };
+    // hexlod_frame read field by field into this.stats: names, element indices and readers, made once.
+    const frame = fieldIndices(layout.frame, this.at.frame);
+    this.frameReads = Object.entries(layout.frame.fields).map(([name, { type }]) => ({
+      key: FRAME_NAMES[name] ?? camelCase(name), index: frame[name],
+      read: FLAGS.has(name) ? READ_FLAG : type === 'f64' ? READ_F64 : type === 'i32' ? READ_I32 : READ_U32,
+    }));
+    this.stats = new FrameStats();
+    for (const { key } of this.frameReads) this.stats[key] = 0;
+    // Every field of hexlod_settings as camelCase, 0 meaning the core's default (see configure).
+    this.settings = {};
+    for (const name of Object.keys(layout.settings.fields)) this.settings[camelCase(name)] = 0;
+    this.levelViewOut = new LevelView(core);
   }
 
   get m() {
@@ -279,28 +267,26 @@ export class Terrain {
     if (spacingX === 0 || spacingY === 0) throw new CoreError('invalid height scale: sample spacing must be positive');
     if (heightScale === 0) throw new CoreError('invalid height scale: height scale must not be zero');
     const hasNodata = nodata !== null && nodata !== undefined && !Number.isNaN(nodata);
-    const base = (this.scratch + SCRATCH.scale) / 8, f64 = this.scratchF64();
-    f64[base] = spacingX;
-    f64[base + 1] = spacingY;
-    f64[base + 2] = heightScale;
-    f64[base + 3] = heightOffset;
-    f64[base + 4] = hasNodata ? nodata : 0;
-    const i32 = this.scratchI32(), ibase = (this.scratch + SCRATCH.scale) / 4;
-    i32[ibase + 10] = hasNodata ? 1 : 0;
-    i32[ibase + 11] = 0;
-    this.core.check(this.m._hexlod_terrain_set_scale(this.handle, this.scratch + SCRATCH.scale) < 0, 'invalid height scale');
+    const f = this.fields.scale, f64 = this.scratchF64(), i32 = this.scratchI32();
+    f64[f.spacing_x_m] = spacingX;
+    f64[f.spacing_y_m] = spacingY;
+    f64[f.height_scale] = heightScale;
+    f64[f.height_offset_m] = heightOffset;
+    f64[f.nodata_raw] = hasNodata ? nodata : 0;
+    i32[f.has_nodata] = hasNodata ? 1 : 0;
+    i32[f.reserved] = 0;
+    this.core.check(this.m._hexlod_terrain_set_scale(this.handle, this.at.scale) < 0, 'invalid height scale');
     this.spacingX = spacingX;
     this.spacingY = spacingY;
   }
 
   /** Fills missing samples and computes the height range; returns how many were missing. */
   prepare() {
-    const info = this.scratch + SCRATCH.info;
-    this.core.check(this.m._hexlod_terrain_prepare(this.handle, info) < 0, 'cannot use this height field');
-    const f64 = this.scratchF64(), base = info / 8;
-    this.minHeight = f64[base];
-    this.maxHeight = f64[base + 1];
-    return f64[base + 2];
+    this.core.check(this.m._hexlod_terrain_prepare(this.handle, this.at.fieldInfo) < 0, 'cannot use this height field');
+    const f = this.fields.fieldInfo, f64 = this.scratchF64();
+    this.minHeight = f64[f.min_height_m];
+    this.maxHeight = f64[f.max_height_m];
+    return f64[f.missing];
   }
 
   /** Bilinear height in metres at (x, z) metres, clamped to the field. */
@@ -310,7 +296,8 @@ export class Terrain {
 
   /**
    * Height in metres (unscaled) of the surface as drawn now, geomorph blends included, at
-   * (x, z) metres; NaN where nothing is drawn (outside the domain, or no mesh). After updateStream.
+   * (x, z) metres; NaN where nothing is drawn (outside the domain, or no mesh). After the
+   * frame's stream step.
    */
   drawnHeightAt(x, z) {
     if (!this.hasMesh) return NaN;
@@ -318,7 +305,7 @@ export class Terrain {
   }
 
   readHeight(x, z, surface) {
-    const pointer = this.scratch + SCRATCH.height;
+    const pointer = this.at.height;
     const covered = this.m._hexlod_terrain_height_at(this.handle, x, z, surface, pointer);
     this.core.check(covered < 0, 'cannot read a height');
     return covered === 1 ? this.scratchF64()[pointer / 8] : NaN;
@@ -327,14 +314,14 @@ export class Terrain {
   // --- The hexagon mesh (paper §4) ---------------------------------------------------------------
 
   /**
-   * (Re)creates the hexagon mesh over the whole field (paper §4.7).
+   * (Re)creates the hexagon mesh over the whole field (paper §4.7); the settings are kept.
    * @param {'shifted'|'exact'} embedding the paper's shifted rows, or vertices on their samples
    */
   resetMesh(embedding = 'exact') {
     const code = EMBEDDINGS[embedding];
     if (code === undefined) throw new CoreError(`unknown embedding '${embedding}'`);
-    const pointer = this.scratch + SCRATCH.settings; // hexlod_mesh_settings, borrowed
-    this.scratchI32()[pointer / 4] = code;
+    const pointer = this.at.meshSettings;
+    this.scratchI32()[(pointer + this.core.layout.mesh_settings.fields.embedding.offset) / 4] = code;
     this.core.check(this.m._hexlod_terrain_reset_mesh(this.handle, pointer) < 0, 'cannot create the hexagon mesh');
     this.hasMesh = true;
   }
@@ -359,18 +346,21 @@ export class Terrain {
   /**
    * The level-ordered view for diagnostics, written anew: every cell's fan grouped by level,
    * levelOffsets (max level + 2 entries), and with outline every cell edge once as a line pair.
-   * Views valid until the next core call.
+   * Returns the same LevelView object every call, valid until the next core call.
    */
   levelView(outline = false) {
-    const pointer = this.scratch + SCRATCH.levelView;
+    const pointer = this.at.levelView;
     const count = this.m._hexlod_terrain_level_view(this.handle, outline ? 1 : 0, pointer);
     this.core.check(count < 0, 'cannot build the level view');
-    const i32 = this.scratchI32(), base = pointer / 4, core = this.core;
-    return {
-      indices: core.view(Uint32Array, i32[base], i32[base + 3]),
-      levelOffsets: core.view(Int32Array, i32[base + 1], i32[base + 4]),
-      outline: core.view(Uint32Array, i32[base + 2], i32[base + 5]),
-    };
+    const i32 = this.scratchI32(), f = this.fields.levelView, out = this.levelViewOut;
+    out.refresh();
+    out.indexStart = (i32[f.indices] >>> 0) / 4;
+    out.indexCount = i32[f.index_count];
+    out.levelOffsetStart = (i32[f.level_offsets] >>> 0) / 4;
+    out.levelOffsetCount = i32[f.level_offset_count];
+    out.outlineStart = (i32[f.outline] >>> 0) / 4;
+    out.outlineCount = i32[f.outline_count];
+    return out;
   }
 
   // --- One frame (paper §5-§7) -------------------------------------------------------------------
@@ -378,18 +368,22 @@ export class Terrain {
   /**
    * One frame in one core call (hexlod_terrain_frame): the camera (null keeps the last one),
    * one LOD update within the budget, the stream. Returns this.stats, the same FrameStats
-   * object every time.
-   * @param {object|null} camera as setLodCamera takes it
+   * object every time, filled from hexlod_frame.
+   * @param {{eye: ArrayLike<number>, target: ArrayLike<number>, up?: ArrayLike<number>, fovY?: number,
+   *   tanHalfFovY?: number, aspect: number, viewportHeight: number, near: number, far: number}|null} camera
+   *   eye and target in metres (x east, y up times the vertical scale, z south); up defaults
+   *   to +y; fovY is the vertical field of view in radians, or give tanHalfFovY directly;
+   *   aspect = viewport width / height; viewportHeight in device pixels; near, far in metres.
    * @param {number} [steps] FRAME bits: 0 all steps; FRAME.hash / FRAME.census add figures
    */
   frame(camera, steps = FRAME.all) {
     if (camera) this.writeCamera(camera);
-    const result = this.m._hexlod_terrain_frame(this.handle, camera ? this.scratch + SCRATCH.camera : 0, steps,
-      this.scratch + SCRATCH.frame);
+    const result = this.m._hexlod_terrain_frame(this.handle, camera ? this.at.camera : 0, steps, this.at.frame);
     if (result < 0) {
       const message = this.core.lastError();
       throw new CoreError(`${message.startsWith('degenerate camera') ? 'invalid camera' : 'cannot run the frame'}: ${message}`);
     }
+    this.readFrame();
     return this.stats;
   }
 
@@ -398,28 +392,34 @@ export class Terrain {
     return this.frame(null, FRAME.query | extra);
   }
 
-  writeCamera({ eye, target, up = [0, 1, 0], fovY, tanHalfFovY, aspect, viewportHeight, near, far }) {
-    const f64 = this.scratchF64(), base = (this.scratch + SCRATCH.camera) / 8;
-    for (let c = 0; c < 3; c++) {
-      f64[base + c] = eye[c];
-      f64[base + 3 + c] = target[c];
-      f64[base + 6 + c] = up[c];
+  // Copies hexlod_frame into this.stats, field by field (no allocation).
+  readFrame() {
+    const f64 = this.scratchF64(), i32 = this.scratchI32(), stats = this.stats, reads = this.frameReads;
+    for (let k = 0; k < reads.length; k++) {
+      const { key, index, read } = reads[k];
+      if (read === READ_F64) stats[key] = f64[index];
+      else if (read === READ_I32) stats[key] = i32[index];
+      else if (read === READ_U32) stats[key] = i32[index] >>> 0;
+      else stats[key] = i32[index] !== 0;
     }
-    f64[base + 9] = tanHalfFovY ?? Math.tan(fovY / 2);
-    f64[base + 10] = aspect;
-    f64[base + 11] = viewportHeight;
-    f64[base + 12] = near;
-    f64[base + 13] = far;
   }
 
-  /**
-   * Sets the camera of view-dependent refinement.
-   * @param {{eye: number[], target: number[], up?: number[], fovY?: number, tanHalfFovY?: number,
-   *   aspect: number, viewportHeight: number, near: number, far: number}} camera
-   *   eye and target in metres (x east, y up times the vertical scale, z south); up defaults
-   *   to +y; fovY is the vertical field of view in radians, or give tanHalfFovY directly;
-   *   aspect = viewport width / height; viewportHeight in device pixels; near, far in metres.
-   */
+  // The camera into hexlod_camera. No up given: (0, 0, 0), which the core takes as +y.
+  writeCamera({ eye, target, up, fovY, tanHalfFovY, aspect, viewportHeight, near, far }) {
+    const f64 = this.scratchF64(), f = this.fields.camera;
+    for (let c = 0; c < 3; c++) {
+      f64[f.eye + c] = eye[c];
+      f64[f.target + c] = target[c];
+      f64[f.up + c] = up ? up[c] : 0;
+    }
+    f64[f.tan_half_fov_y] = tanHalfFovY ?? Math.tan(fovY / 2);
+    f64[f.aspect] = aspect;
+    f64[f.viewport_height_px] = viewportHeight;
+    f64[f.near_m] = near;
+    f64[f.far_m] = far;
+  }
+
+  /** Sets the camera of view-dependent refinement (a frame of FRAME.camera only; see frame()). */
   setLodCamera(camera) {
     this.frame(camera, FRAME.camera);
   }
@@ -443,19 +443,6 @@ export class Terrain {
     };
   }
 
-  /** The blends' frame counter: the shader's u_frame. */
-  lodFrame() {
-    return this.query().frame;
-  }
-
-  /**
-   * The achieved screen error in pixels of the current mesh for the current camera; -1 in
-   * max-error mode. A pass over the cells.
-   */
-  achievedErrorPx() {
-    return this.query(FRAME.census).achievedErrorPx;
-  }
-
   /**
    * Applies the mesh's changes to the fan stream; call after updateLod.
    * @returns {number} the stream version: it moves whenever anything was written
@@ -464,16 +451,12 @@ export class Terrain {
     return this.frame(null, FRAME.stream).version;
   }
 
-  /** The stream's version: it moves whenever anything was written. */
-  streamVersion() {
-    return this.query().version;
-  }
-
   /**
    * Views on the fan stream, valid until the next core call (src/api/hexlod.h, hexlod_frame):
    * the vertex pool as bytes (STREAM_VERTEX_BYTES a slot) and as floats (STREAM_VERTEX_WORDS a
    * slot; the position comes first), the index array, and the ranges written since the last
-   * acknowledgeStream() as [first, count] pairs of vertex slots and of indices.
+   * acknowledgeStream() as [first, count] pairs of vertex slots and of indices. New views each
+   * call: for tools; the renderer reads this.stats and one view on all memory instead.
    */
   stream() {
     const s = this.query(), core = this.core;
@@ -497,92 +480,35 @@ export class Terrain {
 
   // --- Settings (hexlod_settings: everything but the camera) -------------------------------------
 
-  /** Writes this.settings to the core; on failure the previous settings stay, here and there. */
-  applySettings(change, what) {
-    const previous = this.settings;
-    this.settings = { ...previous, ...change };
-    const s = this.settings, base = this.scratch + SCRATCH.settings;
-    const f64 = this.scratchF64(), i32 = this.scratchI32(), d = base / 8, i = base / 4;
-    f64[d] = s.tau;
-    f64[d + 1] = s.maxError;
-    f64[d + 2] = s.verticalScale;
-    f64[d + 3] = Number.isFinite(s.budgetMs) && s.budgetMs > 0 ? s.budgetMs : 0;
-    i32[i + 8] = s.maxOperations > 0 ? s.maxOperations : 0;
-    i32[i + 9] = s.maxTriangles > 0 ? s.maxTriangles : 0;
-    i32[i + 10] = s.autoTau ? 1 : 0;
-    i32[i + 11] = s.culling ? 0 : 1;
-    i32[i + 12] = s.backfaceCulling ? 0 : 1;
-    i32[i + 13] = s.morphFrames;
-    i32[i + 14] = STREAM_LAYOUTS[s.layout];
-    i32[i + 15] = s.normals ? 0 : 1;
-    if (this.m._hexlod_terrain_set_settings(this.handle, base) < 0) {
-      this.settings = previous;
-      throw new CoreError(`${what}: ${this.core.lastError()}`);
+  /**
+   * Changes some settings in one core call (hexlod_terrain_set_settings), the rest kept. The
+   * keys are hexlod_settings' fields in camelCase (see src/api/hexlod.h for units and ranges):
+   * tauPx, maxErrorM (> 0: view-independent mode; 0: tau mode), verticalScale, budgetMs,
+   * maxOperations, maxTriangles, autoTau, noFrustumCulling, noBackfaceCulling, morphFrames,
+   * layout ('fans', 'triangles' or HEXLOD_LAYOUT_*), noNormals; flags take booleans. 0 means
+   * the core's default, and every field starts at 0, so the defaults are the core's own. On a
+   * refusal the previous settings stay, here and in the core, and a CoreError says why.
+   * @param {object} change
+   */
+  configure(change) {
+    for (const key of Object.keys(change)) {
+      if (!(key in this.settings)) {
+        throw new TypeError(`unknown core setting '${key}' (expected one of ${Object.keys(this.settings).join(', ')})`);
+      }
     }
-  }
-
-  /** Screen-space tolerance tau in device pixels (> 0); switches to view-dependent mode. */
-  setLodTolerance(tauPx) {
-    if (!positive(tauPx)) throw new CoreError('invalid tolerance: tau must be a positive number of pixels');
-    this.applySettings({ tau: tauPx, maxError: 0 }, 'invalid tolerance');
-  }
-
-  /** Maximum vertical error in metres (> 0); switches to view-independent mode. */
-  setLodMaxError(maxErrorM) {
-    if (!positive(maxErrorM)) throw new CoreError('invalid maximum error: the maximum error must be a positive number of metres');
-    this.applySettings({ maxError: maxErrorM }, 'invalid maximum error');
-  }
-
-  /** Heights are drawn times verticalScale (> 0); every cell is re-evaluated. */
-  setLodVerticalScale(verticalScale) {
-    if (!positive(verticalScale)) throw new CoreError('invalid vertical scale: the vertical scale must be a positive number');
-    this.applySettings({ verticalScale }, 'invalid vertical scale');
-  }
-
-  /**
-   * Per-update budget: at most budgetMs milliseconds (<= 0: no limit) and at most maxOperations
-   * splits and merges (<= 0: no limit).
-   */
-  setLodBudget(budgetMs = 0, maxOperations = 0) {
-    this.applySettings({ budgetMs, maxOperations }, 'invalid budget');
-  }
-
-  /** Cap on drawn triangles (<= 0: none), and whether tau may rise and fall to respect it. */
-  setLodLimits(maxTriangles = 0, autoTau = false) {
-    this.applySettings({ maxTriangles, autoTau }, 'invalid limits');
-  }
-
-  /** Frustum culling of cells (on by default). */
-  setLodCulling(enabled) {
-    this.applySettings({ culling: Boolean(enabled) }, 'cannot set culling');
-  }
-
-  /** Back-face culling by the cone of normals on (default) or off. */
-  setLodBackfaceCulling(enabled) {
-    this.applySettings({ backfaceCulling: Boolean(enabled) }, 'cannot set back-face culling');
-  }
-
-  /** Geomorphing over `frames` frames (0 = off, at most 1000; paper §7). */
-  setMorphFrames(frames) {
-    this.applySettings({ morphFrames: frames }, 'invalid morph frames');
-  }
-
-  /** 'fans' (TRIANGLE_FAN with primitive restart, 9 indices a cell) or 'triangles' (18). */
-  setStreamLayout(layout) {
-    if (STREAM_LAYOUTS[layout] === undefined) throw new TypeError(`unknown stream layout ${layout} (expected fans or triangles)`);
-    this.applySettings({ layout }, 'cannot set the stream layout');
-  }
-
-  /**
-   * Whether the stream keeps the mesh's vertex normals (paper §7): the viewer needs them only
-   * for mesh normals, the plain mode, and until the field's own normals are ready. Off saves
-   * 32 bytes a vertex (the normal and its exact sum) and the normal arithmetic; turning them on
-   * rebuilds them all.
-   */
-  setStreamNormals(on) {
-    if (on === this.streamNormals) return;
-    this.applySettings({ normals: Boolean(on) }, 'cannot switch the stream normals');
-    this.streamNormals = on;
+    if (change.layout !== undefined && typeof change.layout === 'string' && STREAM_LAYOUTS[change.layout] === undefined) {
+      throw new TypeError(`unknown stream layout ${change.layout} (expected fans or triangles)`);
+    }
+    const next = { ...this.settings, ...change };
+    const f64 = this.scratchF64(), i32 = this.scratchI32(), fields = this.core.layout.settings.fields;
+    for (const [name, { type }] of Object.entries(fields)) {
+      const value = next[camelCase(name)];
+      const index = (this.at.settings + fields[name].offset) / (type === 'f64' ? 8 : 4);
+      if (type === 'f64') f64[index] = value;
+      else i32[index] = typeof value === 'string' ? STREAM_LAYOUTS[value] : Number(value);
+    }
+    this.core.check(this.m._hexlod_terrain_set_settings(this.handle, this.at.settings) < 0, 'invalid settings');
+    this.settings = next;
   }
 
   // --- Diagnostics (src/api/hexlod_diagnostics.h: the diagnostics build only, e.g. in Node) -------
@@ -598,9 +524,23 @@ export class Terrain {
 
   /** Calls a diagnostics function that writes `length` doubles; returns them as an array. */
   readDiagnostic(name, length, what, ...args) {
-    const pointer = this.scratch + SCRATCH.diagnostics;
+    const pointer = this.at.diagnostics;
     this.core.check(this.diagnostic(name)(this.handle, ...args, pointer) < 0, what);
     return Array.from(this.scratchF64().subarray(pointer / 8, pointer / 8 + length));
+  }
+
+  /**
+   * The settings in force with every default resolved (hexlod_diag_settings), keyed as
+   * configure() takes them: the core's defaults, for tests.
+   */
+  settingsInForce() {
+    this.core.check(this.diagnostic('settings')(this.handle, this.at.settings) < 0, 'cannot read the settings');
+    const f64 = this.scratchF64(), i32 = this.scratchI32(), fields = this.core.layout.settings.fields, out = {};
+    for (const [name, { offset, type }] of Object.entries(fields)) {
+      const address = this.at.settings + offset;
+      out[camelCase(name)] = type === 'f64' ? f64[address / 8] : i32[address / 4];
+    }
+    return out;
   }
 
   /** Uniform split, `rounds` times (each quadruples the triangles); returns the splits made. */
@@ -638,4 +578,35 @@ export class Terrain {
       'cannot measure popping');
     return { maxJumpPx, jumpsOverHalfPx, measured, at: { x, y, depth, kind: ['kept', 'new', 'freed'][kind] } };
   }
+}
+
+/**
+ * The level-ordered view (Terrain.levelView): where its arrays lie in WASM memory, as element
+ * indices into `u32` / `i32` (views on all memory, made again only after it grew), so that a
+ * frame with colour by level on makes no new view. The getters make views, for tools.
+ */
+export class LevelView {
+  constructor(core) {
+    this.core = core;
+    this.u32 = null;
+    this.i32 = null;
+    this.indexStart = 0;
+    this.indexCount = 0;
+    this.levelOffsetStart = 0;
+    this.levelOffsetCount = 0;
+    this.outlineStart = 0;
+    this.outlineCount = 0;
+  }
+
+  refresh() {
+    const buffer = this.core.buffer;
+    if (this.u32 === null || this.u32.buffer !== buffer) {
+      this.u32 = new Uint32Array(buffer);
+      this.i32 = new Int32Array(buffer);
+    }
+  }
+
+  get indices() { return this.u32.subarray(this.indexStart, this.indexStart + this.indexCount); }
+  get levelOffsets() { return this.i32.subarray(this.levelOffsetStart, this.levelOffsetStart + this.levelOffsetCount); }
+  get outline() { return this.u32.subarray(this.outlineStart, this.outlineStart + this.outlineCount); }
 }

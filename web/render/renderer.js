@@ -35,7 +35,7 @@ export const SHADING_MODES = { natural: 0, hypsometric: 1, slope: 2, hillshade: 
 const SHADER_FILES = { 'scattering.glsl': scatteringGlsl, 'field_textures.glsl': fieldTexturesGlsl,
   'ground_color.glsl': groundColorGlsl, 'tonemap.glsl': tonemapGlsl };
 const SKY_COLOR = [0.62, 0.74, 0.88]; // the clear colour of the plain mode (no sky pass)
-const OUTLINE_COLOR = [0.08, 0.09, 0.12, 0.55];
+const OUTLINE_COLOR = new Float32Array([0.08, 0.09, 0.12, 0.55]);
 const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeightRange', 'uTint', 'uTintAmount',
   'uExtent', 'uLineColor', 'uFrame', 'uMorphFrames', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie', 'uScaleHeight',
   'uMieG', 'uSunIrradiance', 'uSunAirMass', 'uSkyLight', 'uExposure', 'uMode', 'uNormalSource', 'uShadows',
@@ -65,6 +65,11 @@ function link(gl, vertex, fragment) {
   return program;
 }
 
+// The atmosphere's constants as the uniforms take them, converted once: a plain array passed to
+// uniform*fv is read element by element by the browser, which boxes every double each frame.
+const ATMOSPHERE_F32 = { betaRayleigh: new Float32Array(BETA_RAYLEIGH), betaMie: new Float32Array(BETA_MIE),
+  scaleHeights: new Float32Array(SCALE_HEIGHTS), sunIrradiance: new Float32Array(SUN_IRRADIANCE) };
+
 /** A colour per level: hues far apart around the wheel, semi-hexagons (odd levels) darker. */
 function levelColor(level) {
   const hue = ((level >> 1) * 137) % 360;
@@ -76,6 +81,9 @@ function levelColor(level) {
   };
   return [channel(0), channel(8), channel(4)];
 }
+// The colours of every level a mesh can have (65536-sample fields reach level 32), made once:
+// a frame with colour by level on computes none.
+const LEVEL_COLORS = Array.from({ length: 64 }, (_, level) => new Float32Array(levelColor(level)));
 
 /** A GL buffer that follows an array in WASM memory: grown by doubling, filled by ranges. */
 class MirroredBuffer {
@@ -163,7 +171,8 @@ export class TerrainRenderer {
     this.indexCount = 0;
     this.layout = 'fans';
     this.version = -1;      // stream version on the GPU; -1: nothing uploaded yet
-    this.levelOffsets = [];
+    this.levelOffsets = new Int32Array(64); // the level view's offsets, grown when needed
+    this.levelOffsetCount = 0;
     this.outlineCount = 0;
   }
 
@@ -238,16 +247,20 @@ export class TerrainRenderer {
     this.hasNormals = on;
   }
 
-  /** The level-ordered view (Terrain.levelView) for colour by level and the outlines. */
+  /**
+   * The level-ordered view (Terrain.levelView, a LevelView) for colour by level and the
+   * outlines: uploaded straight from the views on all WASM memory, so no view is made per frame.
+   */
   setLevelView(levelView) {
     const gl = this.gl;
     gl.bindVertexArray(null);
-    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.levelBuffer);
-    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, levelView.indices, gl.DYNAMIC_DRAW);
-    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.outlineBuffer);
-    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, levelView.outline, gl.DYNAMIC_DRAW);
-    this.levelOffsets = Array.from(levelView.levelOffsets);
-    this.outlineCount = levelView.outline.length;
+    uploadRange(gl, this.levelBuffer, levelView.u32, levelView.indexStart, levelView.indexCount);
+    uploadRange(gl, this.outlineBuffer, levelView.u32, levelView.outlineStart, levelView.outlineCount);
+    const count = levelView.levelOffsetCount;
+    if (this.levelOffsets.length < count) this.levelOffsets = new Int32Array(2 * count);
+    for (let k = 0; k < count; k++) this.levelOffsets[k] = levelView.i32[levelView.levelOffsetStart + k];
+    this.levelOffsetCount = count;
+    this.outlineCount = levelView.outlineCount;
   }
 
   /**
@@ -297,12 +310,12 @@ export class TerrainRenderer {
   /** Uniforms the terrain and the sky share: the atmosphere and the tone curve. */
   setAtmosphereUniforms(u) {
     const gl = this.gl, a = this.atmosphere;
-    gl.uniform3fv(u.uBetaRayleigh, BETA_RAYLEIGH);
-    gl.uniform3fv(u.uBetaMie, BETA_MIE);
-    gl.uniform2fv(u.uScaleHeight, SCALE_HEIGHTS);
+    gl.uniform3fv(u.uBetaRayleigh, ATMOSPHERE_F32.betaRayleigh);
+    gl.uniform3fv(u.uBetaMie, ATMOSPHERE_F32.betaMie);
+    gl.uniform2fv(u.uScaleHeight, ATMOSPHERE_F32.scaleHeights);
     gl.uniform1f(u.uMieG, MIE_G);
     gl.uniform3fv(u.uSunDirection, a.sunDirection);
-    gl.uniform3fv(u.uSunIrradiance, SUN_IRRADIANCE);
+    gl.uniform3fv(u.uSunIrradiance, ATMOSPHERE_F32.sunIrradiance);
     gl.uniform1f(u.uSunAirMass, a.sunAirMass);
     gl.uniform1f(u.uExposure, EXPOSURE);
   }
@@ -324,7 +337,7 @@ export class TerrainRenderer {
   /**
    * Whether drawing `view` reads the mesh's vertex normals (paper §7): the plain mode, the mesh
    * as the normals' source, and any mode until the field's textures are ready. The page keeps
-   * the core's stream normals on only then (issue 12: 32 bytes a vertex).
+   * the core's stream normals on only then (32 bytes a vertex saved).
    */
   usesMeshNormals(view) {
     const plain = (SHADING_MODES[view.shading ?? 'natural'] ?? 0) === SHADING_MODES.plain;
@@ -368,14 +381,14 @@ export class TerrainRenderer {
     // Push the surface back a little so the outlines on it are not lost in the depth test.
     gl.enable(gl.POLYGON_OFFSET_FILL);
     gl.polygonOffset(1, 1);
-    if (view.colorByLevel && this.levelOffsets.length > 1) {
+    if (view.colorByLevel && this.levelOffsetCount > 1) {
       // One range per level, each in its own colour (the level-ordered view's fans).
       gl.bindVertexArray(this.levelVao);
       gl.uniform1f(u.uTintAmount, 0.45);
-      for (let level = 0; level + 1 < this.levelOffsets.length; ++level) {
+      for (let level = 0; level + 1 < this.levelOffsetCount; ++level) {
         const first = this.levelOffsets[level], count = this.levelOffsets[level + 1] - first;
         if (count === 0) continue;
-        gl.uniform3fv(u.uTint, levelColor(level));
+        gl.uniform3fv(u.uTint, LEVEL_COLORS[Math.min(level, LEVEL_COLORS.length - 1)]);
         gl.drawElements(gl.TRIANGLE_FAN, count, gl.UNSIGNED_INT, first * 4);
       }
     } else {
@@ -394,6 +407,17 @@ export class TerrainRenderer {
       gl.disable(gl.BLEND);
     }
   }
+}
+
+/**
+ * Replaces an element buffer's data with `count` elements of `heap` from `first` (element
+ * indices): no view is made. A count of 0 empties the buffer (bufferData's length 0 would mean
+ * "to the end of the source", all of memory).
+ */
+function uploadRange(gl, buffer, heap, first, count) {
+  gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, buffer);
+  if (count > 0) gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, heap, gl.DYNAMIC_DRAW, first, count);
+  else gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, 0, gl.DYNAMIC_DRAW);
 }
 
 export { SKY_COLOR, levelColor };

@@ -1,8 +1,13 @@
-// The control panel (lil-gui): every setting of settings.js, the camera, screenshots and help.
-// The panel only edits the settings object and reports which key changed; the page applies it.
+// The control panel (lil-gui): every setting with a panel place in the settings table
+// (web/app/settings_table.js), in the table's order and folders, then the camera, screenshots
+// and help. The panel only edits the settings object and reports which key changed; the page
+// applies it.
 import GUI from 'lil-gui';
-import { RANGES, SHADING_MODES, NORMAL_SOURCES } from '../app/settings.js';
+import { SETTINGS } from '../app/settings_table.js';
 import { CAMERA_MODES } from '../cameras/rig.js';
+
+// The folders open at first (the terrain has the view: only the controls used most).
+const OPEN_FOLDERS = new Set(['Level of detail']);
 
 /**
  * @param {HTMLElement} container
@@ -15,49 +20,36 @@ export function createControlsPanel(container, settings, { camera, onChange, act
   // Its stylesheet is imported by public/style.css: the Content-Security-Policy refuses the
   // <style> element lil-gui would inject.
   const gui = new GUI({ container, title: 'Controls', injectStyles: false });
-  const changed = (key) => (value) => onChange(key, value);
-  const slider = (folder, key) => {
-    const r = RANGES[key];
-    return folder.add(settings, key, r.min, r.max, r.step).name(r.label).onChange(changed(key));
+  gui.add(camera, 'mode', CAMERA_MODES).name('camera (1 2 3)').onChange((value) => onChange('camera', value));
+
+  const folders = new Map(); // 'Level of detail/budgets and culling' -> its lil-gui folder
+  const folderOf = (path) => {
+    if (!folders.has(path)) {
+      const slash = path.lastIndexOf('/');
+      const parent = slash < 0 ? gui : folderOf(path.slice(0, slash));
+      const folder = parent.addFolder(path.slice(slash + 1));
+      if (!OPEN_FOLDERS.has(path)) folder.close();
+      folders.set(path, folder);
+    }
+    return folders.get(path);
   };
-  const toggle = (folder, key, label) => folder.add(settings, key).name(label).onChange(changed(key));
-
-  gui.add(camera, 'mode', CAMERA_MODES).name('camera (1 2 3)').onChange(changed('camera'));
-
-  // The terrain has the view: only the controls used most are unfolded at first.
-  const lod = gui.addFolder('Level of detail');
-  slider(lod, 'tau');
-  slider(lod, 'budgetMs');
-  toggle(lod, 'freeze', 'freeze LOD (F)');
-  const more = lod.addFolder('budgets and culling').close();
-  slider(more, 'maxOperations');
-  slider(more, 'maxTriangles');
-  toggle(more, 'autoTau', 'auto τ (keeps the cap and budget)');
-  toggle(more, 'geomorph', 'geomorphing');
-  toggle(more, 'culling', 'frustum culling');
-  toggle(more, 'backfaceCulling', 'back-face culling');
-
-  const view = gui.addFolder('View').close();
-  slider(view, 'exaggeration');
-  toggle(view, 'wireframe', 'wireframe: hexagons (O)');
-  toggle(view, 'colorByLevel', 'colour by level (L)');
-  slider(view, 'eyeHeight');
-
-  const shading = gui.addFolder('Shading').close(); // folded, as View: the terrain has the view
-  shading.add(settings, 'shading', SHADING_MODES).name('mode').onChange(changed('shading'));
-  slider(shading, 'sunAzimuth');
-  slider(shading, 'sunElevation');
-  toggle(shading, 'shadows', 'sun shadows');
-  toggle(shading, 'occlusion', 'ambient occlusion');
-  shading.add(settings, 'normals', NORMAL_SOURCES).name('normals').onChange(changed('normals'));
-
-  const mesh = gui.addFolder('Mesh').close();
-  mesh.add(settings, 'embedding', ['exact', 'shifted']).name('embedding').onChange(changed('embedding'));
-  const cellSize = mesh.add(settings, 'cellSize', 0.01, 1e6).name('cell size (m)').onFinishChange(changed('cellSize'));
-
-  const urls = gui.addFolder('Loading from a URL').close(); // ?src=: limits of the next load
-  slider(urls, 'urlTimeout');
-  slider(urls, 'urlMaxMB');
+  const controllers = {};
+  for (const [key, s] of Object.entries(SETTINGS)) {
+    if (!s.panel) continue;
+    const [path, label] = s.panel, folder = folderOf(path);
+    const changed = (value) => onChange(key, value);
+    let controller;
+    if (s.choices) controller = folder.add(settings, key, s.choices);
+    else if (s.positive) controller = folder.add(settings, key, 0.01, 1e6); // its range follows the terrain
+    else if (typeof s.default === 'number') controller = folder.add(settings, key, s.min, s.max, s.step);
+    else controller = folder.add(settings, key);
+    controller.name(label);
+    // A typed number is applied once typed (a cell size rebuilds the mesh), others as they move.
+    if (s.positive) controller.onFinishChange(changed);
+    else controller.onChange(changed);
+    controllers[key] = controller;
+  }
+  const cellSize = controllers.cellSize;
 
   const tools = gui.addFolder('Screenshot, reset, help').close();
   for (const [label, action] of Object.entries(actions)) tools.add({ [label]: action }, label);

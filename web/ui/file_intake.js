@@ -11,7 +11,7 @@ import { ACCEPT_EXTENSIONS, ACCEPTED } from '../loaders/index.js';
 import { extensionOf, baseNameOf } from '../loaders/common.js';
 import { LoadSequence } from './load_sequence.js';
 import { fetchLimited, formatMB, LimitError } from './url_fetch.js';
-import { RANGES } from '../app/settings.js';
+import { SETTINGS } from '../app/settings_table.js';
 
 const PROGRESS_AFTER_MS = 100; // slower than a blink: show the bar
 const MB = 2 ** 20;
@@ -218,7 +218,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
   function openLinks(links) {
     return loads.run((signal) => {
       indicator.start(false);
-      return fetchAndDecode(links, { timeoutMs: RANGES.urlTimeout.value * 1000, maxBytes: Infinity }, signal, null, true);
+      return fetchAndDecode(links, { timeoutMs: SETTINGS.urlTimeout.default * 1000, maxBytes: Infinity }, signal, null, true);
     });
   }
 

@@ -31,7 +31,9 @@ export class Hud {
     this.info.className = this.figures.className = 'hud-more';
     element.append(this.toggleButton, this.summary, this.info, this.figures, this.cursor);
     this.setCollapsed(collapsed);
-    this.frameTimes = []; // rAF timestamps of the last frames
+    // rAF timestamps of the last FPS_WINDOW frames, a ring made once (tick runs every frame).
+    this.frameTimes = new Float64Array(FPS_WINDOW);
+    this.frameCount = 0; // frames ticked in all; the newest is at (frameCount - 1) % FPS_WINDOW
     this.lastRefresh = -Infinity;
     this.lastCensus = -Infinity;
     this.errorPx = -1;
@@ -63,8 +65,8 @@ export class Hud {
 
   /** A frame was drawn at rAF time `now` (ms). */
   tick(now) {
-    this.frameTimes.push(now);
-    if (this.frameTimes.length > FPS_WINDOW) this.frameTimes.shift();
+    this.frameTimes[this.frameCount % FPS_WINDOW] = now;
+    this.frameCount += 1;
   }
 
   /**
@@ -87,8 +89,10 @@ export class Hud {
     }
     const kinds = this.kinds;
     const error = this.errorPx;
-    const span = this.frameTimes.length > 1 ? this.frameTimes.at(-1) - this.frameTimes[0] : 0;
-    const fps = span > 0 && now - this.frameTimes.at(-1) < 1000 ? ((this.frameTimes.length - 1) * 1000) / span : 0;
+    const kept = Math.min(this.frameCount, FPS_WINDOW), times = this.frameTimes;
+    const newest = times[(this.frameCount - 1) % FPS_WINDOW], oldest = times[(this.frameCount - kept) % FPS_WINDOW];
+    const span = kept > 1 ? newest - oldest : 0;
+    const fps = span > 0 && now - newest < 1000 ? ((kept - 1) * 1000) / span : 0;
     const meshBytes = memoryBytes, coreBytes = meshBytes + terrain.sampleBytes;
     this.values = { fps, frameMs: timing.frameMs ?? 0, updateMs, triangles,
       full: kinds.full, semi: kinds.semi, boundarySemi: kinds.boundarySemi, vertices,

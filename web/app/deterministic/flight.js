@@ -19,7 +19,7 @@
 // tangents for uneven times (C1: no jumps in velocity). Only +, -, *, / and sqrt enter the path
 // (exact in IEEE arithmetic) and one Math.tan of the fov (fdlibm in V8 both in Chromium and
 // Node), so the page and Node compute bit-identical cameras.
-import { defaultSettings, applyLodSettings } from '../settings.js';
+import { defaultSettings, coreSettings } from '../settings_table.js';
 import { FRAME } from '../../core/core.js';
 import { parseTolerance } from './tolerance.js';
 
@@ -126,7 +126,7 @@ export function parseFlight(json, name = 'flight') {
 }
 
 /**
- * The viewer settings (web/app/settings.js) of a flight: the page's defaults, the flight's values,
+ * The viewer settings (web/app/settings_table.js) of a flight: the page's defaults, the flight's values,
  * an operation budget and no time budget, no triangle cap and no auto tau (both depend on time).
  */
 export function flightSettings(flight) {
@@ -139,10 +139,9 @@ export function flightSettings(flight) {
 }
 
 /** Builds a terrain's mesh for a flight: what the page does when it shows a terrain. */
-export function prepareTerrain(terrain, settings, layout = 'triangles') {
+export function prepareTerrain(terrain, settings) {
   terrain.resetMesh(settings.embedding);
-  applyLodSettings(terrain, settings);
-  terrain.setStreamLayout(layout);
+  terrain.configure(coreSettings(settings));
 }
 
 const hermite = (p0, m0, p1, m1, h, s) => {

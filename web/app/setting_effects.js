@@ -1,0 +1,50 @@
+// What applying a setting does, one handler per effect of the settings table
+// (settings_table.js): applying one is a lookup of its effect, never a chain of key tests.
+// SettingsOwner calls apply() after checking the value; a handler throws when it cannot apply,
+// and the owner then keeps the previous value.
+import { SETTINGS, coreSettings } from './settings_table.js';
+
+/**
+ * @param {import('./terrain_stage.js').TerrainStage} stage the terrain on stage and its cameras
+ * @returns {(key: string, value: any, previous: any) => void}
+ */
+export function settingEffects(stage) {
+  const { settings, rig, renderer } = stage;
+  const terrain = () => stage.current?.terrain;
+  const EFFECTS = {
+    // Every core setting in one call: the core keeps its previous settings when it refuses.
+    core() {
+      terrain()?.configure(coreSettings(settings));
+    },
+    // No mesh rebuild: the shader scales the heights; the cameras and the world follow.
+    heights(key, value, previous) {
+      stage.rescaleHeights(previous, value);
+      if (!terrain()) return;
+      terrain().configure(coreSettings(settings));
+      stage.makeWorld();
+      stage.keepCamerasAboveGround(); // taller hills may now stand where the eye is
+    },
+    camera(key, value) {
+      if (key === 'eyeHeight') rig.cameras.walk.eyeHeight = value;
+    },
+    view() {}, // deriveView (view_state.js) picks it up after every change
+    mesh() {
+      if (terrain()) stage.rebuildMesh(terrain());
+    },
+    // The value as typed between columns, rows in ratio; the ground positions scale with it.
+    ground(key, value) {
+      const t = terrain();
+      if (!t) return;
+      const loaded = stage.current, k = value / t.spacingX;
+      t.setScale({ ...loaded.field, spacingX: value, spacingY: t.spacingY * k });
+      stage.rescaleGround(k);
+      stage.makeWorld();
+      stage.keepCamerasAboveGround();
+      renderer.invalidate();
+      stage.hud.setTerrain(loaded.field, t, loaded.loadMs);
+      stage.intake.showSpacing(t);
+    },
+    none() {},
+  };
+  return (key, value, previous) => EFFECTS[SETTINGS[key].effect](key, value, previous);
+}

@@ -1,0 +1,98 @@
+// The terrain on stage: shows a loaded terrain (its mesh, core settings, world, opening view)
+// and keeps the cameras and the world in step when the heights or the ground spacing change.
+// main.js makes one; the setting effects (setting_effects.js) call it.
+import { createWorld } from '../cameras/ground.js';
+import { frameTerrain } from '../cameras/framing.js';
+import { coreSettings } from './settings_table.js';
+
+export class TerrainStage {
+  /**
+   * @param {object} parts canvas, renderer, rig, settings, pipeline, hud, state, det, and
+   *   syncPanel() and requestRender(); owner, panel and intake are set once made
+   */
+  constructor(parts) {
+    Object.assign(this, parts);
+    this.current = null; // { terrain, field, loadMs, world, streamVersion, blendsEnd }
+    this.source = null;  // the data's URL, while the terrain on screen came from one (the address bar's src)
+  }
+
+  /** Shows a loaded terrain; `from`: the URL it came from, null for a file (no URL to share). */
+  show(loaded, from) {
+    const { terrain, field } = loaded;
+    this.source = from;
+    this.rebuildMesh(terrain);
+    this.current?.terrain.destroy();
+    this.current = this.pipeline.current = loaded;
+    this.makeWorld();
+    this.frameDefault();
+    this.owner.adopt('cellSize', terrain.spacingX);
+    this.panel.setCellSizeRange(terrain.spacingX);
+    this.pipeline.forgetFigures(); // the last terrain's "converged" and triangles do not describe this one
+    this.state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
+      minHeight: terrain.minHeight, maxHeight: terrain.maxHeight };
+    this.hud.setTerrain(field, terrain, loaded.loadMs);
+    this.syncPanel();
+    this.det?.setTerrain(terrain);
+    this.requestRender();
+  }
+
+  /** A new mesh of the settings' embedding, with every core setting in one call; all uploaded anew. */
+  rebuildMesh(terrain) {
+    terrain.resetMesh(this.settings.embedding);
+    terrain.configure(coreSettings(this.settings));
+    this.renderer.invalidate();
+  }
+
+  /** Heights and extent of the world in drawn metres, for the cameras (ground.js) and the shading. */
+  makeWorld() {
+    const { settings, rig, renderer } = this, loaded = this.current, { terrain } = loaded;
+    const s = settings.exaggeration;
+    const extent = { extentX: (terrain.width - 1) * terrain.spacingX, extentZ: (terrain.height - 1) * terrain.spacingY,
+      low: terrain.minHeight * s, high: terrain.maxHeight * s };
+    loaded.world = createWorld(terrain, extent, () => settings.exaggeration, () => 0.5 * rig.cameras.walk.eyeHeight);
+    rig.setWorld(loaded.world);
+    renderer.setShading(extent.low, extent.high, extent.extentX, extent.extentZ);
+    if (renderer.fieldTextures.terrain !== terrain || renderer.fieldTextures.spacing !== terrain.spacingX) {
+      renderer.setField(terrain, loaded.field); // normals, shadows, occlusion from the field
+    }
+  }
+
+  /** The opening view (framing.js): the field, or its region of most relief, in view from above. */
+  frameDefault() {
+    const { canvas, rig } = this, orbit = rig.cameras.orbit;
+    const width = Math.max(canvas.clientWidth, 1), height = Math.max(canvas.clientHeight, 1);
+    // The file bar along the top and the HUD along the bottom: the terrain opens between them.
+    const bar = document.getElementById('intake').getBoundingClientRect(), hudBox = document.getElementById('hud').getBoundingClientRect();
+    const covered = {
+      top: bar.height > 0 ? Math.min(bar.bottom / height, 0.3) : 0,
+      bottom: hudBox.height > 0 ? Math.min((height - hudBox.top) / height, 0.3) : 0,
+    };
+    frameTerrain(this.current.terrain, this.current.world, orbit, this.settings.exaggeration, width / height, covered);
+    rig.active = orbit;
+  }
+
+  /** Scales the cameras' heights when the exaggeration changes from `from` to `to`. */
+  rescaleHeights(from, to) {
+    const k = to / from, cameras = this.rig.cameras;
+    cameras.orbit.target[1] *= k;
+    cameras.fly.position[1] *= k;
+    cameras.walk.position[1] *= k;
+  }
+
+  /** Scales the cameras' ground positions when the cell size changes by `k`. */
+  rescaleGround(k) {
+    const cameras = this.rig.cameras;
+    for (const p of [cameras.orbit.target, cameras.fly.position, cameras.walk.position]) {
+      p[0] *= k;
+      p[2] *= k;
+    }
+    cameras.orbit.distance *= k;
+  }
+
+  /** Lifts the active camera out of the ground after the ground's heights changed. */
+  keepCamerasAboveGround() {
+    const camera = this.rig.active, margin = this.current.world.spacing * 0.05;
+    if (camera.mode === 'walk') camera.settle();
+    else camera.keepAboveGround(camera.mode === 'orbit' ? Math.max(margin, 0.01 * camera.distance) : margin);
+  }
+}
