@@ -91,11 +91,7 @@ function runNative(fieldPath, terrain, camerasPath, extra) {
 function wasmFlight(terrain, cameras) {
   const camera = ({ eye, target }) => cameraFor(terrain, eye, target, FOV_DEG, VIEWPORT);
   terrain.resetMesh('exact');
-  terrain.setLodTolerance(TAU);
-  terrain.setLodBudget(0, 0);
-  terrain.setMorphFrames(0);
-  terrain.setLodBackfaceCulling(true);
-  terrain.setStreamNormals(normals);
+  terrain.configure({ tauPx: TAU, budgetMs: 0, maxOperations: 0, morphFrames: 0, noBackfaceCulling: false, noNormals: !normals });
   terrain.setLodCamera(camera(cameras[0]));
   for (let n = 0; n < 1000; n++) {
     terrain.updateLod();

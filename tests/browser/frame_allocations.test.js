@@ -30,7 +30,7 @@ const SITE_LIMIT = 0.25; // samples a frame at one site
 const TOTAL_LIMIT = 1; // samples a frame in all
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { startViewer, openPage } from './harness.js';
+import { startViewer, openPage } from '../../lib/page_harness.js';
 
 const FRAME_PATH = /\/web\/app\/frame_pipeline\.js/;
 // [file, function]: allowed inside the frame path (see above).

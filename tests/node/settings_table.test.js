@@ -4,7 +4,7 @@
 // unless the table says why the page differs.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { createNodeCore } from '../../bin/node_core.js';
+import { createNodeCore } from '../../lib/node_core.js';
 import { STREAM_LAYOUTS } from '../../web/core/core.js';
 import { SETTINGS, defaultSettings, coreSettings, checkSetting, URL_KEYS } from '../../web/app/settings_table.js';
 

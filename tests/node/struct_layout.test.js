@@ -4,7 +4,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { createNodeCore } from '../../bin/node_core.js';
+import { createNodeCore } from '../../lib/node_core.js';
 import { camelCase, FrameStats } from '../../web/core/core.js';
 
 const core = await createNodeCore();

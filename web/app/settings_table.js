@@ -72,7 +72,7 @@ export const SETTINGS = {
 
   // Loads from a URL (?src=): give up after this long without an answer or a new byte, and
   // refuse a body larger than this (by its Content-Length before it is read, and while it
-  // streams). 60 s and 1 GiB as `hexlod regress` (bin/dem_source.js): the core holds a 16385²
+  // streams). 60 s and 1 GiB as `hexlod regress` (lib/dem_source.js): the core holds a 16385²
   // 16-bit field (512 MB), and the page holds the file beside the core's copy of it.
   urlTimeout: { default: 60, min: 1, max: 600, step: 1, url: 'timeout', urlIfChanged: true, panel: [URLS, 'URL time limit (s)'],
     effect: 'none' },

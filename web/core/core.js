@@ -1,6 +1,6 @@
 // The one JS module that owns the WebAssembly core (src/api/hexlod.h is the ABI it wraps; the
 // diagnostics of src/api/hexlod_diagnostics.h exist only in the diagnostics build that Node
-// loads, see bin/node_core.js). It runs unchanged in the browser, in workers and in Node; only
+// loads, see lib/node_core.js). It runs unchanged in the browser, in workers and in Node; only
 // how the .wasm bytes are found differs (the browser fetches them next to this module, Node
 // passes `wasmBinary`).
 //
@@ -517,7 +517,7 @@ export class Terrain {
   diagnostic(name) {
     const fn = this.m[`_hexlod_diag_${name}`];
     if (typeof fn !== 'function') {
-      throw new CoreError(`${name} is a diagnostic: load the diagnostics build (build/wasm-diag, bin/node_core.js)`);
+      throw new CoreError(`${name} is a diagnostic: load the diagnostics build (build/wasm-diag, lib/node_core.js)`);
     }
     return fn;
   }

@@ -1,5 +1,5 @@
 // Scripted flights of the deterministic mode, shared by the page (web/app/deterministic/mode.js) and
-// Node (`hexlod regress`, bin/regress.js), so that both give the core the same camera, the same
+// Node (`hexlod regress`, lib/regress.js), so that both give the core the same camera, the same
 // settings and the same sequence of calls, and so the same mesh hashes, frame by frame.
 //
 // A flight file (JSON):
