@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Time of the field shading of issue 14 (web/render/shading/field_shading.js) on a 4096² field: the
+// Time of the field shading (web/render/shading/field_shading.js) on a 4096² field: the
 // normal texture's gradients, the sun's shadow sweep (on the field downsampled to 2048²) and the
 // 8-bit ambient occlusion (downsampled to 512², paper §7's low-resolution texture), as the page
 // computes them (same code, Node's V8 instead of the browser's). The 4096² field is the

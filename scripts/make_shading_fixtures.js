@@ -1,5 +1,5 @@
 // Makes tests/fixtures/shading/etopo5_global_540x270.{png,json}, the small Earth of the shading
-// tests (issue 14), from the shared ETOPO5 field: 4 x 4 block means, 16-bit PNG + sidecar.
+// tests, from the shared ETOPO5 field: 4 x 4 block means, 16-bit PNG + sidecar.
 // Usage: node scripts/make_shading_fixtures.js path/to/etopo5_global_2160x1080.f32
 import { readFileSync, writeFileSync } from 'node:fs';
 import { encode } from 'fast-png';
@@ -24,7 +24,7 @@ const meta = JSON.parse(readFileSync(process.argv[2].replace(/\.f32$/, '.json'),
 writeFileSync('tests/fixtures/shading/etopo5_global_540x270.json', JSON.stringify({
   width: w, height: h, min, max, units: 'm', cell_size_m: 18520 * K, cell_size_deg: 40 / 60,
   crs: meta.crs, license: meta.license, real_measured: true,
-  origin: `etopo5_global_2160x1080 of the shared data set (${meta.origin}), 4 x 4 block means: 540 x 270 samples of 40 arc-minutes, for the shading tests (issue 14)`,
+  origin: `etopo5_global_2160x1080 of the shared data set (${meta.origin}), 4 x 4 block means: 540 x 270 samples of 40 arc-minutes, for the shading tests`,
   row_order: meta.row_order,
   png: { file: 'etopo5_global_540x270.png', bit_depth: 16, color: 'grayscale', decode: 'h = min + v / 65535 * (max - min)', quantum_m: (max - min) / 65535 },
 }, null, 1) + '\n');

@@ -1,4 +1,4 @@
-// The compact form of the refinement data the cache keeps per cell (paper §5.1; issue 12:
+// The compact form of the refinement data the cache keeps per cell (paper §5.1;
 // bytes per triangle). A bound packs into 6 bytes and a slope box into 8, each rounded
 // outwards, so what comes back out of the cache is still a bound: lows no higher, highs and
 // errors no lower than what was computed.

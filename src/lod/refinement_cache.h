@@ -30,7 +30,7 @@ public:
         PackedBound parent;    // the bound of the cell a merge makes
         PackedSlopes ownSlopes; // the slopes under the cell (back-face culling): computed when a test needs them
     };
-    static_assert(sizeof(Entry) == 20, "issue 12 counts the bytes of a cell");
+    static_assert(sizeof(Entry) == 20, "the memory per drawn triangle counts the bytes of a cell");
 
     /// The field's height range, which the packed heights are steps of (before any entry).
     void setHeightRange(float lowest, float highest) { packing_.setHeightRange(lowest, highest); }

@@ -184,7 +184,7 @@ void HexMesh::releaseFreedVertices() {
 }
 
 bool HexMesh::wantsCompaction() const {
-    // A sixteenth of a large pool unused (issue 12 counts memory at capacity: with growth by a
+    // A sixteenth of a large pool unused (memory is counted at capacity: with growth by a
     // thirty-second, a pool holds at most about a tenth more than it uses); small pools are not
     // worth a rewrite, and each compaction rewrites and uploads the whole stream.
     constexpr size_t kLargePool = 4096;

@@ -23,7 +23,7 @@
 //   interior semi-hexagon: its four corners from the fixed-rule corner, restart
 //   free record:           restart
 // so the slots are decoded from the fan (corners(), cornerVertex()), and an operation writes a
-// cell's fan when it changes the cell (issue 12: the record no longer holds a second copy of
+// cell's fan when it changes the cell (the record no longer holds a second copy of
 // the vertices, 28 bytes a cell).
 //
 // Edge slot k (1..6) runs from corner k to corner k+1; a semi's long edge (its diameter, on the
@@ -91,7 +91,7 @@ struct Hexagon {
     uint8_t firstVisible : 4;  // semi-hexagons: first own corner slot (1..6); 0 for full hexagons
     uint8_t fanFromSecond : 1; // interior semi-hexagons: the fan starts at corner firstVisible+1 (semiFanFromSecondCorner)
 };
-static_assert(sizeof(Hexagon) == 36, "issue 12 counts the bytes of a cell");
+static_assert(sizeof(Hexagon) == 36, "the memory per drawn triangle counts the bytes of a cell");
 
 /// One operation that a split needs first under the balance rule (§4.5), or the split itself.
 struct SplitStep {
@@ -202,7 +202,7 @@ public:
     /// First cell of a level's list, and the next one after a cell (kNone at the end).
     int32_t firstOfLevel(int32_t level) const { return levelHead_[size_t(level)]; }
     int32_t nextInLevel(int32_t c) const { return cells_[size_t(c)].next; }
-    /// A vertex's lattice point. Not stored (issue 12: 8 bytes a vertex): recovered from the
+    /// A vertex's lattice point. Not stored (8 bytes a vertex): recovered from the
     /// position, which the embedding computed from it (see latticeAt).
     LatticePoint vertexLattice(int32_t v) const { return latticeAt(vertices_[size_t(v)].position); }
     /// The lattice point the embedding put at `position`: row r at z = r * spacingY and column j
@@ -220,7 +220,7 @@ public:
     StreamVertex& streamVertex(int32_t v) { return vertices_[size_t(v)]; }
     const StreamVertex& streamVertex(int32_t v) const { return vertices_[size_t(v)]; }
     /// §7's parents of a vertex (VertexParents) as lattice points; false for the base mesh's
-    /// vertices. Not stored (issue 12: 12 bytes a vertex): a vertex is the midpoint of a coarser
+    /// vertices. Not stored (12 bytes a vertex): a vertex is the midpoint of a coarser
     /// lattice edge, and its coordinates say which (their lowest set bit is the step s it was
     /// made at, their parity at s the edge's direction); `across` is one of twelve lattice
     /// offsets at step s, kept as a 4-bit code beside the vertex's live flag.

@@ -1,5 +1,5 @@
 // Pool storage of paper §4.3 (cell and vertex records in flat arrays).
-// Growth of the arrays that hold one element per cell or vertex record. Issue 12 counts memory
+// Growth of the arrays that hold one element per cell or vertex record. Memory is counted
 // per drawn triangle at allocated capacity: std::vector doubles, so up to half of a pool could
 // sit unused. Growing by a thirty-second keeps the unused share under about 3 %, with
 // reallocations still geometric (amortised O(1) per element: each element is moved 32 times on

@@ -3,7 +3,7 @@
 // blend; the renderer uploads the pool as it is (20 bytes a vertex). A blend is vertical
 // (geomorph.h): its start differs from the position only in height, so the start is one
 // float, not a point. The mesh's vertex normals are the fan stream's own array, kept only while
-// the page draws them (issue 12: 36 -> 20 bytes a vertex).
+// the page draws them (36 -> 20 bytes a vertex).
 #pragma once
 
 #include <cstdint>

@@ -227,7 +227,7 @@ void FanStream::sync(HexMesh& mesh, Geomorph& morph) {
     touchedVertices_.clear();
     mesh.releaseFreedVertices(); // every slot that used them has been rewritten
     // A sync after a large change (a new mesh refined in one go) leaves its logs far larger than
-    // frames need: that memory goes back (issue 12 counts memory at capacity).
+    // frames need: that memory goes back (memory is counted at capacity).
     const size_t vertexListRoom = frameListRoom(size_t(mesh.liveVertices()));
     trimExcess(changedCells_, frameListRoom(size_t(mesh.liveCells())));
     trimExcess(vertexLog_, vertexListRoom);

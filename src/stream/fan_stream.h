@@ -135,7 +135,7 @@ private:
     std::vector<PackedNormal> vertexNormals_; // per vertex slot while normals are on
     double normalScale_ = 1.0;            // fixed-point units per square metre of face normal
     std::vector<int32_t> changedCells_, vertexLog_;
-    std::vector<bool> cellPending_, vertexPending_; // a bit per record (issue 12: bytes per triangle)
+    std::vector<bool> cellPending_, vertexPending_; // a bit per record (bytes per triangle)
     std::vector<int32_t> touchedVertices_;
     DirtySet dirtyVertices_, dirtyIndices_;
     std::vector<ElementRange> vertexRanges_, indexRanges_;

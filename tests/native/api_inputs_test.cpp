@@ -95,7 +95,7 @@ TEST(ApiInputs, CameraFieldsOutsideTheirRangesAreRefusedNamingTheFieldAndTheMesh
     ASSERT_GT(before.triangles, 0.0);
 
     const std::vector<CameraCase> cases = {
-        {"viewport_height_px", [](hexlod_camera& c) { c.viewport_height_px = kInf; }}, // issue 29: refined to full resolution
+        {"viewport_height_px", [](hexlod_camera& c) { c.viewport_height_px = kInf; }}, // it refined to full resolution
         {"viewport_height_px", [](hexlod_camera& c) { c.viewport_height_px = kNaN; }},
         {"viewport_height_px", [](hexlod_camera& c) { c.viewport_height_px = 0.0; }},
         {"viewport_height_px", [](hexlod_camera& c) { c.viewport_height_px = -1080.0; }},

@@ -1,4 +1,4 @@
-// The camera's odometers (issue 12, deferred re-testing): a margin measured on an odometer is
+// The camera's odometers (deferred re-testing): a margin measured on an odometer is
 // a bound on the view-space movement of a centre and on the tilt of the world's up vector in
 // view coordinates, also after a record is renewed, and a side plane's odometer leaves the
 // cells beside a camera that flies forward alone.

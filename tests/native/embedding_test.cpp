@@ -72,7 +72,7 @@ TEST(Embedding, CoarseVerticesSitOnRealSamplesInBothEmbeddings) {
     }
 }
 
-// The mesh stores no lattice points (issue 12): it recovers them from the float positions the
+// The mesh stores no lattice points: it recovers them from the float positions the
 // embedding made of them, which must be exact for every point a mesh can have (fields up to
 // kMaxFieldSide a side, plus the lattice's overhang), at any accepted spacing.
 TEST(Embedding, EveryLatticePointComesBackFromItsPosition) {

@@ -339,7 +339,7 @@ TEST(HexMesh, LoggedOperationsReplayedOnACopyMakeTheSameMesh) {
 
 // A round of uniform splits about quadruples the mesh: the pools take one step for it
 // (HexMesh::reserveRecords), not a copy of everything every thirty-second of growth, and the
-// step leaves little unused (issue 12 counts memory at allocated capacity).
+// step leaves little unused (memory is counted at allocated capacity).
 TEST(HexMesh, UniformRefinementTakesOnePoolStepARoundAndLeavesLittleUnused) {
     auto field = test::loadFixture(test::kJacksboro);
     ASSERT_NE(field, nullptr);

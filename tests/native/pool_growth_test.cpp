@@ -1,4 +1,4 @@
-// Pool growth (pool_growth.h): issue 12 counts memory per drawn triangle at allocated capacity,
+// Pool growth (pool_growth.h): memory is counted per drawn triangle at allocated capacity,
 // so a pool that grows one record at a time keeps little unused, and still reallocates
 // geometrically (amortised O(1) a record).
 #include "mesh/pool_growth.h"

@@ -380,7 +380,7 @@ TEST(Refiner, TheTriangleCapStopsSplittingAndAutoTauRaisesTau) {
     ASSERT_EQ(capped.checkInvariants(), nullptr);
 }
 
-// Issue 12: a cell is re-tested only when the camera has used up its margin. The margins are
+// A cell is re-tested only when the camera has used up its margin. The margins are
 // bounds: under a camera that moves and turns a little every frame, every converged update
 // leaves every sample in view within tau (checked by brute force, with back-face culling off
 // and on), while most cells are not re-tested.
@@ -460,7 +460,7 @@ TEST(Refiner, DeferredReTestsKeepEverySampleWithinTauWhileTheCameraLooksUpAndDow
                 lod.mesh.liveCells());
 }
 
-// Issue 12: with an operation budget, the mesh after every update is the same on every run.
+// With an operation budget, the mesh after every update is the same on every run.
 TEST(Refiner, AnOperationBudgetGivesTheSameMeshEveryRun) {
     auto field = test::loadFixture(test::kGrandCanyon);
     auto run = [&] {
@@ -482,7 +482,7 @@ TEST(Refiner, AnOperationBudgetGivesTheSameMeshEveryRun) {
     std::printf("agree: ops-budget-flight-grandcanyon %016llx\n", (unsigned long long)first);
 }
 
-// Issue 12: a verdict holds for the view it was made for, so a camera that stands still costs
+// A verdict holds for the view it was made for, so a camera that stands still costs
 // no criteria evaluations once the mesh has converged, culled cells and cells at a margin of 0
 // included.
 TEST(Refiner, ACameraThatStandsStillCostsNoTests) {
@@ -603,7 +603,7 @@ TEST(Refiner, ANearPlaneMovingOutMakesNoCellDueAndTheMeshStaysWithinTau) {
 TEST(Refiner, ANearPlaneCloserThanTheMergeTestsDepthDoesNotMakeSplitsAndMergesCycle) {
     // Merge tests bound the error at 1e-3 sample spacings from the eye (7 cm here) at the
     // closest; a near plane closer still made the own test stricter than the merge test, and
-    // every update split and merged the same cells again (issue 29's teleport 599: 1984 of each).
+    // every update split and merged the same cells again (the teleport benchmark's teleport 599: 1984 of each).
     auto field = test::loadFixture(test::kJacksboro);
     ASSERT_NE(field, nullptr);
     struct Case {
@@ -640,7 +640,7 @@ TEST(Refiner, ANearPlaneCloserThanTheMergeTestsDepthDoesNotMakeSplitsAndMergesCy
 TEST(Refiner, UnderATriangleCapWithGeomorphingAMergeIsNotUndoneByTheSplitItMadeRoomFor) {
     // At the cap, a merge freed triangles, a waiting cell's balance step split the merged cell
     // again, the cap stopped the waiting cell, and the merge was wanted again: one split and one
-    // merge every update, never converged (issue 29's teleports; these caps did it on the Grand
+    // merge every update, never converged (the teleport benchmark; these caps did it on the Grand
     // Canyon). A split that started under the cap now finishes.
     auto terrain = test::loadTerrain(test::kGrandCanyon);
     ASSERT_NE(terrain, nullptr);

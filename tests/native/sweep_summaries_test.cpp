@@ -1,4 +1,4 @@
-// The summaries the refiner's sweep passes over groups of records by (issue 12): a group is
+// The summaries the refiner's sweep passes over groups of records: a group is
 // passed over only while none of its records is due under its renewed form
 // (CameraOdometers::renewed, itself a bound: camera_odometers_test.cpp checks the verdicts),
 // whatever the camera does, records set or made due since, and long pauses included.

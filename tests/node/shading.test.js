@@ -1,4 +1,4 @@
-// The field shading of issue 14 (web/render/shading/field_shading.js) against brute force: the sun's
+// The field shading (web/render/shading/field_shading.js) against brute force: the sun's
 // shadow sweep and the ambient-occlusion horizons on random fields, the gradient tiles
 // against one big tile, the mip reduction, and the obvious cases (flat ground).
 import { test } from 'node:test';

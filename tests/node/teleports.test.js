@@ -1,4 +1,4 @@
-// A short seeded run of the teleport benchmark (bench/teleports.js, issue 29) for CI: 300 camera
+// A short seeded run of the teleport benchmark (bench/teleports.js) for CI: 300 camera
 // jumps over three fixtures, the mesh invariants and the stream's watertightness checked after
 // every LOD update, absurd cameras refused without a trace, and the screen error within tau
 // every time the mesh converged. The figures must add up, so that a check that stopped running
