@@ -100,7 +100,7 @@ export class FieldTextures {
       }
     }
     // Bilinear within the nearest mip level: half the fetches of trilinear, no visible difference
-    // on normals and heights (measured on SwiftShader: see BENCHMARKS.md).
+    // on normals and heights.
     gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.LINEAR_MIPMAP_NEAREST);
     gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
     gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
