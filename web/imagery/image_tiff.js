@@ -12,6 +12,7 @@ import { blockLayout, checkBlocks } from '../loaders/tiff_blocks.js';
 import { georefOfTiff } from '../loaders/tiff_georef.js';
 import { hasTiffSignature } from '../loaders/geotiff.js';
 import { shown } from '../loaders/common.js';
+import { libraryGuard, fileBuffer } from '../loaders/tiff_library.js';
 import { ImageError } from './image_error.js';
 
 const PHOTOMETRIC = { 0: 'grey (white is zero)', 1: 'grey', 2: 'RGB', 3: 'palette', 6: 'YCbCr' };
@@ -35,17 +36,10 @@ const BAND_PIXELS = 1 << 21;
  */
 export async function readTiffImage(bytes, name, { begin, onBand, pace = async () => {} }) {
   const fail = (problem) => { throw new ImageError(name, problem); };
-  const guard = async (what, step) => {
-    try {
-      return await step();
-    } catch (e) {
-      if (e instanceof ImageError) throw e;
-      fail(`${what}: ${String(e?.message ?? e).split('\n')[0].slice(0, 160)}`);
-    }
-  };
+  const guard = libraryGuard(fail, ImageError);
   if (!hasTiffSignature(bytes)) fail('not a TIFF file (bad signature)');
   const directory = readDirectory(bytes, fail);
-  const buffer = bytes.byteOffset === 0 && bytes.length === bytes.buffer.byteLength ? bytes.buffer : bytes.slice().buffer;
+  const buffer = fileBuffer(bytes);
   const image = await guard('bad TIFF structure', async () => (await fromArrayBuffer(buffer)).getImage(0));
   const dir = image.fileDirectory;
   const tag = (key) => guard(`bad TIFF tag ${key}`, () => dir.loadValue(key));

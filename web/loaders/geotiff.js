@@ -15,6 +15,7 @@ import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, degreesToMetres, show
 import { SampleSink, pacer } from './pacing.js';
 import './tiff_decoders.js';
 import { readDirectory } from './tiff_directory.js';
+import { libraryGuard, fileBuffer } from './tiff_library.js';
 import { blockLayout, checkBlocks, dataExtent } from './tiff_blocks.js';
 import { readBlocks } from './tiff_raster.js';
 import { georefOfTiff } from './tiff_georef.js';
@@ -40,19 +41,9 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   if (!hasTiffSignature(bytes)) fail('not a TIFF file (bad signature)');
   const directory = readDirectory(bytes, fail);
 
-  // Every call into the library goes through here: whatever it throws on a damaged file (a
-  // TypeError on a tag of the wrong type, a RangeError past the end of a buffer) is that
-  // file's problem, and reaches the caller as a HeightfieldError saying what was being read.
-  const guard = async (what, step) => {
-    try {
-      return await step();
-    } catch (e) {
-      if (e instanceof HeightfieldError) throw e;
-      fail(`${what}: ${String(e?.message ?? e).split('\n')[0].slice(0, 160)}`);
-    }
-  };
-  const buffer = bytes.byteOffset === 0 && bytes.length === bytes.buffer.byteLength
-    ? bytes.buffer : bytes.slice().buffer;
+  // Every call into the library goes through the guard (tiff_library.js).
+  const guard = libraryGuard(fail, HeightfieldError);
+  const buffer = fileBuffer(bytes);
   const image = await guard('bad TIFF structure', async () => (await fromArrayBuffer(buffer)).getImage(0));
   const dir = image.fileDirectory;
   const [width, height] = await guard('bad TIFF image size', () => Promise.all([dir.loadValue('ImageWidth'), dir.loadValue('ImageLength')]));
