@@ -6,7 +6,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { decode } from 'fast-png';
-import { startViewer, openPage } from '../../lib/page_harness.js';
+import { readFileSync } from 'node:fs';
+import { startViewer, openPage, dropFiles, terrainShown } from '../../lib/page_harness.js';
 
 // Ground points of tests/fixtures/imagery/README.md: lon, lat, the image's colour there.
 const POINTS = {
@@ -86,6 +87,32 @@ test('a satellite image placed by its world file shows its colours at known grou
     }, `${viewer.fixturesUrl}imagery/`);
     assert.match(refused.status, /^haiti\.tif: it is in EPSG:32618 and the terrain in EPSG:4326/);
     assert.equal(refused.still, 'bmng_himalaya_4arcmin.jpg');
+  } finally {
+    await viewer.close();
+  }
+});
+
+const fixture = (path) => ({ name: path.split('/').pop(), bytes: new Uint8Array(readFileSync(new URL(`../fixtures/${path}`, import.meta.url))) });
+
+test('dropped with its DEM in either order, the image drapes it; a new DEM alone takes the image away', async () => {
+  const viewer = await startViewer();
+  try {
+    const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1`, { width: 640, height: 400 });
+    await page.waitForFunction(() => window.hexlod?.status === 'ready', null, { timeout: 240000 });
+    const dem = fixture('formats/everest_i16_strips.tif');
+    const image = [fixture('imagery/bmng_everest_4arcmin.jpg'), fixture('imagery/bmng_everest_4arcmin.jgw')];
+    for (const files of [[dem, ...image], [...image.reverse(), dem]]) {
+      await dropFiles(page, files);
+      await terrainShown(page, 'everest_i16_strips.tif');
+      await page.waitForFunction(() => window.hexlod.images.current !== null, null, { timeout: 60000 });
+      const draped = await page.evaluate(() => ({ name: window.hexlod.images.current.name, coverage: window.hexlod.images.current.placement.coverage }));
+      assert.equal(draped.name, 'bmng_everest_4arcmin.jpg');
+      assert.ok(draped.coverage > 0.99, `the image covers the Everest field (${draped.coverage})`);
+    }
+    await dropFiles(page, [fixture('formats/everest_16bit.png')]);
+    await terrainShown(page, 'everest_16bit.png');
+    assert.equal(await page.evaluate(() => window.hexlod.images.current), null, 'the old image went with the old ground');
+    assert.deepEqual(problems, []);
   } finally {
     await viewer.close();
   }
