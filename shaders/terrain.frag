@@ -25,11 +25,14 @@ uniform int uMode;            // SHADING_MODES in web/render/renderer.js
 uniform int uNormalSource;    // 0: the field's gradients, 1: the mesh's normals
 uniform float uShadows;       // 1: the sun casts shadows
 uniform float uOcclusionOn;   // 1: ambient occlusion modulates the sky light
+uniform float uImageOpacity;  // the draped image over the ground colour, 0..1
+uniform float uImageUnlit;    // 1: the image as it is (orthophotos carry their own shadows)
 
 #include "scattering.glsl"
 #include "field_textures.glsl"
 #include "ground_color.glsl"
 #include "tonemap.glsl"
+#include "image_drape.glsl"
 
 const int MODE_NATURAL = 0;
 const int MODE_HYPSOMETRIC = 1;
@@ -62,6 +65,9 @@ void main() {
         return;
     }
     vec2 xz = vWorld.xz;
+    // The draped image (straight alpha, display colours) and how much of it covers this pixel.
+    vec4 image = drapedImage(xz);
+    float imageShare = image.a * uImageOpacity;
     // The field's normal and height at this pixel; the mesh's (paper §7) when asked for.
     vec3 field = fieldSample(xz);
     bool fromField = uNormalSource == 0;
@@ -75,7 +81,7 @@ void main() {
     if (uMode == MODE_HILLSHADE) {
         // Grey proportional to the light, as GIS hillshades are (no tone curve).
         float shade = 0.8 * diffuse + 0.2 * skyShare;
-        outColor = vec4(vec3(shade), 1.0);
+        outColor = vec4(mix(vec3(shade), image.rgb * (uImageUnlit > 0.5 ? 1.0 : shade), imageShare), 1.0);
         return;
     }
     if (uMode == MODE_HYPSOMETRIC || uMode == MODE_SLOPE) {
@@ -83,13 +89,15 @@ void main() {
         vec3 ramp = uMode == MODE_HYPSOMETRIC ? hypsometric(height) : slopeRamp(degrees(acos(clamp(trueNormal.y, 0.0, 1.0))));
         ramp = mix(ramp, uTint, uTintAmount);
         // The ramps are display colours: shaded by the light, no tone curve.
-        vec3 lit = ramp * min(1.0, 0.5 + 0.5 * (0.75 * diffuse + 0.25 * skyShare) / 0.6);
-        outColor = vec4(lit, 1.0);
+        float light = min(1.0, 0.5 + 0.5 * (0.75 * diffuse + 0.25 * skyShare) / 0.6);
+        outColor = vec4(mix(ramp * light, image.rgb * (uImageUnlit > 0.5 ? 1.0 : light), imageShare), 1.0);
         return;
     }
 
     float noise = groundNoise(xz);
-    vec3 albedo = mix(naturalGround(height, 1.0 - n.y, noise), uTint, uTintAmount);
+    vec3 ground = naturalGround(height, 1.0 - n.y, noise);
+    // A lit image is an albedo in the same terms as the procedural ground's colours (ground_color.glsl).
+    vec3 albedo = mix(mix(ground, image.rgb, uImageUnlit > 0.5 ? 0.0 : imageShare), uTint, uTintAmount);
     vec3 radiance;
     if (height < 0.0) {
         // Water: level, lit by the sky, with the sun's glint.
@@ -100,5 +108,7 @@ void main() {
     } else {
         radiance = albedo * (vSunlight * diffuse + uSkyLight * skyShare);
     }
-    outColor = vec4(toneMap(radiance * vExtinction + vInscatter), 1.0);
+    vec3 shaded = toneMap(radiance * vExtinction + vInscatter);
+    // Unlit: the image's own colours over the shaded ground.
+    outColor = vec4(uImageUnlit > 0.5 ? mix(shaded, mix(image.rgb, uTint, uTintAmount), imageShare) : shaded, 1.0);
 }

@@ -5,6 +5,7 @@
 import { createCore } from '../core/core.js';
 import { createFileIntake } from '../ui/file_intake.js';
 import { TerrainRenderer } from '../render/renderer.js';
+import { createImageStage } from './image_stage.js';
 import { CameraRig } from '../cameras/rig.js';
 import { defaultSettings } from './settings_table.js';
 import { createView, deriveView } from './view_state.js';
@@ -130,8 +131,12 @@ async function main() {
   document.getElementById('help-close').onclick = toggleHelp;
 
   // Drop, file picker, ?src=, progress, RAW size dialog and error display (file_intake.js).
+  // The draped image (image_stage.js).
+  const images = createImageStage({ renderer, stage, showStatus, requestRender });
+  state.images = images;
   const intake = stage.intake = createFileIntake({ core, state, settings, show: (loaded, from) => stage.show(loaded, from),
-    showStatus, setCellSize: (metres) => onSetting('cellSize', metres), currentSpacing: () => stage.current.terrain });
+    showStatus, setCellSize: (metres) => onSetting('cellSize', metres), currentSpacing: () => stage.current.terrain,
+    drape: (image, world) => images.drape(image, world), removeImage: () => images.remove() });
 
   const setSetting = (key, value) => onSetting(key, value);
   if (window.hexlod === state) {

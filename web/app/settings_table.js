@@ -27,7 +27,7 @@ export const LAYOUTS = ['triangles', 'fans'];
 export const MORPH_FRAMES = 8;
 
 const LOD = 'Level of detail', MORE = 'Level of detail/budgets and culling', VIEW = 'View', SHADING = 'Shading';
-const MESH = 'Mesh', URLS = 'Loading from a URL';
+const MESH = 'Mesh', URLS = 'Loading from a URL', IMAGE = 'Image';
 
 export const SETTINGS = {
   tau: { default: 1, min: 0.25, max: 16, step: 0.05, url: 'tau', panel: [LOD, 'error τ (px)'], effect: 'core',
@@ -61,6 +61,11 @@ export const SETTINGS = {
   shadows: { default: true, panel: [SHADING, 'sun shadows'], effect: 'view' },
   occlusion: { default: true, panel: [SHADING, 'ambient occlusion'], effect: 'view' }, // of the sky light
   normals: { default: NORMAL_SOURCES[0], choices: NORMAL_SOURCES, panel: [SHADING, 'normals'], effect: 'view' },
+
+  // The draped image (web/imagery/): how much of it covers the ground colour or analysis mode,
+  // and whether it is shown as it is (orthophotos carry their own shadows) or lit by the sun.
+  imageOpacity: { default: 1, min: 0, max: 1, step: 0.05, url: 'imgop', urlIfChanged: true, panel: [IMAGE, 'opacity'], effect: 'view' },
+  imageUnlit: { default: false, panel: [IMAGE, 'unlit (its own shadows)'], effect: 'view' },
 
   embedding: { default: 'exact', choices: ['exact', 'shifted'], panel: [MESH, 'embedding'], effect: 'mesh' },
   // Metres between samples; 0 until a terrain is loaded, then its slider spans around it.

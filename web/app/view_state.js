@@ -17,6 +17,8 @@ export function deriveView(settings, view) {
   view.verticalScale = settings.exaggeration;
   view.layout = settings.layout;
   view.shading = settings.shading;
+  view.imageOpacity = settings.imageOpacity;
+  view.imageUnlit = settings.imageUnlit;
   view.normals = settings.normals;
   view.shadows = settings.shadows;
   view.occlusion = settings.occlusion;

@@ -16,6 +16,8 @@ import { isWorldFileName, worldFileNames } from './world_file.js';
 import { ImageError } from './image_error.js';
 
 const JPEG_SIGNATURE = [0xff, 0xd8, 0xff];
+/** What the file picker offers beside the height fields: images and their world files. */
+export const IMAGE_EXTENSIONS = ['.jpg', '.jpeg', '.webp', '.pgw', '.jgw', '.tfw', '.wld'];
 const PHOTOMETRIC = 262, SAMPLES_PER_PIXEL = 277, BITS_PER_SAMPLE = 258;
 
 /**

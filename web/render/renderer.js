@@ -19,11 +19,13 @@ import scatteringGlsl from '../../shaders/scattering.glsl?raw';
 import fieldTexturesGlsl from '../../shaders/field_textures.glsl?raw';
 import groundColorGlsl from '../../shaders/ground_color.glsl?raw';
 import tonemapGlsl from '../../shaders/tonemap.glsl?raw';
+import imageDrapeGlsl from '../../shaders/image_drape.glsl?raw';
 import { mat4 } from 'gl-matrix';
 import { STREAM_VERTEX_BYTES, STREAM_NORMAL_BYTES } from '../core/core.js';
 import { resolveIncludes } from './shading/includes.js';
 import { Atmosphere, BETA_RAYLEIGH, BETA_MIE, SCALE_HEIGHTS, MIE_G, SUN_IRRADIANCE, EXPOSURE } from './shading/atmosphere.js';
 import { FieldTextures, TEXTURE_UNIT_GRADIENTS, TEXTURE_UNIT_SUN, TEXTURE_UNIT_OCCLUSION } from './shading/field_textures.js';
+import { ImageTextures, TEXTURE_UNIT_IMAGE_TILES, TEXTURE_UNIT_IMAGE_OVERVIEW } from './shading/image_textures.js';
 
 export const ATTRIB_POSITION = 0;
 export const ATTRIB_NORMAL = 1;
@@ -33,14 +35,15 @@ export const ATTRIB_SKY_CORNER = 0;
 /** Shading modes (uMode in shaders/terrain.frag). */
 export const SHADING_MODES = { natural: 0, hypsometric: 1, slope: 2, hillshade: 3, plain: 4 };
 const SHADER_FILES = { 'scattering.glsl': scatteringGlsl, 'field_textures.glsl': fieldTexturesGlsl,
-  'ground_color.glsl': groundColorGlsl, 'tonemap.glsl': tonemapGlsl };
+  'ground_color.glsl': groundColorGlsl, 'tonemap.glsl': tonemapGlsl, 'image_drape.glsl': imageDrapeGlsl };
 const SKY_COLOR = [0.62, 0.74, 0.88]; // the clear colour of the plain mode (no sky pass)
 const OUTLINE_COLOR = new Float32Array([0.08, 0.09, 0.12, 0.55]);
 const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeightRange', 'uTint', 'uTintAmount',
   'uExtent', 'uLineColor', 'uFrame', 'uMorphFrames', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie', 'uScaleHeight',
   'uMieG', 'uSunIrradiance', 'uSunAirMass', 'uSkyLight', 'uExposure', 'uMode', 'uNormalSource', 'uShadows',
   'uOcclusionOn', 'uSnowLine', 'uTreeLine', 'uNoiseScale', 'uGradients', 'uGradientTexel', 'uGradientStep',
-  'uGradientTile', 'uGradientTiles', 'uSunVisibility', 'uSunVisibilityMap', 'uOcclusion', 'uOcclusionMap'];
+  'uGradientTile', 'uGradientTiles', 'uSunVisibility', 'uSunVisibilityMap', 'uOcclusion', 'uOcclusionMap',
+  'uImageTiles', 'uImageOverview', 'uImageOn', 'uImageMap', 'uImageSize', 'uImageTiling', 'uImageTile', 'uImageOpacity', 'uImageUnlit'];
 const SKY_UNIFORMS = ['uInverseViewProjection', 'uCameraPosition', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie',
   'uScaleHeight', 'uMieG', 'uSunDirection', 'uSunIrradiance', 'uSunAirMass', 'uExposure'];
 
@@ -158,6 +161,9 @@ export class TerrainRenderer {
     // Textures from the field: made again from the field (kept by setField) after a lost context.
     this.fieldTextures?.forgetGl();
     this.fieldTextures = this.fieldTextures ?? new FieldTextures(gl);
+    // The draped image died with the context too: the page opens it again (imagePlacement stays).
+    this.imageTextures?.forgetGl();
+    this.imageTextures = this.imageTextures ?? new ImageTextures(gl);
     this.vertices = new MirroredBuffer(gl, gl.ARRAY_BUFFER);
     this.normals = new MirroredBuffer(gl, gl.ARRAY_BUFFER); // while the core keeps mesh normals
     this.hasNormals = false;
@@ -281,6 +287,15 @@ export class TerrainRenderer {
     this.fieldTextures.setField(terrain, field);
   }
 
+  /**
+   * Where the draped image lies on the field (web/imagery/placement.js), once its textures are
+   * filled (this.imageTextures); null: no image.
+   * @param {import('../imagery/placement.js').Placement|null} placement
+   */
+  setImagePlacement(placement) {
+    this.imagePlacement = placement;
+  }
+
   /** The sun: compass azimuth (0 north, 90 east) and elevation, degrees. */
   setSun(azimuthDeg, elevationDeg) {
     this.atmosphere.setSun(azimuthDeg, elevationDeg);
@@ -378,6 +393,11 @@ export class TerrainRenderer {
     gl.uniform1i(u.uSunVisibility, TEXTURE_UNIT_SUN);
     gl.uniform1i(u.uOcclusion, TEXTURE_UNIT_OCCLUSION);
     this.fieldTextures.setUniforms(u);
+    gl.uniform1i(u.uImageTiles, TEXTURE_UNIT_IMAGE_TILES);
+    gl.uniform1i(u.uImageOverview, TEXTURE_UNIT_IMAGE_OVERVIEW);
+    this.imageTextures.setUniforms(u, this.imagePlacement ?? null, this.fieldTextures.terrain ?? { spacingX: 1, spacingY: 1 });
+    gl.uniform1f(u.uImageOpacity, view.imageOpacity ?? 1);
+    gl.uniform1f(u.uImageUnlit, view.imageUnlit ? 1 : 0);
     // Push the surface back a little so the outlines on it are not lost in the depth test.
     gl.enable(gl.POLYGON_OFFSET_FILL);
     gl.polygonOffset(1, 1);

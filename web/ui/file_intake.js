@@ -12,8 +12,11 @@ import { extensionOf, baseNameOf } from '../loaders/common.js';
 import { LoadSequence } from './load_sequence.js';
 import { fetchLimited, formatMB, LimitError } from './url_fetch.js';
 import { SETTINGS } from '../app/settings_table.js';
+import { dropRoles, IMAGE_EXTENSIONS } from '../imagery/drop_roles.js';
+import { ImageError } from '../imagery/image_error.js';
 
 const PROGRESS_AFTER_MS = 100; // slower than a blink: show the bar
+const HEAD_BYTES = 64 * 1024; // of each opened file, to tell height fields from images
 const MB = 2 ** 20;
 
 /** Metres as the spacing field shows them: six significant digits, no trailing zeros. */
@@ -38,12 +41,14 @@ const acceptSidecar = (response) => response.ok && /json/.test(response.headers.
  *   settings: the page's (urlTimeout in seconds and urlMaxMB, read at each URL load); show: the
  *   loaded terrain and the URL it came from (null for a file); setCellSize: the panel's cell
  *   size setting (east-west metres; north-south keeps its ratio), false when refused (the page
- *   shows why); currentSpacing: the terrain on screen's
+ *   shows why); currentSpacing: the terrain on screen's; drape(image, worldFile): drapes an image
+ *   ({ name, blob }) on the terrain on screen (app/image_stage.js); removeImage: takes it away
  * @returns {{ openUrl, openLinks, idle: () => Promise<void>, showSpacing: (terrain: object, assumed?: boolean) => void }}
  *   openUrl and openLinks resolve to 'shown', 'failed' (the status line says why) or
  *   'cancelled' (by the Cancel button, or by a file opened meanwhile)
  */
-export function createFileIntake({ core, state, settings, show, showStatus, setCellSize, currentSpacing }) {
+export function createFileIntake({ core, state, settings, show, showStatus, setCellSize, currentSpacing,
+  drape = async () => null, removeImage = () => {} }) {
   const $ = (id) => document.getElementById(id);
   const picker = $('file-input'), progress = $('load-progress'), encodingSelect = $('png-encoding');
   const cancelButton = $('load-cancel');
@@ -173,15 +178,37 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
     return decode(files, {}, signal, source, quiet);
   }
 
-  /** Opens dropped or picked files (File objects): read, then decoded, as one load. */
+  /**
+   * Opens dropped or picked files (File objects) as one load: the height field (with its
+   * sidecar) is read and decoded, then the image (with its world file) is draped on it; an image
+   * alone is draped on the terrain on screen (web/imagery/drop_roles.js says which is which).
+   * A new height field without an image takes the old image away: it belonged to the old ground.
+   */
   function openPicked(list) {
     const picked = [...list];
     return loads.run(async (signal) => {
       indicator.start(true);
       const names = picked.map((f) => f.name).join(' + ');
       showStatus(`Loading ${names}…`);
-      const files = await Promise.all(picked.map(async (file) => ({ name: file.name, bytes: new Uint8Array(await file.arrayBuffer()) })));
-      return signal.aborted ? cancelled(signal, names) : decode(files, {}, signal, null, false);
+      const heads = await Promise.all(picked.map(async (file) => ({ name: file.name, head: new Uint8Array(await file.slice(0, HEAD_BYTES).arrayBuffer()) })));
+      let roles;
+      try {
+        roles = dropRoles(heads);
+      } catch (error) {
+        if (!(error instanceof ImageError)) throw error;
+        return failed(error.message);
+      }
+      const image = roles.image === null ? null : { name: picked[roles.image].name, blob: picked[roles.image] };
+      const world = roles.worldFile === null ? null : { name: picked[roles.worldFile].name, blob: picked[roles.worldFile] };
+      if (roles.field.length > 0) {
+        const files = await Promise.all(roles.field.map(async (i) => ({ name: picked[i].name, bytes: new Uint8Array(await picked[i].arrayBuffer()) })));
+        if (signal.aborted) return cancelled(signal, names);
+        const outcome = await decode(files, {}, signal, null, false);
+        if (outcome !== 'shown') return outcome;
+        if (!image) removeImage();
+      }
+      if (image && !signal.aborted) await drape(image, world);
+      return 'shown';
     });
   }
 
@@ -257,7 +284,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
     const dropped = e.dataTransfer?.files ?? [];
     if (dropped.length) await openPicked(dropped);
   });
-  picker.accept = ACCEPT_EXTENSIONS.join(',');
+  picker.accept = [...ACCEPT_EXTENSIONS, ...IMAGE_EXTENSIONS].join(',');
   $('open-button').title = `Open a height field: ${ACCEPTED}`;
   $('open-button').onclick = () => picker.click();
   picker.onchange = () => {
