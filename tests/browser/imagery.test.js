@@ -1,13 +1,14 @@
 // A real satellite image (NASA Blue Marble, tests/fixtures/imagery/) draped on the default
 // terrain by its world file, judged by pixels: known ground points (a sea, a desert, a plain)
 // are projected to the screen and the colour there is the image's; the same view with the image
-// cut into small tiles (?imagetile=64) draws the same pixels; and a refused image (another CRS)
-// keeps the one on screen.
+// cut into small tiles (?imagetile=64) and opened by ?image= draws the same pixels; a refused
+// image (another CRS) keeps the one on screen. Then the journeys: both drop orders, half an
+// image over the field, bad images, a lost context, Remove, and a photo PNG alone.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { decode } from 'fast-png';
+import { decode, encode } from 'fast-png';
 import { readFileSync } from 'node:fs';
-import { startViewer, openPage, dropFiles, terrainShown } from '../../lib/page_harness.js';
+import { startViewer, openPage, dropFiles, terrainShown, outDir } from '../../lib/page_harness.js';
 
 // Ground points of tests/fixtures/imagery/README.md: lon, lat, the image's colour there.
 const POINTS = {
@@ -20,9 +21,11 @@ const POINTS = {
 async function drapedView(viewer, query = '') {
   const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1${query}`, { width: 800, height: 800 });
   await page.waitForFunction(() => window.hexlod?.status === 'ready', null, { timeout: 240000 });
+  // ?image= drapes it before the page is ready; else it is draped here.
   const draped = await page.evaluate(async (base) => {
     const get = async (name) => ({ name, blob: await (await fetch(base + name)).blob() });
-    const d = await window.hexlod.images.drape(await get('bmng_himalaya_4arcmin.jpg'), await get('bmng_himalaya_4arcmin.jgw'));
+    const d = window.hexlod.images.current
+      ?? await window.hexlod.images.drape(await get('bmng_himalaya_4arcmin.jpg'), await get('bmng_himalaya_4arcmin.jgw'));
     return d && { width: d.width, height: d.height, coverage: d.placement.coverage };
   }, `${viewer.fixturesUrl}imagery/`);
   await page.evaluate(() => {
@@ -69,8 +72,12 @@ test('a satellite image placed by its world file shows its colours at known grou
     }
     assert.deepEqual(whole.problems, []);
 
-    // Cut into 64-pixel tiles with aprons and an overview: the same picture.
-    const tiled = await drapedView(viewer, '&imagetile=64');
+    // Cut into 64-pixel tiles with aprons and an overview, opened by ?image= with its world file
+    // found beside it: the same picture, and the address keeps the image.
+    const imageUrl = `${viewer.fixturesUrl}imagery/bmng_himalaya_4arcmin.jpg`;
+    const tiled = await drapedView(viewer, `&imagetile=64&image=${encodeURIComponent(imageUrl)}`);
+    assert.deepEqual(tiled.draped, { width: 256, height: 257, coverage: 1 });
+    await tiled.page.waitForFunction((url) => new URL(location.href).searchParams.get('image') === url, imageUrl, { timeout: 10000 });
     let differing = 0, largest = 0;
     for (let i = 0; i < whole.png.data.length; i += whole.png.channels) {
       const d = Math.max(...[0, 1, 2].map((k) => Math.abs(whole.png.data[i + k] - tiled.png.data[i + k])));
@@ -112,6 +119,121 @@ test('dropped with its DEM in either order, the image drapes it; a new DEM alone
     await dropFiles(page, [fixture('formats/everest_16bit.png')]);
     await terrainShown(page, 'everest_16bit.png');
     assert.equal(await page.evaluate(() => window.hexlod.images.current), null, 'the old image went with the old ground');
+    assert.deepEqual(problems, []);
+  } finally {
+    await viewer.close();
+  }
+});
+
+/** Screen pixels of ground points [lon, lat] on the default terrain (sea level), in the current view. */
+function projectLonLat(page, points) {
+  return page.evaluate((points) => {
+    // The default terrain's sidecar: 2048 x 2048 cells between 72.9333 and 90 E, 20.85 and 37.9167 N.
+    const h = window.hexlod, t = h.terrainObject(), m = h.camera.viewProjection, out = {};
+    const west = 72.93333333333334, north = 37.916666666666664, dx = (90 - west) / 2048, dy = (north - 20.85) / 2048;
+    for (const [name, [lon, lat]] of Object.entries(points)) {
+      const x = ((lon - (west + dx / 2)) / dx) * t.spacingX, z = (((north - dy / 2) - lat) / dy) * t.spacingY;
+      const w = m[3] * x + m[11] * z + m[15];
+      out[name] = [Math.round(((m[0] * x + m[8] * z + m[12]) / w * 0.5 + 0.5) * innerWidth),
+        Math.round((1 - ((m[1] * x + m[9] * z + m[13]) / w * 0.5 + 0.5)) * innerHeight)];
+    }
+    return out;
+  }, points);
+}
+
+/** A JPEG (JFIF) whose header announces `width` x `height` pixels, and holds nothing else. */
+function jpegHeader(width, height) {
+  return Uint8Array.from([0xff, 0xd8, 0xff, 0xe0, 0, 16, 0x4a, 0x46, 0x49, 0x46, 0, 1, 1, 0, 0, 1, 0, 1, 0, 0, 0xff, 0xc0, 0, 17, 8, height >> 8, height & 255, width >> 8, width & 255, 3,
+    1, 0x22, 0, 2, 0x11, 1, 3, 0x11, 1, 0xff, 0xd9]);
+}
+
+const near = (got, expected, tolerance) => expected.every((v, k) => Math.abs(got[k] - v) <= tolerance);
+const text = (name, content) => ({ name, bytes: new TextEncoder().encode(content) });
+
+test('half over the field, bad images refused while it stays, back after a lost context, removed, and a photo PNG alone', async () => {
+  const viewer = await startViewer();
+  try {
+    const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1`, { width: 700, height: 700 });
+    await page.waitForFunction(() => window.hexlod?.status === 'ready', null, { timeout: 240000 });
+    await page.evaluate(() => {
+      const h = window.hexlod, t = h.terrainObject(), orbit = h.rig.cameras.orbit;
+      h.setSetting('imageUnlit', true);
+      h.setSetting('camera', 'orbit');
+      orbit.target[0] = ((t.width - 1) * t.spacingX) / 2; orbit.target[1] = 0; orbit.target[2] = ((t.height - 1) * t.spacingY) / 2;
+      orbit.yaw = 0; orbit.pitch = 1.55; orbit.distance = 3.2e6;
+      h.requestRender();
+    });
+    const shot = async (label) => {
+      for (let i = 0; i < 3; i++) await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => r())));
+      return decode(await page.screenshot(label ? { path: `${outDir}/imagery-${label}.png` } : {}));
+    };
+    // The image moved half the field west by its world file: its Bay of Bengal and Ganges plain
+    // land in the field's west half; the east half keeps the procedural ground.
+    const shift = (90 - 72.93333333333334) / 2;
+    const at = await projectLonLat(page, { sea: [89.5 - shift, 21.0333], plain: [84.9667 - shift, 25.6333], east: [86.5, 30.5], eastSouth: [88, 24] });
+    const bare = await shot();
+    const jpeg = fixture('imagery/bmng_himalaya_4arcmin.jpg');
+    const shifted = text('bmng_himalaya_4arcmin.jgw', `0.0666666666666667\n0\n0\n-0.0666666666666667\n${72.9666666666667 - shift}\n37.9\n`);
+    await dropFiles(page, [jpeg, shifted]);
+    await page.waitForFunction(() => window.hexlod.image !== null, null, { timeout: 60000 });
+    const image = await page.evaluate(() => window.hexlod.image);
+    assert.ok(Math.abs(image.coverage - 0.5) < 0.01, `half the field under the image (${image.coverage})`);
+    assert.match(image.hud, /^image bmng_himalaya_4arcmin\.jpg {2}256 × 257 px, 64\d\d m\/px, covers 50 % of the field$/);
+    assert.ok(await page.isVisible('#hud .hud-image'), 'the HUD shows the image line');
+    const half = await shot('half');
+    assert.ok(near(colourAt(half, at.sea), POINTS['Bay of Bengal'][2], 24), `the sea at ${at.sea}: ${colourAt(half, at.sea)}`);
+    assert.ok(near(colourAt(half, at.plain), POINTS['Ganges plain'][2], 24), `the plain at ${at.plain}: ${colourAt(half, at.plain)}`);
+    for (const p of [at.east, at.eastSouth]) assert.ok(near(colourAt(half, p), colourAt(bare, p), 6), `outside the image at ${p}: the ground as before`);
+
+    // Bad input: each refused by name; the terrain and the image stay.
+    const bad = [
+      [[{ name: 'broken.jpg', bytes: fixture('imagery/bmng_himalaya_4arcmin.jpg').bytes.subarray(0, 700) }], /^broken\.jpg: /],
+      [[{ name: 'huge.jpg', bytes: jpegHeader(60000, 60000) }], /^huge\.jpg: 60000 × 60000 pixels \(3600 Mpx\) is more than the browser can decode at once/],
+      [[jpeg, text('bmng_himalaya_4arcmin.jgw', '0.0666666666666667\n0\n0\n-0.0666666666666667\n-140\n-60\n')], /^bmng_himalaya_4arcmin\.jpg: it lies outside the terrain/],
+      [[jpeg, text('bmng_himalaya_4arcmin.jgw', 'this is\nnot a\nworld file\n')], /^bmng_himalaya_4arcmin\.jgw: /],
+      [[jpeg, text('bmng_himalaya_4arcmin.jgw', '0\n0\n0\n-0.0666666666666667\n72\n37\n')], /^bmng_himalaya_4arcmin\.jgw: /],
+    ];
+    for (const [files, message] of bad) {
+      await dropFiles(page, files);
+      await page.waitForFunction(() => !window.hexlod.loading, null, { timeout: 60000 });
+      const after = await page.evaluate(() => ({ status: document.getElementById('status').textContent, error: document.getElementById('status').classList.contains('error'),
+        image: window.hexlod.image?.coverage, terrain: window.hexlod.terrain.name }));
+      assert.match(after.status, message);
+      assert.match(after.status, /\(bmng_himalaya_4arcmin\.jpg stays\)$/);
+      assert.ok(after.error, 'shown as an error');
+      assert.deepEqual([after.terrain, Math.abs(after.image - 0.5) < 0.01], ['globe_himalaya_2048.png', true], files[0].name);
+    }
+    assert.ok(near(colourAt(await shot(), at.sea), POINTS['Bay of Bengal'][2], 24), 'the image is still on screen');
+
+    // A lost graphics context takes the textures; the image comes back with it.
+    await page.evaluate(() => {
+      window.loseContext = document.getElementById('view').getContext('webgl2').getExtension('WEBGL_lose_context');
+      window.loseContext.loseContext();
+    });
+    await page.waitForFunction(() => window.hexlod.contextLost, null, { timeout: 30000 });
+    await page.evaluate(() => window.loseContext.restoreContext());
+    await page.waitForFunction(() => window.hexlod.contextRestores === 1 && !window.hexlod.contextLost, null, { timeout: 60000 });
+    await page.waitForFunction(() => window.hexlod.image !== null, null, { timeout: 60000 });
+    const restored = await shot();
+    assert.ok(near(colourAt(restored, at.sea), POINTS['Bay of Bengal'][2], 24), `after the lost context, the sea: ${colourAt(restored, at.sea)}`);
+
+    // The panel's "remove image": the ground as before the image.
+    await page.evaluate(() => [...document.querySelectorAll('#panel button')].find((b) => b.textContent.trim() === 'remove image').click());
+    await page.waitForFunction(() => window.hexlod.image === null, null, { timeout: 10000 });
+    assert.ok(!(await page.isVisible('#hud .hud-image')), 'no image line');
+    const removed = await shot();
+    for (const p of [at.sea, at.plain]) assert.ok(near(colourAt(removed, p), colourAt(bare, p), 6), `removed: the ground at ${p} as before`);
+
+    // A colour PNG alone whose colours are no heights (a photo, a scanned map) is draped, stretched.
+    const width = 64, height = 64, rgb = new Uint8Array(width * height * 3);
+    for (let i = 0; i < width * height; i++) rgb.set([20 + (i % width) / 2, 160, 90], i * 3);
+    await dropFiles(page, [{ name: 'scan.png', bytes: encode({ width, height, data: rgb, channels: 3 }) }]);
+    await page.waitForFunction(() => window.hexlod.image !== null, null, { timeout: 60000 });
+    const photo = await page.evaluate(() => ({ how: window.hexlod.image.how, terrain: window.hexlod.terrain.name, status: document.getElementById('status').textContent }));
+    assert.deepEqual([photo.how, photo.terrain], ['stretched', 'globe_himalaya_2048.png']);
+    assert.match(photo.status, /^scan\.png: .*stretched over the whole field/);
+    const centre = await projectLonLat(page, { c: [(72.93333333333334 + 90) / 2, (20.85 + 37.916666666666664) / 2] });
+    assert.ok(near(colourAt(await shot('photo'), centre.c), [36, 160, 90], 12), 'the photo at the field centre');
     assert.deepEqual(problems, []);
   } finally {
     await viewer.close();

@@ -22,7 +22,7 @@ function fakeGpu(maxTextureSize = 4096) {
     uploadBand: (y, rows) => calls.push(['band', y, rows]),
     uploadBitmap: async (bitmap) => calls.push(['bitmap', bitmap.width, bitmap.height]),
     finish: () => calls.push(['finish']),
-    remove: () => calls.push(['remove']),
+    abort: () => calls.push(['abort']),
   };
 }
 
@@ -54,7 +54,7 @@ test('a JPEG with its world file on the default terrain, decoded by the browser'
 test('refused images reserve nothing: another CRS, off the field, too big, broken, a lying header', async () => {
   const refused = async (image, world, field, gpu, problem, options) => {
     await assert.rejects(openImage(image, world, field, gpu, options), (e) => e instanceof ImageError && problem.test(e.message));
-    assert.ok(!gpu.calls.some((c) => c[0] === 'begin') || gpu.calls.at(-1)[0] === 'remove', `nothing left reserved: ${JSON.stringify(gpu.calls)}`);
+    assert.ok(!gpu.calls.some((c) => c[0] === 'begin') || gpu.calls.at(-1)[0] === 'abort', `nothing left reserved: ${JSON.stringify(gpu.calls)}`);
   };
   await refused(file('haiti_rgb_5m_tiled_deflate.tif'), null, himalaya, fakeGpu(), /in EPSG:32618 and the terrain in EPSG:4326/);
   await refused(file('bmng_everest_4arcmin.jpg'), file('bmng_everest_4arcmin.jgw'), haitiField, fakeGpu(), /lies outside the terrain/,

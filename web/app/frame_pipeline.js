@@ -14,10 +14,10 @@ export class FramePipeline {
   /**
    * @param {object} parts  gl, canvas, renderer, rig (the cameras), settings, view (what the
    *   renderer draws), hud, state (the published figures), det (the deterministic mode or null),
-   *   timing (wait for the GPU after drawing), urlWriter, source() (the data's URL to share)
+   *   timing (wait for the GPU after drawing), urlWriter, source() (the data's URL to share), imageSource() (the draped image's)
    */
-  constructor({ gl, canvas, renderer, rig, settings, view, hud, state, det, timing, urlWriter, source }) {
-    Object.assign(this, { gl, canvas, renderer, rig, settings, view, hud, state, det, timing, urlWriter, source });
+  constructor({ gl, canvas, renderer, rig, settings, view, hud, state, det, timing, urlWriter, source, imageSource }) {
+    Object.assign(this, { gl, canvas, renderer, rig, settings, view, hud, state, det, timing, urlWriter, source, imageSource });
     this.current = null; // { terrain, field, loadMs, world, streamVersion, blendsEnd }
     this.contextLost = false;
     this.frameRequested = false;
@@ -76,7 +76,7 @@ export class FramePipeline {
     state.frames += 1;
     if (det) det.endFrame();
     if (moving) this.request();
-    if (this.current && !det) this.urlWriter.write(this.settings, camera, this.source());
+    if (this.current && !det) this.urlWriter.write(this.settings, camera, this.source(), this.imageSource());
   }
 
   // The core's part of a frame and its upload (the frame figures go to the HUD and state).

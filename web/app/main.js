@@ -30,6 +30,7 @@ const DEFAULT_TERRAIN = [
   { name: 'globe_himalaya_2048.json', url: new URL('../../public/terrain/globe_himalaya_2048.json', import.meta.url).href },
 ];
 const params = new URLSearchParams(location.search);
+const REMOVE_IMAGE = 'remove image';
 // ?timing=1 waits for the GPU after drawing (a one-pixel readPixels: gl.finish does not wait in
 // Chromium) so that frame figures include it; for benchmarks only, since it stalls the pipeline.
 const TIMING = params.get('timing') === '1';
@@ -68,10 +69,19 @@ async function main() {
   rig.cameras.walk.eyeHeight = settings.eyeHeight;
   const cameraMode = { mode: rig.mode }; // the panel's view of the rig
   const pipeline = new FramePipeline({ gl, canvas, renderer, rig, settings, view, hud, state, det, timing: TIMING, urlWriter,
-    source: () => stage.source });
+    source: () => stage.source, imageSource: () => images.url });
   const syncPanel = () => { cameraMode.mode = rig.mode; stage.panel?.refresh(); };
   const stage = new TerrainStage({ canvas, renderer, rig, settings, pipeline, hud, state, det, syncPanel, requestRender });
   const owner = stage.owner = new SettingsOwner(settings, settingEffects(stage));
+  // The draped image (image_stage.js), described by the HUD; the panel's Remove acts on it.
+  const images = createImageStage({ renderer, stage, showStatus, requestRender, onChange: (image) => {
+    hud.setImage(image);
+    stage.panel.enableAction(REMOVE_IMAGE, image !== null);
+    state.image = image && { name: image.name, width: image.width, height: image.height, metresPerPixel: image.metresPerPixel,
+      coverage: image.placement.coverage, how: image.placement.how, gpuBytes: image.gpuBytes, hud: hud.image.textContent };
+  } });
+  state.image = null;
+  Object.defineProperty(state, 'images', { value: images, enumerable: false }); // for tests: drape and remove
 
   /** The view follows the settings: the draw state, the sun, and the shading's figures for tests. */
   function syncView() {
@@ -120,6 +130,7 @@ async function main() {
   stage.panel = createControlsPanel(document.getElementById('panel'), settings, {
     camera: cameraMode,
     onChange: onSetting,
+    folderActions: { Image: { [REMOVE_IMAGE]: () => images.remove() } },
     actions: {
       'screenshot 1× (P)': () => screenshot(1).catch((e) => showStatus(e.message, true)),
       'screenshot 2×': () => screenshot(2).catch((e) => showStatus(e.message, true)),
@@ -127,16 +138,16 @@ async function main() {
       'help (H)': toggleHelp,
     },
   });
+  stage.panel.enableAction(REMOVE_IMAGE, false);
   syncView();
   document.getElementById('help-close').onclick = toggleHelp;
 
-  // Drop, file picker, ?src=, progress, RAW size dialog and error display (file_intake.js).
-  // The draped image (image_stage.js).
-  const images = createImageStage({ renderer, stage, showStatus, requestRender });
-  state.images = images;
-  const intake = stage.intake = createFileIntake({ core, state, settings, show: (loaded, from) => stage.show(loaded, from),
+  // Drop, file picker, ?src=, ?image=, progress, RAW size dialog and error display (file_intake.js).
+  // A new terrain takes the image away: it belonged to the old ground.
+  const intake = stage.intake = createFileIntake({ core, state, settings,
+    show: (loaded, from) => { images.remove(); stage.show(loaded, from); },
     showStatus, setCellSize: (metres) => onSetting('cellSize', metres), currentSpacing: () => stage.current.terrain,
-    drape: (image, world) => images.drape(image, world), removeImage: () => images.remove() });
+    drape: (image, world, url) => images.drape(image, world, url) });
 
   const setSetting = (key, value) => onSetting(key, value);
   if (window.hexlod === state) {
@@ -167,6 +178,7 @@ async function main() {
       pipeline.contextLost = state.contextLost = false;
       state.contextRestores += 1;
       showStatus('');
+      images.restore().catch((error) => showStatus(error.message, true));
       requestRender();
     },
   });
@@ -182,6 +194,7 @@ async function main() {
     if (await intake.openLinks(DEFAULT_TERRAIN) === 'failed') throw new Error(`the default terrain did not load: ${state.error}`);
     await intake.idle(); // a file dropped meanwhile cancelled the default: shown, or failed (then the default again)
   }
+  if (urlState.image && !det) await intake.openImageUrl(urlState.image);
   if (urlState.camera && !det) {
     applyCameraState(rig, urlState.camera);
     if (rig.mode === 'walk') rig.active.settle();

@@ -2,6 +2,7 @@
 //   tau, budget, exag, ...     the settings with a URL key (settings_table.js)
 //   cam=orbit,x,y,z,distance,yaw,pitch   or   cam=fly|walk,x,y,z,yaw,pitch   metres, radians
 //   src=URL                    the data source, when it came from a URL
+//   image=URL                  the image draped on it, when it came from a URL
 //   timeout, maxmb, layout     only when not the defaults
 // Other parameters (timing, flight, test) are kept as they are. Every value is checked: a bad one
 // gets a message and its default.
@@ -13,11 +14,11 @@ const LIMIT = 1e9; // metres: past this a position is not a place on any terrain
 
 /**
  * Reads the view from a query string.
- * @returns {{settings: object, camera: object|null, src: string|null, errors: string[]}}
+ * @returns {{settings: object, camera: object|null, src: string|null, image: string|null, errors: string[]}}
  */
 export function parseUrlState(search) {
   const params = new URLSearchParams(search);
-  const result = { settings: {}, camera: null, src: params.get('src'), errors: [] };
+  const result = { settings: {}, camera: null, src: params.get('src'), image: params.get('image'), errors: [] };
   for (const [key, name] of URL_KEYS) {
     if (!params.has(name)) continue;
     const value = checkSetting(key, params.get(name));
@@ -87,14 +88,19 @@ export class UrlWriter {
     this.settings = null;
     this.camera = null;
     this.src = null;
+    this.image = null;
     this.flushLater = () => this.flush();
   }
 
-  /** @param {object} settings @param {object} camera the active camera @param {string|null} src the data's URL */
-  write(settings, camera, src) {
+  /**
+   * @param {object} settings @param {object} camera the active camera @param {string|null} src the data's URL
+   * @param {string|null} [image] the draped image's URL
+   */
+  write(settings, camera, src, image = null) {
     this.settings = settings;
     this.camera = camera;
     this.src = src;
+    this.image = image;
     this.pending = true;
     if (this.timer === null) this.timer = setTimeout(this.flushLater, WRITE_EVERY_MS);
   }
@@ -103,7 +109,7 @@ export class UrlWriter {
     clearTimeout(this.timer);
     this.timer = null;
     if (!this.pending) return;
-    const { settings, camera, src } = this;
+    const { settings, camera, src, image } = this;
     this.pending = false;
     const params = new URLSearchParams(location.search);
     for (const [key, name] of URL_KEYS) {
@@ -112,6 +118,7 @@ export class UrlWriter {
     }
     params.set('cam', cameraParam(camera));
     if (src) params.set('src', src); else params.delete('src');
+    if (image) params.set('image', image); else params.delete('image');
     const url = `${location.pathname}?${params.toString().replace(/%2C/g, ',')}${location.hash}`;
     history.replaceState(null, '', url);
   }

@@ -3,9 +3,9 @@
 //   georeference (GeoTIFF tags or world file) -> its place on the field (refused when it misses
 //   it or is in another CRS) -> decode (the browser's for PNG, JPEG, WebP; bands for GeoTIFF)
 //   into the textures.
-// Nothing of the image shown before is touched until the new one has proven it fits and lies on
-// the field; a failure after that (a corrupt band) removes the half-made textures, and the
-// caller shows the image it had, if it keeps one, or none.
+// Nothing of the image shown before is touched: the new one fills textures of its own, which
+// take the old one's place only when it is whole; a failure (a corrupt band) drops the
+// half-made textures and the old image stays on screen.
 
 import { degreesToMetres } from '../loaders/common.js';
 import { readImageHeader, HEADER_BYTES } from './image_header.js';
@@ -31,7 +31,7 @@ import { ImageError } from './image_error.js';
  * @param {{ name: string, blob: Blob }|null} worldFile
  * @param {{ width: number, height: number, spacingX: number, spacingY: number, georef: object|null }} field
  * @param {object} gpu the textures (render/shading/image_textures.js): limits(), begin(tiling),
- *   uploadBitmap(bitmap), uploadBand(y, rows, rgba), finish(), remove()
+ *   uploadBitmap(bitmap), uploadBand(y, rows, rgba), finish(), abort()
  * @param {{ budgetBytes?: number, pace?: (fraction: number) => Promise<void>, decodeBitmap?: (blob: Blob) => Promise<ImageBitmap> }} [options]
  * @returns {Promise<DrapedImage>}
  * @throws {ImageError}
@@ -61,7 +61,7 @@ export async function openImage(image, worldFile, field, gpu, options = {}) {
       gpu.finish();
       return described(name, info.width, info.height, worldGeoref ?? info.georef, placement, tiling, field);
     } catch (error) {
-      if (begun) gpu.remove();
+      if (begun) gpu.abort();
       throw error;
     }
   }
@@ -81,7 +81,7 @@ export async function openImage(image, worldFile, field, gpu, options = {}) {
     gpu.begin(tiling);
     await gpu.uploadBitmap(bitmap);
   } catch (error) {
-    gpu.remove();
+    gpu.abort();
     throw error instanceof ImageError ? error : new ImageError(name, `could not be put on the GPU (${String(error?.message ?? error).slice(0, 100)})`);
   } finally {
     bitmap.close?.();

@@ -9,12 +9,17 @@
 import { makeGeoref, UNKNOWN_CRS } from '../loaders/georef.js';
 import { ImageError } from './image_error.js';
 
-/** The names a world file of `imageName` may have: x.pgw for x.png, x.jpgw, x.wld. */
+/** The names a world file of `imageName` may have, lower case: x.pgw for x.png, x.jpgw, x.wld. */
 export function worldFileNames(imageName) {
+  return worldFileCandidates(imageName).map((n) => n.toLowerCase());
+}
+
+/** The same with the image's base name as written (a web server's names are case-sensitive). */
+export function worldFileCandidates(imageName) {
   const dot = imageName.lastIndexOf('.');
   if (dot <= 0) return [`${imageName}.wld`];
   const base = imageName.slice(0, dot), ext = imageName.slice(dot + 1).toLowerCase();
-  return [...new Set([`${base}.${ext[0]}${ext.at(-1)}w`, `${base}.${ext}w`, `${base}.wld`])].map((n) => n.toLowerCase());
+  return [...new Set([`${base}.${ext[0]}${ext.at(-1)}w`, `${base}.${ext}w`, `${base}.wld`])];
 }
 
 /** True when a file name has a world file's extension. */

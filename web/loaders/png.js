@@ -317,6 +317,23 @@ function countRows({ ihdr, idat }) {
   return Math.min(ihdr.height, Math.floor(inflated / (ihdr.rowBytes + 1)));
 }
 
+/**
+ * The height encoding a colour PNG's first row reads as (terrain_rgb.js), or null: neither, or
+ * not a colour PNG the height loader reads. Tells a Terrain-RGB tile from a photo.
+ * @param {Uint8Array} bytes the whole file
+ */
+export async function detectPngEncoding(bytes, name) {
+  let png;
+  try {
+    png = readStructure(bytes, name, Infinity);
+  } catch (error) {
+    if (error instanceof HeightfieldError) return null;
+    throw error;
+  }
+  if (png.ihdr.bitDepth !== 8 || png.ihdr.channels < 3) return null;
+  return detectEncoding(await firstRow(png), png.ihdr.channels);
+}
+
 /** The first row's pixel bytes (to guess an RGB encoding); an empty array when unreadable. */
 async function firstRow(png) {
   const { first } = await inflateRows(png, null);

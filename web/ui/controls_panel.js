@@ -13,10 +13,12 @@ const OPEN_FOLDERS = new Set(['Level of detail']);
  * @param {HTMLElement} container
  * @param {object} settings the page's settings (edited in place)
  * @param {{camera: {mode: string}, onChange: (key: string, value: any) => void,
- *   actions: Record<string, () => void>}} hooks actions: buttons, label -> function
- * @returns {{gui: GUI, refresh: () => void, setCellSizeRange: (metres: number) => void}}
+ *   actions: Record<string, () => void>, folderActions?: Record<string, Record<string, () => void>>}} hooks
+ *   actions: buttons, label -> function; folderActions: buttons in a settings folder, path -> label -> function
+ * @returns {{gui: GUI, refresh: () => void, setCellSizeRange: (metres: number) => void,
+ *   enableAction: (label: string, enabled: boolean) => void}}
  */
-export function createControlsPanel(container, settings, { camera, onChange, actions }) {
+export function createControlsPanel(container, settings, { camera, onChange, actions, folderActions = {} }) {
   // Its stylesheet is imported by public/style.css: the Content-Security-Policy refuses the
   // <style> element lil-gui would inject.
   const gui = new GUI({ container, title: 'Controls', injectStyles: false });
@@ -50,6 +52,10 @@ export function createControlsPanel(container, settings, { camera, onChange, act
     controllers[key] = controller;
   }
   const cellSize = controllers.cellSize;
+  const buttons = {};
+  for (const [path, list] of Object.entries(folderActions)) {
+    for (const [label, action] of Object.entries(list)) buttons[label] = folderOf(path).add({ [label]: action }, label);
+  }
 
   const tools = gui.addFolder('Screenshot, reset, help').close();
   for (const [label, action] of Object.entries(actions)) tools.add({ [label]: action }, label);
@@ -62,6 +68,10 @@ export function createControlsPanel(container, settings, { camera, onChange, act
     /** Shows values that changed elsewhere (keys, URL, a new terrain). */
     refresh() {
       for (const c of gui.controllersRecursive()) c.updateDisplay();
+    },
+    /** A folder's button greys out while it has nothing to act on. */
+    enableAction(label, enabled) {
+      buttons[label].enable(enabled);
     },
     /** The cell size slider's range around a terrain's spacing. */
     setCellSizeRange(metres) {

@@ -14,7 +14,11 @@ import { fetchLimited, formatMB, LimitError } from './url_fetch.js';
 import { SETTINGS } from '../app/settings_table.js';
 import { dropRoles, IMAGE_EXTENSIONS } from '../imagery/drop_roles.js';
 import { ImageError } from '../imagery/image_error.js';
+import { worldFileCandidates } from '../imagery/world_file.js';
+import { detectPngEncoding } from '../loaders/png.js';
 
+// The PNG colours menu: 'image' drapes a colour PNG; an encoding makes it heights.
+const PNG_CHOICE = { auto: 'auto', image: 'image', 'terrain-rgb': 'height', terrarium: 'height' };
 const PROGRESS_AFTER_MS = 100; // slower than a blink: show the bar
 const HEAD_BYTES = 64 * 1024; // of each opened file, to tell height fields from images
 const MB = 2 ** 20;
@@ -33,6 +37,16 @@ function acceptHeightField(response) {
 /** A sidecar is read when the server has one: a JSON answer, not its "not found" page. */
 const acceptSidecar = (response) => response.ok && /json/.test(response.headers.get('content-type') ?? '');
 
+/** A world file likewise: any answer but an error or a page (servers call .jgw many things). */
+const acceptWorldFile = (response) => response.ok && !/text\/html/.test(response.headers.get('content-type') ?? '');
+
+/** An image's answer: an error, or a page, is no image. */
+function acceptImage(response) {
+  if (!response.ok) throw new Error(`HTTP ${response.status}`);
+  if (/text\/html/.test(response.headers.get('content-type') ?? '')) throw new Error('the server sent an HTML page');
+  return true;
+}
+
 /**
  * @param {{ core: import('../core/core.js').HexlodCore, state: object, settings: object,
  *   show: (loaded: object, source: string|null) => void,
@@ -41,14 +55,14 @@ const acceptSidecar = (response) => response.ok && /json/.test(response.headers.
  *   settings: the page's (urlTimeout in seconds and urlMaxMB, read at each URL load); show: the
  *   loaded terrain and the URL it came from (null for a file); setCellSize: the panel's cell
  *   size setting (east-west metres; north-south keeps its ratio), false when refused (the page
- *   shows why); currentSpacing: the terrain on screen's; drape(image, worldFile): drapes an image
- *   ({ name, blob }) on the terrain on screen (app/image_stage.js); removeImage: takes it away
- * @returns {{ openUrl, openLinks, idle: () => Promise<void>, showSpacing: (terrain: object, assumed?: boolean) => void }}
- *   openUrl and openLinks resolve to 'shown', 'failed' (the status line says why) or
+ *   shows why); currentSpacing: the terrain on screen's; drape(image, worldFile, url): drapes an
+ *   image ({ name, blob }) on the terrain on screen (app/image_stage.js), null when refused
+ * @returns {{ openUrl, openImageUrl, openLinks, idle: () => Promise<void>, showSpacing: (terrain: object, assumed?: boolean) => void }}
+ *   openUrl, openImageUrl and openLinks resolve to 'shown', 'failed' (the status line says why) or
  *   'cancelled' (by the Cancel button, or by a file opened meanwhile)
  */
 export function createFileIntake({ core, state, settings, show, showStatus, setCellSize, currentSpacing,
-  drape = async () => null, removeImage = () => {} }) {
+  drape = async () => null }) {
   const $ = (id) => document.getElementById(id);
   const picker = $('file-input'), progress = $('load-progress'), encodingSelect = $('png-encoding');
   const cancelButton = $('load-cancel');
@@ -119,7 +133,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
       progress.title = phase;
     };
     try {
-      const loaded = await loadTerrain(core, files, { ...options, encoding: encodingSelect.value, onProgress, guessSpacing: true });
+      const loaded = await loadTerrain(core, files, { ...options, encoding: encodingSelect.value === 'image' ? 'auto' : encodingSelect.value, onProgress, guessSpacing: true });
       if (signal.aborted) {
         loaded.terrain.destroy();
         return cancelled(signal, names);
@@ -146,6 +160,23 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
     }
   }
 
+  /** Shows a download's progress in the status line (unless `quiet`) and the bar. */
+  function downloadProgress(name, quiet) {
+    if (!quiet) showStatus(`Loading ${name}…`);
+    let shown = '';
+    return (received, total) => {
+      const text = `Loading ${name}… ${formatMB(received)}${total ? ` of ${formatMB(total)}` : ''} MB`;
+      if (!quiet && text !== shown) showStatus(shown = text);
+      if (total) progress.value = received / total;
+      else progress.removeAttribute('value'); // a bar that says "busy": the size is unknown
+      progress.title = 'downloading';
+    };
+  }
+
+  /** Where a fetch failed, for the status line. */
+  const fetchFailure = (name, url, error) =>
+    `${name}: cannot fetch ${url} (${error.message}${error instanceof LimitError ? '; the limits are under Controls › Loading from a URL' : ''})`;
+
   /**
    * Fetches [{ name, url, optional }] within `limits` ({ timeoutMs, maxBytes }) and decodes
    * them: the first is the height field, an optional one (the sidecar) is left out when its
@@ -153,15 +184,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
    */
   async function fetchAndDecode(links, limits, signal, source, quiet) {
     const name = links[0].name;
-    if (!quiet) showStatus(`Loading ${name}…`);
-    let shown = '';
-    const onBytes = (received, total) => {
-      const text = `Loading ${name}… ${formatMB(received)}${total ? ` of ${formatMB(total)}` : ''} MB`;
-      if (!quiet && text !== shown) showStatus(shown = text);
-      if (total) progress.value = received / total;
-      else progress.removeAttribute('value'); // a bar that says "busy": the size is unknown
-      progress.title = 'downloading';
-    };
+    const onBytes = downloadProgress(name, quiet);
     const files = [];
     for (const link of links) {
       try {
@@ -170,8 +193,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
         if (bytes) files.push({ name: link.name, bytes });
       } catch (error) {
         if (signal.aborted) return cancelled(signal, name);
-        const where = error instanceof LimitError ? '; the limits are under Controls › Loading from a URL' : '';
-        if (!link.optional) return failed(`${link.name}: cannot fetch ${link.url} (${error.message}${where})`);
+        if (!link.optional) return failed(fetchFailure(link.name, link.url, error));
         // A sidecar that cannot be read is one the server does not have: the file opens without it.
       }
     }
@@ -182,7 +204,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
    * Opens dropped or picked files (File objects) as one load: the height field (with its
    * sidecar) is read and decoded, then the image (with its world file) is draped on it; an image
    * alone is draped on the terrain on screen (web/imagery/drop_roles.js says which is which).
-   * A new height field without an image takes the old image away: it belonged to the old ground.
+   * A colour PNG opened alone is a height field when its first row reads as heights, else an image.
    */
   function openPicked(list) {
     const picked = [...list];
@@ -191,9 +213,14 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
       const names = picked.map((f) => f.name).join(' + ');
       showStatus(`Loading ${names}…`);
       const heads = await Promise.all(picked.map(async (file) => ({ name: file.name, head: new Uint8Array(await file.slice(0, HEAD_BYTES).arrayBuffer()) })));
+      // A colour PNG's first row is read only when the roles need it (it alone, no name that says).
+      const heightPng = new Set();
+      if (picked.length === 1 && encodingSelect.value === 'auto' && /\.png$/i.test(picked[0].name)) {
+        if (await detectPngEncoding(new Uint8Array(await picked[0].arrayBuffer()), picked[0].name)) heightPng.add(picked[0].name);
+      }
       let roles;
       try {
-        roles = dropRoles(heads);
+        roles = dropRoles(heads, { pngAsImage: PNG_CHOICE[encodingSelect.value], colourPngIsHeight: (f) => heightPng.has(f.name) });
       } catch (error) {
         if (!(error instanceof ImageError)) throw error;
         return failed(error.message);
@@ -205,10 +232,45 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
         if (signal.aborted) return cancelled(signal, names);
         const outcome = await decode(files, {}, signal, null, false);
         if (outcome !== 'shown') return outcome;
-        if (!image) removeImage();
       }
-      if (image && !signal.aborted) await drape(image, world);
-      return 'shown';
+      if (!image || signal.aborted) return 'shown';
+      return (await drape(image, world)) ? 'shown' : 'failed';
+    });
+  }
+
+  /**
+   * Drapes the image at `url` (?image=) on the terrain on screen, with its world file from
+   * beside it when its server has one (x.jgw, x.jpgw or x.wld for x.jpg).
+   */
+  function openImageUrl(url) {
+    return loads.run(async (signal) => {
+      indicator.start(true);
+      let imageUrl, name;
+      try {
+        imageUrl = new URL(url, location.href);
+        name = decodeURIComponent(imageUrl.pathname.split('/').pop()) || 'image';
+      } catch (error) {
+        return failed(`image=${url}: not a URL to fetch (${error.message})`);
+      }
+      const limits = { timeoutMs: settings.urlTimeout * 1000, maxBytes: settings.urlMaxMB * MB, signal };
+      let bytes;
+      try {
+        bytes = await fetchLimited(imageUrl, { ...limits, accept: acceptImage, onBytes: downloadProgress(name, false) });
+      } catch (error) {
+        return signal.aborted ? cancelled(signal, name) : failed(fetchFailure(name, url, error));
+      }
+      let world = null;
+      if (!/\.tiff?$/i.test(name)) {
+        const segment = imageUrl.pathname.split('/').pop();
+        for (const candidate of worldFileCandidates(segment)) {
+          const worldUrl = new URL(`./${candidate}`, imageUrl);
+          const text = await fetchLimited(worldUrl, { ...limits, maxBytes: MB, accept: acceptWorldFile }).catch(() => null);
+          if (signal.aborted) return cancelled(signal, name);
+          if (text) { world = { name: decodeURIComponent(candidate), blob: new Blob([text]) }; break; }
+        }
+      }
+      if (signal.aborted) return cancelled(signal, name);
+      return (await drape({ name, blob: new Blob([bytes]) }, world, url)) ? 'shown' : 'failed';
     });
   }
 
@@ -304,5 +366,5 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
     else if (setCellSize(Number(text))) return; // main.js shows the new spacing
     spacingInput.value = formatMetres(currentSpacing().spacingX); // what is in effect again
   };
-  return { openUrl, openLinks, idle: () => loads.idle(), showSpacing };
+  return { openUrl, openImageUrl, openLinks, idle: () => loads.idle(), showSpacing };
 }

@@ -26,10 +26,13 @@ export class Hud {
     this.summary = document.createElement('div');
     this.info = document.createElement('div');
     this.figures = document.createElement('div');
+    this.image = document.createElement('div');
     this.cursor = document.createElement('div');
     this.summary.className = 'hud-summary';
     this.info.className = this.figures.className = 'hud-more';
-    element.append(this.toggleButton, this.summary, this.info, this.figures, this.cursor);
+    this.image.className = 'hud-image';
+    this.image.hidden = true;
+    element.append(this.toggleButton, this.summary, this.info, this.image, this.figures, this.cursor);
     this.setCollapsed(collapsed);
     // rAF timestamps of the last FPS_WINDOW frames, a ring made once (tick runs every frame).
     this.frameTimes = new Float64Array(FPS_WINDOW);
@@ -61,6 +64,15 @@ export class Hud {
       `spacing ${terrain.spacingX.toFixed(1)} × ${terrain.spacingY.toFixed(1)} m${spacing}, ` +
         `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m, loaded in ${loadMs.toFixed(0)} ms`,
     ].join('\n');
+  }
+
+  /**
+   * The draped image's description (web/imagery/open_image.js DrapedImage), or null for none:
+   * its name, size, metres per pixel on the ground and the share of the field it covers.
+   */
+  setImage(image) {
+    this.image.hidden = !image;
+    this.image.textContent = image ? describeImage(image) : '';
   }
 
   /** A frame was drawn at rAF time `now` (ms). */
@@ -119,4 +131,13 @@ export class Hud {
       ? `cursor  x ${metres(pick.x)}  z ${metres(pick.z)}  height ${pick.height.toFixed(1)} m  slope ${pick.slopeDeg.toFixed(1)}°`
       : 'cursor  —';
   }
+}
+
+/** "image ortho.jpg  8192 × 8192 px, 0.50 m/px, covers 62 % of the field" */
+export function describeImage({ name, width, height, metresPerPixel, placement }) {
+  const perPixel = metresPerPixel === null ? '' : `, ${metresPerPixel >= 10 ? metresPerPixel.toFixed(0) : metresPerPixel.toPrecision(2)} m/px`;
+  const share = placement.coverage * 100;
+  const covers = placement.how === 'stretched' ? 'stretched over the field'
+    : `covers ${share >= 99.95 ? '100' : share >= 1 ? share.toFixed(0) : share.toPrecision(1)} % of the field`;
+  return `image ${name}  ${width} × ${height} px${perPixel}, ${covers}`;
 }

@@ -3,6 +3,8 @@
 // filtering where the extension exists, and an overview of the whole image for coarse views.
 // Filled from an ImageBitmap (PNG, JPEG, WebP: the browser decodes, one upload a tile) or from
 // bands of rows (GeoTIFF: each band goes to the tiles it touches, and into the overview, a row at a time).
+// A new image is filled into textures of its own while the one shown stays on screen: it takes
+// the old one's place at finish(), and abort() (a band that does not decode) leaves the old one.
 // ?imagetile=N forces tiles of at most N texels (tests of the tiling on any GPU).
 import { tileSource } from '../../imagery/image_tiling.js';
 import { OverviewRows } from '../../imagery/overview_rows.js';
@@ -20,10 +22,9 @@ export class ImageTextures {
   /** @param {WebGL2RenderingContext} gl */
   constructor(gl) {
     this.gl = gl;
-    this.tiles = this.overview = null;
-    this.tiling = null;
+    this.shown = null;   // { tiles, overview, tiling } of the image on screen
+    this.filling = null; // the same of the image being filled
     this.overviewRows = null; // the overview made from bands as they arrive
-    this.filling = false;
   }
 
   /** The GPU's limits an image is tiled by. */
@@ -37,52 +38,53 @@ export class ImageTextures {
 
   /** The context was lost: the textures are gone (the page drapes the image again). */
   forgetGl() {
-    this.tiles = this.overview = null;
-    this.tiling = null;
+    this.shown = this.filling = null;
     this.overviewRows = null;
-    this.filling = false;
   }
 
   /** True while a whole image is on the GPU. */
   get ready() {
-    return this.tiling !== null && !this.filling;
+    return this.shown !== null;
+  }
+
+  /** The layout of the image on screen (image_tiling.js), or null. */
+  get tiling() {
+    return this.shown?.tiling ?? null;
   }
 
   /**
-   * Reserves the textures of an image laid out by `tiling` (the previous image goes).
+   * Reserves the textures of an image laid out by `tiling`; the image on screen stays until finish().
    * @param {import('../../imagery/image_tiling.js').ImageTiling} tiling
    */
   begin(tiling) {
     const gl = this.gl;
-    this.remove();
-    this.tiling = tiling;
+    this.abort();
     const layers = tiling.tilesX * tiling.tilesY;
-    this.tiles = gl.createTexture();
+    const set = this.filling = { tiles: gl.createTexture(), overview: null, tiling };
     gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_IMAGE_TILES);
-    gl.bindTexture(gl.TEXTURE_2D_ARRAY, this.tiles);
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, set.tiles);
     gl.texStorage3D(gl.TEXTURE_2D_ARRAY, levelsOf(tiling.tileWidth, tiling.tileHeight), gl.RGBA8, tiling.tileWidth, tiling.tileHeight, layers);
     if (tiling.overview) {
       const { width, height } = tiling.overview;
-      this.overview = gl.createTexture();
+      set.overview = gl.createTexture();
       gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_IMAGE_OVERVIEW);
-      gl.bindTexture(gl.TEXTURE_2D, this.overview);
+      gl.bindTexture(gl.TEXTURE_2D, set.overview);
       gl.texStorage2D(gl.TEXTURE_2D, levelsOf(width, height), gl.RGBA8, width, height);
       this.overviewRows = new OverviewRows(tiling.width, tiling.height, width, height, (row, rgba) => {
         gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_IMAGE_OVERVIEW);
-        gl.bindTexture(gl.TEXTURE_2D, this.overview);
+        gl.bindTexture(gl.TEXTURE_2D, set.overview);
         gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
         gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, row, width, 1, gl.RGBA, gl.UNSIGNED_BYTE, rgba);
         resetUnpack(gl);
       });
     }
-    this.filling = true;
   }
 
   /** Every tile from a decoded image (its overview made by the browser's resampler). */
   async uploadBitmap(bitmap) {
-    const gl = this.gl, t = this.tiling;
+    const gl = this.gl, set = this.filling, t = set.tiling;
     gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_IMAGE_TILES);
-    gl.bindTexture(gl.TEXTURE_2D_ARRAY, this.tiles);
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, set.tiles);
     for (let ty = 0; ty < t.tilesY; ty++) {
       for (let tx = 0; tx < t.tilesX; tx++) {
         const [x0, y0, x1, y1] = tileSource(t, tx, ty);
@@ -96,7 +98,7 @@ export class ImageTextures {
     if (t.overview) {
       const small = await createImageBitmap(bitmap, { resizeWidth: t.overview.width, resizeHeight: t.overview.height, resizeQuality: 'high' });
       gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_IMAGE_OVERVIEW);
-      gl.bindTexture(gl.TEXTURE_2D, this.overview);
+      gl.bindTexture(gl.TEXTURE_2D, set.overview);
       gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, t.overview.width, t.overview.height, gl.RGBA, gl.UNSIGNED_BYTE, small);
       small.close();
       this.overviewRows = null;
@@ -109,9 +111,9 @@ export class ImageTextures {
    * (aprons included), and into the overview.
    */
   uploadBand(y, rows, rgba) {
-    const gl = this.gl, t = this.tiling;
+    const gl = this.gl, set = this.filling, t = set.tiling;
     gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_IMAGE_TILES);
-    gl.bindTexture(gl.TEXTURE_2D_ARRAY, this.tiles);
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, set.tiles);
     gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
     gl.pixelStorei(gl.UNPACK_ROW_LENGTH, t.width);
     for (let ty = 0; ty < t.tilesY; ty++) {
@@ -129,12 +131,14 @@ export class ImageTextures {
     this.overviewRows?.add(y, rows, rgba);
   }
 
-  /** After the last band (or the bitmap): the overview's last row, then mipmaps and filtering. */
+  /**
+   * After the last band (or the bitmap): the overview's last row, then mipmaps and filtering;
+   * the new image takes the shown one's place.
+   */
   finish() {
-    const gl = this.gl;
+    const gl = this.gl, set = this.filling;
     this.overviewRows?.finish();
     this.overviewRows = null;
-    this.filling = false;
     const anisotropic = gl.getExtension('EXT_texture_filter_anisotropic');
     const filter = (target, texture, unit) => {
       gl.activeTexture(gl.TEXTURE0 + unit);
@@ -149,16 +153,31 @@ export class ImageTextures {
         gl.texParameterf(target, anisotropic.TEXTURE_MAX_ANISOTROPY_EXT, Math.min(MAX_ANISOTROPY, most));
       }
     };
-    filter(gl.TEXTURE_2D_ARRAY, this.tiles, TEXTURE_UNIT_IMAGE_TILES);
-    if (this.overview) filter(gl.TEXTURE_2D, this.overview, TEXTURE_UNIT_IMAGE_OVERVIEW);
+    filter(gl.TEXTURE_2D_ARRAY, set.tiles, TEXTURE_UNIT_IMAGE_TILES);
+    if (set.overview) filter(gl.TEXTURE_2D, set.overview, TEXTURE_UNIT_IMAGE_OVERVIEW);
+    this.release(this.shown);
+    this.shown = set;
+    this.filling = null;
   }
 
-  /** The image goes. */
+  /** The image being filled goes (it failed); the one on screen stays. */
+  abort() {
+    this.release(this.filling);
+    this.filling = null;
+    this.overviewRows = null;
+  }
+
+  /** Every image goes. */
   remove() {
-    const gl = this.gl;
-    if (this.tiles) gl.deleteTexture(this.tiles);
-    if (this.overview) gl.deleteTexture(this.overview);
-    this.forgetGl();
+    this.abort();
+    this.release(this.shown);
+    this.shown = null;
+  }
+
+  release(set) {
+    if (!set) return;
+    this.gl.deleteTexture(set.tiles);
+    if (set.overview) this.gl.deleteTexture(set.overview);
   }
 
   /**
@@ -168,12 +187,12 @@ export class ImageTextures {
    * @param {{ spacingX: number, spacingY: number }} terrain metres between samples
    */
   setUniforms(u, placement, terrain) {
-    const gl = this.gl, t = this.tiling;
+    const gl = this.gl, set = this.shown, t = set?.tiling;
     gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_IMAGE_TILES);
-    gl.bindTexture(gl.TEXTURE_2D_ARRAY, this.ready ? this.tiles : null);
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, set?.tiles ?? null);
     gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_IMAGE_OVERVIEW);
-    gl.bindTexture(gl.TEXTURE_2D, this.ready ? this.overview : null);
-    const on = this.ready && placement !== null;
+    gl.bindTexture(gl.TEXTURE_2D, set?.overview ?? null);
+    const on = set !== null && placement !== null;
     gl.uniform1f(u.uImageOn, on ? 1 : 0);
     if (!on) return;
     // Ground metres -> field samples (x / spacing) -> texture uv (the placement's scale and offset).
