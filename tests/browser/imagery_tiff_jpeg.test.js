@@ -79,10 +79,30 @@ test('a JPEG GeoTIFF decoded by the browser shows the colours of the deflate one
           }),
         };
       }
+
+      // Opening the image to drape (open_image.js) hands the browser's decoder in by itself: the
+      // bands reaching the GPU are the browser's decoding, not the library's (they differ a little).
+      const { openImage } = await import(`${web}imagery/open_image.js`);
+      const { crsOfEpsg, makeGeoref } = await import(`${web}loaders/georef.js`);
+      const haitiField = { width: 150, height: 200, spacingX: 10, spacingY: 10, georef: makeGeoref(crsOfEpsg(32618), 792995, 2050377, 10, -10, 'GeoTIFF') };
+      const name = 'haiti_rgb_5m_tiled_jpeg_ycbcr.tif', blob = await (await fetch(fixtures + name)).blob();
+      let uploaded = null, width = 0;
+      const gpu = {
+        limits: () => ({ maxTextureSize: 4096, maxLayers: 256 }),
+        begin: (tiling) => { width = tiling.width; uploaded = new Uint8Array(tiling.width * tiling.height * 4); },
+        uploadBand: (y, rows, rgba) => uploaded.set(rgba, y * width * 4),
+        finish: () => {}, remove: () => {},
+      };
+      await openImage({ name, blob }, null, haitiField, gpu);
+      const browser = await readWhole(name, browserJpegDecoder()), library = await readWhole(name, null);
+      const same = (a, b) => a.length === b.length && a.every((v, i) => v === b[i]);
+      out.opened = { asBrowser: same(uploaded, browser.rgba), asLibrary: same(uploaded, library.rgba), width };
       return out;
     }, { web: `/@fs${projectDir}web/`, fixtures: `${viewer.fixturesUrl}imagery/`, points: POINTS, numbered: rgbNumbered() });
 
-    for (const [name, { decoded, opaque, meanDifference, points }] of Object.entries(result)) {
+    const { opened, ...decodings } = result;
+    assert.deepEqual(opened, { asBrowser: true, asLibrary: false, width: 515 }, 'open_image.js decodes with the browser');
+    for (const [name, { decoded, opaque, meanDifference, points }] of Object.entries(decodings)) {
       assert.equal(decoded, 6, `${name}: each of its 2 x 3 tiles decoded by the browser`);
       assert.ok(opaque, `${name}: every pixel opaque`);
       assert.ok(meanDifference < 2, `${name}: mean difference ${meanDifference.toFixed(2)} from the library's decoding`);
