@@ -4,6 +4,9 @@
 // block is checked against its geometry first (tiff_blocks.js), so a forged size reserves
 // nothing. GDAL's no-data value (tag 42113) on every colour sample makes a pixel transparent,
 // as GDAL shows the black or white collar of a warped orthophoto.
+// JPEG blocks of grey, RGB and YCbCr images go to a JPEG decoder given by the caller (the
+// browser's, tiff_jpeg_band.js) where there is one; a band it fails on, and every other image,
+// is read by the geotiff library.
 
 import { fromArrayBuffer } from 'geotiff';
 import '../loaders/tiff_decoders.js';
@@ -14,6 +17,7 @@ import { hasTiffSignature } from '../loaders/geotiff.js';
 import { shown } from '../loaders/common.js';
 import { libraryGuard, fileBuffer } from '../loaders/tiff_library.js';
 import { ImageError } from './image_error.js';
+import { decodeJpegBand } from './tiff_jpeg_band.js';
 
 const PHOTOMETRIC = { 0: 'grey (white is zero)', 1: 'grey', 2: 'RGB', 3: 'palette', 6: 'YCbCr' };
 const JPEG = 7;
@@ -30,11 +34,13 @@ const BAND_PIXELS = 1 << 21;
  * @param {(y: number, rows: number, rgba: Uint8Array) => void | Promise<void>} options.onBand
  *   rows y..y+rows-1 as RGBA, width * rows * 4 bytes (the array is the caller's to keep or drop)
  * @param {(fraction: number) => Promise<void>} [options.pace] between slices of work
+ * @param {import('./tiff_jpeg_band.js').JpegDecoder|null} [options.decodeJpeg] decodes the blocks
+ *   of a JPEG-compressed grey, RGB or YCbCr image (the library does without it)
  * @returns {Promise<{ width: number, height: number, georef: import('../loaders/georef.js').Georef|null,
  *   kind: string, nodata: number|null }>}
  * @throws {ImageError}
  */
-export async function readTiffImage(bytes, name, { begin, onBand, pace = async () => {} }) {
+export async function readTiffImage(bytes, name, { begin, onBand, pace = async () => {}, decodeJpeg = null }) {
   const fail = (problem) => { throw new ImageError(name, problem); };
   const guard = libraryGuard(fail, ImageError);
   if (!hasTiffSignature(bytes)) fail('not a TIFF file (bad signature)');
@@ -63,29 +69,51 @@ export async function readTiffImage(bytes, name, { begin, onBand, pace = async (
   await guard('bad TIFF image data', () => checkBlocks(image, layout, directory, bytes, fail, pace));
   const nodata = parseImageNodata(await tag('GDAL_NODATA'));
   const georef = georefOfTiff(image);
+  // What a JPEG decoder makes of the components is the image's colour: grey from one, RGB from
+  // three (with the stream marked RGB or YCbCr); four (RGBA, CMYK) and white-is-zero it is not.
+  const jpeg = decodeJpeg && compression === JPEG
+    && ((photometric === 1 && samplesPerPixel === 1) || ((photometric === 2 || photometric === 6) && samplesPerPixel === 3))
+    ? { bytes, width, height, layout, tables: (await tag('JPEGTables')) ?? null, rgb: photometric === 2 } : null;
   begin(width, height, georef);
 
   const bandRows = Math.min(height, layout.blockHeight * Math.max(1, Math.round(BAND_PIXELS / width / layout.blockHeight)));
   for (let y = 0; y < height; y += bandRows) {
     const rows = Math.min(bandRows, height - y);
-    const raster = await guard('corrupt image data', () =>
-      image.readRGB({ window: [0, y, width, y + rows], interleave: true, enableAlpha: true }));
-    const channels = raster.length / (width * rows);
-    await onBand(y, rows, toRgba(raster, channels, nodata));
+    let rgba = null;
+    if (jpeg) {
+      try {
+        rgba = maskNodata(await decodeJpegBand(jpeg, y, rows, decodeJpeg), nodata);
+      } catch {
+        rgba = null; // the library may still read what this decoder would not; if not, its error says why
+      }
+    }
+    if (!rgba) {
+      const raster = await guard('corrupt image data', () =>
+        image.readRGB({ window: [0, y, width, y + rows], interleave: true, enableAlpha: true }));
+      rgba = toRgba(raster, raster.length / (width * rows), nodata);
+    }
+    await onBand(y, rows, rgba);
     await pace((y + rows) / height);
   }
   return { width, height, georef, kind, nodata };
 }
 
-/** RGB or RGBA samples as RGBA; pixels whose colour samples all equal the no-data value are transparent. */
+/** RGB or RGBA samples as RGBA, no-data masked. */
 function toRgba(raster, channels, nodata) {
   const pixels = raster.length / channels;
   const rgba = new Uint8Array(pixels * 4);
   for (let i = 0, j = 0; i < raster.length; i += channels, j += 4) {
-    const r = raster[i], g = raster[i + 1], b = raster[i + 2];
-    rgba[j] = r; rgba[j + 1] = g; rgba[j + 2] = b;
+    rgba[j] = raster[i]; rgba[j + 1] = raster[i + 1]; rgba[j + 2] = raster[i + 2];
     rgba[j + 3] = channels >= 4 ? raster[i + 3] : 255;
-    if (nodata !== null && r === nodata && g === nodata && b === nodata) rgba[j + 3] = 0;
+  }
+  return maskNodata(rgba, nodata);
+}
+
+/** Makes the pixels whose colour samples all equal the no-data value transparent, in place; returns rgba. */
+function maskNodata(rgba, nodata) {
+  if (nodata === null) return rgba;
+  for (let j = 0; j < rgba.length; j += 4) {
+    if (rgba[j] === nodata && rgba[j + 1] === nodata && rgba[j + 2] === nodata) rgba[j + 3] = 0;
   }
   return rgba;
 }

@@ -14,6 +14,7 @@ import { parseWorldFile } from './world_file.js';
 import { placeImage } from './placement.js';
 import { readTiffImage } from './image_tiff.js';
 import { ImageError } from './image_error.js';
+import { browserJpegDecoder } from './browser_jpeg.js';
 
 /**
  * @typedef {object} DrapedImage
@@ -32,7 +33,9 @@ import { ImageError } from './image_error.js';
  * @param {{ width: number, height: number, spacingX: number, spacingY: number, georef: object|null }} field
  * @param {object} gpu the textures (render/shading/image_textures.js): limits(), begin(tiling),
  *   uploadBitmap(bitmap), uploadBand(y, rows, rgba), finish(), abort()
- * @param {{ budgetBytes?: number, pace?: (fraction: number) => Promise<void>, decodeBitmap?: (blob: Blob) => Promise<ImageBitmap> }} [options]
+ * @param {{ budgetBytes?: number, pace?: (fraction: number) => Promise<void>, decodeBitmap?: (blob: Blob) => Promise<ImageBitmap>,
+ *   decodeJpeg?: import('./tiff_jpeg_band.js').JpegDecoder|null }} [options] decodeJpeg: for the blocks of
+ *   JPEG-compressed GeoTIFFs, the browser's where it has one (null: the geotiff library's)
  * @returns {Promise<DrapedImage>}
  * @throws {ImageError}
  */
@@ -50,6 +53,7 @@ export async function openImage(image, worldFile, field, gpu, options = {}) {
     try {
       const info = await readTiffImage(bytes, name, {
         pace: options.pace,
+        decodeJpeg: options.decodeJpeg === undefined ? browserJpegDecoder() : options.decodeJpeg,
         begin: (width, height, georef) => {
           tiling = planImageTiling(width, height, { ...limits, wholeDecode: false });
           placement = placeImage(field, { name, width, height, georef: worldGeoref ?? georef });

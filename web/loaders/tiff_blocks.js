@@ -5,13 +5,16 @@
 // declared geometry load as garbage: the geotiff library pads a short block and ignores the
 // rest of a long one.
 //
-// Uncompressed blocks prove their size by their byte counts. Compressed ones are decoded once,
-// keeping nothing where we can (LZW and deflate are only counted), before the decode proper.
+// Uncompressed blocks prove their size by their byte counts, JPEG ones by their frame headers
+// (the size every JPEG decoder, the library's or the browser's, produces). Other compressed
+// ones are decoded once, keeping nothing where we can (LZW and deflate are only counted),
+// before the decode proper.
 
 import { getDecoder } from 'geotiff';
 import { shown } from './common.js';
 import { inflatedLength } from './inflate.js';
 import { lzwLength } from './tiff_lzw.js';
+import { jpegFrame } from './tiff_jpeg_stream.js';
 
 const STRIP_OFFSETS = 273, STRIP_BYTE_COUNTS = 279, TILE_OFFSETS = 324, TILE_BYTE_COUNTS = 325;
 
@@ -180,6 +183,15 @@ function measurer({ compression, decoder }) {
       const { length, error } = await inflatedLength([block], full + 1);
       if (error) throw new Error(error);
       return length;
+    };
+  }
+  if (compression === 7) {
+    // Decoding every block here would double the cost of the slowest codec for nothing the
+    // header does not say; damaged entropy data fails the decode proper, block by block.
+    return (block) => {
+      const frame = jpegFrame(block);
+      if (!frame) throw new Error('no JPEG frame header');
+      return frame.width * frame.height * frame.components;
     };
   }
   // Any other codec the library knows: decode the block (one at a time) and measure it.
