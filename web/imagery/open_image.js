@@ -1,8 +1,7 @@
 // Opening an image to drape, from its file (and world file) to textures on the GPU:
 //   header -> size and kind -> the tiling and whether it fits (before decoding) -> the
 //   georeference (GeoTIFF tags or world file) -> its place on the field (image_location.js, shared
-//   with the command line; refused when it misses
-//   it or is in another CRS) -> decode (the browser's for PNG, JPEG, WebP; bands for GeoTIFF)
+//   with the command line; refused when it misses it or is in another CRS) -> decode (the browser's for PNG, JPEG, WebP; bands for GeoTIFF)
 //   into the textures.
 // Nothing of the image shown before is touched until the new one has proven it fits and lies on
 // the field; a failure after that (a corrupt band) removes the half-made textures, and the
