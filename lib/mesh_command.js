@@ -8,7 +8,8 @@ import {
   loadForCommand, FILE_OPTIONS, FILE_USAGE, parseFileOptions, extentOf, cameraFor, highestLevel, round,
 } from './cli_common.js';
 import { decodeFans, resolveDegenerate, clipToRectangle, writeObj } from './mesh_export.js';
-import { readImageFiles, textureCoordinates, materialImagePath, materialPathOf, writeMaterial, MATERIAL_NAME } from './mesh_texture.js';
+import { textureCoordinates, materialImagePath, materialPathOf, writeMaterial, MATERIAL_NAME } from './mesh_texture.js';
+import { readImageFiles } from './image_files.js';
 import { RESTART_INDEX, STREAM_VERTEX_WORDS } from '../web/core/core.js';
 import { locateImageFile } from '../web/imagery/image_location.js';
 

@@ -1,9 +1,8 @@
 // A draped image on an exported mesh: OBJ texture coordinates of every vertex from the image's
 // placement on the field (web/imagery/placement.js, the map the page's shader uses), and the
 // material file that names the image, for Blender, MeshLab and other OBJ readers.
-import { readFileSync, readdirSync, existsSync, statSync, writeFileSync } from 'node:fs';
+import { writeFileSync } from 'node:fs';
 import { basename, dirname, join, relative, resolve, isAbsolute, sep } from 'node:path';
-import { worldFileNames } from '../web/imagery/world_file.js';
 
 /**
  * Texture coordinates (u, v per vertex) of vertices at x metres east of the first column and z
@@ -25,30 +24,6 @@ export function textureCoordinates(vertices, placement, spacingX, spacingY) {
     uv[2 * i + 1] = 1 - (row * placement.scaleV + placement.offsetV);
   }
   return uv;
-}
-
-/**
- * The image file and its world file as read by the command: --world-file when given, else the
- * first of its conventional names (x.jgw, x.jpgw, x.wld) beside the image, else none.
- * @returns {{ image: {name, bytes, path}, worldFile: {name, bytes, path}|null }}
- * @throws {Error} one line naming a file that is missing
- */
-export function readImageFiles(imagePath, worldFilePath = null) {
-  const read = (path, what) => {
-    if (!existsSync(path)) throw new Error(`${path}: no such ${what}`);
-    if (!statSync(path).isFile()) throw new Error(`${path}: not a file`);
-    return { name: basename(path), bytes: new Uint8Array(readFileSync(path)), path };
-  };
-  const image = read(imagePath, 'image file');
-  let worldPath = worldFilePath;
-  if (worldPath === null) {
-    // The conventional names are lower case; a file written elsewhere may be X.JGW: match any case.
-    const folder = dirname(imagePath);
-    const present = new Map(readdirSync(folder).map((n) => [n.toLowerCase(), n]));
-    const found = worldFileNames(basename(imagePath)).map((n) => present.get(n)).find((n) => n !== undefined);
-    if (found !== undefined) worldPath = join(folder, found);
-  }
-  return { image, worldFile: worldPath === null ? null : read(worldPath, 'world file') };
 }
 
 /**
