@@ -10,6 +10,7 @@ import { UsageError, parseOptions, parseNumber } from './cli_common.js';
 import { createNodeCore } from './node_core.js';
 import { EnvironmentError } from './chromium.js';
 import { readDem } from './dem_source.js';
+import { loadImageFiles } from './image_files.js';
 import { collectJobs, InputError } from './regress_jobs.js';
 import { compareStats, statsMatch, describeStats, statsLines, flightRecordOf, flightChanges, compareImages, describeImage,
   briefImage, readPng, writePng } from './regress_compare.js';
@@ -290,11 +291,14 @@ async function flyJob(job, index, context) {
   try {
     dem = await context.dems.get(job.source);
     const nodeStats = await replayInNode(job, dem);
+    const imageFiles = job.image === null ? null : await loadImageFiles(job.image, job.worldFile).catch((error) => {
+      throw new InputError(error.message); // an image that cannot be read is bad input, as a height field is
+    });
     const flown = { stats: nodeStats, images: new Map(), pageProblems: [], nodeDiff: null };
     if (!context.nodeOnly) {
       const session = await context.browser();
       try {
-        const page = await context.browserModule.flyInPage(session, { id: index, demFiles: dem.files, flightPath: job.flightPath, flight: job.flight });
+        const page = await context.browserModule.flyInPage(session, { id: index, demFiles: dem.files, imageFiles, flightPath: job.flightPath, flight: job.flight });
         Object.assign(flown, { stats: page.stats, images: page.images, pageProblems: page.problems, nodeDiff: compareStats(nodeStats, page.stats) });
       } catch (error) {
         if (error instanceof EnvironmentError) throw error;

@@ -16,9 +16,11 @@ export function createImageStage({ renderer, stage, showStatus, requestRender })
 
     /**
      * Drapes an image ({ name, blob }) with its world file (or null) on the terrain on screen.
+     * @param {{ throwRefusal?: boolean }} [options] throwRefusal: a refusal is also thrown (a
+     *   regression flight fails with it rather than fly without its image)
      * @returns {Promise<object|null>} the image shown, or null when it was refused (the status line says why)
      */
-    async drape(image, worldFile = null) {
+    async drape(image, worldFile = null, { throwRefusal = false } = {}) {
       const loaded = stage.current;
       if (!loaded) return null;
       const { terrain, field } = loaded;
@@ -31,6 +33,7 @@ export function createImageStage({ renderer, stage, showStatus, requestRender })
         if (!(error instanceof ImageError)) throw error;
         showStatus(error.message, true);
         if (!renderer.imageTextures.ready) { current = null; renderer.setImagePlacement(null); }
+        if (throwRefusal) throw error;
       }
       requestRender();
       return current;

@@ -143,7 +143,8 @@ async function main() {
     installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting, screenshot, urlWriter,
       terrain: () => stage.current?.terrain, setLayout: (layout) => setSetting('layout', layout) });
   }
-  if (det) det.install(state, canvas, gl, requestRender); // the flight drives the camera
+  // The flight drives the camera, and drapes its image, if it names one, before its first frame.
+  if (det) det.install(state, canvas, gl, requestRender, (image, world) => images.drape(image, world, { throwRefusal: true }));
   else rig.attach(canvas);
   installKeys({ settings, setSetting, setCamera: (mode) => onSetting('camera', mode), toggleHelp,
     closeHelp: () => { helpBox.hidden = true; }, toggleHud: () => hud.setCollapsed(!hud.collapsed),
