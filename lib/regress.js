@@ -29,7 +29,9 @@ export const REGRESS_USAGE = `usage: hexlod regress <heightfield> <flight.json> 
   replays it in Node on the same WASM core, and compares with the references: the mesh hash
   and figures of every frame exactly (and the page with Node), the captured frames' pixels
   under the flight's tolerance. A height field is a file or an http(s) URL. A flight without
-  "dem" uses the height field beside it with the same name (NAME.png, .tif, ...).
+  "dem" uses the height field beside it with the same name (NAME.png, .tif, ...). A flight's
+  "image" (and "worldFile", else the image's world file beside it) is draped before the first
+  frame; like "dem", a path relative to the flight or a URL. A refused image fails the flight.
   Exit code: 0 all passed, 1 a flight regressed, 2 bad input or usage (a flight file, a height
   field, no reference), 3 the browser or the machine failed; the highest that applies.
   --refs DIR        references (default: refs/ beside the flight files); one folder per flight
