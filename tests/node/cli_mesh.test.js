@@ -365,12 +365,15 @@ test('mesh --image refuses an image in another CRS, a garbage world file and a m
   const obj = join(dir, 'x.obj');
   const garbage = join(dir, 'garbage.jgw');
   writeFileSync(garbage, 'this is\nnot a world file\n');
+  const cut = join(dir, 'cut.jpg');
+  writeFileSync(cut, readFileSync(BLUE_MARBLE).subarray(0, 40));
   const base = [DEFAULT_TERRAIN, '--max-error', '3000', '--obj', obj];
   for (const [args, status, pattern] of [
     [[...base, '--image', fixture('imagery/haiti_rgb_5m_tiled_deflate.tif')], 1,
       /haiti_rgb_5m_tiled_deflate\.tif: it is in EPSG:32618 and the terrain in EPSG:4326; reproject it/],
     [[...base, '--image', BLUE_MARBLE, '--world-file', garbage], 1, /garbage\.jgw: a world file holds six numbers/],
     [[...base, '--image', join(dir, 'missing.jpg')], 1, /missing\.jpg: no such image file/],
+    [[...base, '--image', cut], 1, /cut\.jpg: not an image hexlod can drape/],
     [[...base, '--image', BLUE_MARBLE, '--world-file', join(dir, 'missing.jgw')], 1, /missing\.jgw: no such world file/],
     [[...base, '--world-file', garbage], 2, /--world-file goes with --image/],
     [[DEFAULT_TERRAIN, '--max-error', '3000', '--image', BLUE_MARBLE], 2, /--image needs --obj/],
@@ -384,4 +387,19 @@ test('mesh --image refuses an image in another CRS, a garbage world file and a m
     assert.equal(r.stdout, '');
   }
   assert.throws(() => readFileSync(obj), 'no OBJ is written for a refused image');
+});
+
+test('mesh --image with a GeoTIFF on a terrain without georeference: stretched with a warning, and the material names the TIFF', () => {
+  const dir = scratch();
+  const obj = join(dir, 'volcano.obj');
+  const tiff = fixture('imagery/haiti_rgb_5m_strips_lzw_pred2.tif');
+  const r = run('mesh', fixture('volcano_maungawhau.png'), '--max-error', '5', '--obj', obj, '--image', tiff);
+  assert.equal(r.status, 0, r.stderr);
+  assert.match(r.stderr, /warning: haiti_rgb_5m_strips_lzw_pred2\.tif: the terrain has no georeference: stretched over the whole field/);
+  assert.match(r.stdout, /515 x 403 pixels, STRETCHED/);
+  const { vertices, uv } = readObj(obj);
+  const corner = Array.from({ length: vertices.length / 3 }, (_, i) => i).find((i) => vertices[3 * i] === 860 && vertices[3 * i + 2] === 600);
+  assert.deepEqual([uv[2 * corner], uv[2 * corner + 1]], [1, 0], 'the south-east corner is the image\'s bottom right');
+  const map = /^map_Kd (.+)$/m.exec(readFileSync(join(dir, 'volcano.mtl'), 'utf8'))[1];
+  assert.equal(readFileSync(join(dir, map)).compare(readFileSync(tiff)), 0);
 });
