@@ -8,7 +8,10 @@ import {
   loadForCommand, FILE_OPTIONS, FILE_USAGE, parseFileOptions, extentOf, cameraFor, highestLevel, round,
 } from './cli_common.js';
 import { decodeFans, resolveDegenerate, clipToRectangle, writeObj } from './mesh_export.js';
+import { textureCoordinates, materialImagePath, materialPathOf, writeMaterial, MATERIAL_NAME } from './mesh_texture.js';
+import { readImageFiles } from './image_files.js';
 import { RESTART_INDEX, STREAM_VERTEX_WORDS } from '../web/core/core.js';
+import { locateImageFile } from '../web/imagery/image_location.js';
 
 export const MESH_USAGE = `usage: hexlod mesh <heightfield> (--max-error M | --camera X,Y,Z --target X,Y,Z) [options]
   Refines the hexagon mesh until it converges (or for --budget-splits operations), prints a
@@ -27,11 +30,18 @@ export const MESH_USAGE = `usage: hexlod mesh <heightfield> (--max-error M | --c
   --embedding E         lattice embedding: exact (default) or shifted (the paper's)
   --obj FILE            write the mesh as Wavefront OBJ (y up, faces counter-clockwise from +y)
   --json FILE           write every figure as JSON
+  --image FILE          drape an image (PNG, JPEG, WebP or 8-bit GeoTIFF) over the OBJ: every
+                        vertex gets texture coordinates from the image's place on the field
+                        (as the page drapes it), and NAME.mtl beside NAME.obj names the image;
+                        placed by its world file or GeoTIFF tags, in the terrain's CRS; an
+                        image without georeference is stretched over the field (needs --obj)
+  --world-file FILE     the image's world file (default: IMAGE.jgw, .jpgw, .wld ... beside it)
 ${FILE_USAGE}`;
 
 const OPTIONS = {
   'max-error': 'string', camera: 'string', target: 'string', fov: 'string', viewport: 'string', tau: 'string',
   'cell-size': 'string', 'budget-splits': 'string', embedding: 'string', obj: 'string', json: 'string',
+  image: 'string', 'world-file': 'string',
   ...FILE_OPTIONS,
 };
 const MAX_UPDATES = 10000;
@@ -64,6 +74,8 @@ export function meshSettings(args) {
       ? parseNumber('budget-splits', values['budget-splits'], { min: 1, integer: true, max: 2 ** 31 - 1 }) : null,
     obj: values.obj ?? null,
     json: values.json ?? null,
+    image: values.image ?? null,
+    worldFile: values['world-file'] ?? null,
   };
   if (hasError) {
     settings.maxError = parseNumber('max-error', values['max-error'], { min: 0, exclusiveMin: true });
@@ -75,9 +87,11 @@ export function meshSettings(args) {
     settings.viewport = values.viewport !== undefined ? parseViewport(values.viewport) : [1920, 1080];
     settings.tau = values.tau !== undefined ? parseNumber('tau', values.tau, { min: 0, exclusiveMin: true }) : 1;
   }
-  for (const name of ['obj', 'json']) {
-    if (settings[name] === '') throw new UsageError(`--${name} needs a file name`);
+  for (const [name, key] of [['obj', 'obj'], ['json', 'json'], ['image', 'image'], ['world-file', 'worldFile']]) {
+    if (settings[key] === '') throw new UsageError(`--${name} needs a file name`);
   }
+  if (settings.worldFile !== null && settings.image === null) throw new UsageError('--world-file goes with --image');
+  if (settings.image !== null && settings.obj === null) throw new UsageError('--image needs --obj FILE (the texture coordinates go into the OBJ)');
   return settings;
 }
 
@@ -141,6 +155,8 @@ export async function mesh(args) {
     return;
   }
   const { terrain, field, spacingX, spacingY } = await loadForCommand(settings.file, settings.cellSize);
+  // The image is placed before refining, so a refused one costs no refinement.
+  const image = settings.image !== null ? await placedImage(settings, terrain, field) : null;
   const run = refine(terrain, settings);
 
   const stats = terrain.meshStats();
@@ -162,11 +178,19 @@ export async function mesh(args) {
   const clipped = clipToRectangle(positions, STREAM_VERTEX_WORDS, repaired.triangles, xMax, zMax);
   const name = basename(settings.file);
   if (settings.obj) {
-    writeObj(settings.obj, clipped, [
+    const comments = [
       `hexlod mesh of ${name}: ${clipped.vertices.length / 3} vertices, ${clipped.faces.length / 3} triangles`,
       'metres: x east from the first column, y up (height), z south from the first row',
       `clipped to the data rectangle [0, ${xMax}] x [0, ${zMax}]; faces counter-clockwise seen from +y`,
-    ], xMax, zMax);
+    ];
+    let texture = null;
+    if (image) {
+      comments.push(`texture coordinates: ${image.file} ${image.location.placement.how}`);
+      writeMaterial(image.mtl, image.map, [`hexlod mesh of ${name}: the draped image ${image.file}`]);
+      texture = { uv: textureCoordinates(clipped.vertices, image.location.placement, spacingX, spacingY),
+        mtllib: basename(image.mtl), material: MATERIAL_NAME };
+    }
+    writeObj(settings.obj, clipped, comments, xMax, zMax, texture);
   }
 
   const report = {
@@ -227,6 +251,19 @@ export async function mesh(args) {
       original: errorOriginal,
     },
     hash,
+    image: image && {
+      file: image.file,
+      worldFile: image.worldFile,
+      format: image.location.format,
+      width: image.location.width,
+      height: image.location.height,
+      placement: image.location.placement.how,
+      coverage: round(image.location.placement.coverage, 6),
+      metresPerPixel: image.location.metresPerPixel === null ? null : round(image.location.metresPerPixel, 3),
+      note: image.location.placement.note,
+      mtl: image.mtl,
+      mapKd: image.map,
+    },
   };
   if (settings.json) writeFileSync(settings.json, JSON.stringify(report, null, 1) + '\n');
 
@@ -252,8 +289,33 @@ export async function mesh(args) {
       `vs original samples: max ${m(errorOriginal.max)}, p99 ${m(errorOriginal.p99)}`,
     `hash      ${hash}`,
   ];
-  const written = [settings.obj && `${settings.obj} (${report.vertices.obj} vertices, ${report.triangles.afterClipping} faces)`, settings.json]
+  if (image) lines.push(`image     ${imageLine(image)}`);
+  const written = [settings.obj && `${settings.obj} (${report.vertices.obj} vertices, ${report.triangles.afterClipping} faces)`,
+    image?.mtl, settings.json]
     .filter(Boolean);
   if (written.length) lines.push(`wrote     ${written.join(', ')}`);
   console.log(lines.join('\n'));
+}
+
+/**
+ * The image of --image placed on the loaded field, with the paths its material file gets.
+ * Refusals (another CRS, off the field, a broken image or world file) throw its ImageError.
+ */
+async function placedImage(settings, terrain, field) {
+  const { image, worldFile } = readImageFiles(settings.image, settings.worldFile);
+  const location = await locateImageFile(image, worldFile, {
+    width: terrain.width, height: terrain.height, spacingX: terrain.spacingX, spacingY: terrain.spacingY, georef: field.georef ?? null });
+  if (location.placement.how === 'stretched') console.error(`hexlod: warning: ${image.name}: ${location.placement.note}`);
+  return { file: image.name, worldFile: worldFile?.name ?? null, location,
+    mtl: materialPathOf(settings.obj), map: materialImagePath(settings.obj, settings.image) };
+}
+
+/** The summary's line on the image: how it lies on the field. */
+function imageLine({ file, worldFile, location }) {
+  const { placement, width, height, metresPerPixel } = location;
+  const how = placement.how === 'stretched'
+    ? `STRETCHED over the whole field (${placement.note.split(':')[0]})`
+    : `georeferenced${worldFile ? ` by ${worldFile}` : ''}, covers ${round(placement.coverage * 100, 1)} % of the field`;
+  const ground = metresPerPixel === null ? '' : `, ${round(metresPerPixel, 1)} m a pixel`;
+  return `${file}: ${width} x ${height} pixels, ${how}${ground}${placement.note && placement.how !== 'stretched' ? ` (${placement.note})` : ''}`;
 }

@@ -352,12 +352,16 @@ export function fanPolygon(points, emit) {
  * @param {string[]} comments header lines (without '#')
  * @param {number} xMax
  * @param {number} zMax
+ * @param {{uv: Float64Array, mtllib: string, material: string}|null} [texture] a texture
+ *   coordinate (u, v) per vertex, the material file's name beside the OBJ and the material's
+ *   name: faces then name each vertex's texture coordinate too (`f v/vt ...`)
  */
-export function writeObj(path, { vertices, faces }, comments, xMax, zMax) {
+export function writeObj(path, { vertices, faces }, comments, xMax, zMax, texture = null) {
   const fd = openSync(path, 'w');
   try {
     const CHUNK = 1 << 20;
     let text = comments.map((line) => `# ${line}\n`).join('');
+    if (texture) text += `mtllib ${texture.mtllib}\n`;
     const flush = (force) => {
       if (text.length >= CHUNK || (force && text.length > 0)) {
         writeSync(fd, text);
@@ -373,8 +377,18 @@ export function writeObj(path, { vertices, faces }, comments, xMax, zMax) {
       text += `v ${x} ${round(vertices[i + 1])} ${z}\n`;
       flush(false);
     }
+    if (texture) {
+      // 1e-7 of the image: a hundredth of a pixel of an image 100 000 pixels across.
+      const t = 1e7;
+      for (let i = 0; i < texture.uv.length; i += 2) {
+        text += `vt ${Math.round(texture.uv[i] * t) / t} ${Math.round(texture.uv[i + 1] * t) / t}\n`;
+        flush(false);
+      }
+      text += `usemtl ${texture.material}\n`;
+    }
     for (let i = 0; i < faces.length; i += 3) {
-      text += `f ${faces[i] + 1} ${faces[i + 1] + 1} ${faces[i + 2] + 1}\n`;
+      const a = faces[i] + 1, b = faces[i + 1] + 1, c = faces[i + 2] + 1;
+      text += texture ? `f ${a}/${a} ${b}/${b} ${c}/${c}\n` : `f ${a} ${b} ${c}\n`;
       flush(false);
     }
     flush(true);

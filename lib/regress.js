@@ -10,6 +10,7 @@ import { UsageError, parseOptions, parseNumber } from './cli_common.js';
 import { createNodeCore } from './node_core.js';
 import { EnvironmentError } from './chromium.js';
 import { readDem } from './dem_source.js';
+import { loadImageFiles } from './image_files.js';
 import { collectJobs, InputError } from './regress_jobs.js';
 import { compareStats, statsMatch, describeStats, statsLines, flightRecordOf, flightChanges, compareImages, describeImage,
   briefImage, readPng, writePng } from './regress_compare.js';
@@ -28,7 +29,9 @@ export const REGRESS_USAGE = `usage: hexlod regress <heightfield> <flight.json> 
   replays it in Node on the same WASM core, and compares with the references: the mesh hash
   and figures of every frame exactly (and the page with Node), the captured frames' pixels
   under the flight's tolerance. A height field is a file or an http(s) URL. A flight without
-  "dem" uses the height field beside it with the same name (NAME.png, .tif, ...).
+  "dem" uses the height field beside it with the same name (NAME.png, .tif, ...). A flight's
+  "image" (and "worldFile", else the image's world file beside it) is draped before the first
+  frame; like "dem", a path relative to the flight or a URL. A refused image fails the flight.
   Exit code: 0 all passed, 1 a flight regressed, 2 bad input or usage (a flight file, a height
   field, no reference), 3 the browser or the machine failed; the highest that applies.
   --refs DIR        references (default: refs/ beside the flight files); one folder per flight
@@ -290,11 +293,14 @@ async function flyJob(job, index, context) {
   try {
     dem = await context.dems.get(job.source);
     const nodeStats = await replayInNode(job, dem);
+    const imageFiles = job.image === null ? null : await loadImageFiles(job.image, job.worldFile).catch((error) => {
+      throw new InputError(error.message); // an image that cannot be read is bad input, as a height field is
+    });
     const flown = { stats: nodeStats, images: new Map(), pageProblems: [], nodeDiff: null };
     if (!context.nodeOnly) {
       const session = await context.browser();
       try {
-        const page = await context.browserModule.flyInPage(session, { id: index, demFiles: dem.files, flightPath: job.flightPath, flight: job.flight });
+        const page = await context.browserModule.flyInPage(session, { id: index, demFiles: dem.files, imageFiles, flightPath: job.flightPath, flight: job.flight });
         Object.assign(flown, { stats: page.stats, images: page.images, pageProblems: page.problems, nodeDiff: compareStats(nodeStats, page.stats) });
       } catch (error) {
         if (error instanceof EnvironmentError) throw error;

@@ -102,13 +102,20 @@ export async function startBrowser({ chromium: chromiumPath = process.env.CHROMI
 /**
  * Flies one flight in a new page: captures the pixels of `captures` and the figures of every frame.
  * A browser that dies on the way throws EnvironmentError; a page that fails throws Error.
- * @param {{id: string|number, demFiles: {name: string, bytes: Uint8Array}[], flightPath: string, flight: object}} job
+ * @param {{id: string|number, demFiles: {name: string, bytes: Uint8Array}[], flightPath: string, flight: object,
+ *   imageFiles?: import('./image_files.js').ImageFiles|null}} job imageFiles: the flight's image to drape
  * @returns {Promise<{stats: object[], images: Map<number, {width, height, rgb: Uint8Array}>, problems: string[]}>}
  */
-export async function flyInPage(session, { id, demFiles, flightPath, flight, timeoutMs = 300000 }) {
+export async function flyInPage(session, { id, demFiles, imageFiles = null, flightPath, flight, timeoutMs = 300000 }) {
   if (!session.browser.isConnected()) throw new EnvironmentError('the browser closed during the run');
   const dem = session.files.add(id, 'dem', demFiles);
   const flightUrl = session.files.addPath(id, 'flight', flightPath);
+  // The image by URL parameters, as the height field: the page then looks for no world file itself.
+  let imageQuery = '';
+  if (imageFiles) {
+    imageQuery = `&image=${encodeURIComponent(session.files.add(id, 'image', [imageFiles.image]))}`;
+    if (imageFiles.worldFile) imageQuery += `&world=${encodeURIComponent(session.files.add(id, 'world', [imageFiles.worldFile]))}`;
+  }
   const [w, h] = flight.viewport;
   const page = await session.browser.newPage({ viewport: { width: w, height: h }, deviceScaleFactor: flight.dpr });
   const problems = [];
@@ -120,7 +127,7 @@ export async function flyInPage(session, { id, demFiles, flightPath, flight, tim
   page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
   page.setDefaultTimeout(timeoutMs);
   try {
-    await page.goto(`${session.url}?src=${encodeURIComponent(dem)}&flight=${encodeURIComponent(flightUrl)}`);
+    await page.goto(`${session.url}?src=${encodeURIComponent(dem)}&flight=${encodeURIComponent(flightUrl)}${imageQuery}`);
     await page.waitForFunction(() => window.hexlod && (window.hexlod.status === 'error' || window.hexlod.flight), null, { timeout: timeoutMs });
     const start = await withTimeout(page.evaluate(async () => {
       try {

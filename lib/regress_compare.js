@@ -70,8 +70,10 @@ const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
  * figures and pixels (not its tolerance, which only judges them).
  */
 export function flightRecordOf(flight, dem) {
-  const { fps, frames, viewport, dpr, settings, captures, keyframes } = flight;
-  return { spec: { fps, frames, viewport, dpr, settings, captures, keyframes }, dem: { name: dem.name, bytes: dem.size, sha256: dem.sha256 } };
+  const { fps, frames, viewport, dpr, settings, captures, keyframes, image, worldFile } = flight;
+  // The image only when there is one: references of flights without stay as they were.
+  const draped = image ? { image, worldFile } : {};
+  return { spec: { fps, frames, viewport, dpr, settings, captures, keyframes, ...draped }, dem: { name: dem.name, bytes: dem.size, sha256: dem.sha256 } };
 }
 
 /**
@@ -88,6 +90,9 @@ export function flightChanges(reference, current) {
   }
   if (!same(was.viewport, now.viewport)) changes.push(`viewport ${was.viewport.join('x')} → ${now.viewport.join('x')}`);
   for (const key of ['dpr', 'fps', 'frames']) if (was[key] !== now[key]) changes.push(`${key} ${was[key]} → ${now[key]}`);
+  for (const key of ['image', 'worldFile']) {
+    if ((was[key] ?? null) !== (now[key] ?? null)) changes.push(`${key} ${was[key] ?? 'none'} → ${now[key] ?? 'none'}`);
+  }
   if (!same(was.captures, now.captures)) changes.push(`captures ${list(was.captures)} → ${list(now.captures)}`);
   if (was.keyframes.length !== now.keyframes.length) {
     changes.push(`keyframes ${was.keyframes.length} → ${now.keyframes.length}`);

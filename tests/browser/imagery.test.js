@@ -9,13 +9,7 @@ import assert from 'node:assert/strict';
 import { decode, encode } from 'fast-png';
 import { readFileSync } from 'node:fs';
 import { startViewer, openPage, dropFiles, terrainShown, outDir } from '../../lib/page_harness.js';
-
-// Ground points of tests/fixtures/imagery/README.md: lon, lat, the image's colour there.
-const POINTS = {
-  'Bay of Bengal': [89.5, 21.0333, [24, 71, 127]],
-  'Taklamakan': [81.9667, 37.7, [163, 143, 110]],
-  'Ganges plain': [84.9667, 25.6333, [113, 105, 69]],
-};
+import { BLUE_MARBLE_POINTS as POINTS, groundPoint, screenPoint, colourAt, coloursMatch } from '../../lib/draped_points.js';
 
 /** Opens the page, drapes the Blue Marble crop unlit from straight above, and returns the screenshot and the points' pixels. */
 async function drapedView(viewer, query = '') {
@@ -41,24 +35,10 @@ async function drapedView(viewer, query = '') {
   });
   for (let i = 0; i < 4; i++) await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => r())));
   const png = decode(await page.screenshot());
-  const pixels = await page.evaluate((points) => {
-    // The default terrain's sidecar: 2048 x 2048 cells between 72.9333 and 90 E, 20.85 and 37.9167 N.
-    const h = window.hexlod, t = h.terrainObject(), m = h.camera.viewProjection, out = {};
-    const dx = (90 - 72.93333333333334) / 2048, dy = (37.916666666666664 - 20.85) / 2048;
-    for (const [name, [lon, lat]] of Object.entries(points)) {
-      const column = (lon - (72.93333333333334 + dx / 2)) / dx, row = ((37.916666666666664 - dy / 2) - lat) / dy;
-      const x = column * t.spacingX, z = row * t.spacingY, y = 0;
-      const w = m[3] * x + m[7] * y + m[11] * z + m[15];
-      const sx = ((m[0] * x + m[4] * y + m[8] * z + m[12]) / w * 0.5 + 0.5) * innerWidth;
-      const sy = (1 - ((m[1] * x + m[5] * y + m[9] * z + m[13]) / w * 0.5 + 0.5)) * innerHeight;
-      out[name] = [Math.round(sx), Math.round(sy)];
-    }
-    return out;
-  }, POINTS);
+  const pixels = await projectLonLat(page, POINTS);
   return { page, problems, png, draped, pixels };
 }
 
-const colourAt = (png, [x, y]) => Array.from(png.data.subarray((y * png.width + x) * png.channels, (y * png.width + x) * png.channels + 3));
 
 test('a satellite image placed by its world file shows its colours at known ground points, tiled or not', async () => {
   const viewer = await startViewer();
@@ -68,7 +48,7 @@ test('a satellite image placed by its world file shows its colours at known grou
     for (const [name, [, , expected]] of Object.entries(POINTS)) {
       const at = whole.pixels[name], got = colourAt(whole.png, at);
       assert.ok(at[0] > 0 && at[0] < 800 && at[1] > 0 && at[1] < 800, `${name} is on screen at ${at}`);
-      assert.ok(expected.every((v, k) => Math.abs(got[k] - v) <= 24), `${name} at ${at}: ${got}, the image has ${expected}`);
+      assert.ok(coloursMatch(got, expected, 24), `${name} at ${at}: ${got}, the image has ${expected}`);
     }
     assert.deepEqual(whole.problems, []);
 
@@ -125,20 +105,17 @@ test('dropped with its DEM in either order, the image drapes it; a new DEM alone
   }
 });
 
-/** Screen pixels of ground points [lon, lat] on the default terrain (sea level), in the current view. */
-function projectLonLat(page, points) {
-  return page.evaluate((points) => {
-    // The default terrain's sidecar: 2048 x 2048 cells between 72.9333 and 90 E, 20.85 and 37.9167 N.
-    const h = window.hexlod, t = h.terrainObject(), m = h.camera.viewProjection, out = {};
-    const west = 72.93333333333334, north = 37.916666666666664, dx = (90 - west) / 2048, dy = (north - 20.85) / 2048;
-    for (const [name, [lon, lat]] of Object.entries(points)) {
-      const x = ((lon - (west + dx / 2)) / dx) * t.spacingX, z = (((north - dy / 2) - lat) / dy) * t.spacingY;
-      const w = m[3] * x + m[11] * z + m[15];
-      out[name] = [Math.round(((m[0] * x + m[8] * z + m[12]) / w * 0.5 + 0.5) * innerWidth),
-        Math.round((1 - ((m[1] * x + m[9] * z + m[13]) / w * 0.5 + 0.5)) * innerHeight)];
-    }
-    return out;
-  }, points);
+/** Screen pixels of ground points { name: [lon, lat] } on the default terrain (sea level), in the current view. */
+async function projectLonLat(page, points) {
+  const view = await page.evaluate(() => {
+    const h = window.hexlod, t = h.terrainObject();
+    return { m: Array.from(h.camera.viewProjection), spacingX: t.spacingX, spacingY: t.spacingY, width: innerWidth, height: innerHeight };
+  });
+  const out = {};
+  for (const [name, [lon, lat]] of Object.entries(points)) {
+    out[name] = screenPoint(view.m, groundPoint(lon, lat, view.spacingX, view.spacingY), view.width, view.height);
+  }
+  return out;
 }
 
 /** A JPEG (JFIF) whose header announces `width` x `height` pixels, and holds nothing else. */
@@ -147,7 +124,6 @@ function jpegHeader(width, height) {
     1, 0x22, 0, 2, 0x11, 1, 3, 0x11, 1, 0xff, 0xd9]);
 }
 
-const near = (got, expected, tolerance) => expected.every((v, k) => Math.abs(got[k] - v) <= tolerance);
 const text = (name, content) => ({ name, bytes: new TextEncoder().encode(content) });
 
 test('half over the field, bad images refused while it stays, back after a lost context, removed, and a photo PNG alone', async () => {
@@ -181,9 +157,9 @@ test('half over the field, bad images refused while it stays, back after a lost 
     assert.match(image.hud, /^image bmng_himalaya_4arcmin\.jpg {2}256 × 257 px, 64\d\d m\/px, covers 50 % of the field$/);
     assert.ok(await page.isVisible('#hud .hud-image'), 'the HUD shows the image line');
     const half = await shot('half');
-    assert.ok(near(colourAt(half, at.sea), POINTS['Bay of Bengal'][2], 24), `the sea at ${at.sea}: ${colourAt(half, at.sea)}`);
-    assert.ok(near(colourAt(half, at.plain), POINTS['Ganges plain'][2], 24), `the plain at ${at.plain}: ${colourAt(half, at.plain)}`);
-    for (const p of [at.east, at.eastSouth]) assert.ok(near(colourAt(half, p), colourAt(bare, p), 6), `outside the image at ${p}: the ground as before`);
+    assert.ok(coloursMatch(colourAt(half, at.sea), POINTS['Bay of Bengal'][2], 24), `the sea at ${at.sea}: ${colourAt(half, at.sea)}`);
+    assert.ok(coloursMatch(colourAt(half, at.plain), POINTS['Ganges plain'][2], 24), `the plain at ${at.plain}: ${colourAt(half, at.plain)}`);
+    for (const p of [at.east, at.eastSouth]) assert.ok(coloursMatch(colourAt(half, p), colourAt(bare, p), 6), `outside the image at ${p}: the ground as before`);
 
     // Bad input: each refused by name; the terrain and the image stay.
     const bad = [
@@ -203,7 +179,7 @@ test('half over the field, bad images refused while it stays, back after a lost 
       assert.ok(after.error, 'shown as an error');
       assert.deepEqual([after.terrain, Math.abs(after.image - 0.5) < 0.01], ['globe_himalaya_2048.png', true], files[0].name);
     }
-    assert.ok(near(colourAt(await shot(), at.sea), POINTS['Bay of Bengal'][2], 24), 'the image is still on screen');
+    assert.ok(coloursMatch(colourAt(await shot(), at.sea), POINTS['Bay of Bengal'][2], 24), 'the image is still on screen');
 
     // A lost graphics context takes the textures; the image comes back with it.
     await page.evaluate(() => {
@@ -215,14 +191,14 @@ test('half over the field, bad images refused while it stays, back after a lost 
     await page.waitForFunction(() => window.hexlod.contextRestores === 1 && !window.hexlod.contextLost, null, { timeout: 60000 });
     await page.waitForFunction(() => window.hexlod.image !== null, null, { timeout: 60000 });
     const restored = await shot();
-    assert.ok(near(colourAt(restored, at.sea), POINTS['Bay of Bengal'][2], 24), `after the lost context, the sea: ${colourAt(restored, at.sea)}`);
+    assert.ok(coloursMatch(colourAt(restored, at.sea), POINTS['Bay of Bengal'][2], 24), `after the lost context, the sea: ${colourAt(restored, at.sea)}`);
 
     // The panel's "remove image": the ground as before the image.
     await page.evaluate(() => [...document.querySelectorAll('#panel button')].find((b) => b.textContent.trim() === 'remove image').click());
     await page.waitForFunction(() => window.hexlod.image === null, null, { timeout: 10000 });
     assert.ok(!(await page.isVisible('#hud .hud-image')), 'no image line');
     const removed = await shot();
-    for (const p of [at.sea, at.plain]) assert.ok(near(colourAt(removed, p), colourAt(bare, p), 6), `removed: the ground at ${p} as before`);
+    for (const p of [at.sea, at.plain]) assert.ok(coloursMatch(colourAt(removed, p), colourAt(bare, p), 6), `removed: the ground at ${p} as before`);
 
     // A colour PNG alone whose colours are no heights (a photo, a scanned map) is draped, stretched.
     const width = 64, height = 64, rgb = new Uint8Array(width * height * 3);
@@ -233,7 +209,7 @@ test('half over the field, bad images refused while it stays, back after a lost 
     assert.deepEqual([photo.how, photo.terrain], ['stretched', 'globe_himalaya_2048.png']);
     assert.match(photo.status, /^scan\.png: .*stretched over the whole field/);
     const centre = await projectLonLat(page, { c: [(72.93333333333334 + 90) / 2, (20.85 + 37.916666666666664) / 2] });
-    assert.ok(near(colourAt(await shot('photo'), centre.c), [36, 160, 90], 12), 'the photo at the field centre');
+    assert.ok(coloursMatch(colourAt(await shot('photo'), centre.c), [36, 160, 90], 12), 'the photo at the field centre');
     assert.deepEqual(problems, []);
   } finally {
     await viewer.close();

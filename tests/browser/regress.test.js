@@ -11,11 +11,14 @@ import { execFile } from 'node:child_process';
 import { cpSync, existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { createServer } from 'node:http';
 import { tmpdir } from 'node:os';
-import { dirname, join } from 'node:path';
+import { dirname, join, relative } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { decode } from 'fast-png';
 import { readPng, writePng } from '../../lib/regress_compare.js';
 import { startBrowser } from '../../lib/regress_browser.js';
+import { BLUE_MARBLE_POINTS, groundPoint, screenPoint, colourAt, coloursMatch } from '../../lib/draped_points.js';
+import { parseFlight, FlightCamera } from '../../web/app/deterministic/flight.js';
+import { ScriptedCamera } from '../../web/app/deterministic/mode.js';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
 const flights = join(root, 'tests/regress/flights');
@@ -288,6 +291,52 @@ test('a folder flown in the browser: a bad flight and one without a reference fa
     assert.match(readFileSync(join(dir, 'out/report.html'), 'utf8'), /<h2>volcano_down_tau4: could not run<\/h2>/);
     assert.equal(JSON.parse(readFileSync(join(dir, 'result.json'), 'utf8')).exitCode, 3);
     assert.match(readFileSync(join(dir, 'junit.xml'), 'utf8'), /<testcase classname="hexlod.regress" name="volcano_down_tau4"[^>]*>\s*<error type="error" message="Chromium at \/bin\/false did not start/);
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test('a flight that names an image drapes it before its first frame: its colours at projected ground points; a refused image fails the flight', async () => {
+  const dir = mkdtempSync(join(tmpdir(), 'hexlod-image-flight-'));
+  try {
+    // Straight down from 3200 km over the middle of the default terrain, north up, unlit so
+    // the pixels are the image's colours. Both files are named relative to the flight file.
+    const { width, height, cell_size_x_m: spacingX, cell_size_y_m: spacingY } = JSON.parse(readFileSync(join(root, 'public/terrain/globe_himalaya_2048.json'), 'utf8'));
+    const centre = [((width - 1) * spacingX) / 2, ((height - 1) * spacingY) / 2];
+    const flight = {
+      dem: relative(dir, join(root, 'public/terrain/globe_himalaya_2048.png')),
+      image: relative(dir, join(root, 'tests/fixtures/imagery/bmng_himalaya_4arcmin.jpg')),
+      viewport: [400, 400],
+      settings: { exaggeration: 1, imageUnlit: true, imageOpacity: 1 },
+      keyframes: [{ time: 0, position: [centre[0], 3.2e6, centre[1]], target: [centre[0], 0, centre[1]] }],
+    };
+    writeFileSync(join(dir, 'draped.flight.json'), JSON.stringify(flight));
+    const refs = join(dir, 'refs'), out = join(dir, 'out');
+    const { code, stdout, stderr } = await hexlod(['regress', join(dir, 'draped.flight.json'), '--update', '--refs', refs, '--out', out]);
+    assert.equal(code, 0, `${stdout}\n${stderr}`);
+    const frame = readPng(readFileSync(join(refs, 'draped/frame-0000.png')));
+
+    // The camera of frame 0 as the page poses it (near and far do not move a point on screen).
+    const parsed = parseFlight(flight, 'draped.flight.json');
+    const terrain = { width, height, spacingX, spacingY, minHeight: 0, maxHeight: 8752, heightAt: () => 0 };
+    const flightCamera = new FlightCamera(parsed, terrain, 400, 400);
+    flightCamera.at(0);
+    const camera = new ScriptedCamera();
+    camera.pose(flightCamera);
+    camera.update(1);
+    for (const [name, [lon, lat, expected]] of Object.entries(BLUE_MARBLE_POINTS)) {
+      const at = screenPoint(camera.viewProjection, groundPoint(lon, lat, spacingX, spacingY), 400, 400);
+      assert.ok(at.every((v) => v > 0 && v < 400), `${name} is on screen at ${at}`);
+      const got = colourAt({ width: frame.width, data: frame.rgb, channels: 3 }, at);
+      assert.ok(coloursMatch(got, expected, 24), `${name} at ${at}: ${got}, the image has ${expected}`);
+    }
+
+    // The Haiti orthophoto is in UTM: the flight fails with the image's own message.
+    writeFileSync(join(dir, 'refused.flight.json'), JSON.stringify({ ...flight,
+      image: relative(dir, join(root, 'tests/fixtures/imagery/haiti_rgb_5m_tiled_deflate.tif')) }));
+    const refused = await hexlod(['regress', join(dir, 'refused.flight.json'), '--update', '--refs', refs, '--out', out]);
+    assert.equal(refused.code, 1, `${refused.stdout}\n${refused.stderr}`);
+    assert.match(refused.stdout, /haiti_rgb_5m_tiled_deflate\.tif: it is in EPSG:32618 and the terrain in EPSG:4326/);
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }

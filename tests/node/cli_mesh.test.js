@@ -14,21 +14,34 @@ const fixture = (name) => fileURLToPath(new URL(`../fixtures/${name}`, import.me
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 60000 });
 const scratch = () => mkdtempSync(join(tmpdir(), 'hexlod-mesh-'));
 
-/** Vertices (x, y, z per vertex) and zero-based faces (3 per face) of an OBJ file written by hexlod mesh. */
+/**
+ * Vertices (x, y, z per vertex), zero-based faces (3 per face), texture coordinates (u, v per
+ * `vt` line) and the faces' zero-based texture indices (3 per face, when faces are `f v/vt`) of
+ * an OBJ file written by hexlod mesh.
+ */
 function readObj(path) {
-  const vertices = [], faces = [];
+  const vertices = [], faces = [], uv = [], textureFaces = [];
   for (const line of readFileSync(path, 'utf8').split('\n')) {
     if (line.startsWith('v ')) {
       const [x, y, z, extra] = line.slice(2).split(' ');
       assert.equal(extra, undefined, `vertex line '${line}'`);
       vertices.push(Number(x), Number(y), Number(z));
+    } else if (line.startsWith('vt ')) {
+      const [u, v, extra] = line.slice(3).split(' ');
+      assert.equal(extra, undefined, `texture line '${line}'`);
+      uv.push(Number(u), Number(v));
     } else if (line.startsWith('f ')) {
-      const [a, b, c, extra] = line.slice(2).split(' ');
-      assert.ok(c !== undefined && extra === undefined, `face line '${line}' is a triangle`);
-      faces.push(Number(a) - 1, Number(b) - 1, Number(c) - 1);
+      const corners = line.slice(2).split(' ');
+      assert.ok(corners.length === 3, `face line '${line}' is a triangle`);
+      for (const corner of corners) {
+        const [v, vt, extra] = corner.split('/');
+        assert.equal(extra, undefined, `face line '${line}': v or v/vt`);
+        faces.push(Number(v) - 1);
+        if (vt !== undefined) textureFaces.push(Number(vt) - 1);
+      }
     }
   }
-  return { vertices: Float64Array.from(vertices), faces: Float64Array.from(faces) };
+  return { vertices: Float64Array.from(vertices), faces: Float64Array.from(faces), uv: Float64Array.from(uv), textureFaces };
 }
 
 /**
@@ -262,4 +275,131 @@ test('hexlod bench flies a short scripted flight, compares with martini and writ
   const bad = run('bench', fixture('volcano_maungawhau.png'), '--frames', '0');
   assert.equal(bad.status, 2);
   assert.match(bad.stderr, /^hexlod: --frames must be at least 1/);
+});
+
+// The Blue Marble image over the default terrain (tests/fixtures/imagery/README.md): texture
+// coordinates are checked against the world file's and the sidecar's numbers, worked out here
+// from their definitions rather than by the placement code under test.
+const DEFAULT_TERRAIN = fileURLToPath(new URL('../../public/terrain/globe_himalaya_2048.png', import.meta.url));
+const BLUE_MARBLE = fixture('imagery/bmng_himalaya_4arcmin.jpg');
+
+test('mesh --image: every vertex gets the texture coordinate of its ground point in the georeferenced image, and NAME.mtl names the image', () => {
+  const dir = scratch();
+  const obj = join(dir, 'draped.obj'), json = join(dir, 'draped.json');
+  const r = run('mesh', DEFAULT_TERRAIN, '--max-error', '1500', '--obj', obj, '--json', json, '--image', BLUE_MARBLE);
+  assert.equal(r.status, 0, r.stderr);
+  assert.equal(r.stderr, '', 'a georeferenced image gives no warning');
+  assert.match(r.stdout, /image +bmng_himalaya_4arcmin\.jpg: 256 x 257 pixels, georeferenced by bmng_himalaya_4arcmin\.jgw/);
+
+  const sidecar = JSON.parse(readFileSync(DEFAULT_TERRAIN.replace(/\.png$/, '.json'), 'utf8'));
+  const [A, , , E, C, F] = readFileSync(BLUE_MARBLE.replace(/\.jpg$/, '.jgw'), 'utf8').trim().split(/\s+/).map(Number);
+  const [imageWidth, imageHeight] = [256, 257];
+  const { west, north } = sidecar.bounds_deg, cell = sidecar.cell_size_deg;
+  const dx = sidecar.cell_size_x_m, dy = sidecar.cell_size_y_m;
+  // Ground point x (metres east of the first column's centre), z (south of the first row's):
+  // the samples' centres lie half a cell inside the sidecar's bounds; the world file gives the
+  // first pixel's centre, so the image's left edge is C - A / 2 and its top edge F - E / 2.
+  // OBJ v runs up from the image's bottom.
+  const expected = (x, z) => {
+    const lon = west + (x / dx + 0.5) * cell, lat = north - (z / dy + 0.5) * cell;
+    const px = (lon - (C - A / 2)) / A, py = (lat - (F - E / 2)) / E;
+    return [px / imageWidth, 1 - py / imageHeight];
+  };
+
+  const { vertices, faces, uv, textureFaces } = readObj(obj);
+  const n = vertices.length / 3;
+  assert.equal(uv.length / 2, n, 'a texture coordinate per vertex');
+  assert.deepEqual(textureFaces, Array.from(faces), 'each face corner names its own vertex\'s texture coordinate');
+  const text = readFileSync(obj, 'utf8');
+  assert.match(text, /^mtllib draped\.mtl$/m);
+  assert.match(text, /^usemtl (\S+)$/m);
+  const material = /^usemtl (\S+)$/m.exec(text)[1];
+  assert.ok(text.indexOf('usemtl') < text.indexOf('\nf '), 'the material is set before the faces');
+  let worst = 0, corners = 0;
+  const xMax = 2047 * dx, zMax = 2047 * dy;
+  for (let i = 0; i < n; i++) {
+    const x = vertices[3 * i], z = vertices[3 * i + 2];
+    const [u, v] = expected(x, z);
+    worst = Math.max(worst, Math.abs(uv[2 * i] - u) * imageWidth, Math.abs(uv[2 * i + 1] - v) * imageHeight);
+    if ((x === 0 || Math.abs(x - xMax) < 1e-3) && (z === 0 || Math.abs(z - zMax) < 1e-3)) corners += 1;
+  }
+  assert.equal(corners, 4, 'the four corners of the field are vertices');
+  assert.ok(worst < 1e-3, `texture coordinates within a thousandth of a pixel of the expected ones (worst ${worst} pixels)`);
+  // The north-west corner's sample centre is a sixteenth of a pixel right of the image's left
+  // edge and 0.3125 pixels below its top edge (4 arc minutes a pixel, half a 30" cell inside).
+  const nw = Array.from({ length: n }, (_, i) => i).find((i) => vertices[3 * i] === 0 && vertices[3 * i + 2] === 0);
+  assert.ok(Math.abs(uv[2 * nw] - 0.0625 / 256) < 1e-6 && Math.abs(uv[2 * nw + 1] - (1 - 0.3125 / 257)) < 1e-6,
+    `north-west corner at (${uv[2 * nw]}, ${uv[2 * nw + 1]})`);
+
+  const mtl = readFileSync(join(dir, 'draped.mtl'), 'utf8');
+  assert.match(mtl, new RegExp(`^newmtl ${material}$`, 'm'));
+  const map = /^map_Kd (.+)$/m.exec(mtl);
+  assert.ok(map, 'the material has a diffuse map');
+  assert.ok(!map[1].startsWith('/'), `a relative path: ${map[1]}`);
+  assert.equal(readFileSync(join(dir, map[1])).compare(readFileSync(BLUE_MARBLE)), 0, 'map_Kd leads from the OBJ\'s folder to the image');
+  const report = JSON.parse(readFileSync(json, 'utf8'));
+  assert.equal(report.image.placement, 'georeferenced');
+  assert.equal(report.image.worldFile, 'bmng_himalaya_4arcmin.jgw');
+  assert.equal(report.image.coverage, 1);
+});
+
+test('mesh --image without a world file stretches the image over the field and says so', () => {
+  const dir = scratch();
+  const image = join(dir, 'plain.jpg'), obj = join(dir, 'plain.obj');
+  copyFileSync(BLUE_MARBLE, image);
+  const r = run('mesh', DEFAULT_TERRAIN, '--max-error', '3000', '--obj', obj, '--image', image);
+  assert.equal(r.status, 0, r.stderr);
+  assert.match(r.stderr, /^hexlod: warning: plain\.jpg: the image has no georeference: stretched over the whole field$/m);
+  assert.match(r.stdout, /image +plain\.jpg: .*STRETCHED over the whole field/);
+  const { vertices, uv } = readObj(obj);
+  const xMax = Math.max(...vertices.filter((_, k) => k % 3 === 0)), zMax = Math.max(...vertices.filter((_, k) => k % 3 === 2));
+  for (let i = 0; i < vertices.length / 3; i++) {
+    const u = vertices[3 * i] / xMax, v = 1 - vertices[3 * i + 2] / zMax;
+    assert.ok(Math.abs(uv[2 * i] - u) < 1e-6 && Math.abs(uv[2 * i + 1] - v) < 1e-6, `vertex ${i + 1}: (${uv[2 * i]}, ${uv[2 * i + 1]}) vs (${u}, ${v})`);
+  }
+  assert.match(readFileSync(join(dir, 'plain.mtl'), 'utf8'), /^map_Kd plain\.jpg$/m);
+});
+
+test('mesh --image refuses an image in another CRS, a garbage world file and a missing image, with one line and exit 1; misuse exits 2', () => {
+  const dir = scratch();
+  const obj = join(dir, 'x.obj');
+  const garbage = join(dir, 'garbage.jgw');
+  writeFileSync(garbage, 'this is\nnot a world file\n');
+  const cut = join(dir, 'cut.jpg');
+  writeFileSync(cut, readFileSync(BLUE_MARBLE).subarray(0, 40));
+  const base = [DEFAULT_TERRAIN, '--max-error', '3000', '--obj', obj];
+  for (const [args, status, pattern] of [
+    [[...base, '--image', fixture('imagery/haiti_rgb_5m_tiled_deflate.tif')], 1,
+      /haiti_rgb_5m_tiled_deflate\.tif: it is in EPSG:32618 and the terrain in EPSG:4326; reproject it/],
+    [[...base, '--image', BLUE_MARBLE, '--world-file', garbage], 1, /garbage\.jgw: a world file holds six numbers/],
+    [[...base, '--image', join(dir, 'missing.jpg')], 1, /missing\.jpg: no such image file/],
+    [[...base, '--image', cut], 1, /cut\.jpg: not an image hexlod can drape/],
+    [[...base, '--image', BLUE_MARBLE, '--world-file', join(dir, 'missing.jgw')], 1, /missing\.jgw: no such world file/],
+    [[...base, '--world-file', garbage], 2, /--world-file goes with --image/],
+    [[DEFAULT_TERRAIN, '--max-error', '3000', '--image', BLUE_MARBLE], 2, /--image needs --obj/],
+  ]) {
+    const r = run('mesh', ...args);
+    assert.equal(r.status, status, `${args.join(' ')}: ${r.stderr}`);
+    const lines = r.stderr.trim().split('\n');
+    assert.equal(lines.length, 1, `one line: ${r.stderr}`);
+    assert.match(lines[0], /^hexlod: /);
+    assert.match(lines[0], pattern);
+    assert.equal(r.stdout, '');
+  }
+  assert.throws(() => readFileSync(obj), 'no OBJ is written for a refused image');
+});
+
+test('mesh --image with a GeoTIFF on a terrain without georeference: stretched with a warning, and the material names the TIFF', () => {
+  const dir = scratch();
+  const obj = join(dir, 'volcano.obj');
+  const tiff = fixture('imagery/haiti_rgb_5m_strips_lzw_pred2.tif');
+  const r = run('mesh', fixture('volcano_maungawhau.png'), '--max-error', '5', '--obj', obj, '--image', tiff);
+  assert.equal(r.status, 0, r.stderr);
+  assert.match(r.stderr, /warning: haiti_rgb_5m_strips_lzw_pred2\.tif: the terrain has no georeference: stretched over the whole field/);
+  assert.match(r.stdout, /515 x 403 pixels, STRETCHED/);
+  const { vertices, uv } = readObj(obj);
+  const corner = Array.from({ length: vertices.length / 3 }, (_, i) => i).find((i) => vertices[3 * i] === 860 && vertices[3 * i + 2] === 600);
+  assert.deepEqual([uv[2 * corner], uv[2 * corner + 1]], [1, 0], 'the south-east corner is the image\'s bottom right');
+  const map = /^map_Kd (.+)$/m.exec(readFileSync(join(dir, 'volcano.mtl'), 'utf8'))[1];
+  assert.equal(readFileSync(join(dir, map)).compare(readFileSync(tiff)), 0);
 });

@@ -46,5 +46,5 @@ test('image headers give the kind and size without decoding', () => {
   assert.deepEqual(readImageHeader(png.subarray(0, 64), 'h.png'), { format: 'png', width: 2048, height: 2048 });
   assert.deepEqual(readImageHeader(new Uint8Array([0x49, 0x49, 42, 0, 8, 0, 0, 0]), 't.tif'), { format: 'tiff' });
   assert.throws(() => readImageHeader(new TextEncoder().encode('hello, not an image'), 'x.png'),
-    (e) => e instanceof ImageError && /^x\.png: not an image this page can drape/.test(e.message));
+    (e) => e instanceof ImageError && /^x\.png: not an image hexlod can drape/.test(e.message));
 });

@@ -15,7 +15,7 @@ import { fileURLToPath } from 'node:url';
 import { createNodeCore } from '../../lib/node_core.js';
 import { readInputs } from '../../lib/cli_common.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
-import { parseFlight, FlightCamera, FlightError, replayFlight } from '../../web/app/deterministic/flight.js';
+import { parseFlight, flightSettings, FlightCamera, FlightError, replayFlight } from '../../web/app/deterministic/flight.js';
 import { DEFAULT_TOLERANCE, toleranceFor } from '../../web/app/deterministic/tolerance.js';
 import { compareImages, describeImage, flightChanges, flightRecordOf } from '../../lib/regress_compare.js';
 import { readDem } from '../../lib/dem_source.js';
@@ -52,6 +52,10 @@ test('a flight file is checked key by key, and the message names the key', () =>
     [flightJson({ settings: { budget: 3 } }), /"settings"."budget" is not a setting/],
     [flightJson({ settings: { embedding: 'round' } }), /"settings"."embedding" must be one of exact, shifted/],
     [flightJson({ captures: [0, 99] }), /"captures"\[1\] must be an integer from 0 to 30/],
+    [flightJson({ image: 3 }), /"image" must be a file path or an http\(s\) URL/],
+    [flightJson({ worldFile: 'x.jgw' }), /"worldFile" goes with "image"/],
+    [flightJson({ settings: { imageOpacity: 2 } }), /"settings"."imageOpacity" must be a number from 0 to 1/],
+    [flightJson({ settings: { imageUnlit: 1 } }), /"settings"."imageUnlit" must be true or false/],
   ];
   const keyframes = flightJson().keyframes;
   bad.push([flightJson({ keyframes: [keyframes[0], { ...keyframes[1], position: [1, 2] }] }), /"keyframes"\[1\].position must be three numbers/]);
@@ -68,6 +72,14 @@ test('a flight file is checked key by key, and the message names the key', () =>
   assert.equal(flight.frames, 31); // 3 s at 10 frames a second, both ends included
   assert.deepEqual(flight.captures, [0, 15, 30]);
   assert.equal(flight.keyframes[0].fov, 50);
+  assert.equal(flight.image, null);
+  assert.ok(!('imageOpacity' in flight.settings), 'a flight without image settings records none (its references stay as they were)');
+  const draped = parseFlight(flightJson({ image: 'a.jpg', worldFile: 'a.jgw', settings: { imageOpacity: 0.5, imageUnlit: true } }), 'f.json');
+  assert.deepEqual([draped.image, draped.worldFile, draped.settings.imageOpacity, draped.settings.imageUnlit], ['a.jpg', 'a.jgw', 0.5, true]);
+  const settings = flightSettings(draped);
+  assert.deepEqual([settings.imageOpacity, settings.imageUnlit], [0.5, true]);
+  const record = (f) => flightRecordOf(f, { name: 'x.png', size: 1, sha256: 'ab' });
+  assert.deepEqual(flightChanges(record(flight), record(draped)).filter((c) => /^(image|worldFile) /.test(c)), ['image none → a.jpg', 'worldFile none → a.jgw']);
 });
 
 /** A terrain stand-in for the camera: 1000 x 600 m, heights 0..100, a flat ground at 50 m. */

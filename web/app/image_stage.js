@@ -37,10 +37,12 @@ export function createImageStage({ renderer, stage, showStatus, onChange, reques
 
     /**
      * Drapes an image ({ name, blob }) with its world file (or null) on the terrain on screen.
-     * `url`: where it came from, when a link can name it.
+     * @param {{ url?: string|null, throwRefusal?: boolean }} [options] url: where it came from,
+     *   when a link can name it; throwRefusal: a refusal is also thrown (a regression flight
+     *   fails with it rather than fly without its image)
      * @returns {Promise<object|null>} the image shown, or null when it was refused (the status line says why)
      */
-    async drape(image, worldFile = null, url = null) {
+    async drape(image, worldFile = null, { url = null, throwRefusal = false } = {}) {
       if (!stage.current) return null;
       try {
         current = await open(image, worldFile);
@@ -52,6 +54,7 @@ export function createImageStage({ renderer, stage, showStatus, onChange, reques
         if (!(error instanceof ImageError)) throw error;
         showStatus(`${error.message}${current ? ` (${current.name} stays)` : ''}`, true);
         requestRender();
+        if (throwRefusal) throw error;
         return null;
       }
     },

@@ -147,14 +147,15 @@ async function main() {
   const intake = stage.intake = createFileIntake({ core, state, settings,
     show: (loaded, from) => { images.remove(); stage.show(loaded, from); },
     showStatus, setCellSize: (metres) => onSetting('cellSize', metres), currentSpacing: () => stage.current.terrain,
-    drape: (image, world, url) => images.drape(image, world, url) });
+    drape: (image, world, url) => images.drape(image, world, { url }) });
 
   const setSetting = (key, value) => onSetting(key, value);
   if (window.hexlod === state) {
     installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting, screenshot, urlWriter,
       terrain: () => stage.current?.terrain, setLayout: (layout) => setSetting('layout', layout) });
   }
-  if (det) det.install(state, canvas, gl, requestRender); // the flight drives the camera
+  // The flight drives the camera, and drapes its image, if it names one, before its first frame.
+  if (det) det.install(state, canvas, gl, requestRender, (image, world) => images.drape(image, world, { throwRefusal: true }));
   else rig.attach(canvas);
   installKeys({ settings, setSetting, setCamera: (mode) => onSetting('camera', mode), toggleHelp,
     closeHelp: () => { helpBox.hidden = true; }, toggleHud: () => hud.setCollapsed(!hud.collapsed),

@@ -23,7 +23,7 @@ export function readImageHeader(head, name) {
   try {
     info = imageSize(head);
   } catch (e) {
-    throw new ImageError(name, `not an image this page can drape (${String(e?.message ?? e).slice(0, 80)}); PNG, JPEG, WebP and 8-bit GeoTIFF can`);
+    throw new ImageError(name, `not an image hexlod can drape (${String(e?.message ?? e).slice(0, 80)}); PNG, JPEG, WebP and 8-bit GeoTIFF can`);
   }
   const format = { png: 'png', jpg: 'jpeg', webp: 'webp' }[info.type];
   if (!format) throw new ImageError(name, `a ${info.type?.toUpperCase() ?? 'unknown'} image cannot be draped; PNG, JPEG, WebP and 8-bit GeoTIFF can`);

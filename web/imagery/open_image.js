@@ -1,17 +1,15 @@
 // Opening an image to drape, from its file (and world file) to textures on the GPU:
 //   header -> size and kind -> the tiling and whether it fits (before decoding) -> the
-//   georeference (GeoTIFF tags or world file) -> its place on the field (refused when it misses
-//   it or is in another CRS) -> decode (the browser's for PNG, JPEG, WebP; bands for GeoTIFF)
+//   georeference (GeoTIFF tags or world file) -> its place on the field (image_location.js, shared
+//   with the command line; refused when it misses it or is in another CRS) -> decode (the browser's for PNG, JPEG, WebP; bands for GeoTIFF)
 //   into the textures.
 // Nothing of the image shown before is touched: the new one fills textures of its own, which
 // take the old one's place only when it is whole; a failure (a corrupt band) drops the
 // half-made textures and the old image stays on screen.
 
-import { degreesToMetres } from '../loaders/common.js';
 import { readImageHeader, HEADER_BYTES } from './image_header.js';
 import { planImageTiling } from './image_tiling.js';
-import { parseWorldFile } from './world_file.js';
-import { placeImage } from './placement.js';
+import { worldFileGeoref, locateImage } from './image_location.js';
 import { readTiffImage } from './image_tiff.js';
 import { ImageError } from './image_error.js';
 import { browserJpegDecoder } from './browser_jpeg.js';
@@ -44,26 +42,26 @@ export async function openImage(image, worldFile, field, gpu, options = {}) {
   if (blob.size === 0) throw new ImageError(name, 'empty file');
   const head = new Uint8Array(await blob.slice(0, HEADER_BYTES).arrayBuffer());
   const header = readImageHeader(head, name);
-  const worldGeoref = worldFile ? parseWorldFile(new Uint8Array(await worldFile.blob.arrayBuffer()), worldFile.name) : null;
+  const worldGeoref = worldFile ? worldFileGeoref({ name: worldFile.name, bytes: new Uint8Array(await worldFile.blob.arrayBuffer()) }) : null;
   const limits = { ...gpu.limits(), budgetBytes: options.budgetBytes, name };
 
   if (header.format === 'tiff') {
     const bytes = new Uint8Array(await blob.arrayBuffer());
-    let placement = null, tiling = null, begun = false;
+    let location = null, tiling = null, begun = false;
     try {
-      const info = await readTiffImage(bytes, name, {
+      await readTiffImage(bytes, name, {
         pace: options.pace,
         decodeJpeg: options.decodeJpeg === undefined ? browserJpegDecoder() : options.decodeJpeg,
         begin: (width, height, georef) => {
           tiling = planImageTiling(width, height, { ...limits, wholeDecode: false });
-          placement = placeImage(field, { name, width, height, georef: worldGeoref ?? georef });
+          location = locateImage(field, { name, width, height }, worldGeoref, georef);
           gpu.begin(tiling);
           begun = true;
         },
         onBand: (y, rows, rgba) => gpu.uploadBand(y, rows, rgba),
       });
       gpu.finish();
-      return described(name, info.width, info.height, worldGeoref ?? info.georef, placement, tiling, field);
+      return described(name, location, tiling);
     } catch (error) {
       if (begun) gpu.abort();
       throw error;
@@ -71,7 +69,7 @@ export async function openImage(image, worldFile, field, gpu, options = {}) {
   }
 
   const tiling = planImageTiling(header.width, header.height, { ...limits, wholeDecode: true });
-  const placement = placeImage(field, { name, width: header.width, height: header.height, georef: worldGeoref });
+  const location = locateImage(field, { name, width: header.width, height: header.height }, worldGeoref);
   let bitmap;
   try {
     bitmap = await (options.decodeBitmap ?? decodeBitmap)(blob);
@@ -90,7 +88,7 @@ export async function openImage(image, worldFile, field, gpu, options = {}) {
   } finally {
     bitmap.close?.();
   }
-  return described(name, header.width, header.height, worldGeoref, placement, tiling, field);
+  return described(name, location, tiling);
 }
 
 /** The browser's decoder, off the main thread, with the image's EXIF orientation applied. */
@@ -98,16 +96,6 @@ function decodeBitmap(blob) {
   return createImageBitmap(blob, { imageOrientation: 'from-image', premultiplyAlpha: 'none', colorSpaceConversion: 'default' });
 }
 
-function described(name, width, height, georef, placement, tiling, field) {
-  let metresPerPixel = null;
-  if (placement.how === 'georeferenced' && georef) {
-    // An image that names no CRS is in the field's (placement.js).
-    const geographic = georef.crs.epsg === null ? field.georef?.crs.geographic : georef.crs.geographic;
-    metresPerPixel = geographic
-      ? degreesToMetres(georef.dx, Math.abs(georef.dy), georef.y0 + (georef.dy * height) / 2).spacingX
-      : georef.dx;
-  } else if (field.spacingX > 0) {
-    metresPerPixel = (field.spacingX * (field.width - 1)) / width;
-  }
+function described(name, { width, height, placement, metresPerPixel }, tiling) {
   return { name, width, height, placement, metresPerPixel, gpuBytes: tiling.gpuBytes, note: placement.note };
 }

@@ -5,10 +5,13 @@
 // A flight file (JSON):
 //   {
 //     "dem": "../fixtures/grandcanyon_512.png",  optional: the height field, relative to this file
+//     "image": "../fixtures/ortho.jpg",            optional: an image draped before the first frame,
+//     "worldFile": "../fixtures/ortho.jgw",          and its world file (default: ortho.jgw ... beside it)
 //     "fps": 30,                                   frame clock: frame n shows time n / fps seconds
 //     "viewport": [400, 225], "dpr": 1,            canvas size in CSS pixels, device pixel ratio
 //     "settings": { "tau": 1, "exaggeration": 2, "operations": 1000, "geomorph": true,
-//                   "embedding": "exact", "culling": true, "backfaceCulling": true },
+//                   "embedding": "exact", "culling": true, "backfaceCulling": true,
+//                   "imageOpacity": 1, "imageUnlit": false },       the last two for an image
 //     "captures": [0, 30, 59],                     frames to screenshot
 //     "keyframes": [ { "time": 0, "position": [x, y, z], "target": [x, y, z], "fov": 50 }, ... ],
 //     "tolerance": { "threshold": 0.004, "maxDiffPixelRatio": 0.002, ... }  optional: see tolerance.js
@@ -42,13 +45,17 @@ const SETTING_KINDS = {
   culling: 'boolean',
   backfaceCulling: 'boolean',
   embedding: ['exact', 'shifted'],
+  // The draped image's (settings_table.js); kept in the settings only when the flight sets
+  // them, so the references of flights without an image record what they did.
+  imageOpacity: { min: 0, max: 1 },
+  imageUnlit: 'boolean',
 };
 
 /**
  * Checks a parsed flight file and fills its defaults.
  * @param {unknown} json the parsed file
  * @param {string} name the file's name, for messages
- * @returns {{dem: string|null, fps: number, frames: number, viewport: number[], dpr: number,
+ * @returns {{dem: string|null, image: string|null, worldFile: string|null, fps: number, frames: number, viewport: number[], dpr: number,
  *   settings: object, captures: number[], keyframes: {time: number, position: number[], target: number[], fov: number}[],
  *   tolerance: {flight: object, captures: Record<number, object>}}}
  * @throws FlightError naming the key that is wrong
@@ -56,7 +63,7 @@ const SETTING_KINDS = {
 export function parseFlight(json, name = 'flight') {
   const fail = (key, why) => { throw new FlightError(`${name}: ${key} ${why}`); };
   if (json === null || typeof json !== 'object' || Array.isArray(json)) fail('the file', 'must hold a JSON object');
-  const known = ['dem', 'fps', 'viewport', 'dpr', 'settings', 'captures', 'keyframes', 'tolerance', 'description'];
+  const known = ['dem', 'image', 'worldFile', 'fps', 'viewport', 'dpr', 'settings', 'captures', 'keyframes', 'tolerance', 'description'];
   for (const key of Object.keys(json)) if (!known.includes(key)) fail(`"${key}"`, `is not a flight key (${known.join(', ')})`);
   const number = (key, value, { min = -Infinity, max = Infinity, integer = false } = {}) => {
     if (typeof value !== 'number' || !Number.isFinite(value) || (integer && !Number.isInteger(value)) || value < min || value > max) {
@@ -68,7 +75,10 @@ export function parseFlight(json, name = 'flight') {
     if (!Array.isArray(value) || value.length !== 3) fail(key, `must be three numbers [x, y, z] in metres, got ${JSON.stringify(value)}`);
     return value.map((v, k) => number(`${key}[${k}]`, v, { min: -LIMIT, max: LIMIT }));
   };
-  if (json.dem !== undefined && (typeof json.dem !== 'string' || json.dem === '')) fail('"dem"', 'must be a file path or an http(s) URL');
+  for (const key of ['dem', 'image', 'worldFile']) {
+    if (json[key] !== undefined && (typeof json[key] !== 'string' || json[key] === '')) fail(`"${key}"`, 'must be a file path or an http(s) URL');
+  }
+  if (json.worldFile !== undefined && json.image === undefined) fail('"worldFile"', 'goes with "image"');
   const fps = json.fps === undefined ? DEFAULT_FPS : number('"fps"', json.fps, { min: 1, max: 1000 });
   let viewport = DEFAULT_VIEWPORT;
   if (json.viewport !== undefined) {
@@ -122,7 +132,7 @@ export function parseFlight(json, name = 'flight') {
     captures = [...new Set(captures)].sort((a, b) => a - b);
   }
   const tolerance = parseTolerance(json.tolerance, captures, fail);
-  return { dem: json.dem ?? null, fps, frames, viewport, dpr, settings, captures, keyframes, tolerance };
+  return { dem: json.dem ?? null, image: json.image ?? null, worldFile: json.worldFile ?? null, fps, frames, viewport, dpr, settings, captures, keyframes, tolerance };
 }
 
 /**
@@ -135,6 +145,8 @@ export function flightSettings(flight) {
     tau: s.tau, exaggeration: s.exaggeration, budgetMs: 0, maxOperations: s.operations, maxTriangles: 0,
     autoTau: false, geomorph: s.geomorph, culling: s.culling, backfaceCulling: s.backfaceCulling,
     embedding: s.embedding, freeze: false, wireframe: false, colorByLevel: false,
+    ...(s.imageOpacity !== undefined && { imageOpacity: s.imageOpacity }),
+    ...(s.imageUnlit !== undefined && { imageUnlit: s.imageUnlit }),
   });
 }
 

@@ -6,13 +6,18 @@
 //   dpr, or ?viewport=WxH and ?dpr=N), whatever the window's size and devicePixelRatio;
 // - the camera: the flight's path (user input is ignored);
 // - frames are drawn only when asked for, through window.hexlod.flight (see install()).
+// - the draped image: the flight's, draped once the terrain is shown and before the flight starts.
 // URL parameters: flight=URL (required), viewport=WxH (CSS pixels), dpr=N, ops=N (operations
-// per LOD update); they override the flight file's values. src=URL picks the terrain as usual.
+// per LOD update); they override the flight file's values. src=URL picks the terrain as usual;
+// image=URL and world=URL pick the image and its world file (with image=, the world file is
+// world= or none; without, the flight's, relative to the flight file, else one of the image's
+// conventional world file names beside it).
 import { mat4, vec3 } from 'gl-matrix';
 import { parseFlight, flightSettings, FlightCamera, FlightRecord } from './flight.js';
+import { worldFileNames } from '../../imagery/world_file.js';
 
-/** The camera the renderer draws with: posed from FlightCamera every frame. */
-class ScriptedCamera {
+/** The camera the renderer draws with: posed from FlightCamera every frame (tests pose one the same way). */
+export class ScriptedCamera {
   constructor() {
     this.mode = 'flight';
     this.position = vec3.create();
@@ -111,14 +116,20 @@ export class DeterministicMode {
     }
     this.flight = flight;
     this.settings = flightSettings(flight);
+    const here = new URL(url, location.href);
+    this.image = this.params.has('image')
+      ? { url: this.params.get('image'), world: this.params.get('world'), findWorld: false }
+      : flight.image && { url: new URL(flight.image, here).href, world: flight.worldFile && new URL(flight.worldFile, here).href,
+        findWorld: !flight.worldFile };
     this.width = Math.round(flight.viewport[0] * flight.dpr);
     this.height = Math.round(flight.viewport[1] * flight.dpr);
     return flight;
   }
 
   /** Fixes the canvas's size and puts the API on window.hexlod.flight. */
-  install(state, canvas, gl, requestRender) {
+  install(state, canvas, gl, requestRender, drape) {
     this.gl = gl;
+    this.drape = drape; // (image, worldFile) => the stage's drape, which throws a refusal
     this.requestRender = requestRender;
     canvas.style.width = `${this.flight.viewport[0]}px`;
     canvas.style.height = `${this.flight.viewport[1]}px`;
@@ -148,8 +159,35 @@ export class DeterministicMode {
     this.flightCamera = new FlightCamera(this.flight, terrain, this.width, this.height);
     this.record = new FlightRecord(this.flight.frames);
     const { frames, fps, captures } = this.flight;
-    this.resolveReady({ frames, fps, captures, width: this.width, height: this.height });
-    this.requestRender();
+    (this.image ? this.drapeImage() : Promise.resolve()).then(() => {
+      this.resolveReady({ frames, fps, captures, width: this.width, height: this.height });
+      this.requestRender();
+    }, (error) => this.fail(error.message));
+  }
+
+  /** Fetches the flight's image (and world file) and drapes it; throws the refusal's message. */
+  async drapeImage() {
+    const named = async (url, optional = false) => {
+      const name = decodeURIComponent(new URL(url, location.href).pathname.split('/').pop() || url);
+      let response;
+      try {
+        response = await fetch(url);
+      } catch (error) {
+        throw new Error(`${name}: cannot read the flight's image (${error.message})`);
+      }
+      if (optional && response.status === 404) return null;
+      if (!response.ok) throw new Error(`${name}: cannot read the flight's image (HTTP ${response.status})`);
+      return { name, blob: await response.blob() };
+    };
+    const image = await named(this.image.url);
+    let world = this.image.world ? await named(this.image.world) : null;
+    if (this.image.findWorld) {
+      for (const name of worldFileNames(image.name)) {
+        world = await named(new URL(name, new URL(this.image.url, location.href)).href, true);
+        if (world) break;
+      }
+    }
+    await this.drape(image, world);
   }
 
   /** The page could not start (its message), e.g. the terrain did not load. */
