@@ -1,7 +1,8 @@
 // Known ground points of the Blue Marble image draped on the default terrain
 // (tests/fixtures/imagery/README.md), for the browser tests that judge a draped image by its
 // pixels: where a point lies on the field, where a camera's view-projection puts it on screen,
-// and the colour a screenshot has there.
+// and the colour a screenshot has there; and the view from straight above that the tests judge
+// it from.
 
 /** Ground points: lon, lat and the image's colour there (its pixel's RGB). */
 export const BLUE_MARBLE_POINTS = {
@@ -48,3 +49,31 @@ export function colourAt({ width, data, channels }, [x, y]) {
 
 /** True when each channel of `got` is within `tolerance` of `expected`. */
 export const coloursMatch = (got, expected, tolerance) => expected.every((v, k) => Math.abs(got[k] - v) <= tolerance);
+
+/**
+ * Points the page's orbit camera straight down on the middle of the terrain from `distance`
+ * metres, with the image unlit (its own colours, no sun), and draws.
+ */
+export function lookStraightDown(page, distance = 3.2e6) {
+  return page.evaluate((distance) => {
+    const h = window.hexlod, t = h.terrainObject(), orbit = h.rig.cameras.orbit;
+    h.setSetting('imageUnlit', true);
+    h.setSetting('camera', 'orbit');
+    orbit.target[0] = ((t.width - 1) * t.spacingX) / 2; orbit.target[1] = 0; orbit.target[2] = ((t.height - 1) * t.spacingY) / 2;
+    orbit.yaw = 0; orbit.pitch = 1.55; orbit.distance = distance;
+    h.requestRender();
+  }, distance);
+}
+
+/** Screen pixels of ground points { name: [lon, lat] } on the default terrain (sea level), in the page's current view. */
+export async function projectLonLat(page, points) {
+  const view = await page.evaluate(() => {
+    const h = window.hexlod, t = h.terrainObject();
+    return { m: Array.from(h.camera.viewProjection), spacingX: t.spacingX, spacingY: t.spacingY, width: innerWidth, height: innerHeight };
+  });
+  const out = {};
+  for (const [name, [lon, lat]] of Object.entries(points)) {
+    out[name] = screenPoint(view.m, groundPoint(lon, lat, view.spacingX, view.spacingY), view.width, view.height);
+  }
+  return out;
+}

@@ -1,11 +1,14 @@
 // The production build (dist/, ./build.sh site) served by a plain static file server under a
 // sub-path (/hexlod/), as a static host would: the default terrain opens and shows, a dropped
-// file and a ?src= file open framed, R resets the view. Judged by pixels and geometry.
+// file and a ?src= file open framed, R resets the view; a satellite image drapes, dropped or by
+// ?image=. Judged by pixels and geometry.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { startViewer, openPage, outDir, projectDir, terrainCoverage, pageReady, dropFiles, terrainShown,
   converged, eyeClearance, nextFrame } from '../../lib/page_harness.js';
+import { BLUE_MARBLE_POINTS as POINTS, colourAt, coloursMatch, lookStraightDown, projectLonLat } from '../../lib/draped_points.js';
+import { decode } from 'fast-png';
 
 const FIXTURES = `${projectDir}tests/fixtures/`;
 const read = (name) => ({ name, bytes: readFileSync(FIXTURES + name) });
@@ -57,4 +60,26 @@ test('the built site under /hexlod/ opens the default terrain; a drop, R and ?sr
   assert.deepEqual(missing, ['/fixtures/formats/canyon_u16_tiled_deflate.json'], 'only the optional sidecar is missing');
   assert.deepEqual(opened.problems.filter((p) => !/status of 404/.test(p)), []);
   await opened.page.close();
+});
+
+test('the built site drapes a dropped satellite image by its world file, and ?image= opens one', async () => {
+  const image = [read('imagery/bmng_himalaya_4arcmin.jpg'), read('imagery/bmng_himalaya_4arcmin.jgw')];
+  const imageUrl = '/fixtures/imagery/bmng_himalaya_4arcmin.jpg';
+  for (const how of ['drop', '?image=']) {
+    const { page, problems } = await openPage(site.browser, how === 'drop' ? site.url : `${site.url}?image=${encodeURIComponent(imageUrl)}`, { width: 640, height: 640 });
+    await pageReady(page);
+    if (how === 'drop') await dropFiles(page, image);
+    await page.waitForFunction(() => window.hexlod.image !== null, null, { timeout: 60000 });
+    assert.equal(await page.evaluate(() => window.hexlod.image.coverage), 1, how);
+    await lookStraightDown(page);
+    await nextFrame(page);
+    await nextFrame(page);
+    const png = decode(await page.screenshot({ path: `${outDir}/built-image-${how === 'drop' ? 'drop' : 'url'}.png` }));
+    const at = await projectLonLat(page, POINTS);
+    for (const [name, [, , expected]] of Object.entries(POINTS)) {
+      assert.ok(coloursMatch(colourAt(png, at[name]), expected, 24), `${how}: ${name} at ${at[name]} is ${colourAt(png, at[name])}, the image has ${expected}`);
+    }
+    assert.deepEqual(problems, [], how);
+    await page.close();
+  }
 });

@@ -9,7 +9,7 @@ import assert from 'node:assert/strict';
 import { decode, encode } from 'fast-png';
 import { readFileSync } from 'node:fs';
 import { startViewer, openPage, dropFiles, terrainShown, outDir } from '../../lib/page_harness.js';
-import { BLUE_MARBLE_POINTS as POINTS, groundPoint, screenPoint, colourAt, coloursMatch } from '../../lib/draped_points.js';
+import { BLUE_MARBLE_POINTS as POINTS, colourAt, coloursMatch, lookStraightDown, projectLonLat } from '../../lib/draped_points.js';
 
 /** Opens the page, drapes the Blue Marble crop unlit from straight above, and returns the screenshot and the points' pixels. */
 async function drapedView(viewer, query = '') {
@@ -22,17 +22,7 @@ async function drapedView(viewer, query = '') {
       ?? await window.hexlod.images.drape(await get('bmng_himalaya_4arcmin.jpg'), await get('bmng_himalaya_4arcmin.jgw'));
     return d && { width: d.width, height: d.height, coverage: d.placement.coverage };
   }, `${viewer.fixturesUrl}imagery/`);
-  await page.evaluate(() => {
-    const h = window.hexlod;
-    h.setSetting('imageUnlit', true);
-    h.setSetting('camera', 'orbit');
-    const t = h.terrainObject(), orbit = h.rig.cameras.orbit;
-    const x = ((t.width - 1) * t.spacingX) / 2, z = ((t.height - 1) * t.spacingY) / 2;
-    orbit.target[0] = x; orbit.target[1] = 0; orbit.target[2] = z;
-    orbit.yaw = 0; orbit.pitch = 1.55; orbit.distance = 3.2e6;
-    h.setSetting('freeze', false);
-    h.requestRender();
-  });
+  await lookStraightDown(page);
   for (let i = 0; i < 4; i++) await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => r())));
   const png = decode(await page.screenshot());
   const pixels = await projectLonLat(page, POINTS);
@@ -105,19 +95,6 @@ test('dropped with its DEM in either order, the image drapes it; a new DEM alone
   }
 });
 
-/** Screen pixels of ground points { name: [lon, lat] } on the default terrain (sea level), in the current view. */
-async function projectLonLat(page, points) {
-  const view = await page.evaluate(() => {
-    const h = window.hexlod, t = h.terrainObject();
-    return { m: Array.from(h.camera.viewProjection), spacingX: t.spacingX, spacingY: t.spacingY, width: innerWidth, height: innerHeight };
-  });
-  const out = {};
-  for (const [name, [lon, lat]] of Object.entries(points)) {
-    out[name] = screenPoint(view.m, groundPoint(lon, lat, view.spacingX, view.spacingY), view.width, view.height);
-  }
-  return out;
-}
-
 /** A JPEG (JFIF) whose header announces `width` x `height` pixels, and holds nothing else. */
 function jpegHeader(width, height) {
   return Uint8Array.from([0xff, 0xd8, 0xff, 0xe0, 0, 16, 0x4a, 0x46, 0x49, 0x46, 0, 1, 1, 0, 0, 1, 0, 1, 0, 0, 0xff, 0xc0, 0, 17, 8, height >> 8, height & 255, width >> 8, width & 255, 3,
@@ -131,14 +108,7 @@ test('half over the field, bad images refused while it stays, back after a lost 
   try {
     const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1`, { width: 700, height: 700 });
     await page.waitForFunction(() => window.hexlod?.status === 'ready', null, { timeout: 240000 });
-    await page.evaluate(() => {
-      const h = window.hexlod, t = h.terrainObject(), orbit = h.rig.cameras.orbit;
-      h.setSetting('imageUnlit', true);
-      h.setSetting('camera', 'orbit');
-      orbit.target[0] = ((t.width - 1) * t.spacingX) / 2; orbit.target[1] = 0; orbit.target[2] = ((t.height - 1) * t.spacingY) / 2;
-      orbit.yaw = 0; orbit.pitch = 1.55; orbit.distance = 3.2e6;
-      h.requestRender();
-    });
+    await lookStraightDown(page);
     const shot = async (label) => {
       for (let i = 0; i < 3; i++) await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => r())));
       return decode(await page.screenshot(label ? { path: `${outDir}/imagery-${label}.png` } : {}));
