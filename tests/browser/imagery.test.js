@@ -163,6 +163,19 @@ test('half over the field, bad images refused while it stays, back after a lost 
     const restored = await shot();
     assert.ok(coloursMatch(colourAt(restored, at.sea), POINTS['Bay of Bengal'][2], 24), `after the lost context, the sea: ${colourAt(restored, at.sea)}`);
 
+    // Opacity 0 shows the ground under it; lit, the sun shades it: a low sun darkens it.
+    await page.evaluate(() => window.hexlod.setSetting('imageOpacity', 0));
+    const clear = await shot();
+    for (const p of [at.sea, at.plain]) assert.ok(coloursMatch(colourAt(clear, p), colourAt(bare, p), 6), `opacity 0: the ground at ${p}`);
+    const brightness = (png) => colourAt(png, at.plain).reduce((a, b) => a + b, 0);
+    const sun = await page.evaluate(() => window.hexlod.settings.sunElevation);
+    await page.evaluate(() => { const h = window.hexlod; h.setSetting('imageOpacity', 1); h.setSetting('imageUnlit', false); h.setSetting('sunElevation', 60); });
+    const high = brightness(await shot());
+    await page.evaluate(() => window.hexlod.setSetting('sunElevation', 6));
+    const low = brightness(await shot('lit-low-sun'));
+    assert.ok(low < 0.8 * high, `lit, a low sun darkens the image: ${low} against ${high}`);
+    await page.evaluate((sun) => { const h = window.hexlod; h.setSetting('imageUnlit', true); h.setSetting('sunElevation', sun); }, sun);
+
     // The panel's "remove image": the ground as before the image.
     await page.evaluate(() => [...document.querySelectorAll('#panel button')].find((b) => b.textContent.trim() === 'remove image').click());
     await page.waitForFunction(() => window.hexlod.image === null, null, { timeout: 10000 });

@@ -347,7 +347,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
     if (dropped.length) await openPicked(dropped);
   });
   picker.accept = [...ACCEPT_EXTENSIONS, ...IMAGE_EXTENSIONS].join(',');
-  $('open-button').title = `Open a height field: ${ACCEPTED}`;
+  $('open-button').title = `Open a height field (${ACCEPTED}), an image to drape on it (PNG, JPEG, WebP, GeoTIFF, with its world file), or both`;
   $('open-button').onclick = () => picker.click();
   picker.onchange = () => {
     if (picker.files.length) openPicked(picker.files); // takes the list at once: it is emptied next
