@@ -4,7 +4,11 @@
 // refused with both names and what differs. Fixtures: tests/fixtures/mosaic/README.md.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync } from 'node:fs';
+import { readFileSync, mkdtempSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { loadHeightfield, HeightfieldError } from '../../web/loaders/index.js';
 import { loadMosaic } from '../../web/loaders/mosaic.js';
 import { probeGeoTiff, decodeGeoTiff } from '../../web/loaders/geotiff.js';
@@ -136,4 +140,15 @@ test('dropped together, tiles are one height field: dropRoles and loadTerrain', 
   }
   // A refused mosaic leaves nothing allocated and says why.
   await assert.rejects(loadTerrain(core, ['shared_nw.tif', 'nad83_ne.tif'].map(tif)), /different coordinate systems/);
+});
+
+test('hexlod mesh takes the tiles of a mosaic as its files', () => {
+  const json = join(mkdtempSync(join(tmpdir(), 'hexlod-mosaic-')), 'mesh.json');
+  const paths = ['shared_ne.tif', 'shared_nw.tif'].map((name) => fileURLToPath(new URL(name, DIR)));
+  const run = spawnSync(process.execPath, [fileURLToPath(new URL('../../bin/hexlod.js', import.meta.url)), 'mesh', ...paths,
+    '--max-error', '5', '--json', json], { encoding: 'utf8', timeout: 60000 });
+  assert.equal(run.status, 0, run.stderr);
+  const report = JSON.parse(readFileSync(json, 'utf8'));
+  assert.deepEqual([report.file, report.width, report.height], ['shared_nw.tif + 1 more (mosaic 2 × 1)', 257, 97]);
+  assert.ok(report.error.original.max <= 5 + 1e-6, `within 5 m of the samples: ${report.error.original.max}`);
 });
