@@ -28,7 +28,7 @@ async function dropToFirstFrame(viewer) {
   const json = readFileSync(`${projectDir}public/terrain/globe_himalaya_2048.json`);
   const times = [];
   for (let r = 0; r < runs; r++) {
-    const { page } = await openPage(viewer.browser, viewer.url);
+    const { page } = await openPage(viewer.browser, `${viewer.url}?test=1`); // test mode publishes window.hexlod
     // An idle page, as a user has it: the default view has converged and stopped drawing.
     await page.waitForFunction(() => window.hexlod?.status === 'ready' && window.hexlod.converged, null, { timeout: 240000 });
     // The files exist in the page before the clock starts, as a user's dropped files do.
@@ -85,7 +85,7 @@ async function largeField(viewer) {
   const writeS = (performance.now() - t0) / 1000;
   let peakRss = chromiumRssMb();
   const sampler = setInterval(() => { peakRss = Math.max(peakRss, chromiumRssMb()); }, 200);
-  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?src=${encodeURIComponent(`/@fs${path}`)}`);
+  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1&src=${encodeURIComponent(`/@fs${path}`)}`);
   const loadStart = Date.now();
   await page.waitForFunction(() => window.hexlod?.status !== 'loading', null, { timeout: 1800000, polling: 1000 });
   const loadS = (Date.now() - loadStart) / 1000;

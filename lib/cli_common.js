@@ -134,14 +134,17 @@ export function readInputs(path) {
 /**
  * Loads a height field into a new WASM core, with the cell size of the file, or `cellSize`
  * when given. Warns on stderr when neither gives one.
+ * @param {string|string[]} paths one file (its sidecar is read from beside it), or the tiles of
+ *   a mosaic (no sidecars: the tiles place themselves)
  * @returns {Promise<{core, terrain, field, missing, loadMs, spacingX: number, spacingY: number}>}
  */
-export async function loadForCommand(path, cellSize, fileOptions = {}) {
-  const files = readInputs(path);
+export async function loadForCommand(paths, cellSize, fileOptions = {}) {
+  const list = [].concat(paths);
+  const files = list.length === 1 ? readInputs(list[0]) : list.map((path) => readInputs(path)[0]);
   const core = await createNodeCore();
   const loaded = await loadFiles(core, files, { ...fileOptions, ...(cellSize ? { spacing: cellSize } : {}) });
   if (!cellSize && !loaded.field.spacingFromFile) {
-    console.error(`hexlod: warning: ${basename(path)} has no cell size; using 1 m, set --cell-size`);
+    console.error(`hexlod: warning: ${loaded.field.source} has no cell size; using 1 m, set --cell-size`);
   }
   return { core, ...loaded, spacingX: loaded.terrain.spacingX, spacingY: loaded.terrain.spacingY };
 }

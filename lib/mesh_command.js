@@ -13,7 +13,8 @@ import { readImageFiles } from './image_files.js';
 import { RESTART_INDEX, STREAM_VERTEX_WORDS } from '../web/core/core.js';
 import { locateImageFile } from '../web/imagery/image_location.js';
 
-export const MESH_USAGE = `usage: hexlod mesh <heightfield> (--max-error M | --camera X,Y,Z --target X,Y,Z) [options]
+export const MESH_USAGE = `usage: hexlod mesh <heightfield>... (--max-error M | --camera X,Y,Z --target X,Y,Z) [options]
+  Several .hgt or GeoTIFF tiles of one grid make one mosaic.
   Refines the hexagon mesh until it converges (or for --budget-splits operations), prints a
   summary, and writes the mesh clipped to the data rectangle as OBJ and its figures as JSON.
   --max-error M         view-independent: every sample within M metres of the mesh
@@ -50,9 +51,7 @@ const MAX_UPDATES = 10000;
 export function meshSettings(args) {
   const { values, positionals } = parseOptions(args, OPTIONS);
   if (values.help) return { help: true };
-  if (positionals.length !== 1) {
-    throw new UsageError(positionals.length === 0 ? 'mesh needs a height field file' : 'mesh takes exactly one height field file');
-  }
+  if (positionals.length === 0) throw new UsageError('mesh needs a height field file');
   const hasError = values['max-error'] !== undefined, hasCamera = values.camera !== undefined;
   if (hasError === hasCamera) {
     throw new UsageError(hasError ? 'give either --max-error or --camera, not both' : 'give --max-error M or --camera X,Y,Z with --target X,Y,Z');
@@ -66,6 +65,7 @@ export function meshSettings(args) {
   }
   const settings = {
     file: positionals[0],
+    files: positionals, // one height field, or the tiles of a mosaic
     mode: hasCamera ? 'view' : 'max-error',
     embedding: parseEmbedding(values.embedding),
     cellSize: values['cell-size'] !== undefined ? parseCellSize(values['cell-size']) : null,
@@ -154,7 +154,7 @@ export async function mesh(args) {
     console.log(MESH_USAGE);
     return;
   }
-  const { terrain, field, spacingX, spacingY } = await loadForCommand(settings.file, settings.cellSize);
+  const { terrain, field, spacingX, spacingY } = await loadForCommand(settings.files, settings.cellSize);
   // The image is placed before refining, so a refused one costs no refinement.
   const image = settings.image !== null ? await placedImage(settings, terrain, field) : null;
   const run = refine(terrain, settings);
@@ -176,7 +176,7 @@ export async function mesh(args) {
   const { xMax, zMax } = extentOf(terrain);
   const repaired = resolveDegenerate(positions, STREAM_VERTEX_WORDS, triangles);
   const clipped = clipToRectangle(positions, STREAM_VERTEX_WORDS, repaired.triangles, xMax, zMax);
-  const name = basename(settings.file);
+  const name = field.source; // the file's name, or the mosaic's ("a.hgt + 3 more (mosaic 2 × 2)")
   if (settings.obj) {
     const comments = [
       `hexlod mesh of ${name}: ${clipped.vertices.length / 3} vertices, ${clipped.faces.length / 3} triangles`,

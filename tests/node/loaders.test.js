@@ -553,7 +553,8 @@ test('bad input: f32 and sidecar problems', async () => {
   await rejects([{ name: 'i.f32', bytes: new Uint8Array(inf.buffer) }, { name: 'i.json', bytes: asciiBytes('{"width": 2, "height": 2}') }], 'i.f32', /sample at row 1, column 0 is Infinity/);
   await rejects([json], 'volcano_maungawhau.json', /sidecar alone is not a height field/);
   await rejects([fixtureFile('volcano_maungawhau', 'png'), { name: 'other.json', bytes: volcanoJson }], 'other.json', /does not belong to volcano_maungawhau\.png/);
-  await rejects([fixtureFile('volcano_maungawhau', 'png'), fixtureFile('volcano_maungawhau', 'f32')], '', /several height fields given/);
+  await rejects([fixtureFile('volcano_maungawhau', 'png'), fixtureFile('volcano_maungawhau', 'f32')], 'volcano_maungawhau.png',
+    /several height fields make a mosaic only of \.hgt \(SRTM\) and GeoTIFF tiles; open volcano_maungawhau\.png on its own/);
   await rejects([fixtureFile('jacksboro_fault', 'png'), { name: 'jacksboro_fault.json', bytes: volcanoJson }], 'jacksboro_fault.png',
     /size 403x344 does not match 87x61 from jacksboro_fault\.json/);
 });

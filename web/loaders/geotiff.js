@@ -36,6 +36,36 @@ export function hasTiffSignature(bytes) {
  *   geotransform
  */
 export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
+  const { fail, guard, image, directory, width, height, format, bits, sampleType } = await openGeoTiff(bytes, name, options);
+  const dir = image.fileDirectory;
+  const nodata = parseNodata(await guard('bad TIFF no-data tag (42113)', () => dir.loadValue('GDAL_NODATA')), fail);
+
+  // Every strip or tile must hold what its geometry needs before memory is reserved.
+  const layout = await guard('bad TIFF layout', () => blockLayout(image, directory, { width, height }, fail));
+  await guard('bad TIFF image data', () => checkBlocks(image, layout, directory, bytes, fail, pacer(options.onCheckProgress)));
+
+  const extent = dataExtent(layout, { width, height }, fail);
+  const geo = spacingOf(image, extent.y + extent.height / 2);
+  const sink = new SampleSink(allocate, sampleType, extent.width, extent.height, options);
+  await guard('corrupt image data', () => readBlocks(image, layout, bytes, sink, extent, { format, bits, nodata }));
+  if (sampleType === 'f32') rejectInfinities(sink.samples, extent.width, fail);
+  const cropped = extent.cropped ? { column: extent.x, row: extent.y, width, height } : null;
+  const georef = shiftGeoref(georefOfTiff(image), extent.x, extent.y);
+  return { width: extent.width, height: extent.height, sampleType, samples: sink.samples, nodata, cropped, georef, ...geo };
+}
+
+/**
+ * The first image's size and sample type, checked, and where it lies: what a mosaic needs of a
+ * tile before any tile is decoded (mosaic.js). Reads the directory, not the samples.
+ * @returns {Promise<{ width: number, height: number, sampleType: string, georef: import('./georef.js').Georef|null }>}
+ */
+export async function probeGeoTiff(bytes, name, options = {}) {
+  const { width, height, sampleType, image } = await openGeoTiff(bytes, name, options);
+  return { width, height, sampleType, georef: georefOfTiff(image) };
+}
+
+/** Opens a TIFF as far as its first image's size and sample type, refusing what we cannot decode. */
+async function openGeoTiff(bytes, name, options) {
   const fail = (problem) => { throw new HeightfieldError(name, problem); };
   if (bytes.length < 8) fail(bytes.length === 0 ? 'empty file' : `truncated: ${bytes.length} bytes, no TIFF header`);
   if (!hasTiffSignature(bytes)) fail('not a TIFF file (bad signature)');
@@ -53,20 +83,7 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
     [(await dir.loadValue('SampleFormat'))?.[0] ?? 1, (await dir.loadValue('BitsPerSample'))?.[0] ?? 1]);
   const sampleType = sampleTypeOf(format, bits);
   if (!sampleType) fail(`unsupported TIFF sample type: ${['', 'unsigned', 'signed', 'float'][format] ?? `format ${format}`} ${bits}-bit`);
-  const nodata = parseNodata(await guard('bad TIFF no-data tag (42113)', () => dir.loadValue('GDAL_NODATA')), fail);
-
-  // Every strip or tile must hold what its geometry needs before memory is reserved.
-  const layout = await guard('bad TIFF layout', () => blockLayout(image, directory, { width, height }, fail));
-  await guard('bad TIFF image data', () => checkBlocks(image, layout, directory, bytes, fail, pacer(options.onCheckProgress)));
-
-  const extent = dataExtent(layout, { width, height }, fail);
-  const geo = spacingOf(image, extent.y + extent.height / 2);
-  const sink = new SampleSink(allocate, sampleType, extent.width, extent.height, options);
-  await guard('corrupt image data', () => readBlocks(image, layout, bytes, sink, extent, { format, bits, nodata }));
-  if (sampleType === 'f32') rejectInfinities(sink.samples, extent.width, fail);
-  const cropped = extent.cropped ? { column: extent.x, row: extent.y, width, height } : null;
-  const georef = shiftGeoref(georefOfTiff(image), extent.x, extent.y);
-  return { width: extent.width, height: extent.height, sampleType, samples: sink.samples, nodata, cropped, georef, ...geo };
+  return { fail, guard, image, directory, width, height, format, bits, sampleType };
 }
 
 /**

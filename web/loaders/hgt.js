@@ -27,25 +27,36 @@ export function tileLatitude(name) {
 }
 
 /**
- * @returns {Promise<{ width, height, sampleType: 'i16', samples: Int16Array, nodata: number,
- *   spacingX: number, spacingY: number, spacingFromFile: boolean }>} spacing in metres; without a
- *   tile name the spacing is the equator's and spacingFromFile is false
+ * A tile's size (from its byte count) and where it lies (from its name), before any sample is
+ * read: what a mosaic needs of a tile (mosaic.js).
+ * @returns {{ width: number, height: number, sampleType: 'i16', georef: import('./georef.js').Georef|null }}
  */
-export async function decodeHgt(bytes, name, allocate, options = {}) {
+export function probeHgt(bytes, name) {
   const side = SIDES.find((n) => n * n * 2 === bytes.length);
   if (!side) {
     const near = bytes.length < SIDES[0] * SIDES[0] * 2 ? 'truncated' : 'wrong size';
     throw new HeightfieldError(name, `${near}: ${bytes.length} bytes, but an SRTM tile has ` +
       `${SIDES.map((n) => `${n}x${n}`).join(' or ')} 16-bit samples (${SIDES.map((n) => n * n * 2).join(' or ')} bytes)`);
   }
-  const south = tileLatitude(name);
+  // Samples lie on whole arc-seconds, the first row on the tile's north edge, the first column on its west edge (WGS 84).
+  const corner = tileCorner(name);
   const step = 1 / (side - 1); // degrees between samples
+  const georef = corner && makeGeoref(crsOfEpsg(4326), corner.lon, corner.lat + 1, step, -step, 'tile name');
+  return { width: side, height: side, sampleType: 'i16', georef };
+}
+
+/**
+ * @returns {Promise<{ width, height, sampleType: 'i16', samples: Int16Array, nodata: number,
+ *   spacingX: number, spacingY: number, spacingFromFile: boolean, georef }>} spacing in metres; without a
+ *   tile name the spacing is the equator's and spacingFromFile is false
+ */
+export async function decodeHgt(bytes, name, allocate, options = {}) {
+  const { width: side, georef } = probeHgt(bytes, name);
+  const south = tileLatitude(name);
+  const step = 1 / (side - 1);
   const { spacingX, spacingY } = degreesToMetres(step, step, south === null ? 0 : south + 0.5);
   const sink = new SampleSink(allocate, 'i16', side, side, options);
   await copyRows(bytes, 0, sink, side, side, false);
-  // Samples lie on whole arc-seconds, the first row on the tile's north edge, the first column on its west edge (WGS 84).
-  const corner = tileCorner(name);
-  const georef = corner && makeGeoref(crsOfEpsg(4326), corner.lon, corner.lat + 1, step, -step, 'tile name');
   return { width: side, height: side, sampleType: 'i16', samples: sink.samples, nodata: HGT_VOID,
     spacingX, spacingY, spacingFromFile: south !== null, georef };
 }

@@ -9,9 +9,10 @@ import { decodePng, hasPngSignature } from './png.js';
 import { decodeF32 } from './f32.js';
 import { decodeRaw, SizeNeededError } from './raw.js';
 import { decodePgm, hasPgmSignature } from './pgm.js';
-import { decodeHgt } from './hgt.js';
+import { decodeHgt, probeHgt } from './hgt.js';
 import { decodeAsc, hasAscHeader } from './asc.js';
-import { decodeGeoTiff, hasTiffSignature } from './geotiff.js';
+import { decodeGeoTiff, hasTiffSignature, probeGeoTiff } from './geotiff.js';
+import { loadMosaic } from './mosaic.js';
 import { parseSidecar, sidecarGeoref } from './sidecar.js';
 import { fillNodata } from './nodata.js';
 import { SampleSink } from './pacing.js';
@@ -50,14 +51,16 @@ export const ACCEPT_EXTENSIONS = Object.keys(KIND_OF_EXTENSION).map((e) => `.${e
  *   sparse GeoTIFF whose empty blocks surround its data: where the field starts in the file's
  *   raster, and the raster's declared size; null when the field is the whole raster
  * @property {string} source file name of the height field
- * @property {'png'|'f32'|'raw'|'pgm'|'hgt'|'asc'|'geotiff'} format
+ * @property {'png'|'f32'|'raw'|'pgm'|'hgt'|'asc'|'geotiff'|'mosaic'} format the tiles' kind for a
+ *   mosaic of one kind, 'mosaic' for .hgt and GeoTIFF tiles together
  */
 
 /**
  * Loads a height field from one or more files: one height field (.png, .tif/.tiff, .hgt,
  * .asc, .pgm, .r16/.raw, .f32), optionally with its .json sidecar (required for .f32), which
  * then supplies spacing and, for raw integer formats, the height range. Sidecars pair with a
- * height field by base name (x.png + x.json).
+ * height field by base name (x.png + x.json). Several .hgt or GeoTIFF tiles of one grid, with no
+ * sidecar, make one mosaic (mosaic.js): its `source` names the first tile and how many more.
  *
  * @param {Array<{ name: string, bytes: Uint8Array }>} files
  * @param {object} [options]
@@ -96,9 +99,7 @@ export async function loadHeightfield(files, options = {}) {
   if (fields.length === 0) {
     throw new HeightfieldError(jsons[0].name, 'a .json sidecar alone is not a height field; add the file it describes');
   }
-  if (fields.length > 1) {
-    throw new HeightfieldError('', `several height fields given (${fields.map((f) => f.name).join(', ')}); load one at a time`);
-  }
+  if (fields.length > 1) return loadTiles(fields, jsons, allocate, maxSamples, options);
   const main = fields[0];
   const base = baseNameOf(main.name);
   const stray = jsons.find((j) => baseNameOf(j.name) !== base);
@@ -154,6 +155,30 @@ export async function loadHeightfield(files, options = {}) {
     source: main.name,
     format: main.kind,
   };
+}
+
+/** Kinds whose tiles say where they lie, so that several make one mosaic (mosaic.js). */
+const PROBES = {
+  hgt: async (tile) => probeHgt(tile.bytes, tile.name),
+  geotiff: (tile, maxSamples) => probeGeoTiff(tile.bytes, tile.name, { maxSamples }),
+};
+
+/** Several height fields at once: tiles of one mosaic, each placed by its own georeference. */
+function loadTiles(fields, jsons, allocate, maxSamples, options) {
+  if (jsons.length) {
+    throw new HeightfieldError(jsons[0].name, `a sidecar goes with one height field; the tiles of a mosaic (${fields.map((f) => f.name).join(', ')}) are placed by their own georeferences`);
+  }
+  const other = fields.find((f) => !PROBES[f.kind]);
+  if (other) {
+    throw new HeightfieldError(other.name, `several height fields make a mosaic only of .hgt (SRTM) and GeoTIFF tiles; open ${other.name} on its own`);
+  }
+  const progress = options.onProgress;
+  return loadMosaic(fields, {
+    probe: (tile) => PROBES[tile.kind](tile, maxSamples),
+    decode: (tile, tileAllocate, onProgress) => DECODERS[tile.kind](tile.bytes, tile.name, tileAllocate,
+      { maxSamples, onProgress, onCheckProgress: progress && ((fraction) => progress(fraction, 'checking')) }),
+    allocate, reacquire: options.reacquire, onProgress: progress, maxSamples,
+  });
 }
 
 /** Decoders by kind: (bytes, name, allocate, options, sidecar) -> decoded field. */

@@ -15,10 +15,12 @@ import { HeightfieldError } from './common.js';
  * @param {number} height
  * @param {number|null} nodata raw value of a missing sample; NaN is always missing
  * @param {string} name file name, for the all-nodata message
+ * @param {(k: number) => boolean} [isMissingAt] which samples are missing, by index, instead of by
+ *   value: a mosaic's gaps between tiles hold no value that could say so (mosaic.js)
  * @returns {Promise<number>} how many samples were missing (and are now filled)
  * @throws {HeightfieldError} when every sample is missing
  */
-export async function fillNodata(sink, width, height, nodata, name) {
+export async function fillNodata(sink, width, height, nodata, name, isMissingAt = null) {
   // Float samples hold float32 values: a no-data of -9999.9 (a double) is -9999.900390625 there.
   if (nodata !== null && sink.samples instanceof Float32Array) nodata = Math.fround(nodata);
   const isMissing = nodata === null || Number.isNaN(nodata)
@@ -37,7 +39,7 @@ export async function fillNodata(sink, width, height, nodata, name) {
     let lastValid = -1;
     for (let x = 0; x < width; x++) {
       const v = samples[row + x];
-      if (!isMissing(v)) {
+      if (isMissingAt ? !isMissingAt(row + x) : !isMissing(v)) {
         if (lastValid < x - 1) fillSpan(samples, row, lastValid, x, width, store);
         lastValid = x;
         continue;

@@ -11,7 +11,8 @@ const RELIEF_RATIO = 0.05; // height range / extent of a guessed spacing
 /**
  * Loads files into a new core terrain.
  * @param {import('../core/core.js').HexlodCore} core
- * @param {Array<{name: string, bytes: Uint8Array}>} files one height field (with its sidecar)
+ * @param {Array<{name: string, bytes: Uint8Array}>} files one height field (with its sidecar), or
+ *   the tiles of one mosaic (see loadHeightfield)
  * @param {{spacing?: {x: number, y: number}, guessSpacing?: boolean, width?: number, height?: number, encoding?: string,
  *   onProgress?: (fraction: number, phase: string) => void}} [options] spacing: metres between
  *   columns and rows to use instead of the file's (field still reports the file's); width,
@@ -27,7 +28,8 @@ export async function loadTerrain(core, files, options = {}) {
   const start = performance.now();
   let terrain = null;
   let profile = null; // a single row or column, decoded aside, then widened (see widenProfile)
-  const main = files.find((f) => extensionOf(f?.name ?? '') !== 'json')?.name ?? '';
+  // Whose problem a refusal by the core is: the file's, or every tile's of a mosaic.
+  const main = files.filter((f) => extensionOf(f?.name ?? '') !== 'json').map((f) => f?.name ?? '').join(' + ');
   try {
     const field = await loadHeightfield(files, {
       width: options.width,

@@ -202,7 +202,8 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
 
   /**
    * Opens dropped or picked files (File objects) as one load: the height field (with its
-   * sidecar) is read and decoded, then the image (with its world file) is draped on it; an image
+   * sidecar), or the tiles of a mosaic (several .hgt or GeoTIFF height fields, web/loaders/mosaic.js),
+   * is read and decoded, then the image (with its world file) is draped on it; an image
    * alone is draped on the terrain on screen (web/imagery/drop_roles.js says which is which).
    * A colour PNG opened alone is a height field when its first row reads as heights, else an image.
    */
