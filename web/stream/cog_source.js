@@ -11,7 +11,7 @@
 import GeoTIFF from 'geotiff';
 import '../loaders/tiff_decoders.js';
 import { hasTiffSignature, parseNodata, sampleTypeOf, spacingOf } from '../loaders/geotiff.js';
-import { blockLayout } from '../loaders/tiff_blocks.js';
+import { blockLayout, measurer } from '../loaders/tiff_blocks.js';
 import { georefOfTiff } from '../loaders/tiff_georef.js';
 import { libraryGuard } from '../loaders/tiff_library.js';
 import { TYPED_ARRAYS, GETTERS, LITTLE_ENDIAN_HOST } from '../loaders/tiff_raster.js';
@@ -86,7 +86,7 @@ export async function openCog(input, options = {}) {
     } else if (layout.bytesPerPixel !== layouts[0].bytesPerPixel) {
       fail(`overview ${levels.length} has ${layout.bytesPerPixel} bytes a sample, the full resolution ${layouts[0].bytesPerPixel}`);
     }
-    layouts.push({ ...layout, littleEndian: image.littleEndian });
+    layouts.push({ ...layout, littleEndian: image.littleEndian, measure: measurer(layout) });
     levels.push({
       width, height, scale: full.width / width, tileWidth: layout.blockWidth, tileHeight: layout.blockHeight,
       tilesAcross: Math.ceil(width / layout.blockWidth), tilesDown: Math.ceil(height / layout.blockHeight),
@@ -165,15 +165,16 @@ export class CogSource {
     if (bytes.length < count) throw truncated(this._reader.size ?? offset + bytes.length);
     checkAborted(signal, where);
 
+    // Measured before decoding, as a whole-file load checks every block: our decoders pad a
+    // block cut short with zeros, which would pass for samples.
+    const needed = samples.length * layout.bytesPerPixel;
     let decoded;
     try {
+      const length = await layout.measure(bytes, needed);
+      if (length !== needed) throw new Error(`${length > needed ? `more than ${needed}` : length} bytes, its ${info.tileWidth}x${info.tileHeight} samples need ${needed}`);
       decoded = await layout.decoder.decode(bytes.slice().buffer);
     } catch (e) {
       throw new StreamError('decode', `${where} does not decode (${String(e?.message ?? e).split('\n')[0].slice(0, 120)})`, { cause: e });
-    }
-    const needed = samples.length * layout.bytesPerPixel;
-    if (decoded.byteLength < needed) {
-      throw new StreamError('decode', `${where} decodes to ${decoded.byteLength} bytes, its ${info.tileWidth}x${info.tileHeight} samples need ${needed}`);
     }
     copySamples(decoded, samples, this._format, this._bits, layout);
     return samples;
