@@ -35,18 +35,9 @@ cat > "$tmp/himalaya.vrt" <<VRT
   </VRTRasterBand>
 </VRTDataset>
 VRT
-# Jacksboro: the raw float32 USGS NED file (tests/fixtures/jacksboro_fault.json gives the bounds).
-cat > "$tmp/jacksboro.vrt" <<VRT
-<VRTDataset rasterXSize="403" rasterYSize="344">
-  <SRS>EPSG:4326</SRS>
-  <GeoTransform>-84.41375, 0.000833333333333333333, 0, 36.73291666666667, 0, -0.000833333333333333333</GeoTransform>
-  <VRTRasterBand dataType="Float32" band="1" subClass="VRTRawRasterBand">
-    <SourceFilename relativeToVRT="0">$here/tests/fixtures/jacksboro_fault.f32</SourceFilename>
-    <ImageOffset>0</ImageOffset><PixelOffset>4</PixelOffset><LineOffset>1612</LineOffset>
-    <ByteOrder>LSB</ByteOrder>
-  </VRTRasterBand>
-</VRTDataset>
-VRT
+# The Jacksboro DEM as GDAL sees it (scripts/jacksboro_vrt.sh).
+. "$here/scripts/jacksboro_vrt.sh"
+jacksboro_vrt "$here" > "$tmp/jacksboro.vrt"
 
 # A COG as a streaming viewer meets it: 256 x 256 tiles, deflate with the horizontal predictor,
 # overviews down to one tile (512, 256), and a no-data value to report. The central 1024 x 1024
