@@ -13,19 +13,9 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$out"
 
-# The raw float32 file as GDAL sees it: a VRT naming its layout and georeference (the bounds of
-# jacksboro_fault.json are cell edges; 1/1200 degree cells).
-cat > "$tmp/jacksboro.vrt" <<VRT
-<VRTDataset rasterXSize="403" rasterYSize="344">
-  <SRS>EPSG:4326</SRS>
-  <GeoTransform>-84.41375, 0.000833333333333333333, 0, 36.73291666666667, 0, -0.000833333333333333333</GeoTransform>
-  <VRTRasterBand dataType="Float32" band="1" subClass="VRTRawRasterBand">
-    <SourceFilename relativeToVRT="0">$here/tests/fixtures/jacksboro_fault.f32</SourceFilename>
-    <ImageOffset>0</ImageOffset><PixelOffset>4</PixelOffset><LineOffset>1612</LineOffset>
-    <ByteOrder>LSB</ByteOrder>
-  </VRTRasterBand>
-</VRTDataset>
-VRT
+# The Jacksboro DEM as GDAL sees it (scripts/jacksboro_vrt.sh).
+. "$here/scripts/jacksboro_vrt.sh"
+jacksboro_vrt "$here" > "$tmp/jacksboro.vrt"
 cut() { # name xoff yoff width height [extra gdal_translate options]
   name=$1; shift; x=$1; y=$2; w=$3; h=$4; shift 4
   gdal_translate -q -of GTiff -co COMPRESS=DEFLATE -srcwin "$x" "$y" "$w" "$h" "$@" "$tmp/jacksboro.vrt" "$out/$name"

@@ -91,7 +91,7 @@ async function openGeoTiff(bytes, name, options) {
  * terminating NUL). "nan" and "inf" give no value: NaN samples are no-data anyway, and an
  * infinite one is damage.
  */
-function parseNodata(value, fail) {
+export function parseNodata(value, fail) {
   if (value === undefined) return null;
   if (typeof value !== 'string') fail(`bad TIFF: the no-data tag (42113) holds ${shown(value)}, not the text of a number`);
   const text = value.replace(/\0+$/, '').trim();
@@ -101,7 +101,7 @@ function parseNodata(value, fail) {
   return v;
 }
 
-function sampleTypeOf(format, bits) {
+export function sampleTypeOf(format, bits) {
   if (format === 1 && bits === 8) return 'u8';
   if (format === 1 && bits === 16) return 'u16';
   if (format === 2 && bits === 16) return 'i16';
@@ -111,7 +111,7 @@ function sampleTypeOf(format, bits) {
 }
 
 /** Metres between columns and rows from the geotransform, or nulls without one. */
-function spacingOf(image, middleRow) {
+export function spacingOf(image, middleRow) {
   let resolution, origin;
   try {
     resolution = image.getResolution();

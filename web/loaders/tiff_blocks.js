@@ -175,7 +175,7 @@ export function dataExtent({ tiled, blockWidth, blockHeight, counts, blocks }, {
  * A function (block bytes, full block size) -> bytes the block decodes to, counted up to just
  * past the full size (anything more is too long in any case).
  */
-function measurer({ compression, decoder }) {
+export function measurer({ compression, decoder }) {
   if (compression === 1) return (block) => block.length;
   if (compression === 5) return (block, full) => lzwLength(block, full + 1);
   if (compression === 8 || compression === 32946) {

@@ -4,17 +4,17 @@
 // took as long as inflating the blocks, and paid for the check of every block's size
 // (tiff_blocks.js) that now runs before the field is allocated.
 
-const TYPED_ARRAYS = {
+export const TYPED_ARRAYS = {
   1: { 8: Uint8Array, 16: Uint16Array, 32: Uint32Array },
   2: { 8: Int8Array, 16: Int16Array, 32: Int32Array },
   3: { 32: Float32Array, 64: Float64Array },
 };
-const GETTERS = {
+export const GETTERS = {
   1: { 8: 'getUint8', 16: 'getUint16', 32: 'getUint32' },
   2: { 8: 'getInt8', 16: 'getInt16', 32: 'getInt32' },
   3: { 32: 'getFloat32', 64: 'getFloat64' },
 };
-const LITTLE_ENDIAN_HOST = new Uint8Array(new Uint16Array([1]).buffer)[0] === 1;
+export const LITTLE_ENDIAN_HOST = new Uint8Array(new Uint16Array([1]).buffer)[0] === 1;
 
 /**
  * Reads the image into sink.samples (converting to their type: int32 and float64 to float32),
