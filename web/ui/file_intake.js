@@ -15,7 +15,7 @@ import { SETTINGS } from '../app/settings_table.js';
 import { dropRoles, IMAGE_EXTENSIONS } from '../imagery/drop_roles.js';
 import { ImageError } from '../imagery/image_error.js';
 import { worldFileCandidates } from '../imagery/world_file.js';
-import { detectPngEncoding } from '../loaders/png.js';
+import { detectPngEncoding, hasPngSignature } from '../loaders/png.js';
 
 // The PNG colours menu: 'image' drapes a colour PNG; an encoding makes it heights.
 const PNG_CHOICE = { auto: 'auto', image: 'image', 'terrain-rgb': 'height', terrarium: 'height' };
@@ -26,8 +26,8 @@ const MB = 2 ** 20;
 /** Metres as the spacing field shows them: six significant digits, no trailing zeros. */
 const formatMetres = (metres) => String(Number(metres.toPrecision(6)));
 
-/** Looks at a height field's answer before its body is read: an error, or a page, is no height field. */
-function acceptHeightField(response) {
+/** Looks at a height field's or an image's answer before its body is read: an error, or a page, is neither. */
+function acceptFile(response) {
   if (!response.ok) throw new Error(`HTTP ${response.status}`);
   // A server's "not found" page often comes back as 200 text/html; no height field is HTML.
   if (/text\/html/.test(response.headers.get('content-type') ?? '')) throw new Error('the server sent an HTML page');
@@ -39,13 +39,6 @@ const acceptSidecar = (response) => response.ok && /json/.test(response.headers.
 
 /** A world file likewise: any answer but an error or a page (servers call .jgw many things). */
 const acceptWorldFile = (response) => response.ok && !/text\/html/.test(response.headers.get('content-type') ?? '');
-
-/** An image's answer: an error, or a page, is no image. */
-function acceptImage(response) {
-  if (!response.ok) throw new Error(`HTTP ${response.status}`);
-  if (/text\/html/.test(response.headers.get('content-type') ?? '')) throw new Error('the server sent an HTML page');
-  return true;
-}
 
 /**
  * @param {{ core: import('../core/core.js').HexlodCore, state: object, settings: object,
@@ -189,7 +182,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
     for (const link of links) {
       try {
         const bytes = await fetchLimited(link.url, link.optional ? { ...limits, signal, accept: acceptSidecar }
-          : { ...limits, signal, accept: acceptHeightField, onBytes });
+          : { ...limits, signal, accept: acceptFile, onBytes });
         if (bytes) files.push({ name: link.name, bytes });
       } catch (error) {
         if (signal.aborted) return cancelled(signal, name);
@@ -214,10 +207,13 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
       const names = picked.map((f) => f.name).join(' + ');
       showStatus(`Loading ${names}…`);
       const heads = await Promise.all(picked.map(async (file) => ({ name: file.name, head: new Uint8Array(await file.slice(0, HEAD_BYTES).arrayBuffer()) })));
-      // A colour PNG's first row is read only when the roles need it (it alone, no name that says).
-      const heightPng = new Set();
-      if (picked.length === 1 && encodingSelect.value === 'auto' && /\.png$/i.test(picked[0].name)) {
-        if (await detectPngEncoding(new Uint8Array(await picked[0].arrayBuffer()), picked[0].name)) heightPng.add(picked[0].name);
+      // A colour PNG's first row is read only when the roles need it (it alone, 8-bit colour by
+      // its header); the bytes read then are the ones decoded.
+      const heightPng = new Set(), read = new Map();
+      const [only] = heads;
+      if (picked.length === 1 && encodingSelect.value === 'auto' && hasPngSignature(only.head) && only.head[24] === 8 && [2, 3, 6].includes(only.head[25])) {
+        read.set(0, new Uint8Array(await picked[0].arrayBuffer()));
+        if (await detectPngEncoding(read.get(0), only.name)) heightPng.add(only.name);
       }
       let roles;
       try {
@@ -229,7 +225,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
       const image = roles.image === null ? null : { name: picked[roles.image].name, blob: picked[roles.image] };
       const world = roles.worldFile === null ? null : { name: picked[roles.worldFile].name, blob: picked[roles.worldFile] };
       if (roles.field.length > 0) {
-        const files = await Promise.all(roles.field.map(async (i) => ({ name: picked[i].name, bytes: new Uint8Array(await picked[i].arrayBuffer()) })));
+        const files = await Promise.all(roles.field.map(async (i) => ({ name: picked[i].name, bytes: read.get(i) ?? new Uint8Array(await picked[i].arrayBuffer()) })));
         if (signal.aborted) return cancelled(signal, names);
         const outcome = await decode(files, {}, signal, null, false);
         if (outcome !== 'shown') return outcome;
@@ -256,7 +252,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
       const limits = { timeoutMs: settings.urlTimeout * 1000, maxBytes: settings.urlMaxMB * MB, signal };
       let bytes;
       try {
-        bytes = await fetchLimited(imageUrl, { ...limits, accept: acceptImage, onBytes: downloadProgress(name, false) });
+        bytes = await fetchLimited(imageUrl, { ...limits, accept: acceptFile, onBytes: downloadProgress(name, false) });
       } catch (error) {
         return signal.aborted ? cancelled(signal, name) : failed(fetchFailure(name, url, error));
       }
