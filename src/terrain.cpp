@@ -2,8 +2,12 @@
 // in one place; see terrain.h.
 #include "terrain.h"
 
+#include <algorithm>
+#include <cmath>
 #include <new>
 #include <vector>
+
+#include "mesh/embedding.h"
 
 #include "mesh/hex_mesh_refine.h"
 #include "mesh/pool_growth.h"
@@ -17,6 +21,85 @@ std::unique_ptr<Terrain> Terrain::create(int32_t width, int32_t height, SampleTy
     std::unique_ptr<Terrain> terrain(new (std::nothrow) Terrain(std::move(field)));
     if (!terrain && error) *error = "out of memory for the terrain";
     return terrain;
+}
+
+std::unique_ptr<Terrain> Terrain::createTiled(int32_t width, int32_t height, SampleType type, int32_t levels, const int32_t* dims,
+                                              const char** error) {
+    auto field = Heightfield::createTiled(width, height, type, levels, dims, error);
+    if (!field) return nullptr;
+    std::unique_ptr<Terrain> terrain(new (std::nothrow) Terrain(std::move(field)));
+    if (!terrain && error) *error = "out of memory for the terrain";
+    return terrain;
+}
+
+void* Terrain::tileBuffer(int32_t level, int32_t tx, int32_t ty) {
+    return field_->tiles() ? field_->tiles()->tileBuffer(level, tx, ty) : nullptr;
+}
+
+bool Terrain::commitTile(int32_t level, int32_t tx, int32_t ty) {
+    return field_->tiles() && field_->tiles()->commit(level, tx, ty, changedHeights_);
+}
+
+bool Terrain::evictTile(int32_t level, int32_t tx, int32_t ty) {
+    return field_->tiles() && field_->tiles()->evict(level, tx, ty, changedHeights_);
+}
+
+const char* Terrain::declareHeightRange(double low, double high) {
+    if (!field_->tiles()) return "the terrain holds its samples whole: its height range is known";
+    if (!field_->declareHeightRange(low, high)) return "the height range must be finite, low <= high, within 1e9 m";
+    if (hasMesh_) refiner_.heightsChanged({0, 0, field_->width() - 1, field_->height() - 1}, true);
+    return nullptr;
+}
+
+const std::vector<TileWant>& Terrain::tileWants() { return wants_.collect(mesh_, *field_, refiner_.starved()); }
+
+// The heights under some vertices changed (tiles came or went): each moves to its new height,
+// blending from where it is drawn (§7's geomorph, as a split's new vertex does), and the cells
+// whose bounds read those samples are tested again.
+void Terrain::applyHeightChanges() {
+    if (changedHeights_.empty()) return;
+    const SampleRect rect = changedHeights_;
+    changedHeights_ = {};
+    const bool grew = field_->widenHeightRange();
+    if (!hasMesh_) return;
+    const double sx = field_->scale().spacingX, sy = field_->scale().spacingY;
+    const int32_t vertices = mesh_.vertexCapacity();
+    if (int32_t(movingMark_.size()) < vertices) movingMark_.resize(size_t(vertices), 0);
+    moving_.clear(), movingHeights_.clear(), movingCells_.clear();
+    for (int32_t v = 0; v < vertices; ++v) {
+        if (!mesh_.isVertexLive(v)) continue;
+        const glm::vec3& p = mesh_.vertexPosition(v);
+        // A shifted odd row's vertex averages the samples on either side: one sample around.
+        // Lattice points past the field read its edge samples (embedding.h): clamped.
+        const int32_t j = std::clamp(int32_t(std::floor(p.x / sx)), 0, field_->width() - 1);
+        const int32_t i = std::clamp(int32_t(std::lround(p.z / sy)), 0, field_->height() - 1);
+        if (j + 1 < rect.j0 || j - 1 > rect.j1 || i < rect.i0 || i > rect.i1) continue;
+        const float y = embedLatticePoint(*field_, mesh_.embedding(), mesh_.vertexLattice(v)).y;
+        if (y == p.y) continue;
+        moving_.push_back(v), movingHeights_.push_back(y);
+        movingMark_[size_t(v)] = 1;
+    }
+    if (!moving_.empty()) {
+        for (int32_t c = 0; c < mesh_.cellCapacity(); ++c) {
+            if (!mesh_.isLive(c)) continue;
+            const uint32_t* fan = mesh_.cellFan(c);
+            for (int32_t k = 0; k < kCellFanSlot && fan[k] != kRestartIndex; ++k)
+                if (movingMark_[fan[k]]) {
+                    movingCells_.push_back(c);
+                    break;
+                }
+        }
+        stream_.moveVertices(mesh_, movingCells_, [&] {
+            for (size_t k = 0; k < moving_.size(); ++k) {
+                StreamVertex& sv = mesh_.streamVertex(moving_[k]);
+                const float shown = morph_.displayed(sv).y;
+                sv.position.y = movingHeights_[k];
+                morph_.blendToNewHeight(mesh_, moving_[k], shown);
+            }
+        });
+        for (int32_t v : moving_) movingMark_[size_t(v)] = 0;
+    }
+    refiner_.heightsChanged(rect, grew);
 }
 
 const char* Terrain::setScale(const HeightfieldScale& scale) {
@@ -66,6 +149,7 @@ UpdateStats Terrain::updateLod() {
 void Terrain::syncStream() {
     stream_.sync(mesh_, morph_);
     // Now the stream has applied every change and the refiner is between updates.
+    applyHeightChanges();
     if (compactPools_ && mesh_.wantsCompaction()) compact();
 }
 
@@ -89,7 +173,8 @@ bool Terrain::drawnHeightAt(double x, double z, float& height) const {
 }
 
 size_t Terrain::memoryBytes() const {
-    return mesh_.memoryBytes() + refiner_.memoryBytes() + stream_.memoryBytes() + renumbering_.capacity() * sizeof(int32_t);
+    return mesh_.memoryBytes() + refiner_.memoryBytes() + stream_.memoryBytes() + renumbering_.capacity() * sizeof(int32_t) +
+           wants_.memoryBytes() + (moving_.capacity() + movingHeights_.capacity() + movingCells_.capacity()) * 4 + movingMark_.capacity();
 }
 
 } // namespace hexlod

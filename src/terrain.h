@@ -14,6 +14,7 @@
 
 #include "field/heightfield.h"
 #include "lod/refiner.h"
+#include "lod/tile_wants.h"
 #include "lod/view_criteria.h"
 #include "mesh/hex_mesh.h"
 #include "stream/fan_stream.h"
@@ -35,6 +36,26 @@ public:
     /// A terrain of width x height samples of `type`, uninitialised; null (and *error set)
     /// for a bad size or type or when memory is exhausted.
     static std::unique_ptr<Terrain> create(int32_t width, int32_t height, SampleType type, const char** error);
+
+    /// A terrain whose samples arrive by tiles (field/sample_tiles.h): `levels` x (width,
+    /// height, tileWidth, tileHeight), the full resolution first. Write and commit the coarsest
+    /// level's tiles, then setScale, prepare and resetMesh as for any terrain.
+    static std::unique_ptr<Terrain> createTiled(int32_t width, int32_t height, SampleType type, int32_t levels,
+                                                const int32_t* dims, const char** error);
+    /// A tiled terrain: where to write a tile's samples (SampleTiles::tileBuffer), then commit
+    /// it; or let one go. The heights change at the end of the next syncStream (the vertices
+    /// there blend to their new heights, the refiner tests the cells there again). False for
+    /// a tile outside the levels, one not written or not held, or a terrain held whole.
+    void* tileBuffer(int32_t level, int32_t tx, int32_t ty);
+    bool commitTile(int32_t level, int32_t tx, int32_t ty);
+    bool evictTile(int32_t level, int32_t tx, int32_t ty);
+    /// A tiled terrain: the height range of all its samples, as the file states it
+    /// (Heightfield::declareHeightRange); with a mesh, every bound is packed anew. Returns null
+    /// or what is wrong.
+    const char* declareHeightRange(double low, double high);
+    /// The tiles the view needs next, most needed first (lod/tile_wants.h); none for a
+    /// terrain held whole or when every cell has the samples it needs.
+    const std::vector<TileWant>& tileWants();
 
     Heightfield& field() { return *field_; }
     const Heightfield& field() const { return *field_; }
@@ -120,6 +141,7 @@ public:
 private:
     explicit Terrain(std::unique_ptr<Heightfield> field) : field_(std::move(field)) {}
     void attachMesh();
+    void applyHeightChanges();
 
     std::unique_ptr<Heightfield> field_;
     HexMesh mesh_;
@@ -131,6 +153,13 @@ private:
     Geomorph morph_;
     Refiner refiner_;
     FanStream stream_;
+    // A tiled terrain: the samples whose heights changed since the last sync, the tiles to
+    // fetch, and scratch lists of the vertices that move.
+    SampleRect changedHeights_;
+    TileWants wants_;
+    std::vector<int32_t> moving_, movingCells_;
+    std::vector<float> movingHeights_;
+    std::vector<uint8_t> movingMark_;
 };
 
 } // namespace hexlod

@@ -30,7 +30,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature, a struct layout or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 12
+#define HEXLOD_ABI_VERSION 13
 
 /* The status of every failure. */
 #define HEXLOD_ERROR (-1)
@@ -189,6 +189,14 @@ typedef struct hexlod_level_view {
 #define HEXLOD_SURFACE_FIELD 0 /* the samples, bilinear, clamped to the field */
 #define HEXLOD_SURFACE_DRAWN 1 /* the surface as drawn now: the stream's triangles, blends included */
 
+/* One tile a tiled terrain should fetch next. 24 bytes. */
+typedef struct hexlod_tile_want {
+    int32_t level;       /* 0: the full resolution; each next level coarser (as given at creation) */
+    int32_t tx, ty;      /* the tile's column (0 at the west) and row (0 at the north) in its level */
+    int32_t reserved;
+    double priority_px;  /* the largest projected error (device pixels; metres in max-error mode) of a
+                            cell that waits for it: fetch the largest first */
+} hexlod_tile_want;
 /* Returns HEXLOD_ABI_VERSION of the compiled core. */
 uint32_t hexlod_abi_version(void);
 
@@ -213,6 +221,44 @@ void hexlod_terrain_destroy(hexlod_terrain* terrain);
 /* Where the caller writes the samples: width*height values of the sample type, row-major,
  * row 0 north, native byte order. NULL on failure. */
 void* hexlod_terrain_samples(hexlod_terrain* terrain);
+
+/* A terrain whose samples arrive by tiles, as a Cloud-Optimized GeoTIFF read by range requests
+ * gives them: level_count levels (1 to 24), dims = level_count x (width, height, tile_width,
+ * tile_height), the full resolution first (width x height samples), each next level coarser
+ * (an overview; its sample k lies at full-resolution position (k + 0.5) * width / level_width
+ * - 0.5), tiles of 1 to 4096 samples a side. It holds no sample yet: write and commit every tile
+ * of the coarsest level, then hexlod_terrain_set_scale, hexlod_terrain_prepare and
+ * hexlod_terrain_reset_mesh as for any terrain. Heights come from the finest level present
+ * (bilinear between its samples); the refinement splits no cell finer than that level and asks
+ * for the tiles it needs instead (hexlod_terrain_tile_wants). hexlod_terrain_samples has no
+ * array to give for it. NULL on failure. */
+hexlod_terrain* hexlod_terrain_create_tiled(int32_t width, int32_t height, int32_t sample_type, int32_t level_count,
+                                            const int32_t* dims);
+/* Where to write tile (tx, ty) of `level` of a tiled terrain: tile_width x tile_height samples of
+ * its sample type, row by row (what lies past the level's edge is ignored). The same buffer until
+ * the tile is evicted. NULL outside the levels, for a terrain held whole, or out of memory. */
+void* hexlod_terrain_tile_buffer(hexlod_terrain* terrain, int32_t level, int32_t tx, int32_t ty);
+/* The tile's samples are written. Its missing samples (nodata, NaN) take the lowest height; the
+ * heights there come from it at the end of the next frame's stream step, where the vertices blend
+ * to them (§7) and the cells are tested again. 0, or HEXLOD_ERROR for a tile with no buffer. */
+int32_t hexlod_terrain_commit_tile(hexlod_terrain* terrain, int32_t level, int32_t tx, int32_t ty);
+/* Lets a tile go (its memory serves the next tile); the heights there fall back to a coarser
+ * level the same way. The coarsest level's tiles stay. 0, or HEXLOD_ERROR for a tile not held. */
+int32_t hexlod_terrain_evict_tile(hexlod_terrain* terrain, int32_t level, int32_t tx, int32_t ty);
+/* The height range (metres) of all the samples of a tiled terrain, when the file states it
+ * (GDAL's STATISTICS_MINIMUM and STATISTICS_MAXIMUM): the tiles present cannot show it. The
+ * refinement's cached bounds are packed in steps of the height range, so with the whole range
+ * declared the mesh converges to the one of the same field loaded whole; without it, to one
+ * just as close to the samples (tau holds either way). Call after hexlod_terrain_prepare; the
+ * range only widens. 0, or HEXLOD_ERROR for a terrain held whole or a bad range. */
+int32_t hexlod_terrain_declare_height_range(hexlod_terrain* terrain, double low_m, double high_m);
+/* The tiles the current view waits for, most needed first, at most 4096: those of the level the
+ * children of every cell held back by the data need (a cell whose test with the detail its
+ * level's samples show fails, while its children would be finer than that level). Collected
+ * anew at each call from the last LOD update, so a tile no cell needs any more drops out.
+ * *wants points at them until the next call on the terrain. Returns their count (0 for a
+ * terrain held whole), or HEXLOD_ERROR without a mesh. */
+int32_t hexlod_terrain_tile_wants(hexlod_terrain* terrain, const hexlod_tile_want** wants);
 
 /* Sets how samples become metres. With a mesh, the mesh is rebuilt from its base for the new
  * scale (positions and cached refinement data change; settings are kept). 0 or HEXLOD_ERROR,

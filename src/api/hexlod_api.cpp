@@ -105,10 +105,58 @@ hexlod_terrain* hexlod_terrain_create(int32_t width, int32_t height, int32_t sam
     return terrain;
 }
 
+hexlod_terrain* hexlod_terrain_create_tiled(int32_t width, int32_t height, int32_t sample_type, int32_t level_count,
+                                            const int32_t* dims) {
+    const char* error = nullptr;
+    auto core = hexlod::Terrain::createTiled(width, height, hexlod::SampleType(sample_type), level_count, dims, &error);
+    if (!core) return fail(error), nullptr;
+    hexlod_terrain* terrain = new (std::nothrow) hexlod_terrain();
+    if (!terrain) return fail("out of memory for the terrain"), nullptr;
+    terrain->core = std::move(core);
+    return terrain;
+}
+
+void* hexlod_terrain_tile_buffer(hexlod_terrain* terrain, int32_t level, int32_t tx, int32_t ty) {
+    if (!terrain) return fail(kNullHandle), nullptr;
+    if (!terrain->core->field().tiles()) return fail("the terrain holds its samples whole: it has no tiles"), nullptr;
+    void* buffer = terrain->core->tileBuffer(level, tx, ty);
+    if (!buffer) return fail("no such tile (level or tile outside the terrain's), or out of memory for it"), nullptr;
+    return buffer;
+}
+
+int32_t hexlod_terrain_commit_tile(hexlod_terrain* terrain, int32_t level, int32_t tx, int32_t ty) {
+    if (!terrain) return fail(kNullHandle);
+    if (!terrain->core->commitTile(level, tx, ty)) return fail("the tile has no buffer to commit (ask hexlod_terrain_tile_buffer first)");
+    return 0;
+}
+
+int32_t hexlod_terrain_evict_tile(hexlod_terrain* terrain, int32_t level, int32_t tx, int32_t ty) {
+    if (!terrain) return fail(kNullHandle);
+    if (!terrain->core->evictTile(level, tx, ty)) return fail("the tile is not held, or is of the coarsest level (which stays)");
+    return 0;
+}
+
+int32_t hexlod_terrain_declare_height_range(hexlod_terrain* terrain, double low_m, double high_m) {
+    if (!terrain) return fail(kNullHandle);
+    if (const char* error = terrain->core->declareHeightRange(low_m, high_m)) return fail(error);
+    return 0;
+}
+
+int32_t hexlod_terrain_tile_wants(hexlod_terrain* terrain, const hexlod_tile_want** wants) {
+    if (const char* problem = needMesh(terrain)) return fail(problem);
+    const std::vector<hexlod::TileWant>& found = terrain->core->tileWants();
+    std::vector<hexlod_tile_want>& out = terrain->wants;
+    out.resize(found.size());
+    for (size_t k = 0; k < found.size(); ++k) out[k] = {found[k].level, found[k].tx, found[k].ty, 0, double(found[k].priority)};
+    if (wants) *wants = out.data();
+    return int32_t(out.size());
+}
+
 void hexlod_terrain_destroy(hexlod_terrain* terrain) { delete terrain; }
 
 void* hexlod_terrain_samples(hexlod_terrain* terrain) {
     if (!terrain) return fail(kNullHandle), nullptr;
+    if (terrain->core->field().tiles()) return fail("a tiled terrain has no whole sample array (write its tiles: hexlod_terrain_tile_buffer)"), nullptr;
     return terrain->core->field().samples();
 }
 

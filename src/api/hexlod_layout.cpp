@@ -52,6 +52,12 @@ extern "C" const char* hexlod_struct_layout(void) {
     HEXLOD_FIELD(hexlod_field_info, max_height_m);
     HEXLOD_FIELD(hexlod_field_info, missing);
     HEXLOD_FIELD(hexlod_field_info, sample_bytes);
+    HEXLOD_STRUCT(hexlod_tile_want);
+    HEXLOD_FIELD(hexlod_tile_want, level);
+    HEXLOD_FIELD(hexlod_tile_want, tx);
+    HEXLOD_FIELD(hexlod_tile_want, ty);
+    HEXLOD_FIELD(hexlod_tile_want, reserved);
+    HEXLOD_FIELD(hexlod_tile_want, priority_px);
     HEXLOD_STRUCT(hexlod_mesh_settings);
     HEXLOD_FIELD(hexlod_mesh_settings, embedding);
     HEXLOD_STRUCT(hexlod_settings);

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "api/hexlod.h"
 #include "diagnostics/popping_meter.h"
@@ -12,6 +13,7 @@
 struct hexlod_terrain {
     std::unique_ptr<hexlod::Terrain> core;
     hexlod::PoppingMeter popping; // diagnostics only; unused by the product
+    std::vector<hexlod_tile_want> wants; // what hexlod_terrain_tile_wants hands out
 };
 
 namespace hexlod::api {

@@ -50,6 +50,38 @@ std::unique_ptr<Heightfield> Heightfield::create(int32_t width, int32_t height, 
     return field;
 }
 
+std::unique_ptr<Heightfield> Heightfield::createTiled(int32_t width, int32_t height, SampleType type, int32_t levels,
+                                                      const int32_t* dims, const char** error) {
+    const char* ignored = nullptr;
+    if (!error) error = &ignored;
+    if (sampleBytes(type) == 0) {
+        *error = "unknown sample type (expected 1=u8, 2=u16, 3=i16, 4=f32)";
+        return nullptr;
+    }
+    if (width < 2 || height < 2) {
+        *error = "a height field needs at least 2x2 samples";
+        return nullptr;
+    }
+    if (width > kMaxFieldSide || height > kMaxFieldSide) {
+        *error = "a height field side is limited to 65536 samples";
+        return nullptr;
+    }
+    std::unique_ptr<Heightfield> field(new (std::nothrow) Heightfield());
+    if (field) field->tiles_.reset(new (std::nothrow) SampleTiles());
+    if (!field || !field->tiles_) {
+        *error = "out of memory for the height field";
+        return nullptr;
+    }
+    if (const char* problem = field->tiles_->init(width, height, type, levels, dims)) {
+        *error = problem;
+        return nullptr;
+    }
+    field->width_ = width;
+    field->height_ = height;
+    field->type_ = type;
+    return field;
+}
+
 const char* Heightfield::setScale(const HeightfieldScale& scale) {
     const bool finite = std::isfinite(scale.spacingX) && std::isfinite(scale.spacingY) &&
                         std::isfinite(scale.heightScale) && std::isfinite(scale.heightOffset);
@@ -63,6 +95,7 @@ const char* Heightfield::setScale(const HeightfieldScale& scale) {
     if (std::abs(scale.heightScale) > kMaxAbsHeight) return "height scale must be at most 1e9 metres per raw unit in magnitude";
     if (std::abs(scale.heightOffset) > kMaxAbsHeight) return "height offset must be between -1e9 m and 1e9 m";
     scale_ = scale;
+    if (tiles_) tiles_->setScale(scale);
     return nullptr;
 }
 
@@ -81,7 +114,48 @@ void Heightfield::setRaw(size_t k, double raw) {
     }
 }
 
+// The height range of raw extremes, or an error when they are not heights.
+static const char* heightsOf(const HeightfieldScale& scale, double lowRaw, double highRaw, double& a, double& b) {
+    a = lowRaw * scale.heightScale + scale.heightOffset;
+    b = highRaw * scale.heightScale + scale.heightOffset;
+    // Beyond this, heights (times the vertical scale) overflow what the criteria (§5) and the
+    // camera can hold: most often a nodata value the file does not declare.
+    if (!(std::max(std::abs(a), std::abs(b)) <= kMaxAbsHeight))
+        return "heights must lie between -1e9 m and 1e9 m after the height scale and offset (is a nodata value undeclared?)";
+    return nullptr;
+}
+
+bool Heightfield::declareHeightRange(double low, double high) {
+    if (!(std::isfinite(low) && std::isfinite(high) && low <= high && std::max(std::abs(low), std::abs(high)) <= kMaxAbsHeight)) return false;
+    minHeight_ = std::min(minHeight_, float(low));
+    maxHeight_ = std::max(maxHeight_, float(high));
+    return true;
+}
+
+bool Heightfield::widenHeightRange() {
+    double lowRaw, highRaw, a, b;
+    if (!tiles_ || !tiles_->rawRange(lowRaw, highRaw) || heightsOf(scale_, lowRaw, highRaw, a, b)) return false;
+    const float low = std::min(minHeight_, float(std::min(a, b))), high = std::max(maxHeight_, float(std::max(a, b)));
+    const bool grew = low < minHeight_ || high > maxHeight_;
+    minHeight_ = low, maxHeight_ = high;
+    missingCount_ = tiles_->missingCount();
+    return grew;
+}
+
 const char* Heightfield::prepare() {
+    if (tiles_) {
+        // What is present now (the coarsest level at least) gives the range and the fill; each
+        // tile that comes later is filled as it is committed.
+        if (!tiles_->coarsestComplete()) return "the coarsest level's tiles must all be present before the field is prepared";
+        double lowRaw, highRaw, a, b;
+        if (!tiles_->rawRange(lowRaw, highRaw)) return "every sample is nodata";
+        if (const char* problem = heightsOf(scale_, lowRaw, highRaw, a, b)) return problem;
+        tiles_->setFillRaw(scale_.heightScale > 0.0 ? lowRaw : highRaw);
+        missingCount_ = tiles_->missingCount();
+        minHeight_ = float(std::min(a, b));
+        maxHeight_ = float(std::max(a, b));
+        return nullptr;
+    }
     const size_t n = sampleCount();
     double lowRaw = 0.0, highRaw = 0.0;
     bool any = false;
@@ -97,12 +171,8 @@ const char* Heightfield::prepare() {
         highRaw = std::max(highRaw, raw);
     }
     if (!any) return "every sample is nodata";
-    const double a = lowRaw * scale_.heightScale + scale_.heightOffset;
-    const double b = highRaw * scale_.heightScale + scale_.heightOffset;
-    // Beyond this, heights (times the vertical scale) overflow what the criteria (§5) and the
-    // camera can hold: most often a nodata value the file does not declare.
-    if (!(std::max(std::abs(a), std::abs(b)) <= kMaxAbsHeight))
-        return "heights must lie between -1e9 m and 1e9 m after the height scale and offset (is a nodata value undeclared?)";
+    double a, b;
+    if (const char* problem = heightsOf(scale_, lowRaw, highRaw, a, b)) return problem;
     // A negative scale flips which raw extreme is the lowest height.
     const double fillRaw = scale_.heightScale > 0.0 ? lowRaw : highRaw;
     missingCount_ = missing;
@@ -114,6 +184,8 @@ const char* Heightfield::prepare() {
     maxHeight_ = float(std::max(a, b));
     return nullptr;
 }
+
+float Heightfield::tiledHeightAt(int32_t j, int32_t i) const { return tiles_->height(j, i); }
 
 float Heightfield::heightClamped(int32_t j, int32_t i) const {
     j = std::clamp(j, 0, width_ - 1);

@@ -10,31 +10,10 @@
 #include <cstdint>
 #include <memory>
 
+#include "field/heightfield_scale.h"
+#include "field/sample_tiles.h"
+
 namespace hexlod {
-
-enum class SampleType : int32_t { U8 = 1, U16 = 2, I16 = 3, F32 = 4 };
-
-/// Bytes per sample of a type, 0 for an unknown type.
-size_t sampleBytes(SampleType type);
-
-/// Largest field the core accepts (samples per side). 65536 keeps every index math in 32 bits
-/// while allowing far more than a 4 GB WASM memory can hold.
-constexpr int32_t kMaxFieldSide = 65536;
-/// Sample spacing, metres: a micrometre (surface metrology) to 100,000 km (a coarse whole planet).
-constexpr double kMinSpacing = 1e-6, kMaxSpacing = 1e8;
-/// Largest height magnitude, metres after the scale (offset included): a thousand times the
-/// Moon's distance, far past any real relief, and small enough that heights times the largest
-/// vertical scale (1000) stay within the camera's coordinates (api/hexlod.h).
-constexpr double kMaxAbsHeight = 1e9;
-
-struct HeightfieldScale {
-    double spacingX = 1.0;     // metres between columns
-    double spacingY = 1.0;     // metres between rows
-    double heightScale = 1.0;  // metres per raw unit
-    double heightOffset = 0.0; // metres at raw 0
-    bool hasNodata = false;    // whether nodataRaw marks missing samples (NaN always does for f32)
-    double nodataRaw = 0.0;    // raw value of a missing sample
-};
 
 class Heightfield {
 public:
@@ -42,19 +21,39 @@ public:
     /// or memory is exhausted; `error` then says which.
     static std::unique_ptr<Heightfield> create(int32_t width, int32_t height, SampleType type,
                                                const char** error);
+    /// A field whose samples arrive by tiles (field/sample_tiles.h): `levels` x (width, height,
+    /// tileWidth, tileHeight), the full resolution first, then ever coarser overviews. It holds
+    /// no sample yet: the caller writes and commits the coarsest level's tiles before prepare().
+    static std::unique_ptr<Heightfield> createTiled(int32_t width, int32_t height, SampleType type, int32_t levels,
+                                                    const int32_t* dims, const char** error);
+    /// The tiles of a tiled field, null for a field held whole.
+    SampleTiles* tiles() { return tiles_.get(); }
+    const SampleTiles* tiles() const { return tiles_.get(); }
 
     int32_t width() const { return width_; }
     int32_t height() const { return height_; }
     SampleType type() const { return type_; }
+    /// The samples of a field held whole, row by row; null for a tiled field.
     void* samples() { return samples_.get(); }
     const void* samples() const { return samples_.get(); }
     size_t sampleCount() const { return size_t(width_) * size_t(height_); }
-    size_t byteSize() const { return sampleCount() * sampleBytes(type_); }
+    /// Bytes of the samples held: all of them, or the tiles present.
+    size_t byteSize() const { return tiles_ ? tiles_->sampleBytes() : sampleCount() * sampleBytes(type_); }
 
     /// Validates the scale and records it (spacings within [kMinSpacing, kMaxSpacing], a non-zero
     /// height scale and an offset within kMaxAbsHeight). Returns an error message or null.
     const char* setScale(const HeightfieldScale& scale);
     const HeightfieldScale& scale() const { return scale_; }
+
+    /// Widens the height range to [low, high] metres (a tiled field, after prepare): what a file
+    /// says of all its samples (GDAL's statistics), which the tiles present cannot show. The
+    /// refinement packs its bounds in steps of the range (lod/packed_bounds.h): with the whole
+    /// range known, the converged mesh is the one of the field loaded whole. False (nothing
+    /// changed) for a range that is not finite or inverted.
+    bool declareHeightRange(double low, double high);
+    /// Grows the height range by what the tiles hold now (a tiled field, after tiles came).
+    /// True when it grew.
+    bool widenHeightRange();
 
     /// Call after the samples are written: replaces missing samples (nodata, NaN, inf) by the
     /// lowest valid height, so no spike or hole reaches the mesh, and finds min and max.
@@ -65,8 +64,10 @@ public:
     float minHeight() const { return minHeight_; } // metres
     float maxHeight() const { return maxHeight_; } // metres
 
-    /// Height in metres of sample (column j, row i); both must be inside the field.
+    /// Height in metres of sample (column j, row i); both must be inside the field. A tiled
+    /// field answers from the finest level present there (sample_tiles.h).
     float heightAt(int32_t j, int32_t i) const {
+        if (tiles_) return tiledHeightAt(j, i); // out of line: a field held whole inlines the rest
         const size_t k = size_t(i) * size_t(width_) + size_t(j);
         return float(rawAt(k) * scale_.heightScale + scale_.heightOffset);
     }
@@ -87,12 +88,14 @@ private:
         return 0.0;
     }
     bool isMissing(size_t k) const;
+    float tiledHeightAt(int32_t j, int32_t i) const;
     void setRaw(size_t k, double raw);
 
     int32_t width_ = 0;
     int32_t height_ = 0;
     SampleType type_ = SampleType::F32;
     std::unique_ptr<uint8_t[]> samples_;
+    std::unique_ptr<SampleTiles> tiles_;
     HeightfieldScale scale_;
     size_t missingCount_ = 0;
     float minHeight_ = 0.0f;

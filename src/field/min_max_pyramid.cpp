@@ -14,13 +14,15 @@ void MinMaxPyramid::build(const Heightfield& field) {
     base.rows = (height_ + kBlock - 1) / kBlock;
     base.low.assign(size_t(base.columns) * base.rows, 1e30f);
     base.high.assign(size_t(base.columns) * base.rows, -1e30f);
-    for (int32_t i = 0; i < height_; ++i) {
-        const size_t blockRow = size_t(i / kBlock) * size_t(base.columns);
-        for (int32_t j = 0; j < width_; ++j) {
-            const float h = field.heightAt(j, i);
-            const size_t b = blockRow + size_t(j / kBlock);
-            base.low[b] = std::min(base.low[b], h);
-            base.high[b] = std::max(base.high[b], h);
+    if (!field.tiles()) {
+        for (int32_t i = 0; i < height_; ++i) {
+            const size_t blockRow = size_t(i / kBlock) * size_t(base.columns);
+            for (int32_t j = 0; j < width_; ++j) {
+                const float h = field.heightAt(j, i);
+                const size_t b = blockRow + size_t(j / kBlock);
+                base.low[b] = std::min(base.low[b], h);
+                base.high[b] = std::max(base.high[b], h);
+            }
         }
     }
     levels_.push_back(std::move(base));
@@ -31,13 +33,46 @@ void MinMaxPyramid::build(const Heightfield& field) {
         coarse.rows = (fine.rows + 1) / 2;
         coarse.low.assign(size_t(coarse.columns) * coarse.rows, 1e30f);
         coarse.high.assign(size_t(coarse.columns) * coarse.rows, -1e30f);
-        for (int32_t r = 0; r < fine.rows; ++r)
-            for (int32_t c = 0; c < fine.columns; ++c) {
-                const size_t from = size_t(r) * fine.columns + c, to = size_t(r / 2) * coarse.columns + c / 2;
-                coarse.low[to] = std::min(coarse.low[to], fine.low[from]);
-                coarse.high[to] = std::max(coarse.high[to], fine.high[from]);
-            }
         levels_.push_back(std::move(coarse));
+        if (!field.tiles()) mergeUp(levels_.size() - 1, 0, 0, levels_.back().columns - 1, levels_.back().rows - 1);
+    }
+    if (field.tiles()) update(field, {0, 0, width_ - 1, height_ - 1});
+}
+
+void MinMaxPyramid::measureBase(const Heightfield& field, int32_t c0, int32_t r0, int32_t c1, int32_t r1) {
+    Level& base = levels_[0];
+    for (int32_t r = r0; r <= r1; ++r)
+        for (int32_t c = c0; c <= c1; ++c) {
+            const size_t b = size_t(r) * base.columns + c;
+            field.tiles()->range({c * kBlock, r * kBlock, c * kBlock + kBlock - 1, r * kBlock + kBlock - 1}, base.low[b], base.high[b]);
+        }
+}
+
+// Level `level`'s blocks [c0, c1] x [r0, r1] from the four blocks under each.
+void MinMaxPyramid::mergeUp(size_t level, int32_t c0, int32_t r0, int32_t c1, int32_t r1) {
+    const Level& fine = levels_[level - 1];
+    Level& coarse = levels_[level];
+    for (int32_t r = r0; r <= r1; ++r)
+        for (int32_t c = c0; c <= c1; ++c) {
+            float low = 1e30f, high = -1e30f;
+            for (int32_t fr = 2 * r; fr <= std::min(2 * r + 1, fine.rows - 1); ++fr)
+                for (int32_t fc = 2 * c; fc <= std::min(2 * c + 1, fine.columns - 1); ++fc) {
+                    low = std::min(low, fine.low[size_t(fr) * fine.columns + fc]);
+                    high = std::max(high, fine.high[size_t(fr) * fine.columns + fc]);
+                }
+            coarse.low[size_t(r) * coarse.columns + c] = low;
+            coarse.high[size_t(r) * coarse.columns + c] = high;
+        }
+}
+
+void MinMaxPyramid::update(const Heightfield& field, const SampleRect& rect) {
+    if (!field.tiles() || rect.empty() || levels_.empty()) return;
+    int32_t c0 = std::max(0, rect.j0 / kBlock), r0 = std::max(0, rect.i0 / kBlock);
+    int32_t c1 = std::min(levels_[0].columns - 1, rect.j1 / kBlock), r1 = std::min(levels_[0].rows - 1, rect.i1 / kBlock);
+    measureBase(field, c0, r0, c1, r1);
+    for (size_t level = 1; level < levels_.size(); ++level) {
+        c0 /= 2, r0 /= 2, c1 /= 2, r1 /= 2;
+        mergeUp(level, c0, r0, c1, r1);
     }
 }
 

@@ -15,8 +15,12 @@ class MinMaxPyramid {
 public:
     static constexpr int32_t kBlock = 16; // samples per block side at the finest level
 
-    /// One pass over the field's samples.
+    /// One pass over the field's samples (a tiled field: over the levels its heights come
+    /// from, SampleTiles::range).
     void build(const Heightfield& field);
+    /// The heights of a tiled field changed in `rect`: its blocks and the blocks above them
+    /// are measured again.
+    void update(const Heightfield& field, const SampleRect& rect);
 
     /// Lowest and highest height in metres of the samples with column in [j0, j1] and row in
     /// [i0, i1] (clamped to the field; inclusive). The result may cover a few more samples
@@ -30,6 +34,8 @@ private:
         int32_t columns = 0, rows = 0; // blocks
         std::vector<float> low, high;
     };
+    void measureBase(const Heightfield& field, int32_t c0, int32_t r0, int32_t c1, int32_t r1);
+    void mergeUp(size_t level, int32_t c0, int32_t r0, int32_t c1, int32_t r1);
     std::vector<Level> levels_; // levels_[0]: kBlock x kBlock samples per block; each next: 2 x 2 blocks
     int32_t width_ = 0, height_ = 0;
 };

@@ -158,6 +158,17 @@ void scanTriangle(const Heightfield& field, Embedding embedding, const Triangle&
         }
         const int32_t j0 = std::max(0, ceilToInt(xl * toColumns - eps));
         const int32_t j1 = std::min(field.width() - 1, floorToInt(xr * toColumns + eps));
+        if (field.tiles()) {
+            // A tiled field: each height from the level present there (scanRow's arithmetic).
+            for (int32_t j = j0; j <= j1; ++j) {
+                const double x = float(j * sx);
+                const float h = field.heightAt(j, i);
+                const double d = h - (c - kx * (x - ax));
+                above = std::max(above, d), below = std::min(below, d);
+                low = std::min(low, h), high = std::max(high, h);
+            }
+            continue;
+        }
         const size_t rowStart = size_t(i) * size_t(field.width());
         auto scan = [&](const auto* samples) {
             scanRow(samples + rowStart, j0, j1, sx, scale.heightScale, scale.heightOffset, c, kx, ax, above, below, low, high);

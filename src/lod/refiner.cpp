@@ -24,6 +24,7 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
     cache_.setHeightRange(field.minHeight(), field.maxHeight());
     releasePool(records_);
     releasePool(state_);
+    releasePool(starved_);
     summaries_.release();
     currentTau_ = settings_.tau;
     last_ = {};
@@ -108,8 +109,11 @@ void Refiner::noteChanges(bool collect) {
         reserveLikePool(records_, capacity, room), reserveLikePool(state_, capacity, room);
         records_.resize(capacity);
         state_.resize(capacity, 0);
+        if (field_->tiles()) reserveLikePool(starved_, capacity, room), starved_.resize(capacity, 0.0f);
         summaries_.resize(capacity, room);
     }
+    if (!starved_.empty())
+        for (int32_t c : changes_) starved_[size_t(c)] = 0.0f; // a tiled field's: tested again
     for (int32_t c : changes_) {
         cache_.invalidate(c);
         if (collect) makeDueForRetest(c);
@@ -284,10 +288,29 @@ bool Refiner::canRefine(int32_t c) const {
     return mesh_->canSplit(hexIdx(across));
 }
 
+bool Refiner::coarserData(const CellShape& shape, const Footprint& f, float& detail, bool& heldBack) const {
+    const SampleTiles& tiles = *field_->tiles();
+    const double sx = field_->scale().spacingX, sy = field_->scale().spacingY;
+    const SampleRect rect{int32_t(std::floor(f.x0 / sx)), int32_t(std::floor(f.z0 / sy)), int32_t(std::ceil(f.x1 / sx)),
+                          int32_t(std::ceil(f.z1 / sy))};
+    const int32_t level = tiles.levelIn(rect, detail);
+    if (level == 0) return false;
+    const TileLevel& l = tiles.level(level);
+    // Its children's vertices are step / 2 samples apart: finer than the level's samples.
+    heldBack = 0.5 * shape.step < std::max(l.scaleX, l.scaleY) * (1.0 - 1e-9);
+    return true;
+}
+
 // Tests a cell's own bound and, for a merge candidate, its merge; sets its record and state.
 void Refiner::testCell(int32_t c, const HeldOwn* held) {
     double dist;
     CellVerdict own;
+    // A tiled field: the verdict with the detail still to come is made with the own one.
+    const bool tiled = field_->tiles() != nullptr;
+    bool coarse = false, heldBack = false;
+    CellVerdict withDetail;
+    double detailDist = 0.0;
+    if (tiled) held = nullptr;
     if (held) {
         // Its own verdict holds for what is left of its margin: a pass (or a failure at the
         // finest level, which is a pass with no margin limit to the rest of this test).
@@ -305,10 +328,24 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
             slopes = ownSlopes(c, footprint);
             if (slopes.known()) own = judge(footprint, bound, &slopes, false, dist);
         }
+        float detail = 0.0f;
+        if (tiled && coarserData(shapeOfCell(*mesh_, c), footprint, detail, heldBack)) {
+            // Its heights come from an overview: the finer samples may add the detail that
+            // level shows. When that could fail the cell, it asks for them; when its children
+            // would be finer than the overview, it waits for them instead of splitting.
+            coarse = true;
+            CellError wider = bound;
+            wider.error += detail;
+            wider.low -= detail, wider.high += detail;
+            withDetail = judge(footprint, wider, &slopes, true, detailDist);
+        }
+        // (One that fails as it is and may split needs nothing more: its children are tested.)
+        const bool starved = coarse && !withDetail.pass && (own.pass || heldBack);
+        if (tiled) starved_[size_t(c)] = starved ? float(std::max(withDetail.pixels, 1e-6)) : 0.0f;
     }
     uint8_t& state = state_[size_t(c)];
     state &= uint8_t(kPending | kCancel | kFresh | kLooked);
-    if (!own.pass && canRefine(c)) {
+    if (!own.pass && canRefine(c) && !heldBack) {
         state |= kFailing;
         makeDue(c);
         heap_.push_back({float(own.pixels), c});
@@ -318,6 +355,13 @@ void Refiner::testCell(int32_t c, const HeldOwn* held) {
     }
     CellVerdict record = own;
     if (!own.pass) record.margin = kForever; // failing at the finest level: nothing to do, whatever the view
+    if (coarse) {
+        // Tested again when the verdict with the detail to come may change (or when tiles come:
+        // heightsChanged), so the tiles asked for follow the view.
+        if (own.pass) tighten(record, withDetail);
+        else record = withDetail; // held back
+        dist = std::max(dist, detailDist);
+    }
     const double ownMargin = record.margin;
     const Hexagon& h = mesh_->cell(c);
     if (h.kind != CellKind::Semi && h.splitCount > 0) {

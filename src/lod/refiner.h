@@ -92,6 +92,17 @@ public:
     /// states, pending merges and queued cells follow them; the sweep resumes at the same cell.
     void renumber(const std::vector<int32_t>& cellMap, const std::vector<int32_t>& vertexMap);
 
+    /// A tiled field's heights changed in `rect` (tiles came or went, field/sample_tiles.h): the
+    /// pyramid there is measured again, and every cell whose bounds may read those samples
+    /// forgets them and is tested again at the next update. A wider height range packs bounds
+    /// in other steps (refinement_cache.h): then every cell forgets.
+    void heightsChanged(const SampleRect& rect, bool rangeGrew);
+    /// Per cell record of a tiled field: the projected error (pixels; metres in view-independent
+    /// mode) of a cell whose heights come from an overview and whose test with the detail still
+    /// to come (the detail that level's samples show) fails; 0 for every other cell. The tiles to fetch are where these are
+    /// (lod/tile_wants.h). Empty for a field held whole.
+    const std::vector<float>& starved() const { return starved_; }
+
     /// One update (see above). Returns its figures.
     UpdateStats update();
     const UpdateStats& lastUpdate() const { return last_; }
@@ -176,6 +187,9 @@ private:
     void invalidateAll();
     void checkSettings();
     bool canRefine(int32_t cell) const;
+    // A tiled field: whether a cell's heights come from an overview, with that level's detail
+    // (metres) under it, and whether its children would be finer than that level (held back).
+    bool coarserData(const CellShape& shape, const Footprint& footprint, float& detail, bool& heldBack) const;
     bool refineStep(int32_t cell);   // one operation towards refining the cell; false if none
     bool beginMerge(int32_t cell);   // merges now, or starts fading out (then false)
     bool mergeNow(int32_t cell);     // the merge itself, its parent bound carried over (§5.1)
@@ -201,6 +215,7 @@ private:
     std::vector<TestRecord> records_;
     SweepSummaries summaries_; // of records_, by groups the sweep may pass over
     std::vector<uint8_t> state_;
+    std::vector<float> starved_; // see starved(); tiled fields only
     std::vector<int32_t> changes_, fresh_; // the mesh's change log; the changed cells to retest, each once
     std::vector<int32_t> looked_;          // the cells around the changes that retestChanged looked at
     std::vector<int32_t> mergeChanged_;    // mergeNow's copy of the log of one merge

@@ -22,6 +22,7 @@ void Refiner::renumber(const std::vector<int32_t>& cellMap, const std::vector<in
     cache_.renumber(cellMap, cells, room);
     renumberPool(records_, cellMap, cells, room);
     renumberPool(state_, cellMap, cells, room);
+    if (field_->tiles()) renumberPool(starved_, cellMap, cells, room);
     summaries_.release(); // every group read again
     summaries_.resize(cells, room);
     // A merge whose cell or vertex is gone (the mesh changed around it in the last update) is

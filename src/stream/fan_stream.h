@@ -72,6 +72,20 @@ public:
     /// Allocates nothing unless the pools grew.
     void sync(HexMesh& mesh, Geomorph& morph);
 
+    /// Moves vertices without changing the mesh (a tiled field's heights changed under them,
+    /// field/sample_tiles.h): `move()` sets the new positions; `cells` are every live cell that
+    /// draws a vertex that moves. Their normals follow exactly (the cells' triangles leave the
+    /// sums before the move and come back after it) and their vertices are marked dirty. Call
+    /// between frames, after a sync.
+    template <typename Move>
+    void moveVertices(HexMesh& mesh, const std::vector<int32_t>& cells, Move&& move) {
+        for (int32_t c : cells) accumulate(mesh, keptSlot(mesh, c), -1);
+        move();
+        for (int32_t c : cells) accumulate(mesh, keptSlot(mesh, c), +1);
+        finishNormals(mesh);
+        touchedVertices_.clear();
+        ++version_;
+    }
     /// The index array to draw: the mesh's fan table, or the triangle list.
     const std::vector<uint32_t>& indices() const { return layout_ == IndexLayout::Fans ? mesh_->fanTable() : indices_; }
     /// Indices to draw: the slots of every cell record the pool has (free ones are restarts).
@@ -112,6 +126,10 @@ private:
     void forEachTriangle(const uint32_t* slot, Visit&& visit) const;
     void accumulate(const HexMesh& mesh, const uint32_t* slot, int64_t sign);
     void markVertex(int32_t v);
+    // The slot whose triangles the normal sums hold: the kept one, or the mesh's fan.
+    const uint32_t* keptSlot(const HexMesh& mesh, int32_t c) const {
+        return keepsSlots() ? indices_.data() + size_t(c) * size_t(slotSize()) : mesh.cellFan(c);
+    }
     void releaseArrays();
     void finishNormals(HexMesh& mesh);
     void rebuildNormals(HexMesh& mesh);

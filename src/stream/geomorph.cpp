@@ -29,6 +29,14 @@ void Geomorph::blendIn(HexMesh& mesh, int32_t v, const VertexParents& parents) {
     changed_.push_back(v);
 }
 
+void Geomorph::blendToNewHeight(HexMesh& mesh, int32_t v, float shown) {
+    StreamVertex& sv = mesh.streamVertex(v);
+    if (sv.morphKey < 0.0f) return;
+    sv.morphFromHeight = shown;
+    sv.morphKey = enabled() ? float(frame_) + 1.0f : 0.0f;
+    changed_.push_back(v);
+}
+
 void Geomorph::blendOut(HexMesh& mesh, int32_t v, const VertexParents& parents) {
     StreamVertex& sv = mesh.streamVertex(v);
     if (!enabled() || sv.morphKey < 0.0f) return;

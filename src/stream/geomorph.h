@@ -82,6 +82,10 @@ public:
     /// from where it is drawn now. Not yet blending out; without parents a and b it has no
     /// coarser surface to go to (a base vertex) and stays.
     void blendOut(HexMesh& mesh, int32_t v, const VertexParents& parents) override;
+    /// A vertex whose true height changed under it (a tiled field's finer samples came, or
+    /// went): it blends from where it is drawn now, `shown`, to its new position, as a new vertex
+    /// blends in. One that is fading out keeps fading (its merge is under way).
+    void blendToNewHeight(HexMesh& mesh, int32_t v, float shown);
     /// Reverses a blend-out (the merge was called off), continuing from where it is drawn.
     void cancelBlendOut(HexMesh& mesh, int32_t v) override;
     bool blendingOut(const StreamVertex& v) const override { return v.morphKey < 0.0f; }

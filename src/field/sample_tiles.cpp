@@ -1,0 +1,322 @@
+// Samples that arrive by tiles; see sample_tiles.h.
+#include "field/sample_tiles.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <new>
+
+namespace hexlod {
+
+void SampleRect::add(const SampleRect& r) {
+    if (r.empty()) return;
+    if (empty()) {
+        *this = r;
+        return;
+    }
+    j0 = std::min(j0, r.j0), i0 = std::min(i0, r.i0), j1 = std::max(j1, r.j1), i1 = std::max(i1, r.i1);
+}
+
+const char* SampleTiles::init(int32_t width, int32_t height, SampleType type, int32_t levels, const int32_t* dims) {
+    if (levels < 1 || levels > kMaxLevels) return "a tiled field needs 1 to 24 levels";
+    if (!dims) return "the levels' sizes are missing";
+    width_ = width, height_ = height, type_ = type, bytesPerSample_ = hexlod::sampleBytes(type);
+    levels_.clear();
+    size_t largestTile = 0;
+    for (int32_t k = 0; k < levels; ++k) {
+        TileLevel l;
+        l.width = dims[4 * k], l.height = dims[4 * k + 1], l.tileWidth = dims[4 * k + 2], l.tileHeight = dims[4 * k + 3];
+        if (l.width < 1 || l.height < 1 || l.tileWidth < 1 || l.tileHeight < 1 || l.tileWidth > 4096 || l.tileHeight > 4096)
+            return "a level needs a positive size and tiles of 1 to 4096 samples a side";
+        if (k == 0 && (l.width != width || l.height != height)) return "level 0 must be the full resolution";
+        if (k > 0 && (l.width > levels_.back().width || l.height > levels_.back().height ||
+                      (l.width == levels_.back().width && l.height == levels_.back().height)))
+            return "each level must be coarser than the one before";
+        l.tilesAcross = (l.width + l.tileWidth - 1) / l.tileWidth;
+        l.tilesDown = (l.height + l.tileHeight - 1) / l.tileHeight;
+        l.scaleX = double(width) / l.width, l.scaleY = double(height) / l.height;
+        const size_t tiles = size_t(l.tilesAcross) * size_t(l.tilesDown);
+        l.slot.assign(tiles, -1);
+        l.present.assign(tiles, 0);
+        l.detail.assign(tiles, 0.0f);
+        largestTile = std::max(largestTile, size_t(l.tileWidth) * size_t(l.tileHeight));
+        levels_.push_back(std::move(l));
+    }
+    slotBytes_ = largestTile * bytesPerSample_;
+    slots_.clear(), freeSlots_.clear(), heldSlots_ = 0;
+    const TileLevel& finest = levels_[0];
+    regionWidth_ = finest.tileWidth, regionHeight_ = finest.tileHeight;
+    regionsAcross_ = finest.tilesAcross, regionsDown_ = finest.tilesDown;
+    regionLevel_.assign(size_t(regionsAcross_) * size_t(regionsDown_), uint8_t(coarsest()));
+    regionDetail_.assign(regionLevel_.size(), 0.0f);
+    hasFill_ = false, fillRaw_ = 0.0, missing_ = 0;
+    hasRange_ = false, rangeLow_ = rangeHigh_ = 0.0;
+    return nullptr;
+}
+
+double SampleTiles::rawIn(int32_t slot, size_t k) const {
+    const uint8_t* bytes = slots_[size_t(slot)].get();
+    switch (type_) {
+        case SampleType::U8: return bytes[k];
+        case SampleType::U16: return reinterpret_cast<const uint16_t*>(bytes)[k];
+        case SampleType::I16: return reinterpret_cast<const int16_t*>(bytes)[k];
+        case SampleType::F32: return reinterpret_cast<const float*>(bytes)[k];
+    }
+    return 0.0;
+}
+
+double SampleTiles::rawAtLevel(const TileLevel& l, int32_t u, int32_t v) const {
+    const int32_t tx = u / l.tileWidth, ty = v / l.tileHeight;
+    const int32_t slot = l.slot[size_t(ty * l.tilesAcross + tx)];
+    return rawIn(slot, size_t(v - ty * l.tileHeight) * size_t(l.tileWidth) + size_t(u - tx * l.tileWidth));
+}
+
+float SampleTiles::blended(int32_t level, int32_t j, int32_t i) const {
+    const TileLevel& l = levels_[size_t(level)];
+    const double u = std::clamp((j + 0.5) / l.scaleX - 0.5, 0.0, double(l.width - 1));
+    const double v = std::clamp((i + 0.5) / l.scaleY - 0.5, 0.0, double(l.height - 1));
+    const int32_t u0 = int32_t(u), v0 = int32_t(v);
+    const int32_t u1 = std::min(u0 + 1, l.width - 1), v1 = std::min(v0 + 1, l.height - 1);
+    const double fu = u - u0, fv = v - v0;
+    const double top = double(toMetres(rawAtLevel(l, u0, v0))) * (1.0 - fu) + double(toMetres(rawAtLevel(l, u1, v0))) * fu;
+    const double bottom = double(toMetres(rawAtLevel(l, u0, v1))) * (1.0 - fu) + double(toMetres(rawAtLevel(l, u1, v1))) * fu;
+    return float(top * (1.0 - fv) + bottom * fv);
+}
+
+void SampleTiles::samplesFor(int32_t level, const SampleRect& r, int32_t& u0, int32_t& v0, int32_t& u1, int32_t& v1) const {
+    const TileLevel& l = levels_[size_t(level)];
+    if (level == 0) {
+        u0 = std::max(r.j0, 0), v0 = std::max(r.i0, 0), u1 = std::min(r.j1, l.width - 1), v1 = std::min(r.i1, l.height - 1);
+        return;
+    }
+    u0 = std::clamp(int32_t(std::floor((r.j0 + 0.5) / l.scaleX - 0.5)), 0, l.width - 1);
+    v0 = std::clamp(int32_t(std::floor((r.i0 + 0.5) / l.scaleY - 0.5)), 0, l.height - 1);
+    u1 = std::clamp(int32_t(std::ceil((r.j1 + 0.5) / l.scaleX - 0.5)), 0, l.width - 1);
+    v1 = std::clamp(int32_t(std::ceil((r.i1 + 0.5) / l.scaleY - 0.5)), 0, l.height - 1);
+}
+
+void SampleTiles::tilesCovering(int32_t level, const SampleRect& rect, int32_t& tx0, int32_t& ty0, int32_t& tx1, int32_t& ty1) const {
+    int32_t u0, v0, u1, v1;
+    samplesFor(level, rect, u0, v0, u1, v1);
+    const TileLevel& l = levels_[size_t(level)];
+    tx0 = u0 / l.tileWidth, ty0 = v0 / l.tileHeight, tx1 = u1 / l.tileWidth, ty1 = v1 / l.tileHeight;
+}
+
+SampleRect SampleTiles::regionRect(int32_t region) const {
+    const int32_t rx = region % regionsAcross_, ry = region / regionsAcross_;
+    return {rx * regionWidth_, ry * regionHeight_, std::min((rx + 1) * regionWidth_, width_) - 1,
+            std::min((ry + 1) * regionHeight_, height_) - 1};
+}
+
+SampleRect SampleTiles::tileRect(int32_t level, int32_t tx, int32_t ty) const {
+    const TileLevel& l = levels_[size_t(level)];
+    // Its samples reach the full-resolution samples within one of its spacings of them.
+    const double x0 = (tx * l.tileWidth - 1 + 0.5) * l.scaleX - 0.5, x1 = ((tx + 1) * l.tileWidth + 0.5) * l.scaleX - 0.5;
+    const double y0 = (ty * l.tileHeight - 1 + 0.5) * l.scaleY - 0.5, y1 = ((ty + 1) * l.tileHeight + 0.5) * l.scaleY - 0.5;
+    return {std::max(0, int32_t(std::floor(x0))), std::max(0, int32_t(std::floor(y0))), std::min(width_ - 1, int32_t(std::ceil(x1))),
+            std::min(height_ - 1, int32_t(std::ceil(y1)))};
+}
+
+bool SampleTiles::present(int32_t level, int32_t tx, int32_t ty) const {
+    if (level < 0 || level >= levelCount()) return false;
+    const TileLevel& l = levels_[size_t(level)];
+    if (tx < 0 || ty < 0 || tx >= l.tilesAcross || ty >= l.tilesDown) return false;
+    return l.present[size_t(ty * l.tilesAcross + tx)] != 0;
+}
+
+bool SampleTiles::coarsestComplete() const {
+    const TileLevel& l = levels_.back();
+    return std::all_of(l.present.begin(), l.present.end(), [](uint8_t p) { return p != 0; });
+}
+
+void* SampleTiles::tileBuffer(int32_t level, int32_t tx, int32_t ty) {
+    if (level < 0 || level >= levelCount()) return nullptr;
+    TileLevel& l = levels_[size_t(level)];
+    if (tx < 0 || ty < 0 || tx >= l.tilesAcross || ty >= l.tilesDown) return nullptr;
+    int32_t& slot = l.slot[size_t(ty * l.tilesAcross + tx)];
+    if (slot < 0) {
+        if (!freeSlots_.empty()) {
+            slot = freeSlots_.back();
+            freeSlots_.pop_back();
+        } else {
+            std::unique_ptr<uint8_t[]> bytes(new (std::nothrow) uint8_t[slotBytes_]);
+            if (!bytes) return nullptr;
+            slots_.push_back(std::move(bytes));
+            slot = int32_t(slots_.size()) - 1;
+        }
+        ++heldSlots_;
+    }
+    return slots_[size_t(slot)].get();
+}
+
+bool SampleTiles::missingRaw(double raw) const {
+    return !std::isfinite(raw) || (scale_.hasNodata && raw == scale_.nodataRaw);
+}
+
+void SampleTiles::fillMissing(int32_t slot, size_t count) {
+    uint8_t* bytes = slots_[size_t(slot)].get();
+    for (size_t k = 0; k < count; ++k) {
+        if (!missingRaw(rawIn(slot, k))) continue;
+        ++missing_;
+        switch (type_) {
+            case SampleType::U8: bytes[k] = uint8_t(fillRaw_); break;
+            case SampleType::U16: reinterpret_cast<uint16_t*>(bytes)[k] = uint16_t(fillRaw_); break;
+            case SampleType::I16: reinterpret_cast<int16_t*>(bytes)[k] = int16_t(fillRaw_); break;
+            case SampleType::F32: reinterpret_cast<float*>(bytes)[k] = float(fillRaw_); break;
+        }
+    }
+}
+
+float SampleTiles::measureDetail(int32_t level, int32_t tx, int32_t ty) const {
+    if (level == 0) return 0.0f; // nothing finer to come
+    const TileLevel& l = levels_[size_t(level)];
+    const int32_t slot = l.slot[size_t(ty * l.tilesAcross + tx)];
+    const int32_t w = std::min(l.tileWidth, l.width - tx * l.tileWidth), h = std::min(l.tileHeight, l.height - ty * l.tileHeight);
+    auto at = [&](int32_t u, int32_t v) { return double(toMetres(rawIn(slot, size_t(v) * size_t(l.tileWidth) + size_t(u)))); };
+    double detail = 0.0;
+    for (int32_t v = 0; v < h; ++v)
+        for (int32_t u = 0; u < w; ++u) {
+            const double c = at(u, v);
+            if (u > 0 && u + 1 < w) detail = std::max(detail, std::abs(at(u - 1, v) - 2.0 * c + at(u + 1, v)));
+            if (v > 0 && v + 1 < h) detail = std::max(detail, std::abs(at(u, v - 1) - 2.0 * c + at(u, v + 1)));
+        }
+    return float(0.5 * detail);
+}
+
+int32_t SampleTiles::finestLevelFor(int32_t region, float& detail) const {
+    const SampleRect r = regionRect(region);
+    for (int32_t level = 0; level < levelCount(); ++level) {
+        int32_t tx0, ty0, tx1, ty1;
+        tilesCovering(level, r, tx0, ty0, tx1, ty1);
+        const TileLevel& l = levels_[size_t(level)];
+        bool all = true;
+        float most = 0.0f;
+        for (int32_t ty = ty0; ty <= ty1 && all; ++ty)
+            for (int32_t tx = tx0; tx <= tx1 && all; ++tx) {
+                const size_t t = size_t(ty * l.tilesAcross + tx);
+                all = l.present[t] != 0;
+                most = std::max(most, l.detail[t]);
+            }
+        if (all) {
+            detail = most;
+            return level;
+        }
+    }
+    detail = 0.0f;
+    return coarsest(); // not complete yet: the caller loads the coarsest level before drawing
+}
+
+void SampleTiles::updateRegions(const SampleRect& around, SampleRect& changed) {
+    const int32_t rx0 = std::max(0, around.j0 / regionWidth_), rx1 = std::min(regionsAcross_ - 1, around.j1 / regionWidth_);
+    const int32_t ry0 = std::max(0, around.i0 / regionHeight_), ry1 = std::min(regionsDown_ - 1, around.i1 / regionHeight_);
+    for (int32_t ry = ry0; ry <= ry1; ++ry)
+        for (int32_t rx = rx0; rx <= rx1; ++rx) {
+            const int32_t region = ry * regionsAcross_ + rx;
+            float detail;
+            const int32_t level = finestLevelFor(region, detail);
+            regionDetail_[size_t(region)] = detail;
+            if (level == regionLevel_[size_t(region)]) continue;
+            regionLevel_[size_t(region)] = uint8_t(level);
+            changed.add(regionRect(region));
+        }
+}
+
+bool SampleTiles::commit(int32_t level, int32_t tx, int32_t ty, SampleRect& changed) {
+    if (level < 0 || level >= levelCount()) return false;
+    TileLevel& l = levels_[size_t(level)];
+    if (tx < 0 || ty < 0 || tx >= l.tilesAcross || ty >= l.tilesDown) return false;
+    const size_t t = size_t(ty * l.tilesAcross + tx);
+    if (l.slot[t] < 0) return false;
+    widenRange(level, tx, ty);
+    if (hasFill_) fillMissing(l.slot[t], size_t(l.tileWidth) * size_t(l.tileHeight));
+    l.present[t] = 1;
+    l.detail[t] = measureDetail(level, tx, ty);
+    updateRegions(tileRect(level, tx, ty), changed);
+    return true;
+}
+
+bool SampleTiles::evict(int32_t level, int32_t tx, int32_t ty, SampleRect& changed) {
+    if (level < 0 || level >= coarsest()) return false; // the coarsest level stays
+    TileLevel& l = levels_[size_t(level)];
+    if (tx < 0 || ty < 0 || tx >= l.tilesAcross || ty >= l.tilesDown) return false;
+    const size_t t = size_t(ty * l.tilesAcross + tx);
+    if (l.slot[t] < 0) return false;
+    freeSlots_.push_back(l.slot[t]);
+    l.slot[t] = -1;
+    l.present[t] = 0;
+    --heldSlots_;
+    updateRegions(tileRect(level, tx, ty), changed);
+    return true;
+}
+
+void SampleTiles::widenRange(int32_t level, int32_t tx, int32_t ty) {
+    const TileLevel& l = levels_[size_t(level)];
+    const int32_t slot = l.slot[size_t(ty * l.tilesAcross + tx)];
+    const int32_t w = std::min(l.tileWidth, l.width - tx * l.tileWidth), h = std::min(l.tileHeight, l.height - ty * l.tileHeight);
+    for (int32_t v = 0; v < h; ++v)
+        for (int32_t u = 0; u < w; ++u) {
+            const double raw = rawIn(slot, size_t(v) * size_t(l.tileWidth) + size_t(u));
+            if (missingRaw(raw)) continue;
+            if (!hasRange_) rangeLow_ = rangeHigh_ = raw, hasRange_ = true;
+            rangeLow_ = std::min(rangeLow_, raw), rangeHigh_ = std::max(rangeHigh_, raw);
+        }
+}
+
+bool SampleTiles::rawRange(double& low, double& high) const {
+    low = rangeLow_, high = rangeHigh_;
+    return hasRange_;
+}
+
+void SampleTiles::setFillRaw(double raw) {
+    fillRaw_ = raw;
+    hasFill_ = true;
+    for (const TileLevel& l : levels_)
+        for (size_t t = 0; t < l.present.size(); ++t)
+            if (l.present[t]) fillMissing(l.slot[t], size_t(l.tileWidth) * size_t(l.tileHeight));
+}
+
+void SampleTiles::range(const SampleRect& rect, float& low, float& high) const {
+    low = 1e30f, high = -1e30f;
+    const SampleRect r{std::max(rect.j0, 0), std::max(rect.i0, 0), std::min(rect.j1, width_ - 1), std::min(rect.i1, height_ - 1)};
+    if (r.empty()) return;
+    for (int32_t ry = r.i0 / regionHeight_; ry <= r.i1 / regionHeight_; ++ry)
+        for (int32_t rx = r.j0 / regionWidth_; rx <= r.j1 / regionWidth_; ++rx) {
+            const int32_t region = ry * regionsAcross_ + rx;
+            const SampleRect whole = regionRect(region);
+            const SampleRect part{std::max(r.j0, whole.j0), std::max(r.i0, whole.i0), std::min(r.j1, whole.j1), std::min(r.i1, whole.i1)};
+            const int32_t level = regionLevel_[size_t(region)];
+            // A bilinear blend stays within its four samples: the samples it reaches bound it.
+            int32_t u0, v0, u1, v1;
+            samplesFor(level, part, u0, v0, u1, v1);
+            const TileLevel& l = levels_[size_t(level)];
+            for (int32_t v = v0; v <= v1; ++v)
+                for (int32_t u = u0; u <= u1; ++u) {
+                    const float h = toMetres(rawAtLevel(l, u, v));
+                    low = std::min(low, h), high = std::max(high, h);
+                }
+        }
+}
+
+int32_t SampleTiles::levelIn(const SampleRect& rect, float& detail) const {
+    detail = 0.0f;
+    const SampleRect r{std::max(rect.j0, 0), std::max(rect.i0, 0), std::min(rect.j1, width_ - 1), std::min(rect.i1, height_ - 1)};
+    if (r.empty()) return 0;
+    int32_t level = 0;
+    for (int32_t ry = r.i0 / regionHeight_; ry <= r.i1 / regionHeight_; ++ry)
+        for (int32_t rx = r.j0 / regionWidth_; rx <= r.j1 / regionWidth_; ++rx) {
+            const size_t region = size_t(ry * regionsAcross_ + rx);
+            level = std::max(level, int32_t(regionLevel_[region]));
+            detail = std::max(detail, regionDetail_[region]);
+        }
+    return level;
+}
+
+size_t SampleTiles::sampleBytes() const { return size_t(heldSlots_) * slotBytes_; }
+
+size_t SampleTiles::memoryBytes() const {
+    size_t bytes = slots_.size() * slotBytes_ + regionLevel_.size() * (1 + sizeof(float));
+    for (const TileLevel& l : levels_) bytes += l.slot.size() * (sizeof(int32_t) + 1 + sizeof(float));
+    return bytes;
+}
+
+} // namespace hexlod

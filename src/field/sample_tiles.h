@@ -1,0 +1,140 @@
+// SampleTiles: the samples of a height field that arrive by tiles, as a Cloud-Optimized GeoTIFF
+// read by range requests gives them: the full resolution and its overviews (coarser levels),
+// each cut into tiles, any tile present or not. It lets the core refine a field far larger than
+// memory (paper §5's refinement, §4.7's field) while only the tiles the view needs are held.
+//
+// Heights are read from the finest level present: per region (one full-resolution tile), the
+// finest level whose samples around the region are all present gives the heights there,
+// bilinear between that level's samples (its sample k sits at full-resolution position
+// (k + 0.5) * scale - 0.5). The coarsest level is always whole (the caller loads it first), so
+// every height has an answer, and a region's answer changes only when a tile arrives or goes.
+//
+// The refiner (lod/refiner.h) does not split a cell finer than the level its heights come from
+// (levelIn); it asks for the tiles it would need instead (streamed_wants.h).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "field/heightfield_scale.h"
+
+namespace hexlod {
+
+/// A rectangle of full-resolution samples, inclusive; empty when j0 > j1.
+struct SampleRect {
+    int32_t j0 = 0, i0 = 0, j1 = -1, i1 = -1;
+    bool empty() const { return j0 > j1 || i0 > i1; }
+    void add(const SampleRect& r);
+    bool intersects(const SampleRect& r) const { return !empty() && !r.empty() && j0 <= r.j1 && r.j0 <= j1 && i0 <= r.i1 && r.i0 <= i1; }
+};
+
+/// One level of the pyramid: level 0 is the full resolution.
+struct TileLevel {
+    int32_t width = 0, height = 0;         // samples
+    int32_t tileWidth = 0, tileHeight = 0; // samples
+    int32_t tilesAcross = 0, tilesDown = 0;
+    double scaleX = 1.0, scaleY = 1.0;     // full-resolution samples per sample of this level
+    std::vector<int32_t> slot;             // per tile: its buffer in the slot pool, or -1
+    std::vector<uint8_t> present;          // per tile: committed
+    std::vector<float> detail;             // per tile: metres, see SampleTiles::commit
+};
+
+class SampleTiles {
+public:
+    static constexpr int32_t kMaxLevels = 24;
+
+    /// levels x (width, height, tileWidth, tileHeight), finest first; each level coarser than
+    /// the one before. Returns an error message or null.
+    const char* init(int32_t width, int32_t height, SampleType type, int32_t levels, const int32_t* dims);
+    void setScale(const HeightfieldScale& scale) { scale_ = scale; }
+
+    int32_t levelCount() const { return int32_t(levels_.size()); }
+    const TileLevel& level(int32_t l) const { return levels_[size_t(l)]; }
+    int32_t coarsest() const { return levelCount() - 1; }
+
+    /// Where the caller writes tile (level, tx, ty): tileWidth * tileHeight samples of the
+    /// field's type, row by row (allocated once per slot, reused after an eviction). Null for a
+    /// tile outside the level or when memory is exhausted.
+    void* tileBuffer(int32_t level, int32_t tx, int32_t ty);
+    /// The tile's samples were written: from now on they are present. Missing samples (nodata,
+    /// NaN) take the fill value; the tile's detail (the largest half second difference of its
+    /// heights, metres: how far its samples stand off the line through their neighbours, the
+    /// scale of what the next finer level may add) is measured. `changed` grows by the
+    /// samples whose heights changed. False when the tile has no buffer.
+    bool commit(int32_t level, int32_t tx, int32_t ty, SampleRect& changed);
+    /// The tile is gone (the cache dropped it); `changed` as for commit. Tiles of the coarsest
+    /// level stay. False when the tile was not held.
+    bool evict(int32_t level, int32_t tx, int32_t ty, SampleRect& changed);
+    bool present(int32_t level, int32_t tx, int32_t ty) const;
+    /// Whether every tile of the coarsest level is present (the field can be drawn).
+    bool coarsestComplete() const;
+
+    /// The lowest and highest raw sample of every tile committed so far (missing samples
+    /// excluded; an eviction does not narrow it); false when no sample came yet.
+    bool rawRange(double& low, double& high) const;
+    /// Missing samples are filled with this raw value from now on (and in the present tiles).
+    void setFillRaw(double raw);
+    size_t missingCount() const { return missing_; }
+
+    /// Height in metres at full-resolution sample (j, i), inside the field.
+    float height(int32_t j, int32_t i) const {
+        const int32_t region = (i / regionHeight_) * regionsAcross_ + j / regionWidth_;
+        if (regionLevel_[size_t(region)] == 0) {
+            const TileLevel& l = levels_[0];
+            const int32_t tx = j / l.tileWidth, ty = i / l.tileHeight;
+            const int32_t slot = l.slot[size_t(ty * l.tilesAcross + tx)];
+            return toMetres(rawIn(slot, size_t(i - ty * l.tileHeight) * size_t(l.tileWidth) + size_t(j - tx * l.tileWidth)));
+        }
+        return blended(regionLevel_[size_t(region)], j, i);
+    }
+    /// Lowest and highest height in metres over the samples of `rect` (clamped to the field):
+    /// a bound of the heights height() gives there.
+    void range(const SampleRect& rect, float& low, float& high) const;
+    /// The coarsest level that heights come from in `rect`, and the largest detail (metres) of
+    /// the tiles they come from (0 where that level is the full resolution).
+    int32_t levelIn(const SampleRect& rect, float& detail) const;
+    /// The tiles of `level` whose samples cover `rect` (clamped to the level).
+    void tilesCovering(int32_t level, const SampleRect& rect, int32_t& tx0, int32_t& ty0, int32_t& tx1, int32_t& ty1) const;
+
+    /// Bytes of the tiles held (their slots), and of the bookkeeping.
+    size_t sampleBytes() const;
+    size_t memoryBytes() const;
+
+private:
+    double rawIn(int32_t slot, size_t k) const;
+    float toMetres(double raw) const { return float(raw * scale_.heightScale + scale_.heightOffset); }
+    float blended(int32_t level, int32_t j, int32_t i) const;
+    double rawAtLevel(const TileLevel& l, int32_t u, int32_t v) const;
+    bool missingRaw(double raw) const;
+    void fillMissing(int32_t slot, size_t count);
+    void widenRange(int32_t level, int32_t tx, int32_t ty);
+    float measureDetail(int32_t level, int32_t tx, int32_t ty) const;
+    // The level-l samples (inclusive) whose bilinear blend reaches full-resolution rect r.
+    void samplesFor(int32_t level, const SampleRect& r, int32_t& u0, int32_t& v0, int32_t& u1, int32_t& v1) const;
+    SampleRect regionRect(int32_t region) const;
+    SampleRect tileRect(int32_t level, int32_t tx, int32_t ty) const; // full-resolution samples it reaches
+    void updateRegions(const SampleRect& around, SampleRect& changed);
+    int32_t finestLevelFor(int32_t region, float& detail) const;
+
+    int32_t width_ = 0, height_ = 0;
+    SampleType type_ = SampleType::I16;
+    size_t bytesPerSample_ = 2;
+    HeightfieldScale scale_;
+    std::vector<TileLevel> levels_;
+    size_t slotBytes_ = 0;
+    std::vector<std::unique_ptr<uint8_t[]>> slots_;
+    std::vector<int32_t> freeSlots_;
+    int32_t heldSlots_ = 0;
+    // Regions: the full-resolution tiles.
+    int32_t regionWidth_ = 1, regionHeight_ = 1, regionsAcross_ = 0, regionsDown_ = 0;
+    std::vector<uint8_t> regionLevel_;   // the level heights come from
+    std::vector<float> regionDetail_;    // metres: the detail of the tiles they come from (0 at level 0)
+    bool hasFill_ = false;
+    double fillRaw_ = 0.0;
+    size_t missing_ = 0;
+    bool hasRange_ = false;
+    double rangeLow_ = 0.0, rangeHigh_ = 0.0;
+};
+
+} // namespace hexlod

@@ -1,0 +1,94 @@
+// The tiles to fetch; see tile_wants.h.
+#include "lod/tile_wants.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "lod/cell_bounds.h"
+
+namespace hexlod {
+
+void TileWants::want(const SampleTiles& tiles, int32_t level, int32_t tx, int32_t ty, float priority) {
+    if (tiles.present(level, tx, ty)) return;
+    const TileLevel& l = tiles.level(level);
+    const size_t t = size_t(ty * l.tilesAcross + tx);
+    if (stamp_[size_t(level)][t] == now_) {
+        TileWant& w = wants_[size_t(slot_[size_t(level)][t])];
+        w.priority = std::max(w.priority, priority);
+        return;
+    }
+    stamp_[size_t(level)][t] = now_;
+    slot_[size_t(level)][t] = int32_t(wants_.size());
+    wants_.push_back({level, tx, ty, priority});
+}
+
+const std::vector<TileWant>& TileWants::collect(const HexMesh& mesh, const Heightfield& field, const std::vector<float>& starved) {
+    wants_.clear();
+    const SampleTiles* tiles = field.tiles();
+    if (!tiles) return wants_;
+    if (stamp_.size() != size_t(tiles->levelCount())) {
+        stamp_.assign(size_t(tiles->levelCount()), {});
+        slot_.assign(size_t(tiles->levelCount()), {});
+        for (int32_t k = 0; k < tiles->levelCount(); ++k) {
+            const size_t count = tiles->level(k).slot.size();
+            stamp_[size_t(k)].assign(count, 0u);
+            slot_[size_t(k)].assign(count, 0);
+        }
+        now_ = 0;
+    }
+    if (++now_ == 0) { // the stamps wrapped: start them again
+        for (auto& s : stamp_) std::fill(s.begin(), s.end(), 0u);
+        now_ = 1;
+    }
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    const TileLevel& finest = tiles->level(0);
+    const int32_t cells = std::min(int32_t(starved.size()), mesh.cellCapacity());
+    for (int32_t c = 0; c < cells; ++c) {
+        const float priority = starved[size_t(c)];
+        if (!(priority > 0.0f) || !mesh.isLive(c)) continue;
+        const CellShape shape = shapeOfCell(mesh, c);
+        const Footprint f = footprintOf(field, mesh.embedding(), shape);
+        SampleRect rect{std::max(0, int32_t(std::floor(f.x0 / sx))), std::max(0, int32_t(std::floor(f.z0 / sy))),
+                        std::min(field.width() - 1, int32_t(std::ceil(f.x1 / sx))), std::min(field.height() - 1, int32_t(std::ceil(f.z1 / sy)))};
+        if (rect.empty()) continue;
+        float detail;
+        const int32_t now = tiles->levelIn(rect, detail);
+        if (now == 0) continue;
+        // The coarsest level fine enough for the children (their vertices step / 2 samples
+        // apart); at least one finer than now.
+        int32_t target = now - 1;
+        while (target > 0) {
+            const TileLevel& l = tiles->level(target);
+            if (std::max(l.scaleX, l.scaleY) <= 0.5 * shape.step) break;
+            --target;
+        }
+        // Heights come from a level over whole regions (full-resolution tiles): every tile of
+        // the target level that those regions reach.
+        rect.j0 = rect.j0 / finest.tileWidth * finest.tileWidth, rect.i0 = rect.i0 / finest.tileHeight * finest.tileHeight;
+        rect.j1 = std::min(field.width() - 1, (rect.j1 / finest.tileWidth + 1) * finest.tileWidth - 1);
+        rect.i1 = std::min(field.height() - 1, (rect.i1 / finest.tileHeight + 1) * finest.tileHeight - 1);
+        int32_t tx0, ty0, tx1, ty1;
+        tiles->tilesCovering(target, rect, tx0, ty0, tx1, ty1);
+        for (int32_t ty = ty0; ty <= ty1; ++ty)
+            for (int32_t tx = tx0; tx <= tx1; ++tx) want(*tiles, target, tx, ty, priority);
+    }
+    auto moreNeeded = [](const TileWant& a, const TileWant& b) {
+        if (a.priority != b.priority) return a.priority > b.priority;
+        if (a.level != b.level) return a.level > b.level; // coarser first: it serves more cells
+        return a.ty != b.ty ? a.ty < b.ty : a.tx < b.tx;
+    };
+    if (wants_.size() > size_t(kMaxWants)) {
+        std::nth_element(wants_.begin(), wants_.begin() + kMaxWants, wants_.end(), moreNeeded);
+        wants_.resize(size_t(kMaxWants));
+    }
+    std::sort(wants_.begin(), wants_.end(), moreNeeded);
+    return wants_;
+}
+
+size_t TileWants::memoryBytes() const {
+    size_t bytes = wants_.capacity() * sizeof(TileWant);
+    for (size_t k = 0; k < stamp_.size(); ++k) bytes += stamp_[k].capacity() * sizeof(uint32_t) + slot_[k].capacity() * sizeof(int32_t);
+    return bytes;
+}
+
+} // namespace hexlod

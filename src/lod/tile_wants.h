@@ -1,0 +1,43 @@
+// The tiles a field that arrives by tiles (field/sample_tiles.h) should fetch next: under every
+// cell the data holds back (Refiner::starved), the tiles of the level its children need, most
+// needed first by the cell's projected error (paper §5's screen-space error, in pixels).
+// Collected again each time it is asked, so a tile no cell needs any more drops out: the
+// caller's queue follows the view.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "field/heightfield.h"
+#include "mesh/embedding.h"
+#include "mesh/hex_mesh.h"
+
+namespace hexlod {
+
+/// One tile to fetch. 16 bytes (the C ABI's hexlod_tile_want).
+struct TileWant {
+    int32_t level, tx, ty;
+    float priority; // the largest projected error (pixels) of a cell that needs it
+};
+
+class TileWants {
+public:
+    /// At most this many wants, the most needed.
+    static constexpr int32_t kMaxWants = 4096;
+
+    /// The wants of the cells in `starved` (per cell record, Refiner::starved), most needed
+    /// first; tiles already present are not wanted.
+    const std::vector<TileWant>& collect(const HexMesh& mesh, const Heightfield& field, const std::vector<float>& starved);
+    const std::vector<TileWant>& wants() const { return wants_; }
+    size_t memoryBytes() const;
+
+private:
+    void want(const SampleTiles& tiles, int32_t level, int32_t tx, int32_t ty, float priority);
+
+    std::vector<TileWant> wants_;
+    std::vector<std::vector<int32_t>> slot_; // per level and tile: its index in wants_ + 1 at this stamp, else 0
+    std::vector<std::vector<uint32_t>> stamp_;
+    uint32_t now_ = 0;
+};
+
+} // namespace hexlod

@@ -1,0 +1,322 @@
+// A field whose samples arrive by tiles (field/sample_tiles.h, hexlod_terrain_create_tiled): the
+// heights come from the finest level present, the refinement waits for the tiles it needs and
+// asks for them, the stream stays watertight while they come, and once they are in the mesh is
+// the one the same field loaded whole converges to.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "api/hexlod.h"
+#include "api/hexlod_diagnostics.h"
+#include "api/terrain_handle.h"
+#include "fixture.h"
+
+using namespace hexlod;
+
+namespace {
+
+constexpr int32_t kTile = 64;
+
+// A pyramid as GDAL's overviews make one: each level half the last (rounded up), each sample
+// the mean of the two by two it covers.
+struct Pyramid {
+    std::vector<std::vector<float>> levels;
+    std::vector<int32_t> widths, heights;
+};
+
+Pyramid makePyramid(const std::vector<float>& full, int32_t width, int32_t height) {
+    Pyramid p;
+    p.levels.push_back(full), p.widths.push_back(width), p.heights.push_back(height);
+    while (p.widths.back() > kTile || p.heights.back() > kTile) {
+        const int32_t w = p.widths.back(), h = p.heights.back(), cw = (w + 1) / 2, ch = (h + 1) / 2;
+        const std::vector<float>& fine = p.levels.back();
+        std::vector<float> coarse(size_t(cw) * ch);
+        for (int32_t v = 0; v < ch; ++v)
+            for (int32_t u = 0; u < cw; ++u) {
+                double sum = 0.0;
+                int32_t n = 0;
+                for (int32_t i = 2 * v; i <= std::min(2 * v + 1, h - 1); ++i)
+                    for (int32_t j = 2 * u; j <= std::min(2 * u + 1, w - 1); ++j) sum += fine[size_t(i) * w + j], ++n;
+                coarse[size_t(v) * cw + u] = float(sum / n);
+            }
+        p.levels.push_back(std::move(coarse)), p.widths.push_back(cw), p.heights.push_back(ch);
+    }
+    return p;
+}
+
+std::vector<int32_t> dimsOf(const Pyramid& p) {
+    std::vector<int32_t> dims;
+    for (size_t k = 0; k < p.levels.size(); ++k) dims.insert(dims.end(), {p.widths[k], p.heights[k], kTile, kTile});
+    return dims;
+}
+
+void writeTile(hexlod_terrain* t, const Pyramid& p, int32_t level, int32_t tx, int32_t ty) {
+    float* out = static_cast<float*>(hexlod_terrain_tile_buffer(t, level, tx, ty));
+    ASSERT_NE(out, nullptr) << hexlod_last_error();
+    const int32_t w = p.widths[size_t(level)], h = p.heights[size_t(level)];
+    for (int32_t v = 0; v < kTile; ++v)
+        for (int32_t u = 0; u < kTile; ++u) {
+            const int32_t j = tx * kTile + u, i = ty * kTile + v;
+            out[v * kTile + u] = j < w && i < h ? p.levels[size_t(level)][size_t(i) * w + j] : 0.0f;
+        }
+    ASSERT_EQ(hexlod_terrain_commit_tile(t, level, tx, ty), 0) << hexlod_last_error();
+}
+
+void tilesAcross(const Pyramid& p, int32_t level, int32_t& across, int32_t& down) {
+    across = (p.widths[size_t(level)] + kTile - 1) / kTile, down = (p.heights[size_t(level)] + kTile - 1) / kTile;
+}
+
+// declared: the whole field's height range, as a file's statistics give it (tiled terrains).
+void setUp(hexlod_terrain* t, const test::Fixture& f, int32_t morphFrames, bool declared = false) {
+    hexlod_scale scale{};
+    scale.spacing_x_m = f.spacingX;
+    scale.spacing_y_m = f.spacingY;
+    ASSERT_EQ(hexlod_terrain_set_scale(t, &scale), 0) << hexlod_last_error();
+    ASSERT_EQ(hexlod_terrain_prepare(t, nullptr), 0) << hexlod_last_error();
+    if (declared) ASSERT_EQ(hexlod_terrain_declare_height_range(t, f.minHeight, f.maxHeight), 0) << hexlod_last_error();
+    hexlod_mesh_settings mesh{HEXLOD_EMBEDDING_EXACT};
+    ASSERT_EQ(hexlod_terrain_reset_mesh(t, &mesh), 0) << hexlod_last_error();
+    hexlod_settings settings{};
+    settings.morph_frames = morphFrames;
+    ASSERT_EQ(hexlod_terrain_set_settings(t, &settings), 0);
+}
+
+// A low camera over the south of Jacksboro looking north: near samples at full resolution,
+// the far half of the field coarse.
+hexlod_camera southCamera(const test::Fixture& f) {
+    const double w = (f.width - 1) * double(f.spacingX), d = (f.height - 1) * double(f.spacingY);
+    return {{0.3 * w, 900.0, d - 300.0}, {0.35 * w, 400.0, 0.5 * d}, {0, 0, 0}, 0.5, 1.6, 800.0, 1.0, 1e7};
+}
+
+hexlod_terrain* tiledWithCoarsest(const Pyramid& p) {
+    const std::vector<int32_t> dims = dimsOf(p);
+    hexlod_terrain* t = hexlod_terrain_create_tiled(p.widths[0], p.heights[0], HEXLOD_SAMPLE_F32, int32_t(p.levels.size()), dims.data());
+    EXPECT_NE(t, nullptr) << hexlod_last_error();
+    const int32_t coarsest = int32_t(p.levels.size()) - 1;
+    int32_t across, down;
+    tilesAcross(p, coarsest, across, down);
+    for (int32_t ty = 0; ty < down; ++ty)
+        for (int32_t tx = 0; tx < across; ++tx) writeTile(t, p, coarsest, tx, ty);
+    return t;
+}
+
+// The mesh without its heights: every cell with its kind, level and split counter and the
+// lattice points of its vertices, as a sorted list.
+std::vector<std::vector<int64_t>> structureOf(const HexMesh& mesh) {
+    std::vector<std::vector<int64_t>> cells;
+    for (int32_t c = 0; c < mesh.cellCapacity(); ++c) {
+        if (!mesh.isLive(c)) continue;
+        const Hexagon& h = mesh.cell(c);
+        std::vector<int64_t> cell{h.level, int64_t(h.kind), h.splitCount, h.firstVisible};
+        const CellCorners corners = mesh.corners(c);
+        for (int32_t slot = 0; slot <= 6; ++slot)
+            if (corners.vertex[slot] != kNone) cell.push_back(int64_t(latticeKey(mesh.vertexLattice(corners.vertex[slot]))));
+        cells.push_back(std::move(cell));
+    }
+    std::sort(cells.begin(), cells.end());
+    return cells;
+}
+
+} // namespace
+
+TEST(TiledField, HeightsComeFromTheFinestLevelPresentAndEqualTheWholeFieldOnceItIsIn) {
+    const test::Fixture& f = test::kJacksboro;
+    const std::vector<float> data = test::readF32(f);
+    ASSERT_FALSE(data.empty());
+    const Pyramid p = makePyramid(data, f.width, f.height);
+    ASSERT_GE(p.levels.size(), 3u);
+    hexlod_terrain* t = tiledWithCoarsest(p);
+    setUp(t, f, 0);
+    EXPECT_EQ(hexlod_terrain_samples(t), nullptr) << "a tiled terrain has no whole array";
+    const auto terrain = test::loadTerrain(f);
+    const Heightfield& tiled = t->core->field();
+    // Only the coarsest level: bilinear between its samples, so within their range.
+    const std::vector<float>& top = p.levels.back();
+    const float low = *std::min_element(top.begin(), top.end()), high = *std::max_element(top.begin(), top.end());
+    for (int32_t i = 0; i < f.height; i += 7)
+        for (int32_t j = 0; j < f.width; j += 5) {
+            const float h = tiled.heightAt(j, i);
+            {
+                EXPECT_GE(h, low);
+                EXPECT_LE(h, high);
+            }
+        }
+    // Every full-resolution tile: the samples themselves, bit for bit.
+    int32_t across, down;
+    tilesAcross(p, 0, across, down);
+    for (int32_t ty = 0; ty < down; ++ty)
+        for (int32_t tx = 0; tx < across; ++tx) writeTile(t, p, 0, tx, ty);
+    for (int32_t i = 0; i < f.height; ++i)
+        for (int32_t j = 0; j < f.width; ++j) ASSERT_EQ(tiled.heightAt(j, i), terrain->field().heightAt(j, i)) << j << ", " << i;
+    // A full-resolution tile gone: its region reads the finest level left there, the coarsest.
+    ASSERT_EQ(hexlod_terrain_evict_tile(t, 0, 1, 1), 0);
+    EXPECT_NE(hexlod_terrain_evict_tile(t, int32_t(p.levels.size()) - 1, 0, 0), 0) << "the coarsest level stays";
+    const float back = tiled.heightAt(kTile + 10, kTile + 10);
+    EXPECT_GE(back, low);
+    EXPECT_LE(back, high);
+    EXPECT_EQ(hexlod_terrain_commit_tile(t, 0, 1, 1), HEXLOD_ERROR) << "an evicted tile has no buffer";
+    hexlod_terrain_destroy(t);
+}
+
+TEST(TiledField, StreamingStaysWatertightAndConvergesToTheMeshOfTheWholeField) {
+    const test::Fixture& f = test::kJacksboro;
+    const std::vector<float> data = test::readF32(f);
+    ASSERT_FALSE(data.empty());
+    const Pyramid p = makePyramid(data, f.width, f.height);
+    const hexlod_camera camera = southCamera(f);
+
+    // The field loaded whole, converged.
+    hexlod_terrain* whole = hexlod_terrain_create(f.width, f.height, HEXLOD_SAMPLE_F32);
+    std::memcpy(hexlod_terrain_samples(whole), data.data(), data.size() * sizeof(float));
+    setUp(whole, f, 0);
+    hexlod_frame out{};
+    for (int32_t frame = 0; frame < 200 && !out.converged; ++frame)
+        ASSERT_EQ(hexlod_terrain_frame(whole, frame == 0 ? &camera : nullptr, HEXLOD_FRAME_ALL | HEXLOD_FRAME_HASH, &out), 0);
+    ASSERT_TRUE(out.converged);
+    const uint64_t wholeHash = uint64_t(out.hash_high) << 32 | out.hash_low;
+    const auto wholeStructure = structureOf(whole->core->mesh());
+
+    for (const int32_t morph : {0, 8}) {
+        hexlod_terrain* t = tiledWithCoarsest(p);
+        setUp(t, f, morph, true);
+        // Tiles arrive a few a frame, the most needed first, as a fetch queue delivers them.
+        int32_t quiet = 0, frame = 0;
+        std::vector<int32_t> fetchedByLevel(p.levels.size(), 0);
+        for (; frame < 600 && quiet < 3; ++frame) {
+            ASSERT_EQ(hexlod_terrain_frame(t, frame == 0 ? &camera : nullptr, HEXLOD_FRAME_ALL | HEXLOD_FRAME_HASH, &out), 0);
+            double figures[7] = {};
+            ASSERT_EQ(hexlod_diag_check_stream(t, figures), 0) << "frame " << frame << ": " << hexlod_last_error();
+            ASSERT_EQ(hexlod_diag_check_mesh(t), 0) << hexlod_last_error();
+            const hexlod_tile_want* wants = nullptr;
+            const int32_t count = hexlod_terrain_tile_wants(t, &wants);
+            ASSERT_GE(count, 0);
+            for (int32_t k = 1; k < count; ++k) ASSERT_GE(wants[k - 1].priority_px, wants[k].priority_px) << "most needed first";
+            for (int32_t k = 0; k < std::min(count, 3); ++k) {
+                writeTile(t, p, wants[k].level, wants[k].tx, wants[k].ty);
+                ++fetchedByLevel[size_t(wants[k].level)];
+            }
+            quiet = count == 0 && out.converged && out.pending_merges == 0 ? quiet + 1 : 0;
+        }
+        ASSERT_EQ(quiet, 3) << "the tiles stopped coming after " << frame << " frames";
+        int32_t across, down;
+        tilesAcross(p, 0, across, down);
+        EXPECT_GT(fetchedByLevel[0], 0) << "the near ground needs full-resolution tiles";
+        EXPECT_LT(fetchedByLevel[0], across * down) << "the far ground does not";
+        // The cells are the whole field's; a vertex is at the sample's height where the full
+        // resolution came, at the overview's elsewhere (the far, coarse cells).
+        EXPECT_TRUE(structureOf(t->core->mesh()) == wholeStructure) << "morph " << morph;
+        const HexMesh& mesh = t->core->mesh();
+        int32_t exact = 0, fromOverview = 0;
+        for (int32_t v = 0; v < mesh.vertexCapacity(); ++v) {
+            if (!mesh.isVertexLive(v)) continue;
+            const LatticePoint lp = mesh.vertexLattice(v);
+            const int32_t j = std::clamp(sampleColumn(lp), 0, f.width - 1), i = std::clamp(lp.r, 0, f.height - 1);
+            float detail;
+            if (t->core->field().tiles()->levelIn({j, i, j, i}, detail) == 0) {
+                ASSERT_EQ(mesh.vertexPosition(v).y, embedLatticePoint(whole->core->field(), Embedding::Exact, lp).y);
+                ++exact;
+            } else {
+                ++fromOverview;
+            }
+        }
+        EXPECT_GT(exact, 10 * fromOverview);
+
+        // Every full-resolution tile in: the very mesh of the whole field, heights included.
+        for (int32_t ty = 0; ty < down; ++ty)
+            for (int32_t tx = 0; tx < across; ++tx)
+                if (!t->core->field().tiles()->present(0, tx, ty)) writeTile(t, p, 0, tx, ty);
+        // (The heights change at the end of the first frame's stream step; its test comes after.)
+        for (frame = 0; frame < 100 && (frame < 2 || !(out.converged && out.pending_merges == 0)); ++frame) {
+            ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL | HEXLOD_FRAME_HASH, &out), 0);
+            ASSERT_EQ(hexlod_diag_check_stream(t, nullptr), 0) << hexlod_last_error();
+        }
+        EXPECT_EQ(uint64_t(out.hash_high) << 32 | out.hash_low, wholeHash) << "morph " << morph;
+        hexlod_terrain_destroy(t);
+    }
+    hexlod_terrain_destroy(whole);
+}
+
+TEST(TiledField, WantsFollowTheViewAndEvictedTilesFallBackWithoutCracks) {
+    const test::Fixture& f = test::kJacksboro;
+    const std::vector<float> data = test::readF32(f);
+    ASSERT_FALSE(data.empty());
+    const Pyramid p = makePyramid(data, f.width, f.height);
+    hexlod_terrain* t = tiledWithCoarsest(p);
+    // Every overview present: what the view asks for is full-resolution tiles.
+    for (int32_t level = 1; level + 1 < int32_t(p.levels.size()); ++level) {
+        int32_t across, down;
+        tilesAcross(p, level, across, down);
+        for (int32_t ty = 0; ty < down; ++ty)
+            for (int32_t tx = 0; tx < across; ++tx) writeTile(t, p, level, tx, ty);
+    }
+    setUp(t, f, 8);
+    // A tolerance at which the far half of this small field needs no more than its overviews.
+    hexlod_settings settings{};
+    settings.morph_frames = 8;
+    settings.tau_px = 24.0;
+    ASSERT_EQ(hexlod_terrain_set_settings(t, &settings), 0);
+    const hexlod_camera south = southCamera(f);
+    hexlod_frame out{};
+    auto wantsNow = [&] {
+        const hexlod_tile_want* wants = nullptr;
+        const int32_t count = hexlod_terrain_tile_wants(t, &wants);
+        return std::vector<hexlod_tile_want>(wants, wants + std::max(count, 0));
+    };
+    // Wanted full-resolution tiles in the north half or the south half of the field.
+    auto rowsWanted = [&](const std::vector<hexlod_tile_want>& wants, int32_t& north, int32_t& south) {
+        north = south = 0;
+        for (const hexlod_tile_want& w : wants) {
+            const double scale = double(f.height) / p.heights[size_t(w.level)];
+            const double centre = 0.5 * (w.ty * kTile * scale + std::min((w.ty + 1) * kTile * scale, double(f.height)));
+            north += centre < 0.5 * f.height;
+            south += centre > 0.5 * f.height;
+        }
+    };
+    for (int32_t frame = 0; frame < 30; ++frame) ASSERT_EQ(hexlod_terrain_frame(t, frame == 0 ? &south : nullptr, HEXLOD_FRAME_ALL, &out), 0);
+    int32_t north = 0, near = 0;
+    const std::vector<hexlod_tile_want> fromSouth = wantsNow();
+    ASSERT_FALSE(fromSouth.empty());
+    rowsWanted(fromSouth, north, near);
+    EXPECT_GT(near, north) << "a camera over the south edge wants the full resolution there first";
+    EXPECT_GT(fromSouth[0].ty, 3) << "the most needed tile is under the camera";
+
+    // The same camera over the north edge, looking south: what only the south needed drops out.
+    const double w = (f.width - 1) * double(f.spacingX), d = (f.height - 1) * double(f.spacingY);
+    const hexlod_camera northCamera{{0.6 * w, 900.0, 300.0}, {0.55 * w, 400.0, 0.5 * d}, {0, 0, 0}, 0.5, 1.6, 800.0, 1.0, 1e7};
+    for (int32_t frame = 0; frame < 30; ++frame)
+        ASSERT_EQ(hexlod_terrain_frame(t, frame == 0 ? &northCamera : nullptr, HEXLOD_FRAME_ALL, &out), 0);
+    const std::vector<hexlod_tile_want> fromNorth = wantsNow();
+    ASSERT_FALSE(fromNorth.empty());
+    rowsWanted(fromNorth, north, near);
+    EXPECT_GT(north, near);
+    EXPECT_LT(fromNorth[0].ty, 2);
+    const auto wanted = [&](const hexlod_tile_want& x) {
+        return std::any_of(fromNorth.begin(), fromNorth.end(), [&](const hexlod_tile_want& y) { return x.level == y.level && x.tx == y.tx && x.ty == y.ty; });
+    };
+    EXPECT_FALSE(wanted(fromSouth[0])) << "the south's most needed tile is not wanted any more";
+
+    // Every tile it wants comes; then every full-resolution tile goes again: the heights fall
+    // back, vertices blend down, and the stream stays watertight throughout.
+    for (int32_t frame = 0; frame < 300; ++frame) {
+        ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL, &out), 0);
+        const std::vector<hexlod_tile_want> wants = wantsNow();
+        if (wants.empty() && out.converged) break;
+        for (const hexlod_tile_want& want : wants) writeTile(t, p, want.level, want.tx, want.ty);
+    }
+    const double refined = out.triangles;
+    int32_t across, down, evicted = 0;
+    tilesAcross(p, 0, across, down);
+    for (int32_t ty = 0; ty < down; ++ty)
+        for (int32_t tx = 0; tx < across; ++tx) evicted += hexlod_terrain_evict_tile(t, 0, tx, ty) == 0;
+    EXPECT_GT(evicted, 0);
+    for (int32_t frame = 0; frame < 60; ++frame) {
+        ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL, &out), 0);
+        ASSERT_EQ(hexlod_diag_check_stream(t, nullptr), 0) << "frame " << frame << ": " << hexlod_last_error();
+    }
+    EXPECT_LT(out.triangles, refined) << "cells finer than what is left merged";
+    EXPECT_FALSE(wantsNow().empty()) << "and the view asks for the tiles again";
+    hexlod_terrain_destroy(t);
+}
