@@ -248,3 +248,21 @@ test('a tile outside the file is reported as invalid, and a throwing onError doe
     console.error = consoleError;
   }
 });
+
+test('a tile dropped in flight whose read ends well anyway (a reader that ignores the signal) is not delivered nor cached', async () => {
+  const pending = new Map();
+  const deaf = { readTile: (level, tx, ty) => new Promise((resolve) => pending.set(`${level}:${tx},${ty}`, resolve)) };
+  const fetcher = new TileFetcher(deaf, { concurrency: 1 });
+  const a = { level: 0, tx: 0, ty: 0, priority: 2 }, b = { level: 0, tx: 1, ty: 0, priority: 1 };
+  fetcher.want([a, b]);
+  fetcher.want([b]);
+  assert.equal(pending.has(name(b)), false, 'the aborted read holds the only place until it ends');
+  pending.get(name(a))(new Int16Array(4));
+  await sleep(0);
+  assert.deepEqual(fetcher.takeArrived(), []);
+  assert.equal(fetcher.cache.size, 0);
+  assert.ok(pending.has(name(b)), 'its place went to the next tile');
+  pending.get(name(b))(new Int16Array(4));
+  await sleep(0);
+  assert.deepEqual(fetcher.takeArrived().map(name), [name(b)]);
+});
