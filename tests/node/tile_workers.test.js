@@ -67,7 +67,11 @@ class ChannelWorker {
     serveTiles(port2);
     this.port = port1;
     this.sent = [];
-    port1.onmessage = (event) => this.onmessage?.(event);
+    this.received = [];
+    port1.onmessage = (event) => {
+      this.received.push(event.data);
+      this.onmessage?.(event);
+    };
     made?.push(this);
   }
   postMessage(message, transfer) {
@@ -177,13 +181,19 @@ test('over the real service, an abort cancels the worker\'s fetch, and a 404, a 
   const made = [];
   const pool = await openWorkerPool(url(), { workers: 2, ...FAST_RETRIES, createWorker: () => new ChannelWorker(made) });
   const controller = new AbortController();
+  server.options.latencyMs = 300; // the read is surely still at the server when aborted
   const reading = pool.readTile(0, 0, 0, controller.signal);
-  await sleep(2);
+  await sleep(20);
   controller.abort();
+  server.options.latencyMs = 10;
   await assert.rejects(reading, { kind: 'aborted' });
   assert.ok(made[0].sent.some((m) => m.type === 'cancel'));
   for (let i = 0; i < 100 && pool.loads[0] > 0; i++) await sleep(2);
   assert.deepEqual(pool.loads, [0, 0], 'the worker answered its cancelled read');
+  const cancelled = made[0].sent.find((m) => m.type === 'cancel').id;
+  const answer = made[0].received.find((m) => m.id === cancelled);
+  assert.equal(answer.type, 'failed', 'the worker stopped the read');
+  assert.equal(answer.error.kind, 'aborted');
 
   server.options.dropAfterBytes = 1000;
   try {
