@@ -266,3 +266,21 @@ test('a tile dropped in flight whose read ends well anyway (a reader that ignore
   await sleep(0);
   assert.deepEqual(fetcher.takeArrived().map(name), [name(b)]);
 });
+
+test('a tile evicted before the frame loop took it is not handed over, and its key is among the evicted', async () => {
+  const pending = new Map();
+  const manual = { readTile: (level, tx, ty) => new Promise((resolve) => pending.set(`${level}:${tx},${ty}`, resolve)) };
+  const cache = new TileCache({ capBytes: 8 });
+  const fetcher = new TileFetcher(manual, { cache });
+  const a = { level: 0, tx: 0, ty: 0, priority: 2 }, b = { level: 0, tx: 1, ty: 0, priority: 1 };
+  fetcher.want([a, b]);
+  pending.get(name(a))(new Int16Array(4));
+  await sleep(0);
+  pending.get(name(b))(new Int16Array(4)); // 16 bytes in a cache of 8: a goes
+  await sleep(0);
+  assert.deepEqual(cache.takeEvicted(), [key(a)]);
+  assert.deepEqual(fetcher.takeArrived().map(name), [name(b)]);
+  assert.equal(fetcher.waiting, 0);
+  fetcher.want([a, b]);
+  assert.equal(fetcher.waiting, 1, 'wanted and gone: fetched again');
+});

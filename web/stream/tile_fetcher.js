@@ -3,6 +3,13 @@
 // in flight are aborted. Arrived tiles go into the cache and wait for the frame loop to take
 // them, so the core sees new tiles only between frames. A tile that fails (after the reader's
 // own retries) is reported once and not asked for again until retryFailed().
+//
+// Each frame:
+//   cache.setPinned(keys of the tiles the drawn mesh uses)
+//   fetcher.want(tiles the view needs, with their screen errors)
+//   for (const key of cache.takeEvicted()) core drops the tile
+//   for (const tile of fetcher.takeArrived()) core takes tile.samples
+//   for (const failure of fetcher.takeFailures()) tell the user
 
 import { TileCache, tileKey } from './tile_cache.js';
 

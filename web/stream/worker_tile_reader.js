@@ -209,6 +209,7 @@ export class WorkerTileReader {
   _lost(slot, why) {
     slot.alive = false;
     slot.load = 0;
+    slot.worker.terminate();
     for (const [id, entry] of this._pending) {
       if (entry.slot === slot) this._settle(id, entry, null, new Error(`${this.name}: a tile worker died (${why})`));
     }
