@@ -111,6 +111,35 @@ export class HexlodCore {
     }
     return new Terrain(this, handle, width, height, sampleType, scratch);
   }
+
+  /**
+   * Creates a terrain whose samples arrive by tiles (hexlod_terrain_create_tiled), as a
+   * Cloud-Optimized GeoTIFF read by range requests gives them: write and commit every tile of
+   * the coarsest level (Terrain.tileBuffer, commitTile), then setScale, prepare and resetMesh.
+   * @param {{width: number, height: number, tileWidth: number, tileHeight: number}[]} levels the
+   *   full resolution first, then each overview, coarser each time (samples)
+   * @param {'u8'|'u16'|'i16'|'f32'} sampleType native depth of the heights
+   */
+  createTiledTerrain(levels, sampleType) {
+    const type = SAMPLE_TYPES[sampleType];
+    if (!type) throw new CoreError(`unknown sample type '${sampleType}'`);
+    const { width, height } = levels[0] ?? {};
+    const dims = this.module._malloc(16 * Math.max(levels.length, 1));
+    const scratch = this.module._malloc(this.scratch.bytes + 8); // + the tile wants' pointer
+    if (dims === 0 || scratch === 0) {
+      this.module._free(dims), this.module._free(scratch);
+      throw new CoreError(`cannot create a ${width}x${height} ${sampleType} tiled terrain: out of memory`);
+    }
+    this.view(Int32Array, dims, 4 * levels.length).set(levels.flatMap((l) => [l.width, l.height, l.tileWidth, l.tileHeight]));
+    const handle = this.module._hexlod_terrain_create_tiled(width, height, type.code, levels.length, dims);
+    this.module._free(dims);
+    if (handle === 0) this.module._free(scratch);
+    this.check(handle === 0, `cannot create a ${width}x${height} ${sampleType} tiled terrain`);
+    const terrain = new Terrain(this, handle, width, height, sampleType, scratch);
+    terrain.levels = levels.map((l) => ({ ...l }));
+    terrain.wantsSlot = (scratch >>> 0) + this.scratch.bytes;
+    return terrain;
+  }
 }
 
 /**
@@ -250,6 +279,63 @@ export class Terrain {
     const pointer = this.m._hexlod_terrain_samples(this.handle);
     this.core.check(pointer === 0, 'no samples');
     return this.core.view(SAMPLE_TYPES[this.sampleType].Array, pointer, this.width * this.height);
+  }
+
+  // --- A tiled terrain (createTiledTerrain) -----------------------------------------------------
+
+  /** Whether the samples arrive by tiles. */
+  get tiled() {
+    return this.levels !== undefined;
+  }
+
+  /**
+   * Where to write tile (tx, ty) of `level`: a fresh view of tileWidth x tileHeight samples, row
+   * by row, valid until the next core call; commitTile once written.
+   */
+  tileBuffer(level, tx, ty) {
+    const pointer = this.m._hexlod_terrain_tile_buffer(this.handle, level, tx, ty);
+    this.core.check(pointer === 0, `no buffer for tile (${tx}, ${ty}) of level ${level}`);
+    const { tileWidth, tileHeight } = this.levels[level];
+    return this.core.view(SAMPLE_TYPES[this.sampleType].Array, pointer, tileWidth * tileHeight);
+  }
+
+  /** The tile's samples are written: the heights there come from it from the next frame on. */
+  commitTile(level, tx, ty) {
+    this.core.check(this.m._hexlod_terrain_commit_tile(this.handle, level, tx, ty) < 0, `cannot commit tile (${tx}, ${ty}) of level ${level}`);
+  }
+
+  /** Lets a tile go (the coarsest level's stay); false when it was not held. */
+  evictTile(level, tx, ty) {
+    return this.m._hexlod_terrain_evict_tile(this.handle, level, tx, ty) === 0;
+  }
+
+  /** The height range of all the samples, metres, as the file states it (hexlod_terrain_declare_height_range). */
+  declareHeightRange(low, high) {
+    this.core.check(this.m._hexlod_terrain_declare_height_range(this.handle, low, high) < 0, 'cannot declare the height range');
+  }
+
+  /**
+   * The tiles the view waits for, most needed first (hexlod_terrain_tile_wants), into a list
+   * reused from call to call: {level, tx, ty, priority (pixels)}.
+   * @returns {{level: number, tx: number, ty: number, priority: number}[]}
+   */
+  tileWants() {
+    const list = (this.wantList ??= []);
+    const count = this.m._hexlod_terrain_tile_wants(this.handle, this.wantsSlot);
+    this.core.check(count < 0, 'cannot collect the tiles to fetch');
+    const layout = this.core.layout.tile_want, stride = layout.size / 4, f = layout.fields;
+    const i32 = this.scratchI32(), f64 = this.scratchF64();
+    const base = i32[this.wantsSlot >>> 2] >>> 0;
+    for (let k = 0; k < count; k++) {
+      const at = (base >>> 2) + k * stride;
+      const want = (list[k] ??= { level: 0, tx: 0, ty: 0, priority: 0 });
+      want.level = i32[at + f.level.offset / 4];
+      want.tx = i32[at + f.tx.offset / 4];
+      want.ty = i32[at + f.ty.offset / 4];
+      want.priority = f64[(at + f.priority_px.offset / 4) >>> 1];
+    }
+    list.length = count;
+    return list;
   }
 
   /** Size of the samples in bytes. */
@@ -553,6 +639,15 @@ export class Terrain {
   /** Runs the core's invariant check; throws a CoreError naming the first violation. */
   checkMesh() {
     this.core.check(this.diagnostic('check_mesh')(this.handle) < 0, 'mesh invariant violated');
+  }
+
+  /**
+   * Checks that the stream draws one watertight surface (hexlod_diag_check_stream): throws with
+   * the first defect, else {triangles, vertices, edges, boundaryEdges, loops, euler, indices}.
+   */
+  checkStream() {
+    const [triangles, vertices, edges, boundaryEdges, loops, euler, indices] = this.readDiagnostic('check_stream', 7, 'the stream is not watertight');
+    return { triangles, vertices, edges, boundaryEdges, loops, euler, indices };
   }
 
   /**

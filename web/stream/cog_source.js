@@ -94,7 +94,24 @@ export async function openCog(input, options = {}) {
   }
   // Coarsest last, whatever order the file keeps them in.
   const order = levels.map((_, i) => i).sort((a, b) => levels[b].width - levels[a].width);
+  full.statistics = await statisticsOf(full.image);
   return new CogSource(name, reader, full, order.map((i) => levels[i]), order.map((i) => layouts[i]));
+}
+
+/**
+ * The lowest and highest sample of the whole file when GDAL wrote its statistics
+ * (STATISTICS_MINIMUM and STATISTICS_MAXIMUM of band 1, e.g. `gdal_translate -stats`), else null:
+ * what the tiles read so far cannot show.
+ */
+async function statisticsOf(image) {
+  let items = null;
+  try {
+    items = await image.getGDALMetadata(0);
+  } catch {
+    return null;
+  }
+  const min = Number(items?.STATISTICS_MINIMUM), max = Number(items?.STATISTICS_MAXIMUM);
+  return Number.isFinite(min) && Number.isFinite(max) && min <= max ? { min, max } : null;
 }
 
 /** An open COG: what it holds, and its tiles on demand. */
@@ -110,6 +127,8 @@ export class CogSource {
     this.nodata = full.nodata;
     /** @type {import('../loaders/georef.js').Georef|null} sample centres to model coordinates */
     this.georef = georefOfTiff(full.image);
+    /** {min, max} raw sample range of the whole file from GDAL's statistics, or null */
+    this.statistics = full.statistics;
     /** metres between columns and rows, or nulls without a geotransform (see web/loaders/geotiff.js) */
     const spacing = spacingOf(full.image, full.height / 2);
     this.spacingX = spacing.spacingX;

@@ -134,6 +134,19 @@ export class TileCache {
   }
 
   /**
+   * The tile's samples were handed to their owner (the core copied them): the cache keeps only
+   * their size, so the cap still counts them, and lets the array go. Its place in the LRU order
+   * stays. False when the tile is not held.
+   * @param {number} key from tileKey
+   */
+  handOver(key) {
+    const samples = this._tiles.get(key);
+    if (samples === undefined) return false;
+    this._tiles.set(key, { byteLength: samples.byteLength });
+    return true;
+  }
+
+  /**
    * Replaces the pinned set: the tiles the drawn mesh still uses, never evicted while pinned.
    * Tiles unpinned may be evicted at once if the cache is over its cap.
    * @param {Iterable<number>} keys from tileKey (copied; held or not)

@@ -87,6 +87,7 @@ export class WorkerTileReader {
     this.nodata = info.nodata;
     /** @type {import('../loaders/georef.js').Georef|null} */
     this.georef = info.georef;
+    this.statistics = info.statistics ?? null;
     /** metres between columns and rows, or nulls */
     this.spacingX = info.spacingX;
     this.spacingY = info.spacingY;

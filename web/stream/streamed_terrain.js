@@ -1,0 +1,157 @@
+// A terrain streamed from a Cloud-Optimized GeoTIFF: the core's tiled terrain (hexlod_terrain_
+// create_tiled) fed tile by tile. At open, the coarsest level is read whole, so the first frame
+// draws from the overviews; then, once per frame, the tiles the core asks for (most needed
+// first) are fetched, a few at a time, and handed to the core between frames, and the tiles the
+// cache lets go are taken from the core. Runs in the browser (tiles decoded in workers) and in
+// Node (decoded in the main thread).
+import { TileCache, DEFAULT_CAP_BYTES, keyLevel, keyTx, keyTy } from './tile_cache.js';
+import { TileFetcher } from './tile_fetcher.js';
+import { StreamError } from './stream_error.js';
+import { MAKE_COG } from './cog_source.js';
+
+const BYTES = { u8: 1, u16: 2, i16: 2, f32: 4 };
+const RELIEF_RATIO = 0.05; // height range / extent of a guessed spacing (as terrain_source.js guesses)
+const MB = 2 ** 20;
+
+/**
+ * Bytes of samples of every tile of one level.
+ * @param {import('./cog_source.js').CogLevel} level
+ */
+export function levelBytes(level, sampleType) {
+  return level.tilesAcross * level.tilesDown * level.tileWidth * level.tileHeight * BYTES[sampleType];
+}
+
+/**
+ * Opens a streamed terrain: the core's tiled terrain over `source`'s levels, with the coarsest
+ * level in, scaled and prepared (no mesh yet: the caller makes it, as for any terrain).
+ * @param {import('../core/core.js').HexlodCore} core
+ * @param {import('./cog_source.js').CogSource | import('./worker_tile_reader.js').WorkerTileReader} source
+ * @param {{ capBytes?: number, concurrency?: number, signal?: AbortSignal, spacing?: {x: number, y: number},
+ *   guessSpacing?: boolean, onProgress?: (fraction: number, phase: string) => void }} [options]
+ *   capBytes: the tile cache's cap, bytes of samples (default 512 MB); spacing: metres between
+ *   columns and rows instead of the file's; guessSpacing: as loadTerrain (terrain_source.js)
+ * @returns {Promise<{terrain: import('../core/core.js').Terrain, field: object, missing: number,
+ *   loadMs: number, stream: StreamedTerrain}>} the shape loadTerrain returns, plus the stream
+ * @throws {StreamError} 'too-big' when even the coarsest level does not fit the cap (a TIFF
+ *   without overviews: the message says how to make them), or the reader's kinds
+ */
+export async function openStreamedTerrain(core, source, options = {}) {
+  const start = performance.now();
+  const capBytes = options.capBytes ?? DEFAULT_CAP_BYTES;
+  const { levels, sampleType } = source;
+  const coarsest = levels.length - 1, top = levels[coarsest];
+  const topBytes = levelBytes(top, sampleType);
+  if (topBytes > capBytes) {
+    throw new StreamError('too-big', `${source.name}: ${levels[0].width}x${levels[0].height} samples ` +
+      `(${Math.round(levelBytes(levels[0], sampleType) / MB)} MB) and its coarsest level alone needs ` +
+      `${Math.round(topBytes / MB)} MB, more than the ${Math.round(capBytes / MB)} MB tile cache: ` +
+      `give it overviews (${MAKE_COG}) to stream it`);
+  }
+  const terrain = core.createTiledTerrain(levels, sampleType);
+  try {
+    // The coarsest level, whole: what the first frame draws.
+    const tiles = [];
+    for (let ty = 0; ty < top.tilesDown; ty++) for (let tx = 0; tx < top.tilesAcross; tx++) tiles.push([tx, ty]);
+    let done = 0, next = 0;
+    const worker = async () => {
+      while (next < tiles.length) {
+        const [tx, ty] = tiles[next++];
+        const samples = await source.readTile(coarsest, tx, ty, options.signal);
+        terrain.tileBuffer(coarsest, tx, ty).set(samples);
+        terrain.commitTile(coarsest, tx, ty);
+        options.onProgress?.(++done / tiles.length, 'overview');
+      }
+    };
+    await Promise.all(Array.from({ length: Math.min(options.concurrency ?? 6, tiles.length) }, worker));
+
+    const field = {
+      source: source.name, format: 'cog', width: source.width, height: source.height, sampleType,
+      nodata: source.nodata, heightScale: 1, heightOffset: 0, georef: source.georef, streamed: true,
+      spacingX: source.spacingX ?? 1, spacingY: source.spacingY ?? 1, spacingFromFile: source.spacingX != null,
+      levels: levels.length, tileWidth: source.tileWidth, tileHeight: source.tileHeight, fileBytes: source.size,
+    };
+    const scale = options.spacing ? { ...field, spacingX: options.spacing.x, spacingY: options.spacing.y } : field;
+    terrain.setScale(scale);
+    terrain.prepare();
+    if (options.guessSpacing && !field.spacingFromFile && !options.spacing) {
+      const relief = terrain.maxHeight - terrain.minHeight;
+      const guess = relief > 0 ? relief / (RELIEF_RATIO * (Math.max(terrain.width, terrain.height) - 1)) : 1;
+      field.spacingX = field.spacingY = Number(guess.toPrecision(3));
+      terrain.setScale(field);
+    }
+    if (source.statistics) terrain.declareHeightRange(source.statistics.min, source.statistics.max);
+    const stream = new StreamedTerrain(terrain, source, { capBytes, concurrency: options.concurrency });
+    return { terrain, field, missing: 0, loadMs: performance.now() - start, stream };
+  } catch (error) {
+    terrain.destroy();
+    throw error;
+  }
+}
+
+/** The per-frame exchange between the core and the fetcher, and its figures for the HUD. */
+export class StreamedTerrain {
+  constructor(terrain, source, { capBytes, concurrency }) {
+    this.terrain = terrain;
+    this.source = source;
+    this.cache = new TileCache({ capBytes });
+    this.fetcher = new TileFetcher(source, { cache: this.cache, concurrency });
+    /** tiles handed to the core so far, and the last failures (for the HUD) */
+    this.tilesIn = 0;
+    this.failures = [];
+    this.closed = false;
+  }
+
+  /**
+   * One frame's exchange, after the frame's LOD update: what the core asks for goes to the
+   * fetcher; what the cache let go leaves the core; what arrived goes in (its heights change at
+   * the end of the next frame's stream step). Returns how many tiles went in.
+   */
+  tick() {
+    if (this.closed) return 0;
+    const { terrain, fetcher, cache } = this;
+    fetcher.want(terrain.tileWants());
+    for (const key of cache.takeEvicted()) terrain.evictTile(keyLevel(key), keyTx(key), keyTy(key));
+    let arrived = 0;
+    for (const tile of fetcher.takeArrived()) {
+      terrain.tileBuffer(tile.level, tile.tx, tile.ty).set(tile.samples);
+      terrain.commitTile(tile.level, tile.tx, tile.ty);
+      cache.handOver(tile.key); // the core holds the samples now: the cache keeps their count only
+      arrived++;
+    }
+    this.tilesIn += arrived;
+    const failed = fetcher.takeFailures();
+    if (failed.length > 0) this.failures = failed.map(({ level, tx, ty, kind, message }) => ({ level, tx, ty, kind, message }));
+    return arrived;
+  }
+
+  /** Tiles the view waits for (wanted, not in, not failed). */
+  get waiting() {
+    return this.fetcher.waiting;
+  }
+
+  /** Bytes fetched so far (headers and tiles), and the file's size when known. */
+  get bytesFetched() {
+    return this.fetcher.bytesFetched;
+  }
+
+  get fileBytes() {
+    return this.source.size ?? null;
+  }
+
+  /** Bytes of samples the core holds in tiles. */
+  get heldBytes() {
+    return this.cache.bytes;
+  }
+
+  /** The cache's cap, bytes of samples; a smaller one lets tiles go at the next tick. */
+  setCapBytes(bytes) {
+    this.cache.capBytes = bytes;
+  }
+
+  /** Stops every request; the terrain stays as it is. */
+  close() {
+    this.closed = true;
+    this.fetcher.close();
+    this.source.close?.();
+  }
+}
