@@ -12,9 +12,12 @@ import { textureCoordinates, materialImagePath, materialPathOf, writeMaterial, M
 import { readImageFiles } from './image_files.js';
 import { RESTART_INDEX, STREAM_VERTEX_WORDS } from '../web/core/core.js';
 import { locateImageFile } from '../web/imagery/image_location.js';
+import { openCogInput, streamForCommand, settleStreamed } from './cog_input.js';
 
 export const MESH_USAGE = `usage: hexlod mesh <heightfield>... (--max-error M | --camera X,Y,Z --target X,Y,Z) [options]
-  Several .hgt or GeoTIFF tiles of one grid make one mosaic.
+  Several .hgt or GeoTIFF tiles of one grid make one mosaic. A Cloud-Optimized GeoTIFF (tiled,
+  with overviews), by path or http(s) URL, is streamed: only the tiles the refinement needs
+  are read (by slices of the file, or by HTTP Range requests).
   Refines the hexagon mesh until it converges (or for --budget-splits operations), prints a
   summary, and writes the mesh clipped to the data rectangle as OBJ and its figures as JSON.
   --max-error M         view-independent: every sample within M metres of the mesh
@@ -100,7 +103,7 @@ export function meshSettings(args) {
  * most budgetSplits operations or updates until converged (at most MAX_UPDATES).
  * @returns {{updates, operations, splits, merges, converged, refineMs, coreMs, camera}}
  */
-export function refine(terrain, settings) {
+export async function refine(terrain, settings, stream = null) {
   terrain.resetMesh(settings.embedding);
   let camera = null;
   if (settings.mode === 'view') {
@@ -113,6 +116,20 @@ export function refine(terrain, settings) {
   terrain.configure({ budgetMs: 0, maxOperations: settings.budgetSplits ?? 0 });
   const run = { updates: 0, operations: 0, splits: 0, merges: 0, converged: false, refineMs: 0, coreMs: 0, camera };
   const limit = settings.budgetSplits !== null ? 1 : MAX_UPDATES;
+  if (stream) {
+    // A streamed COG: each update is a frame, so tiles that arrived change the heights.
+    const start = performance.now();
+    const settled = await settleStreamed(terrain, stream, limit, (figures) => {
+      run.operations += figures.operations;
+      run.splits += figures.splits;
+      run.merges += figures.merges;
+      run.coreMs += figures.updateMs;
+    });
+    run.refineMs = performance.now() - start;
+    run.updates = settled.updates;
+    run.converged = settled.converged;
+    return run;
+  }
   while (run.updates < limit) {
     const start = performance.now();
     const operations = terrain.updateLod();
@@ -154,10 +171,13 @@ export async function mesh(args) {
     console.log(MESH_USAGE);
     return;
   }
-  const { terrain, field, spacingX, spacingY } = await loadForCommand(settings.files, settings.cellSize);
+  const cog = settings.files.length === 1 ? await openCogInput(settings.files[0]) : null;
+  const { terrain, field, spacingX, spacingY, stream } = cog
+    ? await streamForCommand(cog, settings.cellSize) : await loadForCommand(settings.files, settings.cellSize);
   // The image is placed before refining, so a refused one costs no refinement.
   const image = settings.image !== null ? await placedImage(settings, terrain, field) : null;
-  const run = refine(terrain, settings);
+  const run = await refine(terrain, settings, stream);
+  stream?.close();
 
   const stats = terrain.meshStats();
   // Copies: the views die at the next core call that grows memory.
@@ -251,6 +271,8 @@ export async function mesh(args) {
       original: errorOriginal,
     },
     hash,
+    streamed: stream ? { tiles: stream.tilesIn, bytesFetched: stream.bytesFetched, fileBytes: stream.fileBytes,
+      levels: field.levels } : null,
     image: image && {
       file: image.file,
       worldFile: image.worldFile,
@@ -289,6 +311,11 @@ export async function mesh(args) {
       `vs original samples: max ${m(errorOriginal.max)}, p99 ${m(errorOriginal.p99)}`,
     `hash      ${hash}`,
   ];
+  if (stream) {
+    const mb = (bytes) => (bytes / 1048576).toFixed(1);
+    lines.push(`streamed  ${stream.tilesIn} tiles; ${mb(stream.bytesFetched)} of ${mb(stream.fileBytes)} MB of the file read ` +
+      `(a COG of ${field.levels} levels: heights come from the finest level read)`);
+  }
   if (image) lines.push(`image     ${imageLine(image)}`);
   const written = [settings.obj && `${settings.obj} (${report.vertices.obj} vertices, ${report.triangles.afterClipping} faces)`,
     image?.mtl, settings.json]

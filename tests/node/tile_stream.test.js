@@ -113,16 +113,20 @@ test('tiles are asked for most needed first, never more than the concurrency at 
   assert.equal(fetcher.waiting, 0);
 });
 
-test('a tile the view stops wanting is aborted in flight, or dropped from the queue, and never delivered', async () => {
+test('a tile the view stops wanting is aborted in flight (after its grace), or dropped from the queue, and never delivered', async () => {
   const reader = watched(await openCog(url()));
-  const fetcher = new TileFetcher(reader, { concurrency: 2 });
+  const fetcher = new TileFetcher(reader, { concurrency: 2, graceFrames: 1 });
   const a = { level: 0, tx: 0, ty: 0, priority: 10 }, b = { level: 0, tx: 1, ty: 0, priority: 9 };
   const c = { level: 0, tx: 2, ty: 0, priority: 5 }, d = { level: 0, tx: 3, ty: 0, priority: 1 };
   fetcher.want([a, b, c, d]);
   assert.deepEqual(reader.started, [name(a), name(b)]);
   assert.equal(fetcher.queued, 2);
 
-  // The view moves on: a and c are no longer needed.
+  // The view moves on: a and c are no longer needed. c leaves the queue at once; a, in flight,
+  // gets one frame's grace (the list may come back to it) and is aborted at the next.
+  fetcher.want([b, d]);
+  assert.equal(reader.signals.get(name(a)).aborted, false);
+  assert.equal(fetcher.queued, 1);
   fetcher.want([b, d]);
   assert.equal(reader.signals.get(name(a)).aborted, true);
   assert.equal(reader.signals.get(name(b)).aborted, false);
@@ -252,7 +256,7 @@ test('a tile outside the file is reported as invalid, and a throwing onError doe
 test('a tile dropped in flight whose read ends well anyway (a reader that ignores the signal) is not delivered nor cached', async () => {
   const pending = new Map();
   const deaf = { readTile: (level, tx, ty) => new Promise((resolve) => pending.set(`${level}:${tx},${ty}`, resolve)) };
-  const fetcher = new TileFetcher(deaf, { concurrency: 1 });
+  const fetcher = new TileFetcher(deaf, { concurrency: 1, graceFrames: 0 });
   const a = { level: 0, tx: 0, ty: 0, priority: 2 }, b = { level: 0, tx: 1, ty: 0, priority: 1 };
   fetcher.want([a, b]);
   fetcher.want([b]);

@@ -61,15 +61,19 @@ export class TileFetcher {
    *   the wanted tiles and the pinned ones together, or the tiles it evicts are fetched again
    *   each frame they are wanted; concurrency: most
    *   requests in flight, aborted ones counted until they end; onError: called once per failed
-   *   tile, as it fails (the same records also wait in takeFailures)
+   *   tile, as it fails (the same records also wait in takeFailures); graceFrames: a request in
+   *   flight is aborted once its tile was left out of this many want() calls in a row (0: at
+   *   once). The list follows the mesh, which changes as tiles arrive: a tile may leave it for a
+   *   few frames and come back, and its bytes would be fetched twice.
    */
-  constructor(reader, { cache = new TileCache(), concurrency = 6, onError = null } = {}) {
+  constructor(reader, { cache = new TileCache(), concurrency = 6, onError = null, graceFrames = 30 } = {}) {
     if (!(Number.isInteger(concurrency) && concurrency >= 1)) throw new RangeError(`concurrency must be a whole number >= 1, not ${concurrency}`);
     this.reader = reader;
     /** @type {TileCache} */
     this.cache = cache;
     this.concurrency = concurrency;
     this.onError = onError;
+    this.graceFrames = graceFrames;
     this._wanted = new Set(); // keys of the last want()
     this._queue = []; // records of the wanted tiles to fetch, most needed first; reused
     this._pool = []; // queue records, reused across frames
@@ -120,7 +124,8 @@ export class TileFetcher {
     queue.sort(byPriority);
     this._next = 0;
     for (const [key, job] of this._inFlight) {
-      if (!wanted.has(key)) this._abort(key, job);
+      if (wanted.has(key)) job.unwanted = 0;
+      else if (++job.unwanted > this.graceFrames) this._abort(key, job);
     }
     this._pump();
   }
@@ -221,7 +226,7 @@ export class TileFetcher {
   }
 
   _start({ key, level, tx, ty }) {
-    const job = { key, level, tx, ty, aborted: false, controller: new AbortController() };
+    const job = { key, level, tx, ty, aborted: false, unwanted: 0, controller: new AbortController() };
     this._inFlight.set(key, job);
     let reading;
     try {
