@@ -1,0 +1,181 @@
+#!/usr/bin/env node
+// Benchmark of streaming a Cloud-Optimized GeoTIFF far larger than memory, against opening a
+// 16385² field whole. Prints figures, asserts nothing.
+//   1. Writes (once; kept in build/bench/) a SIDE² int16 COG from real data: the GLOBE Himalaya
+//      (public/terrain/globe_himalaya_2048.png) tiled and mirrored at every seam, 512² tiles,
+//      no compression, GDAL's averaged overviews and statistics (needs gdal_translate, Debian
+//      gdal-bin). At the default 40000², 3.2 GB of full resolution, 4.3 GB with overviews.
+//   2. Serves it with lib/range_server.js, every request delayed by --latency ms.
+//   3. In a child process (its own memory high-water mark): opens it by URL with the page's
+//      streaming code and the WASM core, then flies a low-altitude flight at 60 frames a
+//      second of wall time: time to the first frame, bytes fetched against the file's size,
+//      the share of frames that waited for tiles, peak resident memory.
+//   4. In another child: the 16385² field (the same Himalaya, as page_load.js makes it) read
+//      from disk and opened whole, to its first frame: time and peak memory.
+// Usage: node bench/cog_stream.js [--side N] [--latency MS] [--frames N] [--tau PX]
+import { spawn, execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync, openSync, writeSync, closeSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { decode } from 'fast-png';
+import { startRangeServer } from '../lib/range_server.js';
+import { createNodeCore } from '../lib/node_core.js';
+import { openCog } from '../web/stream/cog_source.js';
+import { openStreamedTerrain } from '../web/stream/streamed_terrain.js';
+import { loadTerrain } from '../web/loaders/terrain_source.js';
+
+const root = fileURLToPath(new URL('..', import.meta.url));
+const benchDir = `${root}build/bench`;
+const args = process.argv.slice(2);
+const option = (name, fallback) => (args.includes(name) ? Number(args[args.indexOf(name) + 1]) : fallback);
+const SIDE = option('--side', 40000), LATENCY = option('--latency', 30), FRAMES = option('--frames', 600), TAU = option('--tau', 1);
+const WHOLE_SIDE = 16385;
+const HIMALAYA = { min: 0, max: 8752, cellX: 806.9, cellY: 926 }; // public/terrain/globe_himalaya_2048.json
+
+/** Row y of the Himalaya tiled and mirrored at every seam, as int16 metres. */
+function mirroredRows(out) {
+  const { data } = decode(readFileSync(`${root}public/terrain/globe_himalaya_2048.png`));
+  const mirror = (i) => { const period = 2 * 2048 - 2, k = i % period; return k < 2048 ? k : period - k; };
+  const metres = Int16Array.from({ length: 65536 }, (_, v) => Math.round(HIMALAYA.min + (v / 65535) * (HIMALAYA.max - HIMALAYA.min)));
+  return (y) => {
+    const sy = mirror(y) * 2048;
+    for (let x = 0; x < out.length; x++) out[x] = metres[data[sy + mirror(x)]];
+    return out;
+  };
+}
+
+function writeRaw(path, side, Type) {
+  const row = mirroredRows(new Type(side));
+  const fd = openSync(path, 'w');
+  for (let y = 0; y < side; y++) writeSync(fd, new Uint8Array(row(y).buffer));
+  closeSync(fd);
+}
+
+/** The COG, written once. */
+function makeCog(side) {
+  const path = `${benchDir}/himalaya_${side}_cog.tif`;
+  if (existsSync(path)) return { path, madeS: null };
+  const start = performance.now();
+  const raw = `${benchDir}/himalaya_${side}.i16`, vrt = `${benchDir}/himalaya_${side}.vrt`;
+  writeRaw(raw, side, Int16Array);
+  // GDAL's view of the raw file, georeferenced at the Himalaya's cell size (a local metric CRS).
+  writeFileSync(vrt, `<VRTDataset rasterXSize="${side}" rasterYSize="${side}">
+  <SRS>EPSG:3857</SRS>
+  <GeoTransform>0, ${HIMALAYA.cellX}, 0, 0, 0, -${HIMALAYA.cellY}</GeoTransform>
+  <VRTRasterBand dataType="Int16" band="1" subClass="VRTRawRasterBand">
+    <SourceFilename relativeToVRT="0">${raw}</SourceFilename>
+    <ImageOffset>0</ImageOffset><PixelOffset>2</PixelOffset><LineOffset>${2 * side}</LineOffset><ByteOrder>LSB</ByteOrder>
+  </VRTRasterBand>
+</VRTDataset>
+`);
+  execFileSync('gdal_translate', ['-q', '-of', 'COG', '-stats', '-co', 'BLOCKSIZE=512', '-co', 'COMPRESS=NONE',
+    '-co', 'RESAMPLING=AVERAGE', '-co', 'NUM_THREADS=ALL_CPUS', '-co', 'BIGTIFF=YES', vrt, path], { stdio: 'inherit' });
+  rmSync(raw);
+  rmSync(vrt);
+  return { path, madeS: (performance.now() - start) / 1000 };
+}
+
+/** Peak resident memory of this process so far, MB (the kernel's high-water mark). */
+function peakRssMb() {
+  const line = readFileSync('/proc/self/status', 'utf8').split('\n').find((l) => l.startsWith('VmHWM:'));
+  return Number(/(\d+)/.exec(line)[1]) / 1024;
+}
+
+const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+
+// A straight flight 800 m over the highest ground below, looking 10° down, across a part of the
+// field at 150 m a frame (9 km/s at 60 frames a second: a fast jet's ground track times 30).
+function flightCamera(terrain, k) {
+  const w = (terrain.width - 1) * terrain.spacingX, d = (terrain.height - 1) * terrain.spacingY;
+  const x = 0.3 * w + 150 * k, z = 0.6 * d - 60 * k, y = 9500;
+  const look = 10 * Math.PI / 180;
+  return { eye: [x, y, z], target: [x + 1000 * Math.cos(look) * 0.93, y - 1000 * Math.sin(look), z - 1000 * Math.cos(look) * 0.37],
+    up: [0, 1, 0], fovY: Math.PI / 3, aspect: 16 / 9, viewportHeight: 1080, near: 1, far: 2e7 };
+}
+
+async function streamPhase(url) {
+  const start = performance.now();
+  const core = await createNodeCore();
+  const source = await openCog(url);
+  const { terrain, stream } = await openStreamedTerrain(core, source);
+  terrain.resetMesh('exact');
+  terrain.configure({ tauPx: TAU, budgetMs: 4, morphFrames: 8 });
+  terrain.frame(flightCamera(terrain, 0));
+  const firstFrameS = (performance.now() - start) / 1000;
+  const bytesAtFirstFrame = stream.bytesFetched;
+  let waited = 0, triangles = 0;
+  const flightStart = performance.now();
+  for (let k = 0; k < FRAMES; k++) {
+    const frameStart = performance.now();
+    const stats = terrain.frame(k === 0 ? null : flightCamera(terrain, k));
+    stream.tick();
+    if (stream.waiting > 0) waited++;
+    triangles = stats.triangles;
+    await sleep(Math.max(0, 1000 / 60 - (performance.now() - frameStart)));
+  }
+  const flightS = (performance.now() - flightStart) / 1000;
+  const out = { firstFrameS, bytesAtFirstFrame, bytesFetched: stream.bytesFetched, fileBytes: stream.fileBytes,
+    tiles: stream.tilesIn, heldMb: stream.heldBytes / 2 ** 20, waitedShare: waited / FRAMES, frames: FRAMES, flightS, triangles,
+    coreMb: terrain.meshStats().bytes / 2 ** 20, peakRssMb: peakRssMb() };
+  stream.close();
+  return out;
+}
+
+async function wholePhase(path) {
+  const start = performance.now();
+  const core = await createNodeCore();
+  const bytes = new Uint8Array(readFileSync(path));
+  const files = [{ name: 'himalaya.r16', bytes }, { name: 'himalaya.json', bytes: new TextEncoder().encode(JSON.stringify(
+    { min: HIMALAYA.min, max: HIMALAYA.max, cell_size_x_m: HIMALAYA.cellX, cell_size_y_m: HIMALAYA.cellY })) }];
+  const { terrain } = await loadTerrain(core, files);
+  terrain.resetMesh('exact');
+  terrain.configure({ tauPx: TAU, budgetMs: 4, morphFrames: 8 });
+  terrain.frame(flightCamera(terrain, 0));
+  return { firstFrameS: (performance.now() - start) / 1000, fileBytes: bytes.length, peakRssMb: peakRssMb() };
+}
+
+/** Runs a phase in a child process (its own peak memory); its figures come back as JSON. */
+function child(phase, target) {
+  return new Promise((resolve, reject) => {
+    const proc = spawn(process.execPath, [fileURLToPath(import.meta.url), '--phase', phase, target, ...args], { stdio: ['ignore', 'pipe', 'inherit'] });
+    let out = '';
+    proc.stdout.on('data', (d) => (out += d));
+    proc.on('close', (code) => (code === 0 ? resolve(JSON.parse(out)) : reject(new Error(`${phase} phase failed (${code})`))));
+  });
+}
+
+const mb = (bytes) => (bytes / 2 ** 20).toFixed(bytes < 100 * 2 ** 20 ? 1 : 0);
+
+if (args[0] === '--phase') {
+  const result = args[1] === 'stream' ? await streamPhase(args[2]) : await wholePhase(args[2]);
+  process.stdout.write(JSON.stringify(result));
+} else {
+  mkdirSync(benchDir, { recursive: true });
+  const cog = makeCog(SIDE);
+  const size = statSync(cog.path).size;
+  console.log(`${SIDE}² int16 COG (the Himalaya tiled and mirrored, 512² tiles, uncompressed, averaged overviews): ` +
+    `${mb(size)} MB${cog.madeS === null ? ' (made by an earlier run)' : `, written in ${cog.madeS.toFixed(0)} s`}`);
+  const server = await startRangeServer(benchDir, { latencyMs: LATENCY });
+  let streamed;
+  try {
+    streamed = await child('stream', `${server.url}/${cog.path.split('/').pop()}`);
+  } finally {
+    await server.close();
+  }
+  const wholePath = `${benchDir}/himalaya_${WHOLE_SIDE}.r16`;
+  writeRaw(wholePath, WHOLE_SIDE, Uint16Array);
+  let whole;
+  try {
+    whole = await child('whole', wholePath);
+  } finally {
+    rmSync(wholePath);
+  }
+  console.log(`streamed by HTTP Range (${LATENCY} ms a request), WASM core in Node, tau ${TAU} px, 4 ms a frame:`);
+  console.log(`  first frame ${streamed.firstFrameS.toFixed(2)} s after the open began (goal <= 2 s), ${mb(streamed.bytesAtFirstFrame)} MB read by then`);
+  console.log(`  flight of ${streamed.frames} frames (${streamed.flightS.toFixed(1)} s): ${mb(streamed.bytesFetched)} MB of ${mb(streamed.fileBytes)} MB fetched ` +
+    `(${(100 * streamed.bytesFetched / streamed.fileBytes).toFixed(2)} %), ${streamed.tiles} tiles, ${(100 * streamed.waitedShare).toFixed(0)} % of frames waited for tiles`);
+  console.log(`  peak resident memory ${streamed.peakRssMb.toFixed(0)} MB (tiles held ${streamed.heldMb.toFixed(0)} MB of the 512 MB cap, mesh ${streamed.coreMb.toFixed(0)} MB); ${streamed.triangles} triangles`);
+  console.log(`opened whole: ${WHOLE_SIDE}² u16 (.r16 from disk, ${mb(whole.fileBytes)} MB): first frame ${whole.firstFrameS.toFixed(2)} s, ` +
+    `peak resident memory ${whole.peakRssMb.toFixed(0)} MB`);
+  console.log(`ratios, streamed ${SIDE}² / whole ${WHOLE_SIDE}²: first frame ${(streamed.firstFrameS / whole.firstFrameS).toFixed(2)}, ` +
+    `peak memory ${(streamed.peakRssMb / whole.peakRssMb).toFixed(2)}, file ${(streamed.fileBytes / whole.fileBytes).toFixed(1)}`);
+}
