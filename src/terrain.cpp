@@ -53,6 +53,8 @@ const char* Terrain::declareHeightRange(double low, double high) {
 
 const std::vector<TileWant>& Terrain::tileWants() { return wants_.collect(mesh_, *field_, refiner_.starved()); }
 
+const std::vector<TileWant>& Terrain::tilesInUse() { return wants_.collectInUse(mesh_, *field_); }
+
 // The heights under some vertices changed (tiles came or went): each moves to its new height,
 // blending from where it is drawn (§7's geomorph, as a split's new vertex does), and the cells
 // whose bounds read those samples are tested again.

@@ -56,6 +56,8 @@ public:
     /// The tiles the view needs next, most needed first (lod/tile_wants.h); none for a
     /// terrain held whole or when every cell has the samples it needs.
     const std::vector<TileWant>& tileWants();
+    /// The present tiles the drawn mesh stands on (TileWants::collectInUse).
+    const std::vector<TileWant>& tilesInUse();
 
     Heightfield& field() { return *field_; }
     const Heightfield& field() const { return *field_; }

@@ -252,6 +252,13 @@ int32_t hexlod_terrain_evict_tile(hexlod_terrain* terrain, int32_t level, int32_
  * just as close to the samples (tau holds either way). Call after hexlod_terrain_prepare; the
  * range only widens. 0, or HEXLOD_ERROR for a terrain held whole or a bad range. */
 int32_t hexlod_terrain_declare_height_range(hexlod_terrain* terrain, double low_m, double high_m);
+/* The present tiles (not of the coarsest level) the drawn mesh stands on, for a cache that must
+ * let tiles go: under each cell, those of the levels whose samples are as far apart as its step
+ * down to a quarter of it. Letting another tile go changes heights there (the vertices blend)
+ * and may let cells there merge. A pass over the cells: call it when the cache nears its cap, not every frame.
+ * Same list form and lifetime as hexlod_terrain_tile_wants (priority_px 0). Returns the count,
+ * or HEXLOD_ERROR without a mesh. */
+int32_t hexlod_terrain_tiles_in_use(hexlod_terrain* terrain, const hexlod_tile_want** tiles);
 /* The tiles the current view waits for, most needed first, at most 4096: those of the level the
  * children of every cell held back by the data need (a cell whose test with the detail its
  * level's samples show fails, while its children would be finer than that level). Collected

@@ -142,14 +142,26 @@ int32_t hexlod_terrain_declare_height_range(hexlod_terrain* terrain, double low_
     return 0;
 }
 
-int32_t hexlod_terrain_tile_wants(hexlod_terrain* terrain, const hexlod_tile_want** wants) {
-    if (const char* problem = needMesh(terrain)) return fail(problem);
-    const std::vector<hexlod::TileWant>& found = terrain->core->tileWants();
+namespace {
+
+int32_t handOut(hexlod_terrain* terrain, const std::vector<hexlod::TileWant>& found, const hexlod_tile_want** wants) {
     std::vector<hexlod_tile_want>& out = terrain->wants;
     out.resize(found.size());
     for (size_t k = 0; k < found.size(); ++k) out[k] = {found[k].level, found[k].tx, found[k].ty, 0, double(found[k].priority)};
     if (wants) *wants = out.data();
     return int32_t(out.size());
+}
+
+} // namespace
+
+int32_t hexlod_terrain_tiles_in_use(hexlod_terrain* terrain, const hexlod_tile_want** tiles) {
+    if (const char* problem = needMesh(terrain)) return fail(problem);
+    return handOut(terrain, terrain->core->tilesInUse(), tiles);
+}
+
+int32_t hexlod_terrain_tile_wants(hexlod_terrain* terrain, const hexlod_tile_want** wants) {
+    if (const char* problem = needMesh(terrain)) return fail(problem);
+    return handOut(terrain, terrain->core->tileWants(), wants);
 }
 
 void hexlod_terrain_destroy(hexlod_terrain* terrain) { delete terrain; }

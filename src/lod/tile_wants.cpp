@@ -22,10 +22,10 @@ void TileWants::want(const SampleTiles& tiles, int32_t level, int32_t tx, int32_
     wants_.push_back({level, tx, ty, priority});
 }
 
-const std::vector<TileWant>& TileWants::collect(const HexMesh& mesh, const Heightfield& field, const std::vector<float>& starved) {
+bool TileWants::begin(const Heightfield& field) {
     wants_.clear();
     const SampleTiles* tiles = field.tiles();
-    if (!tiles) return wants_;
+    if (!tiles) return false;
     if (stamp_.size() != size_t(tiles->levelCount())) {
         stamp_.assign(size_t(tiles->levelCount()), {});
         slot_.assign(size_t(tiles->levelCount()), {});
@@ -40,6 +40,12 @@ const std::vector<TileWant>& TileWants::collect(const HexMesh& mesh, const Heigh
         for (auto& s : stamp_) std::fill(s.begin(), s.end(), 0u);
         now_ = 1;
     }
+    return true;
+}
+
+const std::vector<TileWant>& TileWants::collect(const HexMesh& mesh, const Heightfield& field, const std::vector<float>& starved) {
+    if (!begin(field)) return wants_;
+    const SampleTiles* tiles = field.tiles();
     const double sx = field.scale().spacingX, sy = field.scale().spacingY;
     const TileLevel& finest = tiles->level(0);
     const int32_t cells = std::min(int32_t(starved.size()), mesh.cellCapacity());
@@ -82,6 +88,39 @@ const std::vector<TileWant>& TileWants::collect(const HexMesh& mesh, const Heigh
         wants_.resize(size_t(kMaxWants));
     }
     std::sort(wants_.begin(), wants_.end(), moreNeeded);
+    return wants_;
+}
+
+const std::vector<TileWant>& TileWants::collectInUse(const HexMesh& mesh, const Heightfield& field) {
+    if (!begin(field)) return wants_;
+    const SampleTiles* tiles = field.tiles();
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    for (int32_t c = 0; c < mesh.cellCapacity(); ++c) {
+        if (!mesh.isLive(c)) continue;
+        const CellShape shape = shapeOfCell(mesh, c);
+        const Footprint f = footprintOf(field, mesh.embedding(), shape);
+        const SampleRect rect{std::max(0, int32_t(std::floor(f.x0 / sx))), std::max(0, int32_t(std::floor(f.z0 / sy))),
+                              std::min(field.width() - 1, int32_t(std::ceil(f.x1 / sx))), std::min(field.height() - 1, int32_t(std::ceil(f.z1 / sy)))};
+        if (rect.empty()) continue;
+        // A cell of step s stands on samples at most s apart (a coarser level would have held
+        // its parent back): the levels of spacing s down to s / 4, the nearest two.
+        for (int32_t l = 0; l < tiles->coarsest(); ++l) {
+            const TileLevel& level = tiles->level(l);
+            const double spacing = std::max(level.scaleX, level.scaleY);
+            if (spacing > shape.step * (1.0 + 1e-9)) break;
+            if (spacing < 0.25 * shape.step) continue;
+            int32_t tx0, ty0, tx1, ty1;
+            tiles->tilesCovering(l, rect, tx0, ty0, tx1, ty1);
+            for (int32_t ty = ty0; ty <= ty1; ++ty)
+                for (int32_t tx = tx0; tx <= tx1; ++tx) {
+                    if (!tiles->present(l, tx, ty)) continue;
+                    const size_t t = size_t(ty * level.tilesAcross + tx);
+                    if (stamp_[size_t(l)][t] == now_) continue;
+                    stamp_[size_t(l)][t] = now_;
+                    wants_.push_back({l, tx, ty, 0.0f});
+                }
+        }
+    }
     return wants_;
 }
 

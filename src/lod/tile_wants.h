@@ -29,9 +29,18 @@ public:
     /// first; tiles already present are not wanted.
     const std::vector<TileWant>& collect(const HexMesh& mesh, const Heightfield& field, const std::vector<float>& starved);
     const std::vector<TileWant>& wants() const { return wants_; }
+    /// The present tiles the drawn mesh stands on: under each cell of step s, those of the levels
+    /// whose samples are s to s / 4 apart (a level coarser than s would not have let its parent
+    /// split; the finer one below keeps its heights). Letting other tiles go changes heights
+    /// where they were (vertices blend) and may let cells there merge. The coarsest level is
+    /// always held, and not listed. Priority: 0. A pass over the live cells: for a cache near its cap, not for
+    /// every frame.
+    const std::vector<TileWant>& collectInUse(const HexMesh& mesh, const Heightfield& field);
     size_t memoryBytes() const;
 
 private:
+    // Empties the list and starts a new stamp; false for a field held whole.
+    bool begin(const Heightfield& field);
     void want(const SampleTiles& tiles, int32_t level, int32_t tx, int32_t ty, float priority);
 
     std::vector<TileWant> wants_;

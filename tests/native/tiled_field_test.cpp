@@ -307,6 +307,33 @@ TEST(TiledField, WantsFollowTheViewAndEvictedTilesFallBackWithoutCracks) {
         for (const hexlod_tile_want& want : wants) writeTile(t, p, want.level, want.tx, want.ty);
     }
     const double refined = out.triangles;
+    // What the mesh stands on stays; every other tile may go, and the mesh stays watertight
+    // and keeps its fine cells.
+    const hexlod_tile_want* inUse = nullptr;
+    const int32_t used = hexlod_terrain_tiles_in_use(t, &inUse);
+    ASSERT_GT(used, 0);
+    std::vector<hexlod_tile_want> keep(inUse, inUse + used);
+    const int32_t coarsest = int32_t(p.levels.size()) - 1;
+    for (const hexlod_tile_want& k : keep) {
+        EXPECT_TRUE(t->core->field().tiles()->present(k.level, k.tx, k.ty));
+        EXPECT_LT(k.level, coarsest);
+    }
+    int32_t others = 0;
+    for (int32_t level = 0; level < coarsest; ++level) {
+        int32_t across, down;
+        tilesAcross(p, level, across, down);
+        for (int32_t ty = 0; ty < down; ++ty)
+            for (int32_t tx = 0; tx < across; ++tx) {
+                const bool kept = std::any_of(keep.begin(), keep.end(), [&](const hexlod_tile_want& k) { return k.level == level && k.tx == tx && k.ty == ty; });
+                if (!kept) others += hexlod_terrain_evict_tile(t, level, tx, ty) == 0;
+            }
+    }
+    EXPECT_GT(others, 0) << "some tiles were not in use";
+    for (int32_t frame = 0; frame < 30; ++frame) {
+        ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL, &out), 0);
+        ASSERT_EQ(hexlod_diag_check_stream(t, nullptr), 0) << hexlod_last_error();
+    }
+    EXPECT_GT(out.triangles, 0.8 * refined) << "the cells near the camera stayed";
     int32_t across, down, evicted = 0;
     tilesAcross(p, 0, across, down);
     for (int32_t ty = 0; ty < down; ++ty)

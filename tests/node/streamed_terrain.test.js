@@ -153,3 +153,30 @@ test('a tile that fails is reported once with its kind, and the terrain stays dr
     await failing.close().catch(() => {});
   }
 });
+
+test('a small tile cache lets the least recently used tiles go, never those the mesh stands on, and stays watertight', async () => {
+  const source = await openCog(`${server.url}/${HIMALAYA}`);
+  const tileBytes = 256 * 256 * 2;
+  const { terrain, stream } = await openStreamedTerrain(core, source, { capBytes: 6 * tileBytes });
+  terrain.resetMesh('exact');
+  terrain.configure(settings);
+  const w = (terrain.width - 1) * terrain.spacingX, d = (terrain.height - 1) * terrain.spacingY;
+  let evicted = 0;
+  const evict = terrain.evictTile.bind(terrain);
+  terrain.evictTile = (...tile) => (evicted++, evict(...tile));
+  // Across the field from west to east, looking down.
+  for (let k = 0; k < 240; k++) {
+    const x = (0.1 + 0.8 * k / 240) * w;
+    terrain.frame({ eye: [x, 0.12 * w, 0.5 * d], target: [x, 0, 0.5 * d - 0.02 * w], up: [0, 1, 0], fovY: Math.PI / 3,
+      aspect: 16 / 9, viewportHeight: 720, near: 10, far: 1e8 });
+    terrain.checkStream();
+    stream.tick();
+    const pinnedBytes = [...stream.pinned].filter((key) => stream.cache.hasKey(key)).length * tileBytes;
+    assert.ok(stream.cache.bytes <= Math.max(6 * tileBytes, pinnedBytes + tileBytes), `${stream.cache.bytes} bytes held`);
+    await new Promise((resolve) => setTimeout(resolve, 3));
+  }
+  assert.ok(evicted > 0, 'tiles were let go');
+  assert.ok(stream.tilesIn > 6, `${stream.tilesIn} tiles came`);
+  stream.close();
+  terrain.destroy();
+});

@@ -321,8 +321,21 @@ export class Terrain {
    */
   tileWants() {
     const list = (this.wantList ??= []);
-    const count = this.m._hexlod_terrain_tile_wants(this.handle, this.wantsSlot);
-    this.core.check(count < 0, 'cannot collect the tiles to fetch');
+    return this.readTileList(list, this.m._hexlod_terrain_tile_wants(this.handle, this.wantsSlot), 'cannot collect the tiles to fetch');
+  }
+
+  /**
+   * The present tiles the drawn mesh stands on (hexlod_terrain_tiles_in_use): a pass over the
+   * cells, for a cache near its cap. Same list form as tileWants, its own reused list.
+   */
+  tilesInUse() {
+    const list = (this.inUseList ??= []);
+    return this.readTileList(list, this.m._hexlod_terrain_tiles_in_use(this.handle, this.wantsSlot), 'cannot collect the tiles in use');
+  }
+
+  /** Reads `count` hexlod_tile_want records the core pointed at into `list`. */
+  readTileList(list, count, what) {
+    this.core.check(count < 0, what);
     const layout = this.core.layout.tile_want, stride = layout.size / 4, f = layout.fields;
     const i32 = this.scratchI32(), f64 = this.scratchF64();
     const base = i32[this.wantsSlot >>> 2] >>> 0;

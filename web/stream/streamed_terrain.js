@@ -4,7 +4,7 @@
 // first) are fetched, a few at a time, and handed to the core between frames, and the tiles the
 // cache lets go are taken from the core. Runs in the browser (tiles decoded in workers) and in
 // Node (decoded in the main thread).
-import { TileCache, DEFAULT_CAP_BYTES, keyLevel, keyTx, keyTy } from './tile_cache.js';
+import { TileCache, DEFAULT_CAP_BYTES, tileKey, keyLevel, keyTx, keyTy } from './tile_cache.js';
 import { TileFetcher } from './tile_fetcher.js';
 import { StreamError } from './stream_error.js';
 import { MAKE_COG } from './cog_source.js';
@@ -12,6 +12,9 @@ import { MAKE_COG } from './cog_source.js';
 const BYTES = { u8: 1, u16: 2, i16: 2, f32: 4 };
 const RELIEF_RATIO = 0.05; // height range / extent of a guessed spacing (as terrain_source.js guesses)
 const MB = 2 ** 20;
+// Past this share of its cap, the cache learns every PIN_EVERY frames which tiles the mesh
+// stands on, and lets those go last.
+const PIN_SHARE = 0.85, PIN_EVERY = 30;
 
 /**
  * Bytes of samples of every tile of one level.
@@ -99,6 +102,8 @@ export class StreamedTerrain {
     this.tilesIn = 0;
     this.failures = [];
     this.closed = false;
+    this.frames = 0;
+    this.pinned = new Set();
   }
 
   /**
@@ -109,6 +114,11 @@ export class StreamedTerrain {
   tick() {
     if (this.closed) return 0;
     const { terrain, fetcher, cache } = this;
+    if (++this.frames % PIN_EVERY === 0 && cache.bytes > PIN_SHARE * cache.capBytes) {
+      this.pinned.clear();
+      for (const { level, tx, ty } of terrain.tilesInUse()) this.pinned.add(tileKey(level, tx, ty));
+      cache.setPinned(this.pinned);
+    }
     fetcher.want(terrain.tileWants());
     for (const key of cache.takeEvicted()) terrain.evictTile(keyLevel(key), keyTx(key), keyTy(key));
     let arrived = 0;
