@@ -9,9 +9,10 @@ void MinMaxPyramid::build(const Heightfield& field) {
     width_ = field.width();
     height_ = field.height();
     levels_.clear();
+    block_ = field.tiles() ? kTiledBlock : kBlock;
     Level base;
-    base.columns = (width_ + kBlock - 1) / kBlock;
-    base.rows = (height_ + kBlock - 1) / kBlock;
+    base.columns = (width_ + block_ - 1) / block_;
+    base.rows = (height_ + block_ - 1) / block_;
     base.low.assign(size_t(base.columns) * base.rows, 1e30f);
     base.high.assign(size_t(base.columns) * base.rows, -1e30f);
     if (!field.tiles()) {
@@ -44,7 +45,7 @@ void MinMaxPyramid::measureBase(const Heightfield& field, int32_t c0, int32_t r0
     for (int32_t r = r0; r <= r1; ++r)
         for (int32_t c = c0; c <= c1; ++c) {
             const size_t b = size_t(r) * base.columns + c;
-            field.tiles()->range({c * kBlock, r * kBlock, c * kBlock + kBlock - 1, r * kBlock + kBlock - 1}, base.low[b], base.high[b]);
+            field.tiles()->range({c * block_, r * block_, c * block_ + block_ - 1, r * block_ + block_ - 1}, base.low[b], base.high[b]);
         }
 }
 
@@ -67,8 +68,8 @@ void MinMaxPyramid::mergeUp(size_t level, int32_t c0, int32_t r0, int32_t c1, in
 
 void MinMaxPyramid::update(const Heightfield& field, const SampleRect& rect) {
     if (!field.tiles() || rect.empty() || levels_.empty()) return;
-    int32_t c0 = std::max(0, rect.j0 / kBlock), r0 = std::max(0, rect.i0 / kBlock);
-    int32_t c1 = std::min(levels_[0].columns - 1, rect.j1 / kBlock), r1 = std::min(levels_[0].rows - 1, rect.i1 / kBlock);
+    int32_t c0 = std::max(0, rect.j0 / block_), r0 = std::max(0, rect.i0 / block_);
+    int32_t c1 = std::min(levels_[0].columns - 1, rect.j1 / block_), r1 = std::min(levels_[0].rows - 1, rect.i1 / block_);
     measureBase(field, c0, r0, c1, r1);
     for (size_t level = 1; level < levels_.size(); ++level) {
         c0 /= 2, r0 /= 2, c1 /= 2, r1 /= 2;
@@ -80,7 +81,7 @@ void MinMaxPyramid::query(int32_t j0, int32_t i0, int32_t j1, int32_t i1, float&
     j0 = std::clamp(j0, 0, width_ - 1), j1 = std::clamp(j1, 0, width_ - 1);
     i0 = std::clamp(i0, 0, height_ - 1), i1 = std::clamp(i1, 0, height_ - 1);
     // The finest level at which the range spans at most 4 blocks per side.
-    int32_t blockSize = kBlock;
+    int32_t blockSize = block_;
     size_t level = 0;
     while (level + 1 < levels_.size() && std::max(j1 / blockSize - j0 / blockSize, i1 / blockSize - i0 / blockSize) >= 4) {
         blockSize *= 2;

@@ -14,6 +14,13 @@ namespace hexlod {
 class MinMaxPyramid {
 public:
     static constexpr int32_t kBlock = 16; // samples per block side at the finest level
+    /// The same for a tiled field (field/sample_tiles.h): its pyramid is built at open, before the
+    /// first frame, from the coarsest level, over a field that may be 40000² or more; 16x fewer
+    /// blocks make that a sixteenth of the time and memory. Large cells' bounds read whole blocks,
+    /// so they are a little looser there, still bounds.
+    static constexpr int32_t kTiledBlock = 64;
+    /// The block side in use.
+    int32_t block() const { return block_; }
 
     /// One pass over the field's samples (a tiled field: over the levels its heights come
     /// from, SampleTiles::range).
@@ -36,8 +43,9 @@ private:
     };
     void measureBase(const Heightfield& field, int32_t c0, int32_t r0, int32_t c1, int32_t r1);
     void mergeUp(size_t level, int32_t c0, int32_t r0, int32_t c1, int32_t r1);
-    std::vector<Level> levels_; // levels_[0]: kBlock x kBlock samples per block; each next: 2 x 2 blocks
+    std::vector<Level> levels_; // levels_[0]: block_ x block_ samples per block; each next: 2 x 2 blocks
     int32_t width_ = 0, height_ = 0;
+    int32_t block_ = kBlock;
 };
 
 } // namespace hexlod

@@ -18,7 +18,7 @@ void Refiner::heightsChanged(const SampleRect& rect, bool rangeGrew) {
         return;
     }
     const double sx = field_->scale().spacingX, sy = field_->scale().spacingY;
-    const int32_t block = MinMaxPyramid::kBlock;
+    const int32_t block = pyramid_.block();
     for (int32_t c = 0; c < cells; ++c) {
         if (!mesh_->isLive(c)) continue;
         // The parent's footprint holds the cell's; a pyramid query (cell_bounds.cpp) reads
