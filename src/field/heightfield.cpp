@@ -17,22 +17,19 @@ size_t sampleBytes(SampleType type) {
     return 0;
 }
 
+// The checks every field's size and type pass; null or what is wrong.
+static const char* badSize(int32_t width, int32_t height, SampleType type) {
+    if (sampleBytes(type) == 0) return "unknown sample type (expected 1=u8, 2=u16, 3=i16, 4=f32)";
+    if (width < 2 || height < 2) return "a height field needs at least 2x2 samples";
+    if (width > kMaxFieldSide || height > kMaxFieldSide) return "a height field side is limited to 65536 samples";
+    return nullptr;
+}
+
 std::unique_ptr<Heightfield> Heightfield::create(int32_t width, int32_t height, SampleType type,
                                                  const char** error) {
     const char* ignored = nullptr;
     if (!error) error = &ignored;
-    if (sampleBytes(type) == 0) {
-        *error = "unknown sample type (expected 1=u8, 2=u16, 3=i16, 4=f32)";
-        return nullptr;
-    }
-    if (width < 2 || height < 2) {
-        *error = "a height field needs at least 2x2 samples";
-        return nullptr;
-    }
-    if (width > kMaxFieldSide || height > kMaxFieldSide) {
-        *error = "a height field side is limited to 65536 samples";
-        return nullptr;
-    }
+    if ((*error = badSize(width, height, type))) return nullptr;
     const uint64_t bytes = uint64_t(width) * uint64_t(height) * sampleBytes(type);
     if (bytes > uint64_t(SIZE_MAX)) {
         *error = "the height field does not fit this address space";
@@ -54,18 +51,7 @@ std::unique_ptr<Heightfield> Heightfield::createTiled(int32_t width, int32_t hei
                                                       const int32_t* dims, const char** error) {
     const char* ignored = nullptr;
     if (!error) error = &ignored;
-    if (sampleBytes(type) == 0) {
-        *error = "unknown sample type (expected 1=u8, 2=u16, 3=i16, 4=f32)";
-        return nullptr;
-    }
-    if (width < 2 || height < 2) {
-        *error = "a height field needs at least 2x2 samples";
-        return nullptr;
-    }
-    if (width > kMaxFieldSide || height > kMaxFieldSide) {
-        *error = "a height field side is limited to 65536 samples";
-        return nullptr;
-    }
+    if ((*error = badSize(width, height, type))) return nullptr;
     std::unique_ptr<Heightfield> field(new (std::nothrow) Heightfield());
     if (field) field->tiles_.reset(new (std::nothrow) SampleTiles());
     if (!field || !field->tiles_) {
