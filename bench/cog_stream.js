@@ -12,7 +12,11 @@
 //      the share of frames that waited for tiles, peak resident memory.
 //   4. In another child: the 16385² field (the same Himalaya, as page_load.js makes it) read
 //      from disk and opened whole, to its first frame: time and peak memory.
-// Usage: node bench/cog_stream.js [--side N] [--latency MS] [--frames N] [--tau PX]
+//   5. With --page, the same in the page (headless Chromium, SwiftShader): ?src= of the COG on
+//      the range server, then a drag across the view, against ?src= of the 16385² .r16: time to
+//      the first frame, bytes fetched, the share of frames that waited, peak memory of every
+//      Chromium process.
+// Usage: node bench/cog_stream.js [--side N] [--latency MS] [--frames N] [--tau PX] [--page]
 import { spawn, execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, openSync, writeSync, closeSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -22,6 +26,7 @@ import { createNodeCore } from '../lib/node_core.js';
 import { openCog } from '../web/stream/cog_source.js';
 import { openStreamedTerrain } from '../web/stream/streamed_terrain.js';
 import { loadTerrain } from '../web/loaders/terrain_source.js';
+import { startViewer, openPage } from '../lib/page_harness.js';
 
 const root = fileURLToPath(new URL('..', import.meta.url));
 const benchDir = `${root}build/bench`;
@@ -125,7 +130,7 @@ async function wholePhase(path) {
   const core = await createNodeCore();
   const bytes = new Uint8Array(readFileSync(path));
   const files = [{ name: 'himalaya.r16', bytes }, { name: 'himalaya.json', bytes: new TextEncoder().encode(JSON.stringify(
-    { min: HIMALAYA.min, max: HIMALAYA.max, cell_size_x_m: HIMALAYA.cellX, cell_size_y_m: HIMALAYA.cellY })) }];
+    { min: 0, max: 65535, cell_size_x_m: HIMALAYA.cellX, cell_size_y_m: HIMALAYA.cellY })) }]; // raw = metres
   const { terrain } = await loadTerrain(core, files);
   terrain.resetMesh('exact');
   terrain.configure({ tauPx: TAU, budgetMs: 4, morphFrames: 8 });
@@ -143,6 +148,53 @@ function child(phase, target) {
   });
 }
 
+/** Sum of the resident memory of every Chromium process, MB. */
+function chromiumRssMb() {
+  try {
+    const out = execFileSync('ps', ['-C', 'chromium', '-o', 'rss='], { encoding: 'utf8' });
+    return out.split('\n').reduce((sum, line) => sum + (Number(line.trim()) || 0), 0) / 1024;
+  } catch { return 0; }
+}
+
+/**
+ * Opens `src` in the page and measures: navigation to the first frame of that terrain, then a
+ * slow drag (orbiting the view) for `seconds`, counting the frames that waited for tiles.
+ */
+async function pagePhase(viewer, src, seconds) {
+  let peak = chromiumRssMb();
+  const sampler = setInterval(() => { peak = Math.max(peak, chromiumRssMb()); }, 200);
+  try {
+    const start = Date.now();
+    const { page } = await openPage(viewer.browser, `${viewer.url}?test=1&src=${encodeURIComponent(src)}`, { width: 1280, height: 720 });
+    await page.waitForFunction(() => window.hexlod?.status !== 'loading' && window.hexlod?.frames > 0, null, { timeout: 1800000, polling: 100 });
+    const firstFrameS = (Date.now() - start) / 1000;
+    const opened = await page.evaluate(() => ({ status: window.hexlod.status, error: window.hexlod.error, terrain: window.hexlod.terrain }));
+    // Count the frames, and those drawn while tiles were awaited, from inside the page.
+    await page.evaluate(() => {
+      window.benchCount = { frames: 0, waited: 0, last: window.hexlod.frames };
+      const count = () => {
+        const s = window.hexlod, c = window.benchCount;
+        if (s.frames > c.last) { c.frames += s.frames - c.last; if (s.stream && s.stream.waiting > 0) c.waited += s.frames - c.last; c.last = s.frames; }
+        requestAnimationFrame(count);
+      };
+      count();
+    });
+    await page.mouse.move(400, 360);
+    await page.mouse.down();
+    const steps = Math.max(1, Math.round(seconds * 4));
+    for (let i = 0; i < steps; i++) {
+      await page.mouse.move(400 + (i * 480) / steps, 360 + 40 * Math.sin(i / 5));
+      await new Promise((resolve) => setTimeout(resolve, 250));
+    }
+    await page.mouse.up();
+    const end = await page.evaluate(() => ({ count: window.benchCount, stream: window.hexlod.stream, triangles: window.hexlod.triangles }));
+    await page.close();
+    return { firstFrameS, opened, ...end, peakRssMb: Math.max(peak, chromiumRssMb()) };
+  } finally {
+    clearInterval(sampler);
+  }
+}
+
 const mb = (bytes) => (bytes / 2 ** 20).toFixed(bytes < 100 * 2 ** 20 ? 1 : 0);
 
 if (args[0] === '--phase') {
@@ -155,19 +207,31 @@ if (args[0] === '--phase') {
   console.log(`${SIDE}² int16 COG (the Himalaya tiled and mirrored, 512² tiles, uncompressed, averaged overviews): ` +
     `${mb(size)} MB${cog.madeS === null ? ' (made by an earlier run)' : `, written in ${cog.madeS.toFixed(0)} s`}`);
   const server = await startRangeServer(benchDir, { latencyMs: LATENCY });
-  let streamed;
+  const cogUrl = `${server.url}/${cog.path.split('/').pop()}`;
+  let streamed, pageStreamed = null, pageWhole = null;
+  const wholePath = `${benchDir}/himalaya_${WHOLE_SIDE}.r16`;
   try {
-    streamed = await child('stream', `${server.url}/${cog.path.split('/').pop()}`);
+    streamed = await child('stream', cogUrl);
+    writeRaw(wholePath, WHOLE_SIDE, Uint16Array);
+    if (args.includes('--page')) {
+      writeFileSync(wholePath.replace(/\.r16$/, '.json'), JSON.stringify({ min: 0, max: 65535, cell_size_x_m: HIMALAYA.cellX, cell_size_y_m: HIMALAYA.cellY }));
+      const viewer = await startViewer();
+      try {
+        pageStreamed = await pagePhase(viewer, cogUrl, 60);
+        pageWhole = await pagePhase(viewer, `${server.url}/${wholePath.split('/').pop()}`, 10);
+      } finally {
+        await viewer.close();
+      }
+    }
   } finally {
     await server.close();
   }
-  const wholePath = `${benchDir}/himalaya_${WHOLE_SIDE}.r16`;
-  writeRaw(wholePath, WHOLE_SIDE, Uint16Array);
   let whole;
   try {
     whole = await child('whole', wholePath);
   } finally {
     rmSync(wholePath);
+    rmSync(wholePath.replace(/\.r16$/, '.json'), { force: true });
   }
   console.log(`streamed by HTTP Range (${LATENCY} ms a request), WASM core in Node, tau ${TAU} px, 4 ms a frame:`);
   console.log(`  first frame ${streamed.firstFrameS.toFixed(2)} s after the open began (goal <= 2 s), ${mb(streamed.bytesAtFirstFrame)} MB read by then`);
@@ -178,4 +242,13 @@ if (args[0] === '--phase') {
     `peak resident memory ${whole.peakRssMb.toFixed(0)} MB`);
   console.log(`ratios, streamed ${SIDE}² / whole ${WHOLE_SIDE}²: first frame ${(streamed.firstFrameS / whole.firstFrameS).toFixed(2)}, ` +
     `peak memory ${(streamed.peakRssMb / whole.peakRssMb).toFixed(2)}, file ${(streamed.fileBytes / whole.fileBytes).toFixed(1)}`);
+  if (pageStreamed) {
+    const s = pageStreamed, st = s.stream ?? {};
+    console.log(`in the page (headless Chromium, SwiftShader, 1280x720), ?src= of the COG: ${s.opened.status}${s.opened.error ? ` (${s.opened.error})` : ''}`);
+    console.log(`  navigation to first frame ${s.firstFrameS.toFixed(1)} s; after a 60 s drag: ${mb(st.bytesFetched ?? 0)} MB of ${mb(st.fileBytes ?? 1)} MB fetched, ` +
+      `${st.tilesIn} tiles, ${s.count.waited} of ${s.count.frames} frames waited for tiles; peak RSS of all Chromium processes ${s.peakRssMb.toFixed(0)} MB`);
+    const w = pageWhole;
+    console.log(`  ?src= of the ${WHOLE_SIDE}² .r16, whole: ${w.opened.status}, navigation to first frame ${w.firstFrameS.toFixed(1)} s, peak RSS ${w.peakRssMb.toFixed(0)} MB`);
+    console.log(`  ratios, streamed / whole: first frame ${(s.firstFrameS / w.firstFrameS).toFixed(2)}, peak memory ${(s.peakRssMb / w.peakRssMb).toFixed(2)}`);
+  }
 }
