@@ -27,7 +27,10 @@ export class FramePipeline {
     // Made once, filled every frame.
     this.lodCamera = { eye: null, target: null, fovY: 0, aspect: 1, viewportHeight: 1, near: 0, far: 0 };
     this.timingFigures = { updateMs: 0, streamMs: 0, uploadMs: 0, drawMs: 0, frameMs: 0 };
-    this.hudFrame = { terrain: null, stats: null, timing: this.timingFigures, settings, camera: null };
+    this.hudFrame = { terrain: null, stats: null, timing: this.timingFigures, settings, camera: null, stream: null };
+    // A streamed terrain's figures as tests read them (state.stream), filled in place.
+    this.streamFigures = { waiting: 0, bytesFetched: 0, fileBytes: 0, heldBytes: 0, tilesIn: 0, failures: [] };
+    this.streamShown = ''; // what the HUD last said of the stream: a change is shown at once
     this.eye = [0, 0, 0];
     // What tests read (state.lod, state.mesh): plain objects, filled in place.
     this.lodFigures = { frame: 0, pendingMerges: 0, converged: false, splits: 0, merges: 0, updateMs: 0, tau: 0 };
@@ -114,12 +117,21 @@ export class FramePipeline {
     view.frame = stats.frame;
     this.publish(stats);
     if (!frozen && (!stats.converged || stats.frame < current.blendsEnd)) this.request();
+    const stream = current.stream ?? null;
+    // After the frame's update: the tiles it wants are asked for, those that came go in (the
+    // next frame draws them). Frames go on while tiles are awaited, so they show without input.
+    if (stream && (stream.tick() > 0 || stream.waiting > 0)) this.request();
     const hud = this.hud, figures = this.hudFrame;
     figures.terrain = terrain;
     figures.stats = stats;
     figures.camera = camera;
+    figures.stream = stream;
     hud.tick(now);
-    hud.update(figures, now);
+    // Tiles awaited or not, and failures, show at once (the last frame of a wait is not throttled away).
+    const streamKey = stream ? `${stream.waiting > 0} ${stream.failures.length} ${stream.failures[0]?.message}` : '';
+    hud.update(figures, now, streamKey !== this.streamShown);
+    this.streamShown = streamKey;
+    if (stream) this.publishStream(stream);
     state.hud = hud.values;
     const eye = this.eye;
     eye[0] = camera.position[0], eye[1] = camera.position[1], eye[2] = camera.position[2];
@@ -145,6 +157,18 @@ export class FramePipeline {
     state.converged = lod.converged;
     state.lod = lod;
     state.timing = this.timingFigures;
+  }
+
+  // A streamed terrain's figures as tests read them (state.stream).
+  publishStream(stream) {
+    const s = this.streamFigures;
+    s.waiting = stream.waiting;
+    s.bytesFetched = stream.bytesFetched;
+    s.fileBytes = stream.fileBytes;
+    s.heldBytes = stream.heldBytes;
+    s.tilesIn = stream.tilesIn;
+    s.failures = stream.failures;
+    this.state.stream = s;
   }
 
   // The camera as the core takes it, in the object made once.

@@ -10,7 +10,7 @@ export function isTestMode(params) {
 
 /**
  * Publishes `state` (status, error, terrain, frames, triangles, mesh, lod, timing, hud, eye,
- * cursor, ... kept up to date by the page) as window.hexlod, with the handles tests use to drive
+ * cursor, stream (a streamed terrain's waiting, bytesFetched, fileBytes, heldBytes, tilesIn, failures), ... kept up to date by the page) as window.hexlod, with the handles tests use to drive
  * the page: the camera rig, the settings and the view, setSetting(key, value) as the panel sets
  * one, requestRender(), glError(), screenshot(scale), terrainObject() (the core's Terrain),
  * flushUrl(), setLayout('fans' | 'triangles') (the same mesh drawn with the other index layout)
@@ -23,17 +23,19 @@ export function installTestApi(state, { gl, core, rig, settings, view, requestRe
     memory: () => ({ wasmBytes: core.buffer.byteLength, liveTerrains }) });
   // Counts the terrains the page makes and frees (a load that fails or is cancelled must free its own).
   let liveTerrains = 0;
-  const createTerrain = core.createTerrain.bind(core);
-  core.createTerrain = (...args) => {
-    const terrain = createTerrain(...args);
-    liveTerrains += 1;
-    const destroy = terrain.destroy.bind(terrain);
-    terrain.destroy = () => {
-      if (terrain.handle !== 0) liveTerrains -= 1;
-      destroy();
+  for (const method of ['createTerrain', 'createTiledTerrain']) {
+    const create = core[method].bind(core);
+    core[method] = (...args) => {
+      const terrain = create(...args);
+      liveTerrains += 1;
+      const destroy = terrain.destroy.bind(terrain);
+      terrain.destroy = () => {
+        if (terrain.handle !== 0) liveTerrains -= 1;
+        destroy();
+      };
+      return terrain;
     };
-    return terrain;
-  };
+  }
   Object.defineProperty(state, 'camera', { get: () => rig.active, enumerable: true });
   window.hexlod = state;
 }
