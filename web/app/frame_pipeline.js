@@ -5,7 +5,8 @@
 import { MORPH_FRAMES } from './settings_table.js';
 import { FRAME } from '../core/core.js';
 
-const FRAME_LOG = 4096; // frames kept in state.frameLog while recording
+const FRAME_LOG = 4096;
+const SETTLE_FRAMES = 3; // frames after tiles went in before a streamed view can be at rest // frames kept in state.frameLog while recording
 // The FrameStats figures copied into state.lod and state.mesh (plain objects a test can read).
 const LOD_FIGURES = ['frame', 'pendingMerges', 'converged', 'splits', 'merges', 'updateMs', 'tau'];
 const MESH_FIGURES = ['triangles', 'cells', 'vertices', 'maxLevel'];
@@ -29,7 +30,8 @@ export class FramePipeline {
     this.timingFigures = { updateMs: 0, streamMs: 0, uploadMs: 0, drawMs: 0, frameMs: 0 };
     this.hudFrame = { terrain: null, stats: null, timing: this.timingFigures, settings, camera: null, stream: null };
     // A streamed terrain's figures as tests read them (state.stream), filled in place.
-    this.streamFigures = { waiting: 0, bytesFetched: 0, fileBytes: 0, heldBytes: 0, tilesIn: 0, failures: [] };
+    this.streamFigures = { waiting: 0, settled: false, bytesFetched: 0, fileBytes: 0, heldBytes: 0, tilesIn: 0, failures: [] };
+    this.framesSinceTiles = 0; // frames since tiles last went into the core
     this.streamShown = ''; // what the HUD last said of the stream: a change is shown at once
     this.eye = [0, 0, 0];
     // What tests read (state.lod, state.mesh): plain objects, filled in place.
@@ -118,20 +120,28 @@ export class FramePipeline {
     this.publish(stats);
     if (!frozen && (!stats.converged || stats.frame < current.blendsEnd)) this.request();
     const stream = current.stream ?? null;
-    // After the frame's update: the tiles it wants are asked for, those that came go in (the
-    // next frame draws them). Frames go on while tiles are awaited, so they show without input.
-    if (stream && (stream.tick() > 0 || stream.waiting > 0)) this.request();
+    // After the frame's update: the tiles it wants are asked for, those that came go in. Frames
+    // go on while tiles are awaited, so they show without input, and for SETTLE_FRAMES after
+    // tiles went in: the next frame's stream step takes their heights, the one after refines on
+    // them and may want finer tiles, so the wait is over only then.
+    let awaiting = false;
+    if (stream) {
+      this.framesSinceTiles = stream.tick() > 0 ? 0 : this.framesSinceTiles + 1;
+      awaiting = stream.waiting > 0 || this.framesSinceTiles < SETTLE_FRAMES;
+      if (awaiting) this.request();
+    }
     const hud = this.hud, figures = this.hudFrame;
     figures.terrain = terrain;
     figures.stats = stats;
     figures.camera = camera;
     figures.stream = stream;
+    figures.streamAwaiting = awaiting;
     hud.tick(now);
     // Tiles awaited or not, and failures, show at once (the last frame of a wait is not throttled away).
-    const streamKey = stream ? `${stream.waiting > 0} ${stream.failures.length} ${stream.failures[0]?.message}` : '';
+    const streamKey = stream ? `${awaiting} ${stream.failures.length} ${stream.failures[0]?.message}` : '';
     hud.update(figures, now, streamKey !== this.streamShown);
     this.streamShown = streamKey;
-    if (stream) this.publishStream(stream);
+    if (stream) this.publishStream(stream, awaiting);
     state.hud = hud.values;
     const eye = this.eye;
     eye[0] = camera.position[0], eye[1] = camera.position[1], eye[2] = camera.position[2];
@@ -140,6 +150,7 @@ export class FramePipeline {
 
   /** A new terrain is shown: until its first frame, nothing has converged and nothing is drawn. */
   forgetFigures() {
+    this.framesSinceTiles = 0;
     this.lodFigures.converged = false;
     this.meshFigures.triangles = 0;
     this.state.converged = false;
@@ -160,9 +171,10 @@ export class FramePipeline {
   }
 
   // A streamed terrain's figures as tests read them (state.stream).
-  publishStream(stream) {
+  publishStream(stream, awaiting) {
     const s = this.streamFigures;
     s.waiting = stream.waiting;
+    s.settled = !awaiting;
     s.bytesFetched = stream.bytesFetched;
     s.fileBytes = stream.fileBytes;
     s.heldBytes = stream.heldBytes;

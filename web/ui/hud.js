@@ -94,8 +94,9 @@ export class Hud {
   /**
    * Shows the figures of the frame just drawn (at most every REFRESH_MS, unless `force`).
    * @param {{terrain: object, stats: import('../core/core.js').FrameStats, timing: object, settings: object,
-   *   camera: object, stream: import('../stream/streamed_terrain.js').StreamedTerrain|null}} f  stream: a
-   *   streamed terrain's, whose figures are shown, and while tiles are awaited the error is provisional
+   *   camera: object, stream: import('../stream/streamed_terrain.js').StreamedTerrain|null, streamAwaiting: boolean}} f
+   *   stream: a streamed terrain's, whose figures are shown; streamAwaiting: tiles are awaited or
+   *   just went in, so the error is provisional
    */
   update(f, now, force = false) {
     if (!force && now - this.lastRefresh < REFRESH_MS) return;
@@ -121,13 +122,13 @@ export class Hud {
     const fieldBytes = stream ? stream.heldBytes : terrain.sampleBytes;
     const meshBytes = memoryBytes, coreBytes = meshBytes + fieldBytes;
     // Measured against the samples in so far: finer tiles still to come may show more error.
-    const provisional = stream !== null && stream.waiting > 0;
+    const provisional = stream !== null && f.streamAwaiting;
     const errorText = error < 0 ? 'n/a' : `${error.toFixed(2)} px${provisional ? ' (provisional)' : ''}`;
     this.values = { fps, frameMs: timing.frameMs ?? 0, updateMs, triangles,
       full: kinds.full, semi: kinds.semi, boundarySemi: kinds.boundarySemi, vertices,
       splits, merges, coreMB: coreBytes / 2 ** 20,
       bytesPerTriangle: triangles ? meshBytes / triangles : 0, screenErrorPx: error, tau, errorProvisional: provisional,
-      stream: stream ? this.showStream(stream) : null };
+      stream: stream ? this.showStream(stream, provisional) : null };
     const v = this.values;
     this.figures.textContent = [
       `${camera.mode} camera   ${fps > 0 ? `${fps.toFixed(0)} fps` : 'idle'}   frame ${v.frameMs.toFixed(1)} ms   ` +
@@ -144,11 +145,11 @@ export class Hud {
   }
 
   /** The stream's line: tiles awaited and bytes fetched, and the last failures; returns it. */
-  showStream(stream) {
+  showStream(stream, awaiting) {
     const { waiting, bytesFetched, fileBytes, failures } = stream;
     const fetched = `${megabytes(bytesFetched)}${fileBytes ? ` of ${megabytes(fileBytes)}` : ''} MB fetched`;
     let text = waiting > 0 ? `waiting for ${number(waiting)} tile${waiting === 1 ? '' : 's'} · ${fetched}`
-      : `all tiles in view loaded · ${fetched}`;
+      : awaiting ? `taking in tiles · ${fetched}` : `all tiles in view loaded · ${fetched}`;
     if (failures.length > 0) {
       const first = failures[0];
       text += ` · ${failures.length} tile${failures.length === 1 ? '' : 's'} failed (${first.kind}): ${first.message}`;
