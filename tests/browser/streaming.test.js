@@ -30,6 +30,9 @@ before(async () => {
   writeFileSync(join(tmp, SMALL), readFileSync(COGS + SMALL));
   // Cut inside the image directories: no reader can open it.
   writeFileSync(join(tmp, 'cut_header.tif'), bytes.subarray(0, 600));
+  // Cut inside the last full-resolution tiles (a COG stores them last, row by row): it opens,
+  // and the south-east tiles lie past its end.
+  writeFileSync(join(tmp, 'cut_tiles.tif'), bytes.subarray(0, Math.round(0.9 * bytes.length)));
   [viewer, ranged, whole] = await Promise.all([startViewer(), startRangeServer(tmp, { latencyMs: 20 }),
     startRangeServer(tmp, { range: false })]);
 });
@@ -209,6 +212,13 @@ test('a dropped COG streams from the File, never read whole, and shows terrain',
   assert.ok(reads.every((size) => size < bytes.length), `a read of the whole file: ${reads}`);
   const seen = await terrainCoverage(page);
   assert.ok(seen.coverage > 0.2 && seen.colours > 30, JSON.stringify(seen));
+
+  // A small TIFF without overviews, tiled or in strips, loads whole as before.
+  for (const name of [SMALL, 'jacksboro_403x344_f32_strips.tif']) {
+    await dropFiles(page, [{ name, bytes: readFileSync(COGS + name) }]);
+    await terrainShown(page, name);
+    assert.equal(await page.evaluate(() => window.hexlod.terrain.streamed), false, `${name} loads whole`);
+  }
   assert.deepEqual(problems, []);
   await page.close();
 });
@@ -238,28 +248,35 @@ test('faults: each says what went wrong, and the terrain on screen stays', async
   const seen = await terrainCoverage(page);
   assert.ok(seen.coverage > 0.1, `the terrain is still drawn: ${JSON.stringify(seen)}`);
 
-  // Tiles failing mid-flight: the file opens, then its server answers 404 to everything; a
-  // closer view asks for tiles that fail. What is drawn stays, and the HUD says why.
+  // Tiles that fail once the file is open: a closer view asks for them; what is drawn stays,
+  // and the HUD says why.
   await page.evaluate(() => window.hexlod.setSetting('tileCacheMB', 64));
+  /** Looks closely at (fx, fz) of the field and waits for a failed tile; returns the HUD's line. */
+  const failsNear = async (what, fx, fz, kind) => {
+    await page.evaluate(([x, z]) => {
+      const orbit = window.hexlod.rig.cameras.orbit, t = window.hexlod.terrainObject();
+      orbit.target[0] = x * (t.width - 1) * t.spacingX;
+      orbit.target[2] = z * (t.height - 1) * t.spacingY;
+      orbit.distance *= 0.15;
+      window.hexlod.requestRender();
+    }, [fx, fz]);
+    await page.waitForFunction(() => window.hexlod.stream?.failures.length > 0, null, { timeout: 60000 });
+    const failed = await page.evaluate(() => ({ failures: window.hexlod.stream.failures, line: window.hexlod.hud.stream }));
+    console.log(`${what}: ${failed.line}`);
+    assert.equal(failed.failures[0].kind, kind, what);
+    assert.match(await page.locator('#hud .hud-stream').innerText(), new RegExp(`\\d+ tiles? failed \\(${kind}\\)`), what);
+    const drawn = await terrainCoverage(page);
+    assert.ok(drawn.coverage > 0.3 && drawn.colours > 20, `${what}: the terrain is still drawn: ${JSON.stringify(drawn)}`);
+    await page.screenshot({ path: `${outDir}/streaming-failed-${kind}.png` });
+    return failed.line;
+  };
+  assert.equal((await open(`${ranged.url}/cut_tiles.tif`)).outcome, 'shown');
+  assert.match(await failsNear('tiles past the end', 0.85, 0.9, 'truncated'), /past the end of the file .*truncated/);
+  // Its server answers 404 to everything once the file is open.
   assert.equal((await open(`${ranged.url}/${HIMALAYA}`)).outcome, 'shown');
   ranged.options.failPaths = [`/${HIMALAYA}`];
   try {
-    await page.evaluate(() => {
-      const orbit = window.hexlod.rig.cameras.orbit, t = window.hexlod.terrainObject();
-      orbit.target[0] = 0.8 * (t.width - 1) * t.spacingX;
-      orbit.target[2] = 0.3 * (t.height - 1) * t.spacingY;
-      orbit.distance *= 0.15;
-      window.hexlod.requestRender();
-    });
-    await page.waitForFunction(() => window.hexlod.stream?.failures.length > 0, null, { timeout: 60000 });
-    const failed = await page.evaluate(() => ({ failures: window.hexlod.stream.failures, line: window.hexlod.hud.stream }));
-    console.log(`mid-flight: ${failed.line}`);
-    assert.equal(failed.failures[0].kind, 'http');
-    assert.match(failed.line, /\d+ tiles? failed \(http\): .*404/);
-    assert.match(await page.locator('#hud .hud-stream').innerText(), /failed \(http\)/);
-    const drawn = await terrainCoverage(page);
-    assert.ok(drawn.coverage > 0.3 && drawn.colours > 20, `the terrain is still drawn: ${JSON.stringify(drawn)}`);
-    await page.screenshot({ path: `${outDir}/streaming-failed-tiles.png` });
+    assert.match(await failsNear('tiles failing mid-flight', 0.8, 0.3, 'http'), /HTTP 404/);
   } finally {
     ranged.options.failPaths = {};
   }

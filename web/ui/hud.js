@@ -149,7 +149,7 @@ export class Hud {
     const { waiting, bytesFetched, fileBytes, failures } = stream;
     const fetched = `${megabytes(bytesFetched)}${fileBytes ? ` of ${megabytes(fileBytes)}` : ''} MB fetched`;
     let text = waiting > 0 ? `waiting for ${number(waiting)} tile${waiting === 1 ? '' : 's'} · ${fetched}`
-      : awaiting ? `taking in tiles · ${fetched}` : `all tiles in view loaded · ${fetched}`;
+      : awaiting ? `taking in tiles · ${fetched}` : `${failures.length ? 'no tiles awaited' : 'all tiles in view loaded'} · ${fetched}`;
     if (failures.length > 0) {
       const first = failures[0];
       text += ` · ${failures.length} tile${failures.length === 1 ? '' : 's'} failed (${first.kind}): ${first.message}`;
