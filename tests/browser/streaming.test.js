@@ -248,9 +248,17 @@ test('faults: each says what went wrong, and the terrain on screen stays', async
   const seen = await terrainCoverage(page);
   assert.ok(seen.coverage > 0.1, `the terrain is still drawn: ${JSON.stringify(seen)}`);
 
+  // The cap setting: refused out of range, else applied to the open stream.
+  for (const bad of [0, 'lots', 10000]) {
+    assert.equal(await page.evaluate((v) => window.hexlod.setSetting('tileCacheMB', v), bad), false, `tilecache ${bad} refused`);
+  }
+  assert.match(await page.locator('#status').innerText(), /tilecache=10000 is not a number from 1 to 4096/);
+  assert.equal(await page.evaluate(() => window.hexlod.settings.tileCacheMB), 1);
+  assert.equal(await page.evaluate(() => window.hexlod.setSetting('tileCacheMB', 64)), true);
+  await page.waitForFunction(() => window.hexlod.stream.capBytes === 64 * 2 ** 20, null, { timeout: 10000, polling: 50 });
+
   // Tiles that fail once the file is open: a closer view asks for them; what is drawn stays,
   // and the HUD says why.
-  await page.evaluate(() => window.hexlod.setSetting('tileCacheMB', 64));
   /** Looks closely at (fx, fz) of the field and waits for a failed tile; returns the HUD's line. */
   const failsNear = async (what, fx, fz, kind) => {
     await page.evaluate(([x, z]) => {

@@ -30,7 +30,7 @@ export class FramePipeline {
     this.timingFigures = { updateMs: 0, streamMs: 0, uploadMs: 0, drawMs: 0, frameMs: 0 };
     this.hudFrame = { terrain: null, stats: null, timing: this.timingFigures, settings, camera: null, stream: null };
     // A streamed terrain's figures as tests read them (state.stream), filled in place.
-    this.streamFigures = { waiting: 0, settled: false, bytesFetched: 0, fileBytes: 0, heldBytes: 0, tilesIn: 0, failures: [] };
+    this.streamFigures = { waiting: 0, settled: false, bytesFetched: 0, fileBytes: 0, heldBytes: 0, capBytes: 0, tilesIn: 0, failures: [] };
     this.framesSinceTiles = 0; // frames since tiles last went into the core
     this.streamShown = ''; // what the HUD last said of the stream: a change is shown at once
     this.eye = [0, 0, 0];
@@ -178,6 +178,7 @@ export class FramePipeline {
     s.bytesFetched = stream.bytesFetched;
     s.fileBytes = stream.fileBytes;
     s.heldBytes = stream.heldBytes;
+    s.capBytes = stream.cache.capBytes;
     s.tilesIn = stream.tilesIn;
     s.failures = stream.failures;
     this.state.stream = s;
