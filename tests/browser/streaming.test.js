@@ -47,6 +47,7 @@ const recordHud = (page) => page.addInitScript(() => {
   const poll = () => {
     const line = window.hexlod?.hud?.stream;
     if (line && window.hudLines.at(-1) !== line) window.hudLines.push(line);
+    window.sawProvisional ||= /\(provisional\)/.test(document.querySelector('#hud .hud-summary')?.textContent ?? '');
     requestAnimationFrame(poll);
   };
   requestAnimationFrame(poll);
@@ -123,7 +124,8 @@ test('?src= of a COG streams: tiles fill in unasked, less than the file is fetch
   assert.equal(first.status, 'ready', first.error);
   assert.deepEqual([first.terrain.name, first.terrain.width, first.terrain.height, first.terrain.streamed], [HIMALAYA, 1024, 1024, true]);
   await settled(page);
-  const figures = await page.evaluate(() => ({ ...window.hexlod.stream, hud: window.hexlod.hud, lines: window.hudLines }));
+  const figures = await page.evaluate(() => ({ ...window.hexlod.stream, hud: window.hexlod.hud, lines: window.hudLines,
+    sawProvisional: window.sawProvisional }));
   console.log(`streamed: ${figures.tilesIn} tiles in, ${figures.bytesFetched} of ${figures.fileBytes} bytes fetched, ` +
     `${figures.heldBytes} bytes of samples held; HUD: ${figures.lines.join(' → ')}`);
   assert.equal(figures.fileBytes, readFileSync(COGS + HIMALAYA).length);
@@ -132,6 +134,7 @@ test('?src= of a COG streams: tiles fill in unasked, less than the file is fetch
   assert.deepEqual(figures.failures, []);
   assert.ok(figures.lines.some((line) => /^waiting for \d+ tiles? · [\d.]+ of 1\.5 MB fetched/.test(line)), figures.lines.join('\n'));
   assert.match(figures.hud.stream, /^all tiles in view loaded/);
+  assert.ok(figures.sawProvisional, 'while tiles were awaited, the error was marked provisional');
   assert.equal(figures.hud.errorProvisional, false);
   assert.doesNotMatch(await page.locator('#hud').innerText(), /provisional/);
 
@@ -148,6 +151,9 @@ test('?src= of a COG streams: tiles fill in unasked, less than the file is fetch
     return t.heightAt(0.5 * (t.width - 1) * t.spacingX, 0.5 * (t.height - 1) * t.spacingY);
   });
   assert.ok(Number.isFinite(height) && height > 0, `height at the centre ${height}`);
+  await page.mouse.move(VIEWPORT.width / 2, VIEWPORT.height / 2);
+  await page.waitForFunction(() => window.hexlod.cursor !== null, null, { timeout: 10000 });
+  assert.match(await page.locator('#hud').innerText(), /cursor {2}x [\d.]+ km {2}z [\d.]+ km {2}height [\d.]+ m/);
 
   await page.evaluate(() => window.hexlod.flushUrl());
   const search = new URL(page.url()).searchParams;
