@@ -16,6 +16,7 @@ import { startRangeServer } from '../../lib/range_server.js';
 const COGS = `${projectDir}tests/fixtures/cog/`;
 const HIMALAYA = 'himalaya_1024_i16.tif'; // 1024², 256² tiles, overviews 512² and 256²
 const SMALL = 'jacksboro_403x344_f32_no_overviews.tif';
+const STRIPS = 'jacksboro_403x344_f32_strips.tif';
 const VIEWPORT = { width: 480, height: 300 }; // small: SwiftShader draws each frame on the CPU
 // A budget the frames of SwiftShader can keep, and an error that the overviews meet in part
 // of the opening view, so it needs some of the full-resolution tiles and not all.
@@ -27,7 +28,7 @@ before(async () => {
   tmp = mkdtempSync(join(tmpdir(), 'hexlod-streaming-'));
   const bytes = readFileSync(COGS + HIMALAYA);
   writeFileSync(join(tmp, HIMALAYA), bytes);
-  writeFileSync(join(tmp, SMALL), readFileSync(COGS + SMALL));
+  for (const name of [SMALL, STRIPS]) writeFileSync(join(tmp, name), readFileSync(COGS + name));
   // Cut inside the image directories: no reader can open it.
   writeFileSync(join(tmp, 'cut_header.tif'), bytes.subarray(0, 600));
   // Cut inside the last full-resolution tiles (a COG stores them last, row by row): it opens,
@@ -191,7 +192,7 @@ test('?src= of a COG streams: tiles fill in unasked, less than the file is fetch
   await other.page.close();
 });
 
-test('a dropped COG streams from the File, never read whole, and shows terrain', async () => {
+test('a dropped COG streams from the File, never read whole, and shows terrain; other TIFFs load whole', async () => {
   const { page, problems } = await openPage(viewer.browser, 'about:blank', VIEWPORT);
   // Every whole-Blob read on the page's thread, by size (the workers read their slices).
   await page.addInitScript(() => {
@@ -220,12 +221,16 @@ test('a dropped COG streams from the File, never read whole, and shows terrain',
   assert.ok(seen.coverage > 0.2 && seen.colours > 30, JSON.stringify(seen));
 
   // A small TIFF without overviews, tiled or in strips, loads whole as before.
-  for (const name of [SMALL, 'jacksboro_403x344_f32_strips.tif']) {
+  for (const name of [SMALL, STRIPS]) {
     await dropFiles(page, [{ name, bytes: readFileSync(COGS + name) }]);
     await terrainShown(page, name);
     assert.equal(await page.evaluate(() => window.hexlod.terrain.streamed), false, `${name} loads whole`);
   }
-  assert.deepEqual(problems, []);
+  // By ?src=, a TIFF in strips cannot stream: it loads whole.
+  const outcome = await page.evaluate((url) => window.hexlod.openUrl(url), `${ranged.url}/${STRIPS}`);
+  assert.equal(outcome, 'shown', await page.evaluate(() => window.hexlod.error));
+  assert.equal(await page.evaluate(() => window.hexlod.terrain.streamed), false);
+  assert.deepEqual(problems.filter((p) => !/404/.test(p)), []); // the strips' sidecar .json is not there
   await page.close();
 });
 
