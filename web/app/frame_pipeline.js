@@ -5,8 +5,8 @@
 import { MORPH_FRAMES } from './settings_table.js';
 import { FRAME } from '../core/core.js';
 
-const FRAME_LOG = 4096;
-const SETTLE_FRAMES = 3; // frames after tiles went in before a streamed view can be at rest // frames kept in state.frameLog while recording
+const FRAME_LOG = 4096; // frames kept in state.frameLog while recording
+const SETTLE_FRAMES = 3; // frames after tiles went in before a streamed view can be at rest
 // The FrameStats figures copied into state.lod and state.mesh (plain objects a test can read).
 const LOD_FIGURES = ['frame', 'pendingMerges', 'converged', 'splits', 'merges', 'updateMs', 'tau'];
 const MESH_FIGURES = ['triangles', 'cells', 'vertices', 'maxLevel'];
@@ -32,7 +32,10 @@ export class FramePipeline {
     // A streamed terrain's figures as tests read them (state.stream), filled in place.
     this.streamFigures = { waiting: 0, settled: false, bytesFetched: 0, fileBytes: 0, heldBytes: 0, capBytes: 0, tilesIn: 0, failures: [] };
     this.framesSinceTiles = 0; // frames since tiles last went into the core
-    this.streamShown = ''; // what the HUD last said of the stream: a change is shown at once
+    // What the HUD last showed of the stream (awaiting, and the failures list, replaced when
+    // new ones come): a change is shown at once.
+    this.shownAwaiting = false;
+    this.shownFailures = null;
     this.eye = [0, 0, 0];
     // What tests read (state.lod, state.mesh): plain objects, filled in place.
     this.lodFigures = { frame: 0, pendingMerges: 0, converged: false, splits: 0, merges: 0, updateMs: 0, tau: 0 };
@@ -138,9 +141,10 @@ export class FramePipeline {
     figures.streamAwaiting = awaiting;
     hud.tick(now);
     // Tiles awaited or not, and failures, show at once (the last frame of a wait is not throttled away).
-    const streamKey = stream ? `${awaiting} ${stream.failures.length} ${stream.failures[0]?.message}` : '';
-    hud.update(figures, now, streamKey !== this.streamShown);
-    this.streamShown = streamKey;
+    const failures = stream ? stream.failures : null;
+    hud.update(figures, now, awaiting !== this.shownAwaiting || failures !== this.shownFailures);
+    this.shownAwaiting = awaiting;
+    this.shownFailures = failures;
     if (stream) this.publishStream(stream, awaiting);
     state.hud = hud.values;
     const eye = this.eye;
