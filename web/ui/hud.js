@@ -117,12 +117,12 @@ export class Hud {
     const newest = times[(this.frameCount - 1) % FPS_WINDOW], oldest = times[(this.frameCount - kept) % FPS_WINDOW];
     const span = kept > 1 ? newest - oldest : 0;
     const fps = span > 0 && now - newest < 1000 ? ((kept - 1) * 1000) / span : 0;
-    const stream = f.stream;
+    const stream = f.stream ?? null;
     // A tiled terrain holds only the tiles in, not width x height samples.
     const fieldBytes = stream ? stream.heldBytes : terrain.sampleBytes;
     const meshBytes = memoryBytes, coreBytes = meshBytes + fieldBytes;
     // Measured against the samples in so far: finer tiles still to come may show more error.
-    const provisional = stream !== null && f.streamAwaiting;
+    const provisional = stream !== null && f.streamAwaiting === true;
     const errorText = error < 0 ? 'n/a' : `${error.toFixed(2)} px${provisional ? ' (provisional)' : ''}`;
     this.values = { fps, frameMs: timing.frameMs ?? 0, updateMs, triangles,
       full: kinds.full, semi: kinds.semi, boundarySemi: kinds.boundarySemi, vertices,
