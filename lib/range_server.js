@@ -1,7 +1,8 @@
 // A small static file server for the streaming tests and benchmarks: serves the files of one
 // folder with HTTP Range support (or, like some hosts, without it), with a delay per request,
 // paths that answer 404, and connections that break after some bytes, counting the requests
-// and body bytes of every path so a test can check how much a reader fetched.
+// and body bytes of every path so a test can check how much a reader fetched. Any origin may
+// read it (a page under test lives on another port), Range and Content-Range included.
 import { createServer } from 'node:http';
 import { createReadStream, existsSync, statSync } from 'node:fs';
 import { join, normalize, sep } from 'node:path';
@@ -25,6 +26,13 @@ export async function startRangeServer(root, options = {}) {
   const base = normalize(root + sep);
 
   const server = createServer(async (request, response) => {
+    response.setHeader('access-control-allow-origin', '*');
+    response.setHeader('access-control-expose-headers', 'content-range, content-length, accept-ranges');
+    if (request.method === 'OPTIONS') { // a browser's preflight for a Range request: not counted
+      response.writeHead(204, { 'access-control-allow-headers': 'range', 'access-control-allow-methods': 'GET, HEAD' });
+      response.end();
+      return;
+    }
     const path = decodeURIComponent(new URL(request.url, 'http://localhost').pathname);
     const count = counts.get(path) ?? { requests: 0, bytes: 0 };
     counts.set(path, count);

@@ -6,6 +6,7 @@ import { MORPH_FRAMES } from './settings_table.js';
 import { FRAME } from '../core/core.js';
 
 const FRAME_LOG = 4096; // frames kept in state.frameLog while recording
+const SETTLE_FRAMES = 3; // frames after tiles went in before a streamed view can be at rest
 // The FrameStats figures copied into state.lod and state.mesh (plain objects a test can read).
 const LOD_FIGURES = ['frame', 'pendingMerges', 'converged', 'splits', 'merges', 'updateMs', 'tau'];
 const MESH_FIGURES = ['triangles', 'cells', 'vertices', 'maxLevel'];
@@ -27,7 +28,14 @@ export class FramePipeline {
     // Made once, filled every frame.
     this.lodCamera = { eye: null, target: null, fovY: 0, aspect: 1, viewportHeight: 1, near: 0, far: 0 };
     this.timingFigures = { updateMs: 0, streamMs: 0, uploadMs: 0, drawMs: 0, frameMs: 0 };
-    this.hudFrame = { terrain: null, stats: null, timing: this.timingFigures, settings, camera: null };
+    this.hudFrame = { terrain: null, stats: null, timing: this.timingFigures, settings, camera: null, stream: null };
+    // A streamed terrain's figures as tests read them (state.stream), filled in place.
+    this.streamFigures = { waiting: 0, settled: false, bytesFetched: 0, fileBytes: 0, heldBytes: 0, capBytes: 0, tilesIn: 0, failures: [] };
+    this.framesSinceTiles = 0; // frames since tiles last went into the core
+    // What the HUD last showed of the stream (awaiting, and the failures list, replaced when
+    // new ones come): a change is shown at once.
+    this.shownAwaiting = false;
+    this.shownFailures = null;
     this.eye = [0, 0, 0];
     // What tests read (state.lod, state.mesh): plain objects, filled in place.
     this.lodFigures = { frame: 0, pendingMerges: 0, converged: false, splits: 0, merges: 0, updateMs: 0, tau: 0 };
@@ -114,12 +122,30 @@ export class FramePipeline {
     view.frame = stats.frame;
     this.publish(stats);
     if (!frozen && (!stats.converged || stats.frame < current.blendsEnd)) this.request();
+    const stream = current.stream ?? null;
+    // After the frame's update: the tiles it wants are asked for, those that came go in. Frames
+    // go on while tiles are awaited, so they show without input, and for SETTLE_FRAMES after
+    // tiles went in: the next frame's stream step takes their heights, the one after refines on
+    // them and may want finer tiles, so the wait is over only then.
+    let awaiting = false;
+    if (stream) {
+      this.framesSinceTiles = stream.tick() > 0 ? 0 : this.framesSinceTiles + 1;
+      awaiting = stream.waiting > 0 || this.framesSinceTiles < SETTLE_FRAMES;
+      if (awaiting) this.request();
+    }
     const hud = this.hud, figures = this.hudFrame;
     figures.terrain = terrain;
     figures.stats = stats;
     figures.camera = camera;
+    figures.stream = stream;
+    figures.streamAwaiting = awaiting;
     hud.tick(now);
-    hud.update(figures, now);
+    // Tiles awaited or not, and failures, show at once (the last frame of a wait is not throttled away).
+    const failures = stream ? stream.failures : null;
+    hud.update(figures, now, awaiting !== this.shownAwaiting || failures !== this.shownFailures);
+    this.shownAwaiting = awaiting;
+    this.shownFailures = failures;
+    if (stream) this.publishStream(stream, awaiting);
     state.hud = hud.values;
     const eye = this.eye;
     eye[0] = camera.position[0], eye[1] = camera.position[1], eye[2] = camera.position[2];
@@ -128,6 +154,7 @@ export class FramePipeline {
 
   /** A new terrain is shown: until its first frame, nothing has converged and nothing is drawn. */
   forgetFigures() {
+    this.framesSinceTiles = 0;
     this.lodFigures.converged = false;
     this.meshFigures.triangles = 0;
     this.state.converged = false;
@@ -145,6 +172,20 @@ export class FramePipeline {
     state.converged = lod.converged;
     state.lod = lod;
     state.timing = this.timingFigures;
+  }
+
+  // A streamed terrain's figures as tests read them (state.stream).
+  publishStream(stream, awaiting) {
+    const s = this.streamFigures;
+    s.waiting = stream.waiting;
+    s.settled = !awaiting;
+    s.bytesFetched = stream.bytesFetched;
+    s.fileBytes = stream.fileBytes;
+    s.heldBytes = stream.heldBytes;
+    s.capBytes = stream.cache.capBytes;
+    s.tilesIn = stream.tilesIn;
+    s.failures = stream.failures;
+    this.state.stream = s;
   }
 
   // The camera as the core takes it, in the object made once.

@@ -152,7 +152,7 @@ async function main() {
   const setSetting = (key, value) => onSetting(key, value);
   if (window.hexlod === state) {
     installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting, screenshot, urlWriter,
-      terrain: () => stage.current?.terrain, setLayout: (layout) => setSetting('layout', layout) });
+      terrain: () => stage.current?.terrain, setLayout: (layout) => setSetting('layout', layout), openUrl: (url) => intake.openUrl(url) });
   }
   // The flight drives the camera, and drapes its image, if it names one, before its first frame.
   if (det) det.install(state, canvas, gl, requestRender, (image, world) => images.drape(image, world, { throwRefusal: true }));

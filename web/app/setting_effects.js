@@ -44,6 +44,9 @@ export function settingEffects(stage) {
       stage.hud.setTerrain(loaded.field, t, loaded.loadMs);
       stage.intake.showSpacing(t);
     },
+    stream(key, value) {
+      stage.current?.stream?.setCapBytes(value * 2 ** 20);
+    },
     none() {},
   };
   return (key, value, previous) => EFFECTS[SETTINGS[key].effect](key, value, previous);

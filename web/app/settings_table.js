@@ -10,6 +10,7 @@
 //   view      what the renderer draws (deriveView in view_state.js); no core call
 //   mesh      the hexagon mesh is rebuilt (embedding)
 //   ground    the field's spacing: the scale, the mesh and the cameras' ground positions
+//   stream    the streamed terrain's tile cache (its cap in bytes)
 //   none      read where it is used (the freeze switch, limits of the next URL load)
 // core: the setting's hexlod_settings field (Terrain.configure's camelCase name) and how the
 // value maps to it. coreDiffers: why the page's default is not the core's (a test holds both
@@ -27,7 +28,7 @@ export const LAYOUTS = ['triangles', 'fans'];
 export const MORPH_FRAMES = 8;
 
 const LOD = 'Level of detail', MORE = 'Level of detail/budgets and culling', VIEW = 'View', SHADING = 'Shading';
-const MESH = 'Mesh', URLS = 'Loading from a URL', IMAGE = 'Image';
+const MESH = 'Mesh', URLS = 'Loading from a URL', IMAGE = 'Image', STREAM = 'Streaming';
 
 export const SETTINGS = {
   tau: { default: 1, min: 0.25, max: 16, step: 0.05, url: 'tau', panel: [LOD, 'error τ (px)'], effect: 'core',
@@ -83,6 +84,11 @@ export const SETTINGS = {
     effect: 'none' },
   urlMaxMB: { default: 1024, min: 1, max: 4096, step: 1, url: 'maxmb', urlIfChanged: true, panel: [URLS, 'URL size cap (MB)'],
     effect: 'none' },
+
+  // A streamed COG (web/stream/): the tiles' samples held at most, MB; the least recently drawn
+  // go first. Also the size up to which a TIFF that cannot stream is loaded whole instead.
+  tileCacheMB: { default: 512, min: 1, max: 4096, step: 1, url: 'tilecache', urlIfChanged: true, panel: [STREAM, 'tile cache (MB)'],
+    effect: 'stream' },
 };
 
 /** A fresh settings object with every default. */

@@ -12,7 +12,7 @@ export class TerrainStage {
    */
   constructor(parts) {
     Object.assign(this, parts);
-    this.current = null; // { terrain, field, loadMs, world, streamVersion, blendsEnd }
+    this.current = null; // { terrain, field, loadMs, stream (a streamed COG's, else absent), world, streamVersion, blendsEnd }
     this.source = null;  // the data's URL, while the terrain on screen came from one (the address bar's src)
   }
 
@@ -21,6 +21,7 @@ export class TerrainStage {
     const { terrain, field } = loaded;
     this.source = from;
     this.rebuildMesh(terrain);
+    this.current?.stream?.close(); // its requests stop before its terrain goes
     this.current?.terrain.destroy();
     this.current = this.pipeline.current = loaded;
     this.makeWorld();
@@ -29,7 +30,8 @@ export class TerrainStage {
     this.panel.setCellSizeRange(terrain.spacingX);
     this.pipeline.forgetFigures(); // the last terrain's "converged" and triangles do not describe this one
     this.state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
-      minHeight: terrain.minHeight, maxHeight: terrain.maxHeight };
+      minHeight: terrain.minHeight, maxHeight: terrain.maxHeight, streamed: field.streamed === true };
+    this.state.stream = null; // the frame loop publishes a streamed terrain's figures
     this.hud.setTerrain(field, terrain, loaded.loadMs);
     this.syncPanel();
     this.det?.setTerrain(terrain);

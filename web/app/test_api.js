@@ -10,30 +10,33 @@ export function isTestMode(params) {
 
 /**
  * Publishes `state` (status, error, terrain, frames, triangles, mesh, lod, timing, hud, eye,
- * cursor, ... kept up to date by the page) as window.hexlod, with the handles tests use to drive
+ * cursor, stream (a streamed terrain's waiting, bytesFetched, fileBytes, heldBytes, tilesIn,
+ * failures), ... kept up to date by the page) as window.hexlod, with the handles tests use to drive
  * the page: the camera rig, the settings and the view, setSetting(key, value) as the panel sets
  * one, requestRender(), glError(), screenshot(scale), terrainObject() (the core's Terrain),
- * flushUrl(), setLayout('fans' | 'triangles') (the same mesh drawn with the other index layout)
+ * flushUrl(), openUrl(url) (as ?src= opens a file, in this page), setLayout('fans' | 'triangles') (the same mesh drawn with the other index layout)
  * and memory() ({ wasmBytes, liveTerrains }: the size of the core's WebAssembly memory, which
  * never shrinks, and the terrains the core holds: created and not yet destroyed).
  */
-export function installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting, screenshot, terrain, urlWriter, setLayout }) {
-  Object.assign(state, { rig, settings, view, requestRender, setSetting, screenshot, setLayout,
+export function installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting, screenshot, terrain, urlWriter, setLayout, openUrl }) {
+  Object.assign(state, { rig, settings, view, requestRender, setSetting, screenshot, setLayout, openUrl,
     glError: () => gl.getError(), terrainObject: terrain, flushUrl: () => urlWriter.flush(),
     memory: () => ({ wasmBytes: core.buffer.byteLength, liveTerrains }) });
   // Counts the terrains the page makes and frees (a load that fails or is cancelled must free its own).
   let liveTerrains = 0;
-  const createTerrain = core.createTerrain.bind(core);
-  core.createTerrain = (...args) => {
-    const terrain = createTerrain(...args);
-    liveTerrains += 1;
-    const destroy = terrain.destroy.bind(terrain);
-    terrain.destroy = () => {
-      if (terrain.handle !== 0) liveTerrains -= 1;
-      destroy();
+  for (const method of ['createTerrain', 'createTiledTerrain']) {
+    const create = core[method].bind(core);
+    core[method] = (...args) => {
+      const terrain = create(...args);
+      liveTerrains += 1;
+      const destroy = terrain.destroy.bind(terrain);
+      terrain.destroy = () => {
+        if (terrain.handle !== 0) liveTerrains -= 1;
+        destroy();
+      };
+      return terrain;
     };
-    return terrain;
-  };
+  }
   Object.defineProperty(state, 'camera', { get: () => rig.active, enumerable: true });
   window.hexlod = state;
 }

@@ -16,6 +16,8 @@ import { dropRoles, IMAGE_EXTENSIONS } from '../imagery/drop_roles.js';
 import { ImageError } from '../imagery/image_error.js';
 import { worldFileCandidates } from '../imagery/world_file.js';
 import { detectPngEncoding, hasPngSignature } from '../loaders/png.js';
+import { isTiffName, shouldStreamFile, openStream } from './stream_open.js';
+import { MAKE_COG } from '../stream/cog_source.js';
 
 // The PNG colours menu: 'image' drapes a colour PNG; an encoding makes it heights.
 const PNG_CHOICE = { auto: 'auto', image: 'image', 'terrain-rgb': 'height', terrarium: 'height' };
@@ -118,13 +120,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
   async function decode(files, options, signal, source, quiet) {
     const names = files.map((f) => f.name).join(' + ');
     if (!quiet) showStatus(`Loading ${names}…`);
-    state.progress = 0;
-    const onProgress = (fraction, phase) => {
-      if (signal.aborted) throw signal.reason;
-      state.progress = fraction;
-      progress.value = fraction;
-      progress.title = phase;
-    };
+    const onProgress = loadProgress(signal);
     try {
       const loaded = await loadTerrain(core, files, { ...options, encoding: encodingSelect.value === 'image' ? 'auto' : encodingSelect.value, onProgress, guessSpacing: true });
       if (signal.aborted) {
@@ -153,6 +149,59 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
     }
   }
 
+  /** The progress callback of a load: the bar, and a stop at the next pause once `signal` aborts. */
+  function loadProgress(signal) {
+    state.progress = 0;
+    return (fraction, phase) => {
+      if (signal.aborted) throw signal.reason;
+      state.progress = fraction;
+      progress.value = fraction;
+      progress.title = phase;
+    };
+  }
+
+  /**
+   * Opens a COG (a URL or a File) as a streamed terrain and shows it once its coarsest level is
+   * in; the tiles the view needs follow frame by frame. Throws the stream's errors (StreamError).
+   */
+  async function openStreamed(input, name, signal, source) {
+    showStatus(`Opening ${name}…`);
+    const loaded = await openStream(core, input, { name, capBytes: settings.tileCacheMB * MB, signal, onProgress: loadProgress(signal) });
+    if (signal.aborted) {
+      loaded.stream.close();
+      loaded.terrain.destroy();
+      return cancelled(signal, name);
+    }
+    show(loaded, source);
+    showSpacing(loaded.terrain, !loaded.field.spacingFromFile);
+    state.error = null;
+    showStatus('');
+    return 'shown';
+  }
+
+  /**
+   * ?src= of a TIFF: streamed when the server honours Range and the file is tiled; else loaded
+   * whole as any URL, if it fits the tile cache's cap (a file larger than that is what
+   * streaming is for: the message says how to make it a COG).
+   */
+  async function streamUrl(url, name, links, limits, signal) {
+    try {
+      return await openStreamed(url, name, signal, url);
+    } catch (error) {
+      if (signal.aborted) return cancelled(signal, name);
+      if (error.kind !== 'no-range' && error.kind !== 'not-cog') return failed(`${name}: cannot stream it (${error.message})`);
+      const cap = settings.tileCacheMB * MB;
+      const why = error.kind === 'no-range' ? 'its server ignores Range requests' : 'it is not tiled';
+      const advice = `too big to load whole and it cannot stream: ${why}. Make it a Cloud-Optimized GeoTIFF ` +
+        `(${MAKE_COG}) served from a host that honours Range requests, or raise the tile cache under Controls › Streaming`;
+      if (error.size != null && error.size > cap) {
+        return failed(`${name}: ${formatMB(error.size)} MB, more than the ${formatMB(cap)} MB tile cache, ${advice}`);
+      }
+      return fetchAndDecode(links, { ...limits, maxBytes: Math.min(limits.maxBytes, cap) }, signal, url, false,
+        (e) => (e instanceof LimitError && /size cap/.test(e.message) ? `${name}: ${e.message}, ${advice}` : null));
+    }
+  }
+
   /** Shows a download's progress in the status line (unless `quiet`) and the bar. */
   function downloadProgress(name, quiet) {
     if (!quiet) showStatus(`Loading ${name}…`);
@@ -173,9 +222,9 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
   /**
    * Fetches [{ name, url, optional }] within `limits` ({ timeoutMs, maxBytes }) and decodes
    * them: the first is the height field, an optional one (the sidecar) is left out when its
-   * server has none.
+   * server has none. `explain(error)`: a message of the caller's for a failed fetch, or null.
    */
-  async function fetchAndDecode(links, limits, signal, source, quiet) {
+  async function fetchAndDecode(links, limits, signal, source, quiet, explain = () => null) {
     const name = links[0].name;
     const onBytes = downloadProgress(name, quiet);
     const files = [];
@@ -186,7 +235,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
         if (bytes) files.push({ name: link.name, bytes });
       } catch (error) {
         if (signal.aborted) return cancelled(signal, name);
-        if (!link.optional) return failed(fetchFailure(link.name, link.url, error));
+        if (!link.optional) return failed(explain(error) ?? fetchFailure(link.name, link.url, error));
         // A sidecar that cannot be read is one the server does not have: the file opens without it.
       }
     }
@@ -223,6 +272,16 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
         return failed(error.message);
       }
       const image = roles.image === null ? null : { name: picked[roles.image].name, blob: picked[roles.image] };
+      // A lone COG streams from the File (read by slices, never whole); any other height field loads whole.
+      if (picked.length === 1 && roles.field.length === 1 && image === null
+        && await shouldStreamFile(picked[0], only.head, settings.tileCacheMB * MB)) {
+        if (signal.aborted) return cancelled(signal, names);
+        try {
+          return await openStreamed(picked[0], names, signal, null);
+        } catch (error) {
+          return signal.aborted ? cancelled(signal, names) : failed(`${names}: cannot stream it (${error.message})`);
+        }
+      }
       const world = roles.worldFile === null ? null : { name: picked[roles.worldFile].name, blob: picked[roles.worldFile] };
       if (roles.field.length > 0) {
         const files = await Promise.all(roles.field.map(async (i) => ({ name: picked[i].name, bytes: read.get(i) ?? new Uint8Array(await picked[i].arrayBuffer()) })));
@@ -292,6 +351,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
         links.push({ name: `${baseNameOf(name)}.json`, url: new URL(`./${baseNameOf(segment)}.json`, dataUrl).href, optional: true });
       }
       const limits = { timeoutMs: settings.urlTimeout * 1000, maxBytes: settings.urlMaxMB * MB };
+      if (isTiffName(name)) return streamUrl(url, name, links, limits, signal);
       return fetchAndDecode(links, limits, signal, url, false);
     });
   }

@@ -10,6 +10,8 @@ const CENSUS_REFRESH_MS = 1000;
 const FPS_WINDOW = 30; // frames averaged for fps
 
 const number = (n) => Math.round(n).toLocaleString('en');
+const MB = 2 ** 20;
+const megabytes = (bytes) => (bytes >= 10 * MB ? (bytes / MB).toFixed(0) : (bytes / MB).toFixed(1));
 const metres = (m) => (Math.abs(m) >= 10000 ? `${(m / 1000).toFixed(2)} km` : `${m.toFixed(1)} m`);
 
 export class Hud {
@@ -28,11 +30,14 @@ export class Hud {
     this.figures = document.createElement('div');
     this.image = document.createElement('div');
     this.cursor = document.createElement('div');
+    this.stream = document.createElement('div'); // a streamed terrain's tiles: shown folded or not
+    this.stream.className = 'hud-stream';
+    this.stream.hidden = true;
     this.summary.className = 'hud-summary';
     this.info.className = this.figures.className = 'hud-more';
     this.image.className = 'hud-image';
     this.image.hidden = true;
-    element.append(this.toggleButton, this.summary, this.info, this.image, this.figures, this.cursor);
+    element.append(this.toggleButton, this.summary, this.stream, this.info, this.image, this.figures, this.cursor);
     this.setCollapsed(collapsed);
     // rAF timestamps of the last FPS_WINDOW frames, a ring made once (tick runs every frame).
     this.frameTimes = new Float64Array(FPS_WINDOW);
@@ -58,11 +63,16 @@ export class Hud {
     this.lastErrorRefresh = -Infinity; // the error of the old terrain means nothing now
     const spacing = field.spacingFromFile ? '' : ' (assumed: the file has none)';
     this.terrainName = field.source;
+    this.stream.hidden = !field.streamed;
+    this.stream.textContent = '';
     this.info.textContent = [
       `${field.source}  ${terrain.width} × ${terrain.height} ${field.sampleType}` +
-        (field.cropped ? ` (the data of a sparse ${field.cropped.width} × ${field.cropped.height})` : ''),
+        (field.cropped ? ` (the data of a sparse ${field.cropped.width} × ${field.cropped.height})` : '') +
+        (field.streamed ? `, streamed: ${field.levels} levels of ${field.tileWidth} × ${field.tileHeight} tiles` +
+          `${field.fileBytes ? ` in ${megabytes(field.fileBytes)} MB` : ''}` : ''),
       `spacing ${terrain.spacingX.toFixed(1)} × ${terrain.spacingY.toFixed(1)} m${spacing}, ` +
-        `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m, loaded in ${loadMs.toFixed(0)} ms`,
+        `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m${field.streamed ? ' (so far)' : ''}, ` +
+        `${field.streamed ? 'opened' : 'loaded'} in ${loadMs.toFixed(0)} ms`,
     ].join('\n');
   }
 
@@ -84,7 +94,9 @@ export class Hud {
   /**
    * Shows the figures of the frame just drawn (at most every REFRESH_MS, unless `force`).
    * @param {{terrain: object, stats: import('../core/core.js').FrameStats, timing: object, settings: object,
-   *   camera: object}} f
+   *   camera: object, stream: import('../stream/streamed_terrain.js').StreamedTerrain|null, streamAwaiting: boolean}} f
+   *   stream: a streamed terrain's, whose figures are shown; streamAwaiting: tiles are awaited or
+   *   just went in, so the error is provisional
    */
   update(f, now, force = false) {
     if (!force && now - this.lastRefresh < REFRESH_MS) return;
@@ -105,11 +117,18 @@ export class Hud {
     const newest = times[(this.frameCount - 1) % FPS_WINDOW], oldest = times[(this.frameCount - kept) % FPS_WINDOW];
     const span = kept > 1 ? newest - oldest : 0;
     const fps = span > 0 && now - newest < 1000 ? ((kept - 1) * 1000) / span : 0;
-    const meshBytes = memoryBytes, coreBytes = meshBytes + terrain.sampleBytes;
+    const stream = f.stream ?? null;
+    // A tiled terrain holds only the tiles in, not width x height samples.
+    const fieldBytes = stream ? stream.heldBytes : terrain.sampleBytes;
+    const meshBytes = memoryBytes, coreBytes = meshBytes + fieldBytes;
+    // Measured against the samples in so far: finer tiles still to come may show more error.
+    const provisional = stream !== null && f.streamAwaiting === true;
+    const errorText = error < 0 ? 'n/a' : `${error.toFixed(2)} px${provisional ? ' (provisional)' : ''}`;
     this.values = { fps, frameMs: timing.frameMs ?? 0, updateMs, triangles,
       full: kinds.full, semi: kinds.semi, boundarySemi: kinds.boundarySemi, vertices,
       splits, merges, coreMB: coreBytes / 2 ** 20,
-      bytesPerTriangle: triangles ? meshBytes / triangles : 0, screenErrorPx: error, tau };
+      bytesPerTriangle: triangles ? meshBytes / triangles : 0, screenErrorPx: error, tau, errorProvisional: provisional,
+      stream: stream ? this.showStream(stream, provisional) : null };
     const v = this.values;
     this.figures.textContent = [
       `${camera.mode} camera   ${fps > 0 ? `${fps.toFixed(0)} fps` : 'idle'}   frame ${v.frameMs.toFixed(1)} ms   ` +
@@ -117,12 +136,27 @@ export class Hud {
       `${number(v.triangles)} triangles   hexagons: ${number(v.full)} full, ${number(v.semi + v.boundarySemi)} semi ` +
         `(${number(v.boundarySemi)} on the boundary)   ${number(v.vertices)} vertices`,
       `last frame: ${number(v.splits)} splits, ${number(v.merges)} merges`,
-      `core ${v.coreMB.toFixed(1)} MB (field ${(terrain.sampleBytes / 2 ** 20).toFixed(1)} MB), ` +
+      `core ${v.coreMB.toFixed(1)} MB (${stream ? 'tiles' : 'field'} ${(fieldBytes / MB).toFixed(1)} MB), ` +
         `mesh ${v.bytesPerTriangle.toFixed(0)} B/triangle`,
-      `screen error ${error < 0 ? 'n/a' : `${error.toFixed(2)} px`} (τ ${v.tau.toFixed(2)} px)   ×${settings.exaggeration} vertical`,
+      `screen error ${errorText} (τ ${v.tau.toFixed(2)} px)   ×${settings.exaggeration} vertical`,
     ].join('\n');
     this.summary.textContent = `${this.terrainName ?? ''}   ${fps > 0 ? `${fps.toFixed(0)} fps` : 'idle'}   ` +
-      `${number(v.triangles)} triangles   error ${error < 0 ? 'n/a' : `${error.toFixed(2)} px`}`;
+      `${number(v.triangles)} triangles   error ${errorText}`;
+  }
+
+  /** The stream's line: tiles awaited and bytes fetched, and the last failures; returns it. */
+  showStream(stream, awaiting) {
+    const { waiting, bytesFetched, fileBytes, failures } = stream;
+    const fetched = `${megabytes(bytesFetched)}${fileBytes ? ` of ${megabytes(fileBytes)}` : ''} MB fetched`;
+    let text = waiting > 0 ? `waiting for ${number(waiting)} tile${waiting === 1 ? '' : 's'} · ${fetched}`
+      : awaiting ? `taking in tiles · ${fetched}` : `${failures.length ? 'no tiles awaited' : 'all tiles in view loaded'} · ${fetched}`;
+    if (failures.length > 0) {
+      const first = failures[0];
+      text += ` · ${failures.length} tile${failures.length === 1 ? '' : 's'} failed (${first.kind}): ${first.message}`;
+    }
+    this.stream.textContent = text;
+    this.stream.classList.toggle('error', failures.length > 0);
+    return text;
   }
 
   /** The cursor readout: a picked ground point (picking.js) or null. */

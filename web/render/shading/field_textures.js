@@ -61,7 +61,9 @@ export class FieldTextures {
 
   /** Makes what is out of date (all three, so every sampler has a texture). Allocates only when something changed. */
   prepare(verticalScale, sunDirection) {
-    if (!this.terrain || this.terrain.handle === 0) return;
+    // A tiled terrain (a streamed COG) has no whole field to make them from: never ready, so
+    // the renderer shades with the mesh's normals.
+    if (!this.terrain || this.terrain.handle === 0 || this.terrain.tiled) return;
     if (!this.gradients) this.makeGradients();
     if (this.occlusionScale !== verticalScale) this.makeOcclusion(verticalScale);
     const key = this.sunKey;

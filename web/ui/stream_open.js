@@ -1,0 +1,53 @@
+// Which terrains the page streams, and opening one: a COG read by a pool of tile workers
+// (web/stream/worker_tile_reader.js) behind the core's tiled terrain (streamed_terrain.js).
+// A URL to a TIFF is always tried this way (the page falls back to a whole load when the server
+// or the file cannot stream); a dropped TIFF streams only when loading it whole would be worse:
+// it has overviews, or its samples would not fit the tile cache.
+import { openCog } from '../stream/cog_source.js';
+import { openWorkerPool } from '../stream/worker_tile_reader.js';
+import { openStreamedTerrain, levelBytes } from '../stream/streamed_terrain.js';
+import { hasTiffSignature } from '../loaders/geotiff.js';
+import { readDirectory } from '../loaders/tiff_directory.js';
+
+const TILE_WIDTH = 322; // TIFF tag: a tiled image has it, a striped one not
+
+/** A TIFF by its name. */
+export const isTiffName = (name) => /\.tiff?$/i.test(name);
+
+/**
+ * Whether a dropped or picked file streams: a tiled TIFF with overviews, or one whose
+ * full-resolution samples exceed `capBytes`. `head` is the file's first bytes (already read):
+ * a striped TIFF is told from them alone, so other files pay nothing; a tiled one has its
+ * directories read by slices (never the whole file).
+ * @param {File} file @param {Uint8Array} head @param {number} capBytes
+ */
+export async function shouldStreamFile(file, head, capBytes) {
+  if (!isTiffName(file.name) || !hasTiffSignature(head)) return false;
+  let tiled = null; // unknown when the first directory lies beyond the head
+  try {
+    tiled = readDirectory(head, (problem) => { throw new Error(problem); }).values(TILE_WIDTH) !== undefined;
+  } catch { /* the whole load reports a damaged file */ }
+  if (tiled === false || (tiled === null && file.size <= capBytes)) return false;
+  try {
+    const source = await openCog(file, { name: file.name });
+    return source.hasOverviews || levelBytes(source.levels[0], source.sampleType) > capBytes;
+  } catch {
+    return false; // not a COG after all: loaded whole as before, which says what is wrong with it
+  }
+}
+
+/**
+ * Opens `input` (a URL or a File) as a streamed terrain: the worker pool opens the file, then
+ * the coarsest level is read. The pool is closed when anything fails or the signal aborts.
+ * @returns {Promise<{terrain, field, missing, loadMs, stream}>} as openStreamedTerrain
+ * @throws {import('../stream/stream_error.js').StreamError} the pool's kinds, and 'too-big'
+ */
+export async function openStream(core, input, { name, capBytes, signal, onProgress }) {
+  const source = await openWorkerPool(input, { name, signal });
+  try {
+    return await openStreamedTerrain(core, source, { capBytes, signal, guessSpacing: true, onProgress });
+  } catch (error) {
+    source.close();
+    throw error;
+  }
+}
