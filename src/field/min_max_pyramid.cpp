@@ -9,7 +9,8 @@ void MinMaxPyramid::build(const Heightfield& field) {
     width_ = field.width();
     height_ = field.height();
     levels_.clear();
-    block_ = field.tiles() ? kTiledBlock : kBlock;
+    // A tiled field's too: its bounds must be the whole field's once its tiles are in.
+    block_ = kBlock;
     Level base;
     base.columns = (width_ + block_ - 1) / block_;
     base.rows = (height_ + block_ - 1) / block_;

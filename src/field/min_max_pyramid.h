@@ -14,11 +14,6 @@ namespace hexlod {
 class MinMaxPyramid {
 public:
     static constexpr int32_t kBlock = 16; // samples per block side at the finest level
-    /// The same for a tiled field (field/sample_tiles.h): its pyramid is built at open, before the
-    /// first frame, from the coarsest level, over a field that may be 40000² or more; 16x fewer
-    /// blocks make that a sixteenth of the time and memory. Large cells' bounds read whole blocks,
-    /// so they are a little looser there, still bounds.
-    static constexpr int32_t kTiledBlock = 64;
     /// The block side in use.
     int32_t block() const { return block_; }
 
