@@ -11,6 +11,8 @@ let viewer;
 before(async () => { viewer = await startViewer(); });
 after(async () => { await viewer?.close(); });
 
+// The pages run at a 50 ms frame budget: the views converge in few of SwiftShader's slow frames.
+const quick = (query = '') => `${viewer.url}?budget=50${query}`;
 const ready = (page) => page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
 
 const drop = dropFiles;
@@ -19,7 +21,7 @@ const settled = (page) => page.waitForFunction(() => !window.hexlod.loading, nul
 const terrainName = (page, name) => page.waitForFunction((n) => window.hexlod.terrain?.name === n && !window.hexlod.loading, name, { timeout: 60000 });
 
 test('picker and drop switch formats; RAW asks its size; a bad file keeps the terrain', async () => {
-  const { page, problems } = await openPage(viewer.browser, viewer.url);
+  const { page, problems } = await openPage(viewer.browser, quick());
   await ready(page);
   assert.equal(await page.evaluate(() => window.hexlod.status), 'ready');
 
@@ -72,7 +74,7 @@ test('picker and drop switch formats; RAW asks its size; a bad file keeps the te
 
 test('?src=URL opens that file at start-up; a bad URL falls back to the default terrain with its message', async () => {
   const src = `/@fs${FIXTURES}everest_i16_strips.tif`;
-  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?src=${encodeURIComponent(src)}`);
+  const { page, problems } = await openPage(viewer.browser, quick(`&src=${encodeURIComponent(src)}`));
   await ready(page);
   let state = await page.evaluate(() => window.hexlod);
   assert.equal(state.status, 'ready', state.error);
@@ -81,7 +83,7 @@ test('?src=URL opens that file at start-up; a bad URL falls back to the default 
   assert.deepEqual(problems, []);
   await page.close();
 
-  const missing = await openPage(viewer.browser, `${viewer.url}?src=/nothing/here.hgt`);
+  const missing = await openPage(viewer.browser, quick('&src=/nothing/here.hgt'));
   await ready(missing.page);
   state = await missing.page.evaluate(() => window.hexlod);
   assert.equal(state.terrain.name, 'globe_himalaya_2048.png');
