@@ -230,6 +230,20 @@ test('a file truncated after its header opens, and a tile past the end is report
   await assert.rejects(fromBlob.readTile(0, tx, ty), { kind: 'truncated' });
 });
 
+test('a file cut inside its image directories is reported as truncated, from a URL and from a Blob', async () => {
+  const bytes = bytesOf(HIMALAYA);
+  writeFileSync(join(dir, 'cut_header.tif'), bytes.subarray(0, 600));
+  const truncated = (e) => {
+    assert.equal(e.kind, 'truncated');
+    assert.match(e.message, /cut_header\.tif: the file ends at byte 600, inside its image directories .*: it is truncated/);
+    return true;
+  };
+  await withServer({}, async () => {
+    await assert.rejects(openCog(`${server.url}/cut_header.tif`, FAST_RETRIES), truncated);
+  });
+  await assert.rejects(openCog(new Blob([bytes.subarray(0, 600)]), { name: 'cut_header.tif' }), truncated);
+});
+
 test('a tile whose bytes do not decode is reported with its place', async () => {
   const bytes = bytesOf(HIMALAYA).slice();
   const { offsets, counts } = await tilesOf(bytes, 0);

@@ -46,9 +46,17 @@ export const MAKE_COG = 'gdal_translate -of COG in.tif out.tif';
 export async function openCog(input, options = {}) {
   const reader = input instanceof Blob ? blobReader(input) : urlReader(String(input), options);
   const name = options.name ?? reader.name;
-  const fail = (problem) => { throw new StreamError('bad-tiff', `${name}: ${problem}`); };
-  const guard = libraryGuard(fail, StreamError);
   const source = headerSource(reader);
+  const fail = (problem) => { throw new StreamError('bad-tiff', `${name}: ${problem}`); };
+  // A structure that points past the end of the file is a truncated file, not a bad one.
+  const failInStructure = (problem) => {
+    if (source.pastEnd) {
+      throw new StreamError('truncated', `${name}: the file ends at byte ${reader.size ?? '?'}, inside its image directories ` +
+        `(${problem}): it is truncated`, { size: reader.size });
+    }
+    throw new StreamError('bad-tiff', `${name}: ${problem}`);
+  };
+  const guard = libraryGuard(failInStructure, StreamError);
   const signal = options.signal;
 
   const head = new Uint8Array((await source.fetch([{ offset: 0, length: 16 }], signal))[0]);

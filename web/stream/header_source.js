@@ -46,11 +46,15 @@ export function headerSource(reader, blockBytes = HEADER_BLOCK_BYTES) {
       filled += part.length;
       if (parts[i].length < blockBytes) break; // the end of the file
     }
+    if (filled < length) pastEnd = true;
     return filled === length ? out.buffer : out.slice(0, filled).buffer;
   }
 
+  let pastEnd = false;
   return {
     fetch: (slices, signal) => Promise.all(slices.map((s) => slice(s, signal))),
     get fileSize() { return reader.size; },
+    /** Whether a read asked for bytes past the end of the file (a truncated file's directories). */
+    get pastEnd() { return pastEnd; },
   };
 }
