@@ -43,11 +43,7 @@ void MinMaxPyramid::build(const Heightfield& field) {
 
 void MinMaxPyramid::measureBase(const Heightfield& field, int32_t c0, int32_t r0, int32_t c1, int32_t r1) {
     Level& base = levels_[0];
-    for (int32_t r = r0; r <= r1; ++r)
-        for (int32_t c = c0; c <= c1; ++c) {
-            const size_t b = size_t(r) * base.columns + c;
-            field.tiles()->range({c * block_, r * block_, c * block_ + block_ - 1, r * block_ + block_ - 1}, base.low[b], base.high[b]);
-        }
+    field.tiles()->blockRanges(block_, c0, r0, c1, r1, size_t(base.columns), base.low.data(), base.high.data());
 }
 
 // Level `level`'s blocks [c0, c1] x [r0, r1] from the four blocks under each.

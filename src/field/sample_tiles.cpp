@@ -297,6 +297,52 @@ void SampleTiles::range(const SampleRect& rect, float& low, float& high) const {
         }
 }
 
+void SampleTiles::blockRanges(int32_t block, int32_t c0, int32_t r0, int32_t c1, int32_t r1, size_t stride, float* low,
+                              float* high) const {
+    // Blocks that straddle regions (a tile side that is not a multiple of the block) take the
+    // general path.
+    const bool nested = regionWidth_ % block == 0 && regionHeight_ % block == 0;
+    std::vector<int32_t> u0(size_t(c1 - c0 + 1)), u1(u0.size()), v0(size_t(r1 - r0 + 1)), v1(v0.size());
+    for (int32_t ry = r0 * block / regionHeight_; ry <= std::min(regionsDown_ - 1, (r1 * block + block - 1) / regionHeight_); ++ry)
+        for (int32_t rx = c0 * block / regionWidth_; rx <= std::min(regionsAcross_ - 1, (c1 * block + block - 1) / regionWidth_); ++rx) {
+            const int32_t region = ry * regionsAcross_ + rx;
+            const SampleRect whole = regionRect(region);
+            const int32_t bc0 = std::max(c0, whole.j0 / block), bc1 = std::min(c1, whole.j1 / block);
+            const int32_t br0 = std::max(r0, whole.i0 / block), br1 = std::min(r1, whole.i1 / block);
+            const int32_t level = regionLevel_[size_t(region)];
+            if (!nested || level == 0) {
+                for (int32_t r = br0; r <= br1; ++r)
+                    for (int32_t c = bc0; c <= bc1; ++c) {
+                        const size_t b = size_t(r) * stride + size_t(c);
+                        range({c * block, r * block, c * block + block - 1, r * block + block - 1}, low[b], high[b]);
+                    }
+                continue;
+            }
+            // Each block column's and row's span of the level's samples, once.
+            int32_t ignored;
+            for (int32_t c = bc0; c <= bc1; ++c) {
+                const SampleRect column{c * block, whole.i0, std::min(c * block + block - 1, width_ - 1), whole.i0};
+                samplesFor(level, column, u0[size_t(c - c0)], ignored, u1[size_t(c - c0)], ignored);
+            }
+            for (int32_t r = br0; r <= br1; ++r) {
+                const SampleRect row{whole.j0, r * block, whole.j0, std::min(r * block + block - 1, height_ - 1)};
+                samplesFor(level, row, ignored, v0[size_t(r - r0)], ignored, v1[size_t(r - r0)]);
+            }
+            const TileLevel& l = levels_[size_t(level)];
+            for (int32_t r = br0; r <= br1; ++r)
+                for (int32_t c = bc0; c <= bc1; ++c) {
+                    float lo = 1e30f, hi = -1e30f;
+                    for (int32_t v = v0[size_t(r - r0)]; v <= v1[size_t(r - r0)]; ++v)
+                        for (int32_t u = u0[size_t(c - c0)]; u <= u1[size_t(c - c0)]; ++u) {
+                            const float h = toMetres(rawAtLevel(l, u, v));
+                            lo = std::min(lo, h), hi = std::max(hi, h);
+                        }
+                    const size_t b = size_t(r) * stride + size_t(c);
+                    low[b] = lo, high[b] = hi;
+                }
+        }
+}
+
 int32_t SampleTiles::levelIn(const SampleRect& rect, float& detail) const {
     detail = 0.0f;
     const SampleRect r{std::max(rect.j0, 0), std::max(rect.i0, 0), std::min(rect.j1, width_ - 1), std::min(rect.i1, height_ - 1)};
