@@ -74,18 +74,6 @@ function everestHgt() {
 // The pages run at a 50 ms frame budget: SwiftShader draws about a frame a second, and at the
 // default 4 ms the default view takes some 160 frames to converge. Convergence is the same.
 const quick = (query = '') => `${viewer.url}?budget=50${query ? `&${query}` : ''}`;
-
-// One page for the journeys that drop or pick files on it (each drop frames its own field anew,
-// so none needs a fresh page): the default terrain is loaded once, not four times. The last of
-// them closes it; the exaggeration it changes is the last thing done on it.
-let dropPage;
-async function openDropPage() {
-  if (!dropPage) {
-    dropPage = await openPage(viewer.browser, quick(), VIEWPORT);
-    await pageReady(dropPage.page);
-  }
-  return dropPage;
-}
 test('the page opens on the default terrain over at least 75 % of a 1280×720 view; panel and HUD fold', async () => {
   const { page, problems } = await openPage(viewer.browser, quick(), { width: 1280, height: 720 });
   await pageReady(page);
@@ -131,7 +119,8 @@ test('the page opens on the default terrain over at least 75 % of a 1280×720 vi
 });
 
 test('every format and real DEM dropped on the page opens framed and refines', async () => {
-  const { page, problems } = await openDropPage();
+  const { page, problems } = await openPage(viewer.browser, quick(), VIEWPORT);
+  await pageReady(page);
   const figures = [];
   for (const files of dropSets()) {
     await dropFiles(page, files);
@@ -146,10 +135,12 @@ test('every format and real DEM dropped on the page opens framed and refines', a
   }
   assert.ok(figures.length >= 18, `${figures.length} files dropped`);
   assert.deepEqual(problems, []);
+  await page.close();
 });
 
 test('a picked file and a ?src= file open framed; R brings the view back after moving away', async () => {
-  const { page, problems } = await openDropPage();
+  const { page, problems } = await openPage(viewer.browser, quick(), VIEWPORT);
+  await pageReady(page);
   await page.setInputFiles('#file-input', [`${FIXTURES}grandcanyon_512.png`, `${FIXTURES}grandcanyon_512.json`]);
   await terrainShown(page, 'grandcanyon_512.png');
   await assertSeen(page, 'picked-grandcanyon', { minTriangles: 5000 });
@@ -172,6 +163,7 @@ test('a picked file and a ?src= file open framed; R brings the view back after m
   assert.deepEqual(await pose(), framed, 'R frames the terrain as the drop did');
   await assertSeen(page, 'reset-grandcanyon', { minTriangles: 5000 });
   assert.deepEqual(problems, []);
+  await page.close();
 
   const src = `${viewer.fixturesUrl}formats/everest_i16_strips.tif`;
   const opened = await openPage(viewer.browser, quick(`src=${encodeURIComponent(src)}`), VIEWPORT);
@@ -183,6 +175,32 @@ test('a picked file and a ?src= file open framed; R brings the view back after m
   await opened.page.close();
 });
 
+test('after a drop: orbit → fly → walk → orbit, and a new exaggeration, keep the terrain in view', async () => {
+  const { page, problems } = await openPage(viewer.browser, quick(), VIEWPORT);
+  await pageReady(page);
+  await dropFiles(page, [read('jacksboro_fault.png'), read('jacksboro_fault.json')]);
+  await terrainShown(page, 'jacksboro_fault.png');
+  await assertSeen(page, 'cameras-dropped', { minTriangles: 2000 });
+  for (const key of ['2', '3', '1']) {
+    await page.keyboard.press(key);
+    await nextFrame(page);
+    const mode = await page.evaluate(() => window.hexlod.camera.mode);
+    assert.equal(mode, { 2: 'fly', 3: 'walk', 1: 'orbit' }[key]);
+    // Walking puts the eye at eye height on the ground, seeing little of a 30 km field at τ = 1,
+    // and looking ahead at the landscape: the sky above the horizon is in view, not only the
+    // ground at the walker's feet.
+    await assertSeen(page, `cameras-${mode}`, { minCoverage: mode === 'walk' ? 0.1 : 0.2, minTriangles: mode === 'walk' ? 500 : 2000,
+      maxCoverage: mode === 'walk' ? 0.9 : 1 });
+  }
+  for (const exaggeration of [10, 1]) {
+    await page.evaluate((value) => window.hexlod.setSetting('exaggeration', value), exaggeration);
+    // The camera may back away from taller hills: fewer triangles, but the terrain in view.
+    await assertSeen(page, `exaggeration-${exaggeration}`, { minTriangles: 300 });
+  }
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 /** A .f32 field and its sidecar, made here: width x height samples of heightOf(i, j) metres. */
 function madeField(name, width, height, spacing, heightOf) {
   const heights = new Float32Array(width * height);
@@ -192,7 +210,8 @@ function madeField(name, width, height, spacing, heightOf) {
 }
 
 test('odd fields open framed: under the sea, above 4000 m, flat, a spike, 2×2, a profile, a thin strip, 0.5 m lidar', async () => {
-  const { page, problems } = await openDropPage();
+  const { page, problems } = await openPage(viewer.browser, quick(), VIEWPORT);
+  await pageReady(page);
   const wave = (low, high, period) => (i, j) => low + (high - low) * (0.5 + 0.25 * Math.sin(i / period) + 0.25 * Math.cos(j / (0.7 * period)));
   // The least coverage is what the whole field in view can fill: a spike 8 times higher than
   // its field is wide leaves the ground small; a profile or a strip is a thin ribbon. The least
@@ -216,30 +235,6 @@ test('odd fields open framed: under the sea, above 4000 m, flat, a spike, 2×2, 
     // A ribbon (the profile, the strip) covers few pixels, so fewer colours.
     const plane = name === 'flat' || name === 'tiny', ribbon = name === 'profile' || name === 'strip';
     await assertSeen(page, `odd-${name}`, { minCoverage, minTriangles, minSpread: plane ? 0.5 : 4, minColours: plane || ribbon ? 10 : 30 });
-  }
-  assert.deepEqual(problems, []);
-});
-
-test('after a drop: orbit → fly → walk → orbit, and a new exaggeration, keep the terrain in view', async () => {
-  const { page, problems } = await openDropPage();
-  await dropFiles(page, [read('jacksboro_fault.png'), read('jacksboro_fault.json')]);
-  await terrainShown(page, 'jacksboro_fault.png');
-  await assertSeen(page, 'cameras-dropped', { minTriangles: 2000 });
-  for (const key of ['2', '3', '1']) {
-    await page.keyboard.press(key);
-    await nextFrame(page);
-    const mode = await page.evaluate(() => window.hexlod.camera.mode);
-    assert.equal(mode, { 2: 'fly', 3: 'walk', 1: 'orbit' }[key]);
-    // Walking puts the eye at eye height on the ground, seeing little of a 30 km field at τ = 1,
-    // and looking ahead at the landscape: the sky above the horizon is in view, not only the
-    // ground at the walker's feet.
-    await assertSeen(page, `cameras-${mode}`, { minCoverage: mode === 'walk' ? 0.1 : 0.2, minTriangles: mode === 'walk' ? 500 : 2000,
-      maxCoverage: mode === 'walk' ? 0.9 : 1 });
-  }
-  for (const exaggeration of [10, 1]) {
-    await page.evaluate((value) => window.hexlod.setSetting('exaggeration', value), exaggeration);
-    // The camera may back away from taller hills: fewer triangles, but the terrain in view.
-    await assertSeen(page, `exaggeration-${exaggeration}`, { minTriangles: 300 });
   }
   assert.deepEqual(problems, []);
   await page.close();

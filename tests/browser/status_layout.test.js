@@ -5,7 +5,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { decode } from 'fast-png';
-import { startViewer, openPage, pageReady, dropFiles, converged, nextFrame } from '../../lib/page_harness.js';
+import { startViewer, openPage, pageReady, dropFiles } from '../../lib/page_harness.js';
 
 const VIEWPORTS = [
   { width: 1280, height: 720 }, { width: 960, height: 540 }, { width: 390, height: 844 }, { width: 320, height: 568 },
@@ -36,21 +36,12 @@ function redPixels(png, box, scale) {
 test('after a refused file, the status line and the HUD are both on screen and apart, phones included', async () => {
   const viewer = await startViewer();
   try {
-    // One page, resized to each window: the status line and the HUD are laid out by the
-    // stylesheet alone (its media queries), as on a page opened at that size. Only boxes and
-    // the message's red are judged, not the terrain: a coarse mesh (τ = 8 px) at a 50 ms frame
-    // budget converges in a few cheap frames of SwiftShader's (its frame time follows the
-    // triangles) and then draws no more, so clicks and screenshots do not wait behind frames.
-    const { page, problems } = await openPage(viewer.browser, `${viewer.url}?budget=50&tau=8`, VIEWPORTS[0]);
-    await pageReady(page);
-    await page.waitForFunction(() => /triangles/.test(document.getElementById('hud').textContent));
-    await dropFiles(page, [BAD]);
-    await page.waitForFunction(() => window.hexlod.error && document.getElementById('status').classList.contains('error'));
     for (const viewport of VIEWPORTS) {
-      await page.setViewportSize(viewport);
-      await nextFrame(page); // drawn at the new size
-      await converged(page);
-      assert.deepEqual(await page.evaluate(() => [innerWidth, innerHeight]), [viewport.width, viewport.height]);
+      const { page, problems } = await openPage(viewer.browser, viewer.url, viewport);
+      await pageReady(page);
+      await page.waitForFunction(() => /triangles/.test(document.getElementById('hud').textContent));
+      await dropFiles(page, [BAD]);
+      await page.waitForFunction(() => window.hexlod.error && document.getElementById('status').classList.contains('error'));
       const message = await page.evaluate(() => document.getElementById('status').textContent);
       assert.match(message, /not a PNG|signature/i, `${viewport.width}x${viewport.height}: ${message}`);
 
@@ -72,9 +63,9 @@ test('after a refused file, the status line and the HUD are both on screen and a
         const text = await page.evaluate(() => document.getElementById('hud').innerText);
         assert.match(text, /triangles/, `${where}: the HUD still reads its triangle count`);
       }
+      assert.deepEqual(problems.filter((p) => !/Failed to load resource|request failed/.test(p)), []);
+      await page.close();
     }
-    assert.deepEqual(problems.filter((p) => !/Failed to load resource|request failed/.test(p)), []);
-    await page.close();
   } finally {
     await viewer.close();
   }

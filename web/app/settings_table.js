@@ -28,7 +28,7 @@ export const LAYOUTS = ['triangles', 'fans'];
 export const MORPH_FRAMES = 8;
 
 const LOD = 'Level of detail', MORE = 'Level of detail/budgets and culling', VIEW = 'View', SHADING = 'Shading';
-const MESH = 'Mesh', URLS = 'Loading from a URL', IMAGE = 'Image', STREAM = 'Streaming';
+const MESH = 'Mesh', URLS = 'Loading from a URL', IMAGE = 'Image';
 
 export const SETTINGS = {
   tau: { default: 1, min: 0.25, max: 16, step: 0.05, url: 'tau', panel: [LOD, 'error τ (px)'], effect: 'core',
@@ -87,7 +87,7 @@ export const SETTINGS = {
 
   // A streamed COG (web/stream/): the tiles' samples held at most, MB; the least recently drawn
   // go first. Also the size up to which a TIFF that cannot stream is loaded whole instead.
-  tileCacheMB: { default: 512, min: 1, max: 4096, step: 1, url: 'tilecache', urlIfChanged: true, panel: [STREAM, 'tile cache (MB)'],
+  tileCacheMB: { default: 512, min: 1, max: 4096, step: 1, url: 'tilecache', urlIfChanged: true, panel: [URLS, 'tile cache (MB)'],
     effect: 'stream' },
 };
 

@@ -193,7 +193,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
       const cap = settings.tileCacheMB * MB;
       const why = error.kind === 'no-range' ? 'its server ignores Range requests' : 'it is not tiled';
       const advice = `too big to load whole and it cannot stream: ${why}. Make it a Cloud-Optimized GeoTIFF ` +
-        `(${MAKE_COG}) served from a host that honours Range requests, or raise the tile cache under Controls › Streaming`;
+        `(${MAKE_COG}) served from a host that honours Range requests, or raise the tile cache under Controls › Loading from a URL`;
       if (error.size != null && error.size > cap) {
         return failed(`${name}: ${formatMB(error.size)} MB, more than the ${formatMB(cap)} MB tile cache, ${advice}`);
       }
