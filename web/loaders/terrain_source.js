@@ -58,21 +58,25 @@ export async function loadTerrain(core, files, options = {}) {
       terrain.setScale(options.spacing ? { ...field, spacingX: options.spacing.x, spacingY: options.spacing.y } : field);
       return terrain.prepare();
     });
-    if (options.guessSpacing && !field.spacingFromFile && !options.spacing) {
-      // No spacing anywhere: one that makes the relief a twentieth of the extent, a plausible
-      // landscape, rather than 1 m, which turns any real DEM into needles. No mesh exists
-      // yet, so setting the scale again costs nothing.
-      const relief = terrain.maxHeight - terrain.minHeight;
-      const guess = relief > 0 ? relief / (RELIEF_RATIO * (Math.max(terrain.width, terrain.height) - 1)) : 1;
-      field.spacingX = field.spacingY = Number(guess.toPrecision(3));
-      terrain.setScale(field);
-    }
+    if (options.guessSpacing && !field.spacingFromFile && !options.spacing) guessSpacing(terrain, field);
     const { samples, ...metadata } = field;
     return { terrain, field: metadata, missing, loadMs: performance.now() - start };
   } catch (error) {
     terrain?.destroy();
     throw error;
   }
+}
+
+/**
+ * No spacing anywhere (file, sidecar, caller): sets one that makes the relief a twentieth of the
+ * extent, a plausible landscape, rather than 1 m, which turns any real DEM into needles. Call on
+ * a prepared terrain before its mesh exists (setting the scale again then costs nothing).
+ */
+export function guessSpacing(terrain, field) {
+  const relief = terrain.maxHeight - terrain.minHeight;
+  const guess = relief > 0 ? relief / (RELIEF_RATIO * (Math.max(terrain.width, terrain.height) - 1)) : 1;
+  field.spacingX = field.spacingY = Number(guess.toPrecision(3));
+  terrain.setScale(field);
 }
 
 /** Runs a core call on a file's data; a CoreError becomes a HeightfieldError naming the file. */

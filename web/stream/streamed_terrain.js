@@ -8,9 +8,9 @@ import { TileCache, DEFAULT_CAP_BYTES, tileKey, keyLevel, keyTx, keyTy } from '.
 import { TileFetcher } from './tile_fetcher.js';
 import { StreamError } from './stream_error.js';
 import { MAKE_COG } from './cog_source.js';
+import { guessSpacing } from '../loaders/terrain_source.js';
 
 const BYTES = { u8: 1, u16: 2, i16: 2, f32: 4 };
-const RELIEF_RATIO = 0.05; // height range / extent of a guessed spacing (as terrain_source.js guesses)
 const MB = 2 ** 20;
 // Past this share of its cap, the cache learns every PIN_EVERY frames which tiles the mesh
 // stands on, and lets those go last.
@@ -76,12 +76,7 @@ export async function openStreamedTerrain(core, source, options = {}) {
     const scale = options.spacing ? { ...field, spacingX: options.spacing.x, spacingY: options.spacing.y } : field;
     terrain.setScale(scale);
     terrain.prepare();
-    if (options.guessSpacing && !field.spacingFromFile && !options.spacing) {
-      const relief = terrain.maxHeight - terrain.minHeight;
-      const guess = relief > 0 ? relief / (RELIEF_RATIO * (Math.max(terrain.width, terrain.height) - 1)) : 1;
-      field.spacingX = field.spacingY = Number(guess.toPrecision(3));
-      terrain.setScale(field);
-    }
+    if (options.guessSpacing && !field.spacingFromFile && !options.spacing) guessSpacing(terrain, field);
     if (source.statistics) terrain.declareHeightRange(source.statistics.min, source.statistics.max);
     const stream = new StreamedTerrain(terrain, source, { capBytes, concurrency: options.concurrency });
     return { terrain, field, missing: 0, loadMs: performance.now() - start, stream };
