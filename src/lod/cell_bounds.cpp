@@ -246,6 +246,11 @@ Footprint footprintOf(const Heightfield& field, Embedding embedding, const CellS
     return f;
 }
 
+SampleRect samplesUnder(const Heightfield& field, const Footprint& f) {
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    return {int32_t(std::floor(f.x0 / sx)), int32_t(std::floor(f.z0 / sy)), int32_t(std::ceil(f.x1 / sx)), int32_t(std::ceil(f.z1 / sy))};
+}
+
 SlopeBox slopesUnder(const Heightfield& field, Embedding embedding, const Footprint& f) {
     SlopeBox box;
     const double sx = field.scale().spacingX, sy = field.scale().spacingY;

@@ -46,6 +46,8 @@ CellShape shapeOfCell(const HexMesh& mesh, int32_t cell);
 CellShape parentShapeOfCell(const HexMesh& mesh, int32_t cell);
 
 Footprint footprintOf(const Heightfield& field, Embedding embedding, const CellShape& shape);
+/// The columns and rows of samples a footprint spans, rounded outwards; not clamped to the field.
+SampleRect samplesUnder(const Heightfield& field, const Footprint& footprint);
 
 /// The range of slopes of the true surface under a footprint (paper §5's cone of normals, as a
 /// box of gradients): dh/dx in [dxLow, dxHigh] and dh/dz in [dzLow, dzHigh] over every

@@ -290,10 +290,7 @@ bool Refiner::canRefine(int32_t c) const {
 
 bool Refiner::coarserData(const CellShape& shape, const Footprint& f, float& detail, bool& heldBack) const {
     const SampleTiles& tiles = *field_->tiles();
-    const double sx = field_->scale().spacingX, sy = field_->scale().spacingY;
-    const SampleRect rect{int32_t(std::floor(f.x0 / sx)), int32_t(std::floor(f.z0 / sy)), int32_t(std::ceil(f.x1 / sx)),
-                          int32_t(std::ceil(f.z1 / sy))};
-    const int32_t level = tiles.levelIn(rect, detail);
+    const int32_t level = tiles.levelIn(samplesUnder(*field_, f), detail);
     if (level == 0) return false;
     const TileLevel& l = tiles.level(level);
     // Its children's vertices are step / 2 samples apart: finer than the level's samples.

@@ -8,6 +8,16 @@
 
 namespace hexlod {
 
+namespace {
+
+// The samples under a footprint that lie in the field.
+SampleRect fieldSamplesUnder(const Heightfield& field, const Footprint& f) {
+    const SampleRect r = samplesUnder(field, f);
+    return {std::max(0, r.j0), std::max(0, r.i0), std::min(field.width() - 1, r.j1), std::min(field.height() - 1, r.i1)};
+}
+
+} // namespace
+
 void TileWants::want(const SampleTiles& tiles, int32_t level, int32_t tx, int32_t ty, float priority) {
     if (tiles.present(level, tx, ty)) return;
     const TileLevel& l = tiles.level(level);
@@ -46,7 +56,6 @@ bool TileWants::begin(const Heightfield& field) {
 const std::vector<TileWant>& TileWants::collect(const HexMesh& mesh, const Heightfield& field, const std::vector<float>& starved) {
     if (!begin(field)) return wants_;
     const SampleTiles* tiles = field.tiles();
-    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
     const TileLevel& finest = tiles->level(0);
     const int32_t cells = std::min(int32_t(starved.size()), mesh.cellCapacity());
     for (int32_t c = 0; c < cells; ++c) {
@@ -54,8 +63,7 @@ const std::vector<TileWant>& TileWants::collect(const HexMesh& mesh, const Heigh
         if (!(priority > 0.0f) || !mesh.isLive(c)) continue;
         const CellShape shape = shapeOfCell(mesh, c);
         const Footprint f = footprintOf(field, mesh.embedding(), shape);
-        SampleRect rect{std::max(0, int32_t(std::floor(f.x0 / sx))), std::max(0, int32_t(std::floor(f.z0 / sy))),
-                        std::min(field.width() - 1, int32_t(std::ceil(f.x1 / sx))), std::min(field.height() - 1, int32_t(std::ceil(f.z1 / sy)))};
+        SampleRect rect = fieldSamplesUnder(field, f);
         if (rect.empty()) continue;
         float detail;
         const int32_t now = tiles->levelIn(rect, detail);
@@ -94,13 +102,11 @@ const std::vector<TileWant>& TileWants::collect(const HexMesh& mesh, const Heigh
 const std::vector<TileWant>& TileWants::collectInUse(const HexMesh& mesh, const Heightfield& field) {
     if (!begin(field)) return wants_;
     const SampleTiles* tiles = field.tiles();
-    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
     for (int32_t c = 0; c < mesh.cellCapacity(); ++c) {
         if (!mesh.isLive(c)) continue;
         const CellShape shape = shapeOfCell(mesh, c);
         const Footprint f = footprintOf(field, mesh.embedding(), shape);
-        const SampleRect rect{std::max(0, int32_t(std::floor(f.x0 / sx))), std::max(0, int32_t(std::floor(f.z0 / sy))),
-                              std::min(field.width() - 1, int32_t(std::ceil(f.x1 / sx))), std::min(field.height() - 1, int32_t(std::ceil(f.z1 / sy)))};
+        const SampleRect rect = fieldSamplesUnder(field, f);
         if (rect.empty()) continue;
         // A cell of step s stands on samples at most s apart (a coarser level would have held
         // its parent back): the levels of spacing s down to s / 4, the nearest two.
