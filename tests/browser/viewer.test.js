@@ -36,6 +36,8 @@ test('the default view refines a real terrain until converged, not one flat colo
   assert.ok(state.terrain.maxHeight > 8000, 'Everest is in the default terrain');
   assert.ok(state.triangles > 20000, `only ${state.triangles} triangles drawn`);
   assert.ok(state.mesh.cells > 1000, 'the hexagon mesh refined');
+  assert.equal(await page.locator('#status').isVisible(), false,
+    `the status box still reads "${await page.locator('#status').textContent()}" once the terrain is drawn`);
 
   const png = await page.screenshot({ path: `${outDir}/viewer-default.png` });
   const stats = pixelStats(png);

@@ -40,6 +40,7 @@ const det = deterministicMode(params);
 const canvas = document.getElementById('view');
 const statusBox = document.getElementById('status');
 const helpBox = document.getElementById('help');
+const OPENING_STATUS = statusBox.textContent; // index.html's "Loading…", shown before any script runs
 
 /** The page's state: 'loading' | 'ready' | 'error', and figures of the current view (window.hexlod in test mode). */
 const state = { status: 'loading', frames: 0, error: null, terrain: null, triangles: 0,
@@ -195,6 +196,9 @@ async function main() {
     if (await intake.openLinks(DEFAULT_TERRAIN) === 'failed') throw new Error(`the default terrain did not load: ${state.error}`);
     await intake.idle(); // a file dropped meanwhile cancelled the default: shown, or failed (then the default again)
   }
+  // The default terrain loads quietly (a failed src's message stays over it), so the page's own
+  // opening message is taken away here, and only that one.
+  if (statusBox.textContent === OPENING_STATUS) showStatus('');
   if (urlState.image && !det) await intake.openImageUrl(urlState.image);
   if (urlState.camera && !det) {
     applyCameraState(rig, urlState.camera);
