@@ -68,7 +68,8 @@ export function computeProfile(points, sampler, { step } = {}) {
     note = `sampled every ${formatLength(step)} instead of ${formatLength(wanted)}: at most ${MAX_PROFILE_SAMPLES} samples`;
   }
   const samples = sampleParts(pieces.parts, step, sampler);
-  const summary = summarize(samples);
+  // The 2D length from the segments themselves: a sum over thousands of samples drifts.
+  const summary = { ...summarize(samples), length: pieces.inside };
   const cut = pieces.total - pieces.inside;
   // Below a millimetre is rounding at the field's edge, not a part left out.
   const clipped = cut > 1e-3 ? `${formatLength(cut)} of ${formatLength(pieces.total)} lay outside the field and was left out` : null;
