@@ -4,25 +4,28 @@
 //   hexlod mesh <file> ...        refine (max error or camera), write OBJ and JSON (lib/mesh_command.js)
 //   hexlod bench <file> ...       a scripted flight, and @mapbox/martini on the same data (lib/bench_command.js)
 //   hexlod regress <file> <flight> ...  flights in headless Chromium and Node against references (lib/regress.js)
+//   hexlod profile <file> --line ...    the height profile along a polyline, as a summary and CSV (lib/profile_command.js)
 import { createNodeCore } from '../lib/node_core.js';
 import { UsageError, readInputs, parseOptions, FILE_OPTIONS, FILE_USAGE, parseFileOptions, loadFiles } from '../lib/cli_common.js';
 import { mesh, MESH_USAGE } from '../lib/mesh_command.js';
 import { bench, BENCH_USAGE } from '../lib/bench_command.js';
 import { regress, REGRESS_USAGE } from '../lib/regress.js';
+import { profile, PROFILE_USAGE, PROFILE_SHORT_USAGE } from '../lib/profile_command.js';
 
 const INFO_USAGE = `usage: hexlod info <heightfield> [--json] [--width N --height N] [--encoding E]
   A height field: PNG (16/8-bit grayscale, Terrain-RGB, Terrarium), GeoTIFF (.tif), SRTM .hgt,
   ESRI .asc, PGM (P5), RAW/R16 (.r16, .raw), or .f32; a .json sidecar with the same name beside
   it is read too (required for .f32).
 ${FILE_USAGE}`;
-const USAGE = [INFO_USAGE, MESH_USAGE, BENCH_USAGE, REGRESS_USAGE].join('\n\n');
+const USAGE = [INFO_USAGE, MESH_USAGE, BENCH_USAGE, REGRESS_USAGE, PROFILE_USAGE].join('\n\n');
 // The one line a usage mistake ends with, per command.
 const SHORT_USAGE = {
   info: 'usage: hexlod info <heightfield> [--json] [--width N --height N] [--encoding E]',
   mesh: 'see hexlod mesh --help',
   bench: 'see hexlod bench --help',
   regress: 'see hexlod regress --help',
-  '': 'usage: hexlod info|mesh|bench|regress <heightfield> [options]; see hexlod --help',
+  profile: PROFILE_SHORT_USAGE,
+  '': 'usage: hexlod info|mesh|bench|regress|profile <heightfield> [options]; see hexlod --help',
 };
 
 async function info(args) {
@@ -61,7 +64,7 @@ async function info(args) {
   ].join('\n'));
 }
 
-const commands = { info, mesh, bench, regress };
+const commands = { info, mesh, bench, regress, profile };
 let current = '';
 
 async function main(argv) {
