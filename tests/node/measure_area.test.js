@@ -101,7 +101,7 @@ test('a polygon partly off the field is measured on the field; a huge one stride
   const big = plane(2001, 2001, 1, 1, 0.5, 0.25);
   const m = measurePolygon(star(1000, 1000, 990, 400, 5), big);
   assert.ok(MAX_AREA_CELLS < 4e6);
-  assert.equal(m.note, `surface from every 2th sample: the area spans more than ${MAX_AREA_CELLS} cells`);
+  assert.equal(m.note, `surface from every 2nd sample: the area spans more than ${MAX_AREA_CELLS} cells`);
   near(m.surface, m.planimetric * Math.sqrt(1 + 0.25 + 0.0625), 1e-12, 'still exact on a plane');
 });
 

@@ -48,7 +48,7 @@ export function measurePolygon(points, sampler) {
   const around = computeProfile([...ring, ring[0]], sampler);
   const cut = whole - planimetric;
   const clipped = cut > 1e-6 * whole ? `${formatArea(cut)} of ${formatArea(whole)} lay outside the field and was left out` : null;
-  const note = stride > 1 ? `surface from every ${stride}th sample: the area spans more than ${MAX_AREA_CELLS} cells` : null;
+  const note = stride > 1 ? `surface from every ${ordinal(stride)} sample: the area spans more than ${MAX_AREA_CELLS} cells` : null;
   return { planimetric, surface, perimeter: around.summary.length, perimeter3d: around.summary.length3d, clipped, note };
 }
 
@@ -66,6 +66,13 @@ export function measurePath(points, sampler) {
   let straight = 0;
   for (let k = 1; k < points.length; k++) straight += Math.hypot(points[k][0] - points[k - 1][0], points[k][1] - points[k - 1][1]);
   return { straight, ground: profile.summary.length3d, clipped: profile.clipped };
+}
+
+/** 2 -> '2nd', 3 -> '3rd', 11 -> '11th'. */
+function ordinal(n) {
+  const tens = n % 100, units = n % 10;
+  const suffix = tens >= 11 && tens <= 13 ? 'th' : units === 1 ? 'st' : units === 2 ? 'nd' : units === 3 ? 'rd' : 'th';
+  return `${n}${suffix}`;
 }
 
 /** The polygon without a repeated closing point or repeated consecutive points. */
