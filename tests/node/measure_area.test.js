@@ -120,3 +120,21 @@ test('polygons that cannot be measured are refused with a clear message', () => 
   // A closed ring (first point repeated) is the same polygon.
   assert.equal(measurePolygon([[0, 0], [50, 0], [50, 50], [0, 0]], sampler).planimetric, 1250);
 });
+
+test('random polygons on a tilted plane, partly off the field and with corners on grid lines: surface = map area / cos(tilt)', () => {
+  let seed = 3;
+  const random = () => (seed = (seed * 16807) % 2147483647) / 2147483647;
+  const gx = 0.7, gz = -0.4, secant = Math.sqrt(1 + gx * gx + gz * gz);
+  const sampler = plane(61, 47, 10, 7, gx, gz, 0);
+  for (let t = 0; t < 300; t++) {
+    // A star-shaped polygon (simple by construction), its corners snapped to sample lines in half the cases.
+    const n = 3 + Math.floor(random() * 12), cx = random() * 600, cz = random() * 322, snap = random() < 0.5;
+    const points = Array.from({ length: n }, (_, k) => {
+      const angle = (2 * Math.PI * (k + random() * 0.8)) / n, r = 5 + random() * 250;
+      const x = cx + r * Math.cos(angle), z = cz + r * Math.sin(angle);
+      return snap ? [Math.round(x / 10) * 10, Math.round(z / 7) * 7] : [x, z];
+    });
+    const m = measurePolygon(points, sampler);
+    near(m.surface, m.planimetric * secant, 1e-12, `polygon ${t}: ${JSON.stringify(points)}`);
+  }
+});
