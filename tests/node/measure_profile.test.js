@@ -137,3 +137,18 @@ test('the core sampler has no heights off the field, and an array marks no-data 
   assert.equal(holes.heightAt(0.5, 0.5), 3);
   assert.ok(Number.isNaN(holes.heightAt(1.5, 0.5)), 'a cell with a missing sample has no height');
 });
+
+test('lines crossing the field\'s edges get heights at their entry and exit points, never NaN', () => {
+  // Awkward spacings: an entry point computed along the segment may land an ulp off the field.
+  const sampler = samplerOfArray(new Float64Array(7 * 5).fill(3), 7, 5, 0.1, 0.3);
+  let seed = 5, profiles = 0;
+  const random = () => (seed = (seed * 16807) % 2147483647) / 2147483647;
+  for (let t = 0; t < 5000; t++) {
+    const line = [[random() * 2 - 0.5, random() * 2 - 0.5], [random() * 2 - 0.5, random() * 2 - 0.5]];
+    let p;
+    try { p = computeProfile(line, sampler); } catch { continue; } // entirely off the field
+    profiles++;
+    assert.ok(p.samples.height.every((h) => Math.abs(h - 3) < 1e-12), `line ${JSON.stringify(line)}: ${p.samples.height}`);
+  }
+  assert.ok(profiles > 1000);
+});

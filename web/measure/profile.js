@@ -89,7 +89,8 @@ function piecesOnField(points, xMax, zMax) {
     const span = clipSegment(ax, az, bx, bz, xMax, zMax);
     if (span) {
       const [t0, t1] = span;
-      const at = (t) => [ax + (bx - ax) * t, az + (bz - az) * t, total + length * t];
+      // Clamped: an entry or exit point computed from t may land an ulp off the field.
+      const at = (t) => [clamp(ax + (bx - ax) * t, xMax), clamp(az + (bz - az) * t, zMax), total + length * t];
       // A run goes on only where the segment starts on the field where the last one ended.
       if (!current || t0 > 0) parts.push((current = [at(t0)])), vertices++;
       if (t1 > t0) current.push(at(t1)), vertices++;
@@ -166,3 +167,4 @@ function summarize({ x, z, height, runStart }) {
 }
 
 const round = (v) => Number(v.toFixed(1));
+const clamp = (v, max) => Math.min(Math.max(v, 0), max);
