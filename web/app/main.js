@@ -22,6 +22,7 @@ import { installKeys } from './keys.js';
 import { SettingsOwner } from './settings_owner.js';
 import { TerrainStage } from './terrain_stage.js';
 import { settingEffects } from './setting_effects.js';
+import { installMeasuring } from './measuring.js';
 
 // The names are given, not taken from the URLs: a production build puts a content hash into
 // each asset's file name, and the loader pairs a height field with its sidecar by name.
@@ -136,6 +137,7 @@ async function main() {
       'screenshot 1× (P)': () => screenshot(1).catch((e) => showStatus(e.message, true)),
       'screenshot 2×': () => screenshot(2).catch((e) => showStatus(e.message, true)),
       'reset view (R)': () => resetView(),
+      'measure (M)': () => measure.toggle(),
       'help (H)': toggleHelp,
     },
   });
@@ -146,7 +148,7 @@ async function main() {
   // Drop, file picker, ?src=, ?image=, progress, RAW size dialog and error display (file_intake.js).
   // A new terrain takes the image away: it belonged to the old ground.
   const intake = stage.intake = createFileIntake({ core, state, settings,
-    show: (loaded, from) => { images.remove(); stage.show(loaded, from); },
+    show: (loaded, from) => { images.remove(); measure.clear(); stage.show(loaded, from); },
     showStatus, setCellSize: (metres) => onSetting('cellSize', metres), currentSpacing: () => stage.current.terrain,
     drape: (image, world, url) => images.drape(image, world, { url }) });
 
@@ -162,10 +164,12 @@ async function main() {
     closeHelp: () => { helpBox.hidden = true; }, toggleHud: () => hud.setCollapsed(!hud.collapsed),
     screenshot: () => screenshot(1).catch((error) => showStatus(error.message, true)), resetView: () => stage.current && resetView() });
   window.addEventListener('resize', requestRender);
+  // The measuring tool (M): profile, distance and area of a line clicked on the terrain.
+  const measure = installMeasuring({ canvas, rig, settings, stage, renderer, urlWriter, requestRender, state });
 
   installPointerReadout(canvas, { rig, settings, terrain: () => stage.current,
     onCursor: (pick) => { state.cursor = pick; hud.setCursor(pick); },
-    onOrbit: () => { syncPanel(); requestRender(); } });
+    onOrbit: () => { syncPanel(); requestRender(); }, measuring: () => measure.active });
 
   handleContextLoss(canvas, {
     onLost() {
@@ -204,6 +208,13 @@ async function main() {
     applyCameraState(rig, urlState.camera);
     if (rig.mode === 'walk') rig.active.settle();
     syncPanel();
+  }
+  if (urlState.measure) {
+    const restored = measure.restore(urlState.measure);
+    if (restored.error) {
+      urlState.errors.push(`measure: ${restored.error}`);
+      measure.setActive(false);
+    }
   }
   if (urlState.errors.length) {
     state.error = urlState.errors.join('; ');

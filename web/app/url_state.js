@@ -3,22 +3,30 @@
 //   cam=orbit,x,y,z,distance,yaw,pitch   or   cam=fly|walk,x,y,z,yaw,pitch   metres, radians
 //   src=URL                    the data source, when it came from a URL
 //   image=URL                  the image draped on it, when it came from a URL
+//   measure=p:x,z;x,z;...      the measured path (a: for an area), metres (web/ui/measure_tool.js)
 //   timeout, maxmb, layout     only when not the defaults
 // Other parameters (timing, flight, test) are kept as they are. Every value is checked: a bad one
 // gets a message and its default.
 import { SETTINGS, URL_KEYS, checkSetting } from './settings_table.js';
 import { MIN_PITCH, MAX_PITCH } from '../cameras/orbit.js';
+import { parseMeasureParam } from '../ui/measure_tool.js';
 
 const WRITE_EVERY_MS = 300;
 const LIMIT = 1e9; // metres: past this a position is not a place on any terrain
 
 /**
  * Reads the view from a query string.
- * @returns {{settings: object, camera: object|null, src: string|null, image: string|null, errors: string[]}}
+ * @returns {{settings: object, camera: object|null, src: string|null, image: string|null,
+ *   measure: {kind: string, points: number[][]}|null, errors: string[]}}
  */
 export function parseUrlState(search) {
   const params = new URLSearchParams(search);
-  const result = { settings: {}, camera: null, src: params.get('src'), image: params.get('image'), errors: [] };
+  const result = { settings: {}, camera: null, src: params.get('src'), image: params.get('image'), measure: null, errors: [] };
+  if (params.has('measure')) {
+    const measure = parseMeasureParam(params.get('measure'));
+    if (measure instanceof Error) result.errors.push(measure.message);
+    else result.measure = measure;
+  }
   for (const [key, name] of URL_KEYS) {
     if (!params.has(name)) continue;
     const value = checkSetting(key, params.get(name));
@@ -89,6 +97,7 @@ export class UrlWriter {
     this.camera = null;
     this.src = null;
     this.image = null;
+    this.measure = null; // the measured line's `measure` value, set by the measuring tool when it changes
     this.flushLater = () => this.flush();
   }
 
@@ -119,7 +128,10 @@ export class UrlWriter {
     params.set('cam', cameraParam(camera));
     if (src) params.set('src', src); else params.delete('src');
     if (image) params.set('image', image); else params.delete('image');
-    const url = `${location.pathname}?${params.toString().replace(/%2C/g, ',')}${location.hash}`;
+    params.delete('measure');
+    // The measured line goes last and as it is (digits and , ; : need no escaping): readable.
+    const measure = this.measure ? `&measure=${this.measure}` : '';
+    const url = `${location.pathname}?${params.toString().replace(/%2C/g, ',')}${measure}${location.hash}`;
     history.replaceState(null, '', url);
   }
 }

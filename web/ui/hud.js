@@ -159,10 +159,14 @@ export class Hud {
     return text;
   }
 
-  /** The cursor readout: a picked ground point (picking.js) or null. */
+  /**
+   * The cursor readout: a picked ground point (picking.js) or null; its `place` (the real
+   * coordinates, or 'local metres (no CRS)') goes on a line of its own.
+   */
   setCursor(pick) {
     this.cursor.textContent = pick
-      ? `cursor  x ${metres(pick.x)}  z ${metres(pick.z)}  height ${pick.height.toFixed(1)} m  slope ${pick.slopeDeg.toFixed(1)}°`
+      ? `cursor  x ${metres(pick.x)}  z ${metres(pick.z)}  height ${pick.height.toFixed(1)} m  slope ${pick.slopeDeg.toFixed(1)}°` +
+        (pick.place ? `\n        ${pick.place}` : '')
       : 'cursor  —';
   }
 }

@@ -1,23 +1,31 @@
 // What the mouse pointer does besides the cameras' drags: the readout of the ground under it
 // (x, z, height and slope in the HUD, at most every 50 ms) and a double click, which orbits
-// around the point under the pointer.
+// around the point under the pointer (not while the measuring tool takes the clicks). The readout
+// carries the point's real coordinates when the field has a georeference (web/measure/coordinates.js).
 import { pickGround } from '../cameras/picking.js';
+import { geoCoordinates, formatCoordinates } from '../measure/coordinates.js';
 
 const READOUT_INTERVAL_MS = 50;
 
 /**
  * @param {HTMLCanvasElement} canvas
  * @param {{ rig: import('../cameras/rig.js').CameraRig, terrain: () => object | null, settings: object,
- *   onCursor: (pick: object | null) => void, onOrbit: () => void }} page `terrain()` is the loaded
- *   terrain ({ terrain, world }) or null; onCursor gets each readout; onOrbit follows a double click.
+ *   onCursor: (pick: object | null) => void, onOrbit: () => void, measuring: () => boolean }} page
+ *   `terrain()` is the loaded terrain ({ terrain, field, world }) or null; onCursor gets each
+ *   readout (with `place`, the coordinates as text); onOrbit follows a double click.
  */
-export function installPointerReadout(canvas, { rig, terrain, settings, onCursor, onOrbit }) {
+export function installPointerReadout(canvas, { rig, terrain, settings, onCursor, onOrbit, measuring }) {
   const pick = (e) => {
     const loaded = terrain();
     if (!loaded) return null;
     const rect = canvas.getBoundingClientRect();
-    return pickGround(rig.active, e.clientX - rect.left, e.clientY - rect.top, rect.width, rect.height,
+    const point = pickGround(rig.active, e.clientX - rect.left, e.clientY - rect.top, rect.width, rect.height,
       loaded.terrain, loaded.world, settings.exaggeration);
+    if (point) {
+      const t = loaded.terrain;
+      point.place = formatCoordinates(geoCoordinates(loaded.field.georef ?? null, point.x, point.z, t.spacingX, t.spacingY));
+    }
+    return point;
   };
   let lastPick = 0;
   canvas.addEventListener('pointermove', (e) => {
@@ -26,6 +34,7 @@ export function installPointerReadout(canvas, { rig, terrain, settings, onCursor
     onCursor(pick(e));
   });
   canvas.addEventListener('dblclick', (e) => {
+    if (measuring()) return; // the measuring tool's double click ends its line
     const point = pick(e);
     if (!point) return;
     if (rig.mode !== 'orbit') rig.setMode('orbit');

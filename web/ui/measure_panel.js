@@ -1,0 +1,128 @@
+// The measuring panel (public/index.html #measure): path or area, the profile chart, the
+// summary figures in metres or kilometres, what the chart's cursor points at, notes (a line
+// partly off the field), and the buttons: undo, done, clear, CSV and PNG export. It folds to its
+// title bar, so on a phone it never covers the whole view.
+import { ProfileChart } from './profile_chart.js';
+import { profileCsv } from '../measure/profile_csv.js';
+import { formatLength } from '../measure/units.js';
+import { geoCoordinates, formatCoordinates } from '../measure/coordinates.js';
+
+const HINT = {
+  path: 'Click points on the ground · double click or Enter ends · Backspace undoes · Esc clears',
+  area: 'Click the corners · double click or Enter closes · Backspace undoes · Esc clears',
+};
+const $ = (id) => document.getElementById(id);
+
+/** '850 m²', '12.4 ha', '3.52 km²': hectares between a hectare and a square kilometre. */
+export function formatAreaUnits(squareMetres) {
+  const a = Math.abs(squareMetres);
+  if (a < 1e4) return `${Number(squareMetres.toPrecision(3)).toLocaleString('en')} m²`;
+  if (a < 1e6) return `${Number((squareMetres / 1e4).toPrecision(3))} ha`;
+  return `${(squareMetres / 1e6).toLocaleString('en', { maximumFractionDigits: a < 1e8 ? 2 : 0 })} km²`;
+}
+
+const heightText = (m) => `${Math.round(m).toLocaleString('en')} m`;
+const degrees = (d) => `${d.toFixed(1)}°`;
+
+export class MeasurePanel {
+  /**
+   * @param {{setKind(kind): void, undo(): void, finish(): void, clear(): void, setActive(on): void,
+   *   onHover(point: number[]|null): void, download(blob: Blob, name: string): void, name: () => string}} actions
+   */
+  constructor(actions) {
+    this.actions = actions;
+    this.root = $('measure');
+    this.result = null;
+    this.chart = new ProfileChart($('profile-chart'), { onHover: (index) => this.hovered(index) });
+    $('measure-path').onclick = () => actions.setKind('path');
+    $('measure-area').onclick = () => actions.setKind('area');
+    $('measure-undo').onclick = () => actions.undo();
+    $('measure-done').onclick = () => actions.finish();
+    $('measure-clear').onclick = () => actions.clear();
+    $('measure-close').onclick = () => actions.setActive(false);
+    $('measure-fold').onclick = () => this.setFolded(!this.root.classList.contains('folded'));
+    $('measure-csv').onclick = () => this.exportCsv();
+    $('measure-png').onclick = () => this.exportPng();
+    window.addEventListener('resize', () => { if (!this.root.hidden) this.chart.draw(); });
+  }
+
+  setFolded(folded) {
+    this.root.classList.toggle('folded', folded);
+    $('measure-fold').textContent = folded ? '▸' : '▾';
+    $('measure-fold').setAttribute('aria-expanded', String(!folded));
+    if (!folded) this.chart.draw();
+  }
+
+  /** A new measurement (measure_tool.js update()). */
+  show(result) {
+    this.result = result;
+    this.root.hidden = !result.active;
+    if (!result.active) return;
+    const area = result.kind === 'area';
+    $('measure-title').textContent = area ? 'Area' : 'Profile';
+    $('measure-path').setAttribute('aria-pressed', String(!area));
+    $('measure-area').setAttribute('aria-pressed', String(area));
+    $('measure-hint').textContent = result.finished ? (area ? 'Area closed · click to start another' : 'Path finished · click to start another') : HINT[result.kind];
+    const notes = [result.error, result.profile?.clipped && `Clipped: ${result.profile.clipped}.`, result.area?.note, result.profile?.note].filter(Boolean);
+    $('measure-note').textContent = notes.join(' ');
+    $('measure-note').hidden = notes.length === 0;
+    $('measure-summary').replaceChildren(...this.summaryRows(result).flatMap(([label, value]) => {
+      const dt = document.createElement('dt'), dd = document.createElement('dd');
+      dt.textContent = label;
+      dd.textContent = value;
+      return [dt, dd];
+    }));
+    $('measure-hover').textContent = '';
+    this.root.classList.toggle('empty', result.profile === null);
+    const canExport = result.profile !== null;
+    $('measure-csv').disabled = $('measure-png').disabled = !canExport;
+    $('measure-undo').disabled = result.points.length === 0;
+    $('measure-done').disabled = result.finished || result.points.length < (area ? 3 : 2);
+    $('measure-clear').disabled = result.points.length === 0;
+    this.chart.show(result.profile);
+  }
+
+  /** [label, value] pairs of the summary (the same figures the test reads). */
+  summaryRows(result) {
+    const rows = [];
+    const a = result.area, s = result.profile?.summary;
+    if (result.kind === 'area' && a) {
+      rows.push(['area (map)', formatAreaUnits(a.planimetric)], ['surface area', formatAreaUnits(a.surface)],
+        ['perimeter', formatLength(a.perimeter)], ['perimeter 3D', formatLength(a.perimeter3d)]);
+    }
+    if (s) {
+      if (result.kind === 'path') rows.push(['length', formatLength(s.length)], ['3D length', formatLength(s.length3d)]);
+      rows.push(['gain', heightText(s.gain)], ['loss', heightText(s.loss)], ['min', heightText(s.min)], ['max', heightText(s.max)],
+        ['mean slope', degrees(s.meanSlope)], ['steepest', degrees(s.steepestSlope)]);
+    }
+    if (!rows.length) rows.push(['points', String(result.points.length)]);
+    return rows;
+  }
+
+  /** The chart's cursor moved to sample `index` (or left it). */
+  hovered(index) {
+    const p = this.result?.profile;
+    if (index === null || !p || !Number.isFinite(p.samples.height[index])) {
+      $('measure-hover').textContent = '';
+      this.actions.onHover(null);
+      return;
+    }
+    const { distance, x, z, height } = p.samples;
+    const spacingX = p.spacingX, spacingY = p.spacingY;
+    const place = this.result.georef ? ` · ${formatCoordinates(geoCoordinates(this.result.georef, x[index], z[index], spacingX, spacingY))}` : '';
+    $('measure-hover').textContent = `at ${formatLength(distance[index])}: height ${heightText(height[index])} · x ${Math.round(x[index])} m, z ${Math.round(z[index])} m${place}`;
+    this.actions.onHover([x[index], height[index], z[index]]);
+  }
+
+  exportCsv() {
+    const p = this.result?.profile;
+    if (!p) return;
+    const text = profileCsv(p, this.result.georef);
+    this.actions.download(new Blob([text], { type: 'text/csv' }), `${this.actions.name()}-${this.result.kind === 'area' ? 'outline' : 'profile'}.csv`);
+  }
+
+  exportPng() {
+    if (!this.result?.profile) return;
+    $('profile-chart').toBlob((blob) => blob && this.actions.download(blob, `${this.actions.name()}-profile.png`), 'image/png');
+  }
+}
