@@ -66,11 +66,13 @@ export class MeasurePanel {
     const notes = [result.error, result.profile?.clipped && `Clipped: ${result.profile.clipped}.`, result.area?.note, result.profile?.note].filter(Boolean);
     $('measure-note').textContent = notes.join(' ');
     $('measure-note').hidden = notes.length === 0;
-    $('measure-summary').replaceChildren(...this.summaryRows(result).flatMap(([label, value]) => {
-      const dt = document.createElement('dt'), dd = document.createElement('dd');
+    // Each figure a <div> of its label over its value (a <dl> may group them so).
+    $('measure-summary').replaceChildren(...this.summaryRows(result).map(([label, value]) => {
+      const item = document.createElement('div'), dt = document.createElement('dt'), dd = document.createElement('dd');
       dt.textContent = label;
       dd.textContent = value;
-      return [dt, dd];
+      item.append(dt, dd);
+      return item;
     }));
     $('measure-hover').textContent = '';
     this.root.classList.toggle('empty', result.profile === null);

@@ -86,7 +86,7 @@ export class ProfileChart {
     for (let k = 0; k < n; k++) if (Number.isFinite(height[k])) low = Math.min(low, height[k]), high = Math.max(high, height[k]);
     if (!(high >= low)) return;
     const pad = Math.max((high - low) * 0.08, 1);
-    const yTicks = niceTicks(low - pad, high + pad, Math.max(2, Math.floor(cssHeight / 32)));
+    const yTicks = niceTicks(low - pad, high + pad, Math.max(2, Math.floor(cssHeight / 24)));
     const y0 = Math.min(yTicks.ticks[0], low), y1 = Math.max(yTicks.ticks[yTicks.ticks.length - 1], high);
     const dMax = distance[n - 1] || 1;
     const { unit, scale } = distanceUnit(dMax);
