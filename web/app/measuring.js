@@ -13,6 +13,7 @@ import { download } from './screenshot.js';
 export function installMeasuring({ canvas, rig, settings, stage, renderer, urlWriter, requestRender, state }) {
   const overlay = renderer.measureOverlay;
   let tool = null;
+  const button = document.getElementById('measure-button'); // in the file bar: on, off
   const panel = new MeasurePanel({
     setKind: (kind) => tool.setKind(kind), undo: () => tool.undo(), finish: () => tool.finish(), clear: () => tool.clear(),
     setActive: (on) => tool.setActive(on), download,
@@ -21,9 +22,13 @@ export function installMeasuring({ canvas, rig, settings, stage, renderer, urlWr
   });
   tool = new MeasureTool({ canvas, rig, settings, overlay, requestRender,
     terrain: () => stage.current,
-    onResult: (result) => panel.show(result),
+    onResult: (result) => {
+      panel.show(result);
+      button.setAttribute('aria-pressed', String(result.active));
+    },
     onParam: (text) => { urlWriter.measure = text; } });
   tool.attach();
+  button.onclick = () => tool.toggle();
   // Not enumerable: the tool holds the terrain, which a test's evaluate(() => window.hexlod) would copy.
   Object.defineProperty(state, 'measure', { value: tool, enumerable: false, configurable: true });
   Object.defineProperty(state, 'measurePanel', { value: panel, enumerable: false, configurable: true });
