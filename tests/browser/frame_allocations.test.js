@@ -47,11 +47,13 @@ const WARM_FRAMES = 40; // a phase's frames before profiling: the JIT has compil
 // A phase's profiled frames, 240 in all: garbage of ours shows at its site in over 86 % of
 // them, against the limit of a quarter.
 const FRAMES = 80;
+const MEASURED = 'measure=p:1300000,1000000;1450000,1100000;1460000,960000';
 
 let viewer, page, cdp;
 before(async () => {
   viewer = await startViewer();
-  ({ page } = await openPage(viewer.browser, viewer.url, { width: 320, height: 240 }));
+  // With a measured line, so its overlay is drawn in every frame profiled.
+  ({ page } = await openPage(viewer.browser, `${viewer.url}?${MEASURED}`, { width: 320, height: 240 }));
   await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 180000 });
   assert.equal(await page.evaluate(() => window.hexlod.status), 'ready');
   cdp = await page.context().newCDPSession(page);
