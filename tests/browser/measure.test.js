@@ -327,6 +327,16 @@ test('the cursor in real coordinates: a UTM GeoTIFF, the geographic default, a p
   const plain = await openPage(viewer.browser, `${viewer.url}?src=${viewer.fixturesUrl}volcano_maungawhau.png`, size);
   await pageReady(plain.page);
   assert.equal((await cursorPlace(plain.page)).place, 'local metres (no CRS)');
+  // A new cell size keeps the line on the same samples: its points and length scale with the ground.
+  const scaled = await plain.page.evaluate(() => {
+    const h = window.hexlod, t = h.terrainObject(), x = t.spacingX;
+    h.measure.restore({ kind: 'path', points: [[10 * x, 10 * x], [40 * x, 30 * x]] });
+    const before = h.measure.result.profile.summary.length;
+    h.setSetting('cellSize', 2 * x);
+    return { ratio: h.measure.result.profile.summary.length / before, first: h.measure.points[0].map((v) => v / x) };
+  });
+  assert.ok(Math.abs(scaled.ratio - 2) < 1e-9, `length x${scaled.ratio}`);
+  assert.deepEqual(scaled.first, [20, 20]);
   await plain.page.close();
 
   // A bad line gets the page's message and no measurement; a line partly off the field is clipped with a note.

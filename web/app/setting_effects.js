@@ -39,6 +39,7 @@ export function settingEffects(stage) {
       t.setScale({ ...loaded.field, spacingX: value, spacingY: t.spacingY * k });
       stage.rescaleGround(k);
       stage.makeWorld();
+      stage.measure?.rescale(k); // the measured line stays on the same samples
       stage.keepCamerasAboveGround();
       renderer.invalidate();
       stage.hud.setTerrain(loaded.field, t, loaded.loadMs);

@@ -107,6 +107,13 @@ export class MeasureTool {
     this.update();
   }
 
+  /** The ground was scaled by `k` (a new cell size): the points keep their place on the field. */
+  rescale(k) {
+    if (this.points.length === 0) return;
+    this.points = this.points.map(([x, z]) => [x * k, z * k]);
+    this.update();
+  }
+
   /** A line from the address bar ({kind, points}, parseMeasureParam): shown finished, the tool on. */
   restore({ kind, points }) {
     this.active = true;
