@@ -22,11 +22,11 @@ import tonemapGlsl from '../../shaders/tonemap.glsl?raw';
 import imageDrapeGlsl from '../../shaders/image_drape.glsl?raw';
 import { mat4 } from 'gl-matrix';
 import { STREAM_VERTEX_BYTES, STREAM_NORMAL_BYTES } from '../core/core.js';
+import { MeasureOverlay } from './measure_overlay.js';
 import { resolveIncludes } from './shading/includes.js';
 import { Atmosphere, BETA_RAYLEIGH, BETA_MIE, SCALE_HEIGHTS, MIE_G, SUN_IRRADIANCE, EXPOSURE } from './shading/atmosphere.js';
 import { FieldTextures, TEXTURE_UNIT_GRADIENTS, TEXTURE_UNIT_SUN, TEXTURE_UNIT_OCCLUSION } from './shading/field_textures.js';
 import { ImageTextures, TEXTURE_UNIT_IMAGE_TILES, TEXTURE_UNIT_IMAGE_OVERVIEW } from './shading/image_textures.js';
-import { MeasureOverlay } from './measure_overlay.js';
 
 export const ATTRIB_POSITION = 0;
 export const ATTRIB_NORMAL = 1;
@@ -165,9 +165,6 @@ export class TerrainRenderer {
     // The draped image died with the context too: the page opens it again (imagePlacement stays).
     this.imageTextures?.forgetGl();
     this.imageTextures = this.imageTextures ?? new ImageTextures(gl);
-    // The measured line on the ground (measure_overlay.js): its data outlives a lost context.
-    if (this.measureOverlay) this.measureOverlay.createGlObjects();
-    else this.measureOverlay = new MeasureOverlay(gl);
     this.vertices = new MirroredBuffer(gl, gl.ARRAY_BUFFER);
     this.normals = new MirroredBuffer(gl, gl.ARRAY_BUFFER); // while the core keeps mesh normals
     this.hasNormals = false;
@@ -184,6 +181,9 @@ export class TerrainRenderer {
     this.levelOffsets = new Int32Array(64); // the level view's offsets, grown when needed
     this.levelOffsetCount = 0;
     this.outlineCount = 0;
+    // The measured line on the ground (measure_overlay.js): its data outlives a lost context.
+    if (this.measureOverlay) this.measureOverlay.createGlObjects();
+    else this.measureOverlay = new MeasureOverlay(gl);
   }
 
   makeVao(indexBuffer) {
@@ -321,9 +321,10 @@ export class TerrainRenderer {
     gl.enable(gl.DEPTH_TEST);
     gl.depthFunc(gl.LEQUAL);
     if (this.indexCount > 0 && !view.hideTerrain) this.drawTerrain(camera, view, mode, verticalScale);
+    // The measured line: over the terrain, its hidden parts faint (the sky covers none of it).
+    if (!view.hideTerrain) this.measureOverlay.draw(camera, width, height, verticalScale);
     // The sky where no terrain was drawn: after the terrain, so the depth test skips covered pixels.
     if (mode !== SHADING_MODES.plain) this.drawSky(camera, verticalScale);
-    if (!view.hideTerrain) this.measureOverlay.draw(camera, width, height, verticalScale);
     gl.bindVertexArray(null);
   }
 
