@@ -111,8 +111,10 @@ export class MeasurePanel {
     }
     const { distance, x, z, height } = p.samples;
     const spacingX = p.spacingX, spacingY = p.spacingY;
-    const place = this.result.georef ? ` · ${formatCoordinates(geoCoordinates(this.result.georef, x[index], z[index], spacingX, spacingY))}` : '';
-    $('measure-hover').textContent = `at ${formatLength(distance[index])}: height ${heightText(height[index])} · x ${Math.round(x[index])} m, z ${Math.round(z[index])} m${place}`;
+    // Where it is: real coordinates when the field has them, else local metres.
+    const place = this.result.georef ? formatCoordinates(geoCoordinates(this.result.georef, x[index], z[index], spacingX, spacingY))
+      : `x ${formatLength(x[index])}, z ${formatLength(z[index])}`;
+    $('measure-hover').textContent = `at ${formatLength(distance[index])}: height ${heightText(height[index])} · ${place}`;
     this.actions.onHover([x[index], height[index], z[index]]);
   }
 
