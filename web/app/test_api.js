@@ -16,7 +16,9 @@ export function isTestMode(params) {
  * one, requestRender(), glError(), screenshot(scale), terrainObject() (the core's Terrain),
  * flushUrl(), openUrl(url) (as ?src= opens a file, in this page), setLayout('fans' | 'triangles') (the same mesh drawn with the other index layout)
  * and memory() ({ wasmBytes, liveTerrains }: the size of the core's WebAssembly memory, which
- * never shrinks, and the terrains the core holds: created and not yet destroyed).
+ * never shrinks, and the terrains the core holds: created and not yet destroyed). The measuring
+ * tool is window.hexlod.measure (web/ui/measure_tool.js: points, result, pick(x, y), restore(),
+ * overlay), published by web/app/measuring.js.
  */
 export function installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting, screenshot, terrain, urlWriter, setLayout, openUrl }) {
   Object.assign(state, { rig, settings, view, requestRender, setSetting, screenshot, setLayout, openUrl,

@@ -38,9 +38,11 @@ export class ProfileChart {
 
   /** Shows a profile (web/measure/profile.js), or nothing for null. */
   show(profile) {
+    const hovered = this.hover !== null;
     this.profile = profile;
     this.hover = null;
     this.draw();
+    if (hovered) this.onHover(null); // the old line's point is no longer marked
   }
 
   /** The sample nearest the pointer's distance along the line. */
