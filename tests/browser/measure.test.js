@@ -238,11 +238,15 @@ test('orbit, fly and walk: a click adds a point, a drag moves the camera; an are
   await page.keyboard.press('r');
   await page.keyboard.press('Escape');
   await page.click('#measure-area');
-  await page.click('#measure-fold');
   await drawFrames(page, 2);
-  const corners = await groundPixels(page, grid(DESKTOP.width, 100, 130), 3);
+  // Corners far apart (the panel folded meanwhile): left and right above, the middle below.
+  const half = (x0, x1, y0, y1) => grid(DESKTOP.width, y0, y1).filter(([x]) => x >= x0 && x < x1);
+  const corners = [...await groundPixels(page, half(60, 260, 110, 150), 1), ...await groundPixels(page, half(380, 600, 110, 150), 1),
+    ...await groundPixels(page, half(220, 420, 280, 330), 1)];
+  assert.equal(corners.length, 3);
   for (const p of corners) await clickAt(page, p);
   await page.keyboard.press('Enter');
+  await page.click('#measure-fold');
   await drawFrames(page, 2);
   const area = await toolState(page);
   assert.equal(area.kind, 'area');

@@ -87,9 +87,11 @@ export class ProfileChart {
     let low = Infinity, high = -Infinity;
     for (let k = 0; k < n; k++) if (Number.isFinite(height[k])) low = Math.min(low, height[k]), high = Math.max(high, height[k]);
     if (!(high >= low)) return;
-    const pad = Math.max((high - low) * 0.08, 1);
-    const yTicks = niceTicks(low - pad, high + pad, Math.max(2, Math.floor(cssHeight / 24)));
-    const y0 = Math.min(yTicks.ticks[0], low), y1 = Math.max(yTicks.ticks[yTicks.ticks.length - 1], high);
+    // The height axis runs from a tick below the lowest point to one above the highest.
+    const pad = Math.max((high - low) * 0.05, 1);
+    const { step } = niceTicks(low - pad, high + pad, Math.max(3, Math.floor(cssHeight / 22)));
+    const y0 = Math.floor((low - pad) / step) * step, y1 = Math.ceil((high + pad) / step) * step;
+    const yTicks = niceTicks(y0, y1, Math.round((y1 - y0) / step));
     const dMax = distance[n - 1] || 1;
     const { unit, scale } = distanceUnit(dMax);
     const xTicks = niceTicks(0, dMax / scale, Math.max(2, Math.floor(cssWidth / 80)));
