@@ -7,12 +7,12 @@ const COLORS = { axis: '#9aa6b8', grid: 'rgba(232, 238, 246, 0.12)', text: '#d8e
   fill: 'rgba(255, 210, 46, 0.18)', cursor: '#33d9ff', background: '#141a24' };
 const MARGIN = { left: 30, right: 10, top: 8, bottom: 22 };
 
-/** Round tick steps (1, 2, 5 times a power of ten) giving about `count` ticks over [lo, hi]. */
+/** Round tick steps (1, 2, 2.5, 5 times a power of ten) giving about `count` ticks over [lo, hi]. */
 export function niceTicks(lo, hi, count) {
   const span = hi - lo;
   if (!(span > 0)) return { step: 1, ticks: [lo] };
   const raw = span / Math.max(1, count), power = 10 ** Math.floor(Math.log10(raw));
-  const step = [1, 2, 5, 10].map((m) => m * power).find((s) => s >= raw) ?? 10 * power;
+  const step = [1, 2, 2.5, 5, 10].map((m) => m * power).find((s) => s >= raw) ?? 10 * power;
   const ticks = [];
   for (let t = Math.ceil(lo / step - 1e-9) * step; t <= hi + step * 1e-9; t += step) ticks.push(Number(t.toPrecision(12)));
   return { step, ticks };
@@ -89,7 +89,7 @@ export class ProfileChart {
     if (!(high >= low)) return;
     // The height axis runs from a tick below the lowest point to one above the highest.
     const pad = Math.max((high - low) * 0.05, 1);
-    const { step } = niceTicks(low - pad, high + pad, Math.max(3, Math.floor(cssHeight / 22)));
+    const { step } = niceTicks(low - pad, high + pad, Math.max(2, Math.floor((cssHeight - MARGIN.top - MARGIN.bottom) / 18)));
     const y0 = Math.floor((low - pad) / step) * step, y1 = Math.ceil((high + pad) / step) * step;
     const yTicks = niceTicks(y0, y1, Math.round((y1 - y0) / step));
     const dMax = distance[n - 1] || 1;
