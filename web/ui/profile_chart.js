@@ -109,12 +109,14 @@ export class ProfileChart {
     g.fillStyle = COLORS.text;
     g.textAlign = 'right';
     g.textBaseline = 'middle';
+    // A label at most every 16 px: on a short chart every other grid line goes unlabelled.
+    const labelEvery = Math.ceil(16 / Math.max(1e-6, (bottom - top) / Math.max(1, yTicks.ticks.length - 1)));
     yTicks.ticks.forEach((t, i) => {
       if (t < y0 || t > y1) return;
       const y = Math.round(sy(t)) + 0.5;
       g.strokeStyle = COLORS.grid;
       g.beginPath(); g.moveTo(left, y); g.lineTo(right, y); g.stroke();
-      g.fillText(yLabels[i], left - 4, y);
+      if (i % labelEvery === 0) g.fillText(yLabels[i], left - 4, y);
     });
     g.textAlign = 'center';
     g.textBaseline = 'top';
