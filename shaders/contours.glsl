@@ -45,7 +45,7 @@ float contourHeight(vec2 xz) {
 float contourCoverage(float h, float perPixel, float step, float widthPx) {
     float metres = abs(fract(h / step + 0.5) - 0.5) * step;
     float px = metres / max(perPixel, 1e-9);
-    float crowd = smoothstep(2.5, 5.0, step / max(perPixel, 1e-9));
+    float crowd = smoothstep(3.0, 8.0, step / max(perPixel, 1e-9));
     return clamp(0.5 * widthPx + 0.5 - px, 0.0, 1.0) * crowd;
 }
 
