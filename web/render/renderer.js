@@ -332,7 +332,8 @@ export class TerrainRenderer {
     if (this.indexCount > 0 && !view.hideTerrain) this.drawTerrain(camera, view, mode, verticalScale);
     // The sky where no terrain was drawn: after the terrain, so the depth test skips covered pixels.
     if (mode !== SHADING_MODES.plain) this.drawSky(camera, verticalScale);
-    if (view.contours && this.indexCount > 0 && !view.hideTerrain) this.contours.drawLabels(camera, width, height, view, this.pixelScale(height));
+    // Tests judge the lines alone with view.contourLabels = false.
+    if (view.contours && view.contourLabels !== false && this.indexCount > 0 && !view.hideTerrain) this.contours.drawLabels(camera, width, height, view, this.pixelScale(height));
     gl.bindVertexArray(null);
   }
 
