@@ -7,6 +7,7 @@ import { parseContourInterval, contourLevels, countLevels, MAJOR_EVERY } from '.
 import { checkSetting, SETTINGS } from '../../web/app/settings_table.js';
 import { parseUrlState } from '../../web/app/url_state.js';
 import { parseFlight, flightSettings, FlightError } from '../../web/app/deterministic/flight.js';
+import { heightTexturePlan, MAX_TEXELS } from '../../web/render/contours/height_texture.js';
 
 const isNice = (v) => {
   const m = v / 10 ** Math.floor(Math.log10(v) + 1e-9);
@@ -89,4 +90,23 @@ test('a regression flight turns contours on with an interval, and refuses a bad 
   assert.throws(() => parseFlight(flight({ contourInterval: 0 }), 'zero.json'),
     (e) => e instanceof FlightError && /zero\.json: "settings"\."contourInterval" contour interval 0/.test(e.message));
   assert.throws(() => parseFlight(flight({ contours: 'yes' }), 'b.json'), (e) => e instanceof FlightError && /"contours" must be true or false/.test(e.message));
+});
+
+test("the exact height texture holds every sample up to 8193², then every k-th; its tiles share edges and cover the field", () => {
+  const whole = heightTexturePlan(512, 512, 16384);
+  assert.deepEqual(whole, { stride: 1, texelsX: 512, texelsZ: 512, tileX: 512, tileZ: 512, tilesX: 1, tilesZ: 1 });
+  // The paper's 16385² field: over the cap, so every 2nd sample (8193² texels, one tile).
+  const big = heightTexturePlan(16385, 16385, 16384);
+  assert.equal(big.stride, 2);
+  assert.deepEqual([big.texelsX, big.texelsZ], [8193, 8193]);
+  assert.equal(heightTexturePlan(16386, 16385, 16384).stride, 3, 'one column more: every 3rd');
+  assert.ok(big.texelsX * big.texelsZ <= MAX_TEXELS);
+  // At full resolution with small tiles: tiles overlap by one texel and reach the last sample.
+  for (const [w, h, tile] of [[8193, 4097, 4096], [100, 37, 16], [17, 17, 16]]) {
+    const p = heightTexturePlan(w, h, tile);
+    assert.equal(p.stride, 1);
+    assert.ok(p.tileX <= tile && p.tileZ <= tile);
+    assert.ok((p.tilesX - 1) * (p.tileX - 1) < p.texelsX - 1 && p.tilesX * (p.tileX - 1) >= p.texelsX - 1, `${w}: columns covered`);
+    assert.ok((p.tilesZ - 1) * (p.tileZ - 1) < p.texelsZ - 1 && p.tilesZ * (p.tileZ - 1) >= p.texelsZ - 1, `${h}: rows covered`);
+  }
 });

@@ -97,7 +97,8 @@ export class ContourOverlay {
     else if (t && t.handle !== 0) {
       info.stride = heightTexturePlan(t.width, t.height, gl.getParameter(gl.MAX_TEXTURE_SIZE)).stride;
       if (info.stride > 1) {
-        notes.push(`contours use every ${info.stride}th sample: the field is larger than ${MAX_TEXELS / 2 ** 20} M samples`);
+        const nth = { 2: '2nd', 3: '3rd' }[info.stride] ?? `${info.stride}th`;
+        notes.push(`contours use every ${nth} sample: the field has more than ${Math.round(Math.sqrt(MAX_TEXELS))}² samples`);
       }
     }
     info.message = notes.length ? `Contours: ${notes.join('; ')}` : '';

@@ -8,16 +8,21 @@
 // every stride-th sample (and says so).
 
 export const TEXTURE_UNIT_CONTOUR_HEIGHTS = 5; // after the field's (0-2) and the image's (3-4)
-/** Texels at most (2^26: 128 MB at 16 bits, 256 MB for a float field); past that a stride. */
-export const MAX_TEXELS = 1 << 26;
+/**
+ * Texels at most: 8193², 2^26 and one more row and column, so that the paper's 16385² field
+ * keeps every 2nd sample (128 MB at 16 bits, 256 MB for a float field); past that a stride.
+ */
+export const MAX_TEXELS = 8193 * 8193;
 /** How the shader reads a texel's bits (uContourKind): as unsigned, as int16, as float32. */
 const KINDS = { u8: 0, u16: 0, i16: 1, f32: 2 };
 
 /** Sizes of the texture for a field: the stride, texels per axis, tiles. Pure: tests and the page's note use it. */
 export function heightTexturePlan(width, height, maxTile, maxTexels = MAX_TEXELS) {
-  const stride = Math.max(1, Math.ceil(Math.sqrt((width * height) / maxTexels)));
   // Texels per axis: every stride-th sample, and the last sample, so the texture spans the field.
-  const texelsX = Math.ceil((width - 1) / stride) + 1, texelsZ = Math.ceil((height - 1) / stride) + 1;
+  const texels = (n, k) => Math.ceil((n - 1) / k) + 1;
+  let stride = Math.max(1, Math.floor(Math.sqrt((width * height) / maxTexels)));
+  while (texels(width, stride) * texels(height, stride) > maxTexels) stride += 1;
+  const texelsX = texels(width, stride), texelsZ = texels(height, stride);
   const tileX = Math.min(texelsX, maxTile), tileZ = Math.min(texelsZ, maxTile);
   const tilesX = Math.max(1, Math.ceil((texelsX - 1) / (tileX - 1))), tilesZ = Math.max(1, Math.ceil((texelsZ - 1) / (tileZ - 1)));
   return { stride, texelsX, texelsZ, tileX, tileZ, tilesX, tilesZ };
