@@ -255,3 +255,19 @@ test('a phone-sized touch viewport draws the contours and their labels', async (
   await page.close();
 });
 
+
+test('a streamed terrain (a COG by ?src=) draws its contours from the mesh and says so', async () => {
+  const cog = `/@fs${projectDir}tests/fixtures/cog/himalaya_1024_i16.tif`;
+  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?src=${encodeURIComponent(cog)}&budget=50&tau=3&contours=1`, SIZE);
+  await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
+  await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged && window.hexlod.stream?.settled; }, null,
+    { timeout: 300000, polling: 200 });
+  await shoot(page, 'streamed');
+  const s = await page.evaluate(() => ({ tiled: window.hexlod.terrainObject().tiled, contours: { ...window.hexlod.contours },
+    status: document.getElementById('status').textContent, glError: window.hexlod.glError() }));
+  assert.equal(s.tiled, true);
+  assert.deepEqual([s.contours.source, s.contours.labels, s.contours.textureBytes, s.glError], ['mesh', 0, 0, 0]);
+  assert.match(s.status, /streamed terrain follow the drawn mesh/);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

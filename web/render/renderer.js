@@ -321,7 +321,7 @@ export class TerrainRenderer {
    */
   draw(camera, width, height, view = {}) {
     const gl = this.gl;
-    this.drawHeight = height;
+    this.drawPixelScale = this.pixelScale(height); // the contours' line width and labels
     const mode = SHADING_MODES[view.shading ?? 'natural'] ?? 0;
     const verticalScale = view.verticalScale ?? 1;
     gl.viewport(0, 0, width, height);
@@ -333,7 +333,7 @@ export class TerrainRenderer {
     // The sky where no terrain was drawn: after the terrain, so the depth test skips covered pixels.
     if (mode !== SHADING_MODES.plain) this.drawSky(camera, verticalScale);
     // Tests judge the lines alone with view.contourLabels = false.
-    if (view.contours && view.contourLabels !== false && this.indexCount > 0 && !view.hideTerrain) this.contours.drawLabels(camera, width, height, view, this.pixelScale(height));
+    if (view.contours && view.contourLabels !== false && this.indexCount > 0 && !view.hideTerrain) this.contours.drawLabels(camera, width, height, view, this.drawPixelScale);
     gl.bindVertexArray(null);
   }
 
@@ -419,7 +419,7 @@ export class TerrainRenderer {
     this.imageTextures.setUniforms(u, this.imagePlacement ?? null, this.fieldTextures.terrain ?? { spacingX: 1, spacingY: 1 });
     gl.uniform1f(u.uImageOpacity, view.imageOpacity ?? 1);
     gl.uniform1f(u.uImageUnlit, view.imageUnlit ? 1 : 0);
-    this.contours.setUniforms(u, view, low, high, this.pixelScale(this.drawHeight));
+    this.contours.setUniforms(u, view, low, high, this.drawPixelScale);
     // Push the surface back a little so the outlines on it are not lost in the depth test.
     gl.enable(gl.POLYGON_OFFSET_FILL);
     gl.polygonOffset(1, 1);

@@ -93,7 +93,7 @@ export class ContourOverlay {
     if (info.levelsMessage) notes.push(info.levelsMessage);
     info.source = t?.tiled ? 'mesh' : 'field';
     info.stride = 1;
-    if (t?.tiled) notes.push('contours of a streamed terrain follow the drawn mesh (no whole field in memory), and have no labels');
+    if (t?.tiled) notes.push('contours of a streamed terrain follow the drawn mesh (no whole field in memory) and have no labels');
     else if (t && t.handle !== 0) {
       info.stride = heightTexturePlan(t.width, t.height, gl.getParameter(gl.MAX_TEXTURE_SIZE)).stride;
       if (info.stride > 1) {
@@ -101,7 +101,8 @@ export class ContourOverlay {
         notes.push(`contours use every ${nth} sample: the field has more than ${Math.round(Math.sqrt(MAX_TEXELS))}² samples`);
       }
     }
-    info.message = notes.length ? `Contours: ${notes.join('; ')}` : '';
+    const text = notes.join('; ');
+    info.message = text && text[0].toUpperCase() + text.slice(1);
     this.noteChanged = false;
     this.noteTerrain = t;
   }
