@@ -43,7 +43,9 @@ float contourHeight(vec2 xz) {
 // Coverage (0..1) of a line of `widthPx` at the levels `step` metres apart, from the height
 // `h` and its change per pixel; fades out where the lines crowd closer than a few pixels.
 float contourCoverage(float h, float perPixel, float step, float widthPx) {
-    float metres = abs(fract(h / step + 0.5) - 0.5) * step;
+    // The level a hair above its value: samples lying on it (integer heights and a whole
+    // interval) count as below, so a plateau at a level is not a patch of ink but is bounded by its line.
+    float metres = abs(fract(h / step + 0.5 - 1e-4) - 0.5) * step;
     float px = metres / max(perPixel, 1e-9);
     float crowd = smoothstep(3.0, 8.0, step / max(perPixel, 1e-9));
     return clamp(0.5 * widthPx + 0.5 - px, 0.0, 1.0) * crowd;

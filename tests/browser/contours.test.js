@@ -8,7 +8,8 @@
 // hidden). Small viewports: SwiftShader draws on the CPU. Screenshots go to tests/out/.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { decode } from 'fast-png';
+import { decode, encode } from 'fast-png';
+import { writeFileSync } from 'node:fs';
 import { startViewer, openPage, outDir, projectDir } from '../../lib/page_harness.js';
 
 const SIZE = { width: 480, height: 300 };
@@ -64,10 +65,11 @@ function linePixels(on, off) {
 }
 
 /**
- * Every crossing of a level with a sample edge, projected to the image (device pixels), with
- * whether it is in sight from the eye and how many pixels apart the lines are around it.
+ * Every crossing of a level with a sample edge (and with lines between them, `split` to a
+ * cell), projected to the image (device pixels), with whether it is in sight from the eye and
+ * how many pixels apart the lines are around it.
  */
-function crossings(scene, interval) {
+function crossings(scene, interval, split = 4) {
   const { width, height, sx, sz, heights, exag, viewProjection: m, eye, pixelsX, pixelsY } = scene;
   const at = (c, r) => heights[r * width + c];
   const bilinear = (x, z) => {
@@ -90,17 +92,23 @@ function crossings(scene, interval) {
     return true;
   };
   const out = [];
-  const edge = (c0, r0, c1, r1) => {
-    const h0 = at(c0, r0), h1 = at(c1, r1);
+  // Heights at fractional sample positions (column u, row v): bilinear, as the field is.
+  const field = (u, v) => bilinear(u * sx, v * sz);
+  // A straight line from (u0, v0) to (u1, v1) inside one cell: the field is linear along it
+  // when it runs along a row or a column, so a level crosses it at one exact point.
+  const edge = (u0, v0, u1, v1) => {
+    const h0 = field(u0, v0), h1 = field(u1, v1);
     const lo = Math.min(h0, h1), hi = Math.max(h0, h1);
-    for (let level = Math.ceil(lo / interval) * interval; level < hi; level += interval) {
-      if (level <= lo) continue;
-      const t = (level - h0) / (h1 - h0);
-      const x = (c0 + (c1 - c0) * t) * sx, z = (r0 + (r1 - r0) * t) * sz, y = level * exag;
+    // Each level a hair above its value, as contours.glsl draws it: a sample on a level is below it.
+    const shift = 1e-4 * interval;
+    for (let level = Math.ceil((lo - shift) / interval) * interval; level + shift < hi; level += interval) {
+      if (level + shift <= lo) continue;
+      const t = (level + shift - h0) / (h1 - h0);
+      const x = (u0 + (u1 - u0) * t) * sx, z = (v0 + (v1 - v0) * t) * sz, y = level * exag;
       const p = project(x, y, z);
       if (!p || p[0] < 3 || p[1] < 3 || p[0] > pixelsX - 3 || p[1] > pixelsY - 3) continue;
       // The screen gradient of the height from the cell's corners: the shader's fwidth.
-      const c = Math.min(c0, width - 2), r = Math.min(r0, height - 2);
+      const c = Math.min(Math.floor(Math.min(u0, u1)), width - 2), r = Math.min(Math.floor(Math.min(v0, v1)), height - 2);
       const a = project(c * sx, at(c, r) * exag, r * sz), b = project((c + 1) * sx, at(c + 1, r) * exag, r * sz);
       const d = project(c * sx, at(c, r + 1) * exag, (r + 1) * sz);
       let spacing = 0;
@@ -113,11 +121,16 @@ function crossings(scene, interval) {
           spacing = interval / (Math.abs(gx) + Math.abs(gy) + 1e-12);
         }
       }
-      out.push({ x: p[0], y: p[1], visible: inSight(x, y, z), spacing, distance: Math.hypot(x - eye[0], y - eye[1], z - eye[2]), level });
+      out.push({ x: p[0], y: p[1], visible: inSight(x, y, z), spacing, distance: Math.hypot(x - eye[0], y - eye[1], z - eye[2]),
+        level, onSampleEdge: Number.isInteger(u0) && Number.isInteger(v0) && (u0 === u1 || v0 === v1) });
     }
   };
-  for (let r = 0; r < height; ++r) for (let c = 0; c + 1 < width; ++c) edge(c, r, c + 1, r);
-  for (let r = 0; r + 1 < height; ++r) for (let c = 0; c < width; ++c) edge(c, r, c, r + 1);
+  // Sample rows and columns, and `split` - 1 lines between them: a cell can span several
+  // pixels near the eye, and its contour runs between the crossings of its edges.
+  for (let k = 0; k < split; ++k) {
+    for (let r = 0; r + (k ? 1 : 0) < height; ++r) for (let c = 0; c + 1 < width; ++c) edge(c, r + k / split, c + 1, r + k / split);
+    for (let r = 0; r + 1 < height; ++r) for (let c = 0; c + (k ? 1 : 0) < width; ++c) edge(c + k / split, r, c + k / split, r + 1);
+  }
   return out;
 }
 
@@ -145,9 +158,10 @@ async function judge(page, name, pixelRatio) {
   const scene = await sceneOf(page);
   assert.deepEqual([on.width, on.height], [scene.pixelsX, scene.pixelsY]);
   const lines = linePixels(on, off);
-  const all = crossings(scene, INTERVAL).filter((p) => p.visible);
+  const interval = await page.evaluate(() => window.hexlod.contours.interval);
+  const all = crossings(scene, interval).filter((p) => p.visible);
   // Lines at least 10 px apart: closer ones fade out (contours.glsl), as they should.
-  const judged = all.filter((p) => p.spacing >= 10 * pixelRatio);
+  const judged = all.filter((p) => p.onSampleEdge && p.spacing >= 10 * pixelRatio);
   const hitRadius = 2 * pixelRatio + 0.5;
   let hits = 0;
   const { width: w, height: h } = on;
@@ -162,11 +176,14 @@ async function judge(page, name, pixelRatio) {
   }
   const nearAny = near(all, w, h, 3 * pixelRatio);
   let linesTotal = 0, stray = 0, covered = 0;
+  const marked = Uint8Array.from(on.data);
   for (let k = 0; k < lines.length; ++k) {
     covered += nearAny[k];
     if (lines[k]) { linesTotal += 1; stray += !nearAny[k]; }
+    if (lines[k] && !nearAny[k]) { marked[k * on.channels] = 255; marked[k * on.channels + 1] = 0; marked[k * on.channels + 2] = 0; }
   }
-  return { scene, lines, all, judged, hitShare: hits / judged.length, strayShare: stray / linesTotal, linesTotal, w, h,
+  writeFileSync(`${outDir}/contours-${name}-stray.png`, encode({ ...on, data: marked })); // line pixels away from every crossing in red
+  return { interval, scene, lines, all, judged, hitShare: hits / judged.length, strayShare: stray / linesTotal, linesTotal, w, h,
     nearShare: covered / lines.length };
 }
 
@@ -199,6 +216,35 @@ test('line pixels lie on the field\'s crossings of the levels, at device pixel r
     assert.ok(nearWidth / farWidth > 0.6 && nearWidth / farWidth < 1.6, `line width near ${nearWidth.toFixed(2)} px, far ${farWidth.toFixed(2)} px`);
     const labels = await page.evaluate(() => window.hexlod.contours.labels);
     assert.ok(labels >= 3, `${labels} labels drawn`);
+    assert.deepEqual(problems, []);
+    await page.close();
+  }
+});
+
+test('every sample depth is read exactly: u8, i16 and f32 fields (u16 above), lines on their crossings', async () => {
+  // u16: the Grand Canyon PNG above.
+  const formats = { u8: 'formats/jacksboro_8bit.png', i16: 'formats/everest_i16_strips.tif', f32: 'formats/canyon_terrain-rgb.png' };
+  for (const [type, file] of Object.entries(formats)) {
+    const src = `/@fs${projectDir}tests/fixtures/${file}`;
+    const { page, problems } = await openPage(viewer.browser, `${viewer.url}?src=${encodeURIComponent(src)}&tau=1&budget=40&contours=1&cint=auto`, SIZE);
+    await page.addStyleTag({ content: '#hud, #side, #drop-hint, #status, #intake, #panel { display: none !important; }' });
+    await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
+    // Closer than the opening view, which shows the whole field small: lines far enough apart to judge.
+    await page.evaluate(() => {
+      const h = window.hexlod, t = h.terrainObject(), ex = (t.width - 1) * t.spacingX, ez = (t.height - 1) * t.spacingY;
+      h.setSetting('camera', 'orbit');
+      const orbit = h.rig.active;
+      orbit.target.set([ex / 2, t.heightAt(ex / 2, ez / 2) * h.settings.exaggeration, ez / 2]);
+      Object.assign(orbit, { distance: 0.45 * Math.max(ex, ez), yaw: 0.5, pitch: 0.9 });
+      h.requestRender();
+    });
+    await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; }, null, { timeout: 300000, polling: 200 });
+    assert.equal(await page.evaluate(() => window.hexlod.terrainObject().sampleType), type, file);
+    const r = await judge(page, `type-${type}`, 1);
+    console.log(JSON.stringify({ type, interval: r.interval, judged: r.judged.length, hit: r.hitShare.toFixed(3), stray: r.strayShare.toFixed(3) }));
+    assert.ok(r.judged.length > 100, `${type}: enough crossings judged: ${r.judged.length}`);
+    assert.ok(r.hitShare > 0.9, `${type}: ${(100 * r.hitShare).toFixed(1)}% of the crossings have a line pixel within 2.5 px`);
+    assert.ok(r.strayShare < 0.05, `${type}: ${(100 * r.strayShare).toFixed(1)}% of the line pixels are away from every crossing`);
     assert.deepEqual(problems, []);
     await page.close();
   }
