@@ -64,7 +64,8 @@ export class LabelPlacer {
     const cross = (h0, h1, visit) => {
       const lo = Math.min(h0, h1), hi = Math.max(h0, h1);
       if (!(hi > lo)) return;
-      for (let level = Math.ceil(lo / major) * major; level < hi; level += major) if (level > lo) visit(level, (level - h0) / (h1 - h0));
+      // A sample on a level counts as below it, as contours.glsl draws it.
+      for (let level = Math.ceil(lo / major) * major; level < hi; level += major) visit(level, (level - h0) / (h1 - h0));
     };
     // Sample rows: the height is linear between neighbouring samples along a row.
     for (let r = Math.floor(every / 2); r < height; r += every) {
