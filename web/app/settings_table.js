@@ -13,8 +13,9 @@
 //   stream    the streamed terrain's tile cache (its cap in bytes)
 //   none      read where it is used (the freeze switch, limits of the next URL load)
 // core: the setting's hexlod_settings field (Terrain.configure's camelCase name) and how the
-// value maps to it. parse: a typed value's reader (throws why it is refused). coreDiffers: why the page's default is not the core's (a test holds both
-// the equal and the differing ones to what the table says).
+// value maps to it. parse: a typed value's reader (throws why it is refused). coreDiffers: why
+// the page's default is not the core's (a test holds both the equal and the differing ones to
+// what the table says).
 
 import { parseContourInterval } from '../measure/contour_levels.js';
 
@@ -126,7 +127,7 @@ export function checkSetting(key, value) {
     // From the URL: ?contours=1 (or true; 0 or false).
     if (s.url && ['1', 'true'].includes(value)) return true;
     if (s.url && ['0', 'false'].includes(value)) return false;
-    return new Error(`${s.url ?? key} is on or off (1 or 0), not ${value}`);
+    return new Error(s.url ? `${s.url} is on or off (1 or 0), not ${value}` : `${key} is on or off, not ${value}`);
   }
   if (s.positive) {
     return Number.isFinite(value) && value > 0 ? value : new Error(`the cell size must be a positive number of metres, not ${value}`);
