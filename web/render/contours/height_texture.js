@@ -101,7 +101,6 @@ export class ContourHeights {
     // Metres between texels: the last texel is the last sample, wherever the stride ends.
     this.texelX = terrain.spacingX * stride;
     this.texelZ = terrain.spacingY * stride;
-    this.spacingKey = terrain.spacingX;
     this.key = terrain;
     this.field = field;
     this.bytes = plan.tileX * plan.tileZ * plan.tilesX * plan.tilesZ * samples.BYTES_PER_ELEMENT;

@@ -4,7 +4,7 @@
 // kept upright, dropped where they would overlap a label already placed or where the ground
 // between the eye and the point hides it (the core's bilinear heights along the sight line).
 // A frame allocates nothing: every per-frame array is made once (or when the viewport grows).
-import { labelGlyphs, GLYPHS, CELL_W, CELL_H, ADVANCE } from './glyph_atlas.js';
+import { labelGlyphs, CELL_W, CELL_H, ADVANCE } from './glyph_atlas.js';
 
 /** Points kept at most (each is tested every frame while on screen). */
 const MAX_ANCHORS = 4096;
@@ -93,7 +93,7 @@ export class LabelPlacer {
    * Chooses this frame's labels and writes their glyphs into `instances`.
    * @param {{viewProjection: Float32Array, position: ArrayLike<number>}} camera drawn metres
    * @param {number} pxScale device pixels per CSS pixel
-   * @param {(x: number, z: number) => number} heightAt true metres of the ground
+   * @param {{heightAt(x: number, z: number): number}} terrain the core's bilinear heights, true metres
    */
   place(camera, width, height, pxScale, verticalScale, terrain) {
     const m = camera.viewProjection, eye = camera.position;
@@ -160,4 +160,3 @@ export class LabelPlacer {
   }
 }
 
-export { GLYPHS };
