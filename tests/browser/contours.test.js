@@ -286,6 +286,7 @@ test('refused intervals keep the old one with a message; a tiny one is widened a
   const auto = await state();
   assert.deepEqual([auto.contours.interval, auto.contours.widened, auto.status], [50, false, '']);
   await page.evaluate(() => window.hexlod.setSetting('contourInterval', '25'));
+  await shoot(page, 'interval-25'); // a frame notes the view for the address bar
   await page.evaluate(() => window.hexlod.flushUrl());
   const search = new URLSearchParams(await page.evaluate(() => location.search));
   assert.deepEqual([search.get('contours'), search.get('cint')], ['true', '25']);
