@@ -53,9 +53,12 @@ export async function startViewer({ site = 'dev', hmr = false } = {}) {
   };
 }
 
-/** Opens a page that records console errors, page errors and failed requests in `problems`. */
-export async function openPage(browser, url, viewport = { width: 960, height: 600 }) {
-  const page = await browser.newPage({ viewport });
+/**
+ * Opens a page that records console errors, page errors and failed requests in `problems`.
+ * `options`: more of Playwright's page options (deviceScaleFactor, hasTouch, isMobile).
+ */
+export async function openPage(browser, url, viewport = { width: 960, height: 600 }, options = {}) {
+  const page = await browser.newPage({ viewport, ...options });
   // The page's Content-Security-Policy refuses the <style> element of Playwright's addStyleTag;
   // a test's own styles (hiding the page's boxes) go in as a constructed stylesheet, which
   // script may add under the policy.

@@ -33,6 +33,7 @@ uniform float uImageUnlit;    // 1: the image as it is (orthophotos carry their 
 #include "ground_color.glsl"
 #include "tonemap.glsl"
 #include "image_drape.glsl"
+#include "contours.glsl"
 
 const int MODE_NATURAL = 0;
 const int MODE_HYPSOMETRIC = 1;
@@ -55,14 +56,13 @@ vec3 plainShading(vec3 n) {
     return pow(lit, vec3(1.0 / 2.2));
 }
 
-void main() {
+// The terrain's colour at this pixel, before the contour lines.
+vec4 groundShade() {
     if (uLineColor.a > 0.0) {
-        outColor = uLineColor;
-        return;
+        return uLineColor;
     }
     if (uMode == MODE_PLAIN) {
-        outColor = vec4(plainShading(normalize(vNormal)), 1.0);
-        return;
+        return vec4(plainShading(normalize(vNormal)), 1.0);
     }
     vec2 xz = vWorld.xz;
     // The draped image (straight alpha, display colours) and how much of it covers this pixel.
@@ -81,8 +81,7 @@ void main() {
     if (uMode == MODE_HILLSHADE) {
         // Grey proportional to the light, as GIS hillshades are (no tone curve).
         float shade = 0.8 * diffuse + 0.2 * skyShare;
-        outColor = vec4(mix(vec3(shade), image.rgb * (uImageUnlit > 0.5 ? 1.0 : shade), imageShare), 1.0);
-        return;
+        return vec4(mix(vec3(shade), image.rgb * (uImageUnlit > 0.5 ? 1.0 : shade), imageShare), 1.0);
     }
     if (uMode == MODE_HYPSOMETRIC || uMode == MODE_SLOPE) {
         vec3 trueNormal = normalize(vec3(n.x, n.y * uVerticalScale, n.z));
@@ -90,8 +89,7 @@ void main() {
         ramp = mix(ramp, uTint, uTintAmount);
         // The ramps are display colours: shaded by the light, no tone curve.
         float light = min(1.0, 0.5 + 0.5 * (0.75 * diffuse + 0.25 * skyShare) / 0.6);
-        outColor = vec4(mix(ramp * light, image.rgb * (uImageUnlit > 0.5 ? 1.0 : light), imageShare), 1.0);
-        return;
+        return vec4(mix(ramp * light, image.rgb * (uImageUnlit > 0.5 ? 1.0 : light), imageShare), 1.0);
     }
 
     float noise = groundNoise(xz);
@@ -110,5 +108,11 @@ void main() {
     }
     vec3 shaded = toneMap(radiance * vExtinction + vInscatter);
     // Unlit: the image's own colours over the shaded ground.
-    outColor = vec4(uImageUnlit > 0.5 ? mix(shaded, mix(image.rgb, uTint, uTintAmount), imageShare) : shaded, 1.0);
+    return vec4(uImageUnlit > 0.5 ? mix(shaded, mix(image.rgb, uTint, uTintAmount), imageShare) : shaded, 1.0);
+}
+
+void main() {
+    vec4 color = groundShade();
+    // The hexagon outlines are lines of their own colour; everything else gets the contours.
+    outColor = uLineColor.a > 0.0 ? color : vec4(withContours(color.rgb, vWorld.xz, vHeight), color.a);
 }

@@ -93,7 +93,11 @@ async function main() {
     // For tests: the normal texture's tiles. Not enumerable: it holds the terrain and through it
     // the WASM heap, which a test's evaluate(() => window.hexlod) would try to copy whole.
     Object.defineProperty(state, 'fieldTextures', { value: renderer.fieldTextures, enumerable: false, configurable: true });
+    state.contours = renderer.contours.info; // the interval in force, its message, the labels drawn
   }
+
+  /** The contours' note (a widened interval, a coarser or streamed field) in the status line, while they are on. */
+  const showContourNote = () => { if (settings.contours) showStatus(renderer.contourNote(view)); };
 
   /**
    * A setting changed (panel, key, test): through its owner, which keeps the old value when it
@@ -110,6 +114,7 @@ async function main() {
       applied = false;
     }
     syncView();
+    if (applied && (key === 'contours' || key === 'contourInterval')) showContourNote();
     syncPanel();
     requestRender();
     return applied;
@@ -203,6 +208,7 @@ async function main() {
   // The default terrain loads quietly (a failed src's message stays over it), so the page's own
   // opening message is taken away here, and only that one.
   if (statusBox.textContent === OPENING_STATUS) showStatus('');
+  if (statusBox.textContent === '') showContourNote();
   if (urlState.image && !det) await intake.openImageUrl(urlState.image);
   if (urlState.camera && !det) {
     applyCameraState(rig, urlState.camera);

@@ -13,8 +13,11 @@
 //   stream    the streamed terrain's tile cache (its cap in bytes)
 //   none      read where it is used (the freeze switch, limits of the next URL load)
 // core: the setting's hexlod_settings field (Terrain.configure's camelCase name) and how the
-// value maps to it. coreDiffers: why the page's default is not the core's (a test holds both
-// the equal and the differing ones to what the table says).
+// value maps to it. parse: a typed value's reader (throws why it is refused). coreDiffers: why
+// the page's default is not the core's (a test holds both the equal and the differing ones to
+// what the table says).
+
+import { parseContourInterval } from '../measure/contour_levels.js';
 
 /** Shading modes of the terrain (web/render/renderer.js SHADING_MODES), the first the default. */
 export const SHADING_MODES = ['natural', 'hypsometric', 'slope', 'hillshade', 'plain'];
@@ -28,7 +31,7 @@ export const LAYOUTS = ['triangles', 'fans'];
 export const MORPH_FRAMES = 8;
 
 const LOD = 'Level of detail', MORE = 'Level of detail/budgets and culling', VIEW = 'View', SHADING = 'Shading';
-const MESH = 'Mesh', URLS = 'Loading from a URL', IMAGE = 'Image';
+const MESH = 'Mesh', URLS = 'Loading from a URL', IMAGE = 'Image', CONTOURS = 'Contours';
 
 export const SETTINGS = {
   tau: { default: 1, min: 0.25, max: 16, step: 0.05, url: 'tau', panel: [LOD, 'error τ (px)'], effect: 'core',
@@ -68,6 +71,12 @@ export const SETTINGS = {
   imageOpacity: { default: 1, min: 0, max: 1, step: 0.05, url: 'imgop', urlIfChanged: true, panel: [IMAGE, 'opacity'], effect: 'view' },
   imageUnlit: { default: false, panel: [IMAGE, 'unlit (its own shadows)'], effect: 'view' },
 
+  // Contour lines of the full-resolution field (web/render/contours/): every 5th thicker and
+  // labelled; the interval in metres or 'auto' (web/measure/contour_levels.js).
+  contours: { default: false, url: 'contours', urlIfChanged: true, panel: [CONTOURS, 'contour lines'], effect: 'view' },
+  contourInterval: { default: 'auto', parse: parseContourInterval, url: 'cint', urlIfChanged: true,
+    panel: [CONTOURS, 'interval (m or auto)'], effect: 'view' },
+
   embedding: { default: 'exact', choices: ['exact', 'shifted'], panel: [MESH, 'embedding'], effect: 'mesh' },
   // Metres between samples; 0 until a terrain is loaded, then its slider spans around it.
   cellSize: { default: 0, positive: true, panel: [MESH, 'cell size (m)'], effect: 'ground' },
@@ -105,8 +114,21 @@ export function defaultSettings() {
 export function checkSetting(key, value) {
   const s = SETTINGS[key];
   if (!s) return new Error(`there is no setting ${key}`);
+  if (s.parse) {
+    try {
+      return s.parse(value);
+    } catch (error) {
+      return error;
+    }
+  }
   if (s.choices) return s.choices.includes(value) ? value : new Error(`${s.url ?? key} must be one of ${s.choices.join(', ')}, not ${value}`);
-  if (typeof s.default === 'boolean') return typeof value === 'boolean' ? value : new Error(`${key} is on or off, not ${value}`);
+  if (typeof s.default === 'boolean') {
+    if (typeof value === 'boolean') return value;
+    // From the URL: ?contours=1 (or true; 0 or false).
+    if (s.url && ['1', 'true'].includes(value)) return true;
+    if (s.url && ['0', 'false'].includes(value)) return false;
+    return new Error(s.url ? `${s.url} is on or off (1 or 0), not ${value}` : `${key} is on or off, not ${value}`);
+  }
   if (s.positive) {
     return Number.isFinite(value) && value > 0 ? value : new Error(`the cell size must be a positive number of metres, not ${value}`);
   }

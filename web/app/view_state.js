@@ -24,5 +24,7 @@ export function deriveView(settings, view) {
   view.occlusion = settings.occlusion;
   view.sunAzimuth = settings.sunAzimuth;
   view.sunElevation = settings.sunElevation;
+  view.contours = settings.contours;
+  view.contourInterval = settings.contourInterval;
   return view;
 }

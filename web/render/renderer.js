@@ -20,6 +20,7 @@ import fieldTexturesGlsl from '../../shaders/field_textures.glsl?raw';
 import groundColorGlsl from '../../shaders/ground_color.glsl?raw';
 import tonemapGlsl from '../../shaders/tonemap.glsl?raw';
 import imageDrapeGlsl from '../../shaders/image_drape.glsl?raw';
+import contoursGlsl from '../../shaders/contours.glsl?raw';
 import { mat4 } from 'gl-matrix';
 import { STREAM_VERTEX_BYTES, STREAM_NORMAL_BYTES } from '../core/core.js';
 import { MeasureOverlay } from './measure_overlay.js';
@@ -27,6 +28,7 @@ import { resolveIncludes } from './shading/includes.js';
 import { Atmosphere, BETA_RAYLEIGH, BETA_MIE, SCALE_HEIGHTS, MIE_G, SUN_IRRADIANCE, EXPOSURE } from './shading/atmosphere.js';
 import { FieldTextures, TEXTURE_UNIT_GRADIENTS, TEXTURE_UNIT_SUN, TEXTURE_UNIT_OCCLUSION } from './shading/field_textures.js';
 import { ImageTextures, TEXTURE_UNIT_IMAGE_TILES, TEXTURE_UNIT_IMAGE_OVERVIEW } from './shading/image_textures.js';
+import { ContourOverlay, CONTOUR_UNIFORMS } from './contours/contour_overlay.js';
 
 export const ATTRIB_POSITION = 0;
 export const ATTRIB_NORMAL = 1;
@@ -36,7 +38,8 @@ export const ATTRIB_SKY_CORNER = 0;
 /** Shading modes (uMode in shaders/terrain.frag). */
 export const SHADING_MODES = { natural: 0, hypsometric: 1, slope: 2, hillshade: 3, plain: 4 };
 const SHADER_FILES = { 'scattering.glsl': scatteringGlsl, 'field_textures.glsl': fieldTexturesGlsl,
-  'ground_color.glsl': groundColorGlsl, 'tonemap.glsl': tonemapGlsl, 'image_drape.glsl': imageDrapeGlsl };
+  'ground_color.glsl': groundColorGlsl, 'tonemap.glsl': tonemapGlsl, 'image_drape.glsl': imageDrapeGlsl,
+  'contours.glsl': contoursGlsl };
 const SKY_COLOR = [0.62, 0.74, 0.88]; // the clear colour of the plain mode (no sky pass)
 const OUTLINE_COLOR = new Float32Array([0.08, 0.09, 0.12, 0.55]);
 const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeightRange', 'uTint', 'uTintAmount',
@@ -44,7 +47,7 @@ const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeigh
   'uMieG', 'uSunIrradiance', 'uSunAirMass', 'uSkyLight', 'uExposure', 'uMode', 'uNormalSource', 'uShadows',
   'uOcclusionOn', 'uSnowLine', 'uTreeLine', 'uNoiseScale', 'uGradients', 'uGradientTexel', 'uGradientStep',
   'uGradientTile', 'uGradientTiles', 'uSunVisibility', 'uSunVisibilityMap', 'uOcclusion', 'uOcclusionMap',
-  'uImageTiles', 'uImageOverview', 'uImageOn', 'uImageMap', 'uImageSize', 'uImageTiling', 'uImageTile', 'uImageOpacity', 'uImageUnlit'];
+  'uImageTiles', 'uImageOverview', 'uImageOn', 'uImageMap', 'uImageSize', 'uImageTiling', 'uImageTile', 'uImageOpacity', 'uImageUnlit', ...CONTOUR_UNIFORMS];
 const SKY_UNIFORMS = ['uInverseViewProjection', 'uCameraPosition', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie',
   'uScaleHeight', 'uMieG', 'uSunDirection', 'uSunIrradiance', 'uSunAirMass', 'uExposure'];
 
@@ -165,6 +168,8 @@ export class TerrainRenderer {
     // The draped image died with the context too: the page opens it again (imagePlacement stays).
     this.imageTextures?.forgetGl();
     this.imageTextures = this.imageTextures ?? new ImageTextures(gl);
+    this.contours?.forgetGl();
+    this.contours = this.contours ?? new ContourOverlay(gl); // contour lines and labels (web/render/contours/)
     this.vertices = new MirroredBuffer(gl, gl.ARRAY_BUFFER);
     this.normals = new MirroredBuffer(gl, gl.ARRAY_BUFFER); // while the core keeps mesh normals
     this.hasNormals = false;
@@ -289,6 +294,13 @@ export class TerrainRenderer {
    */
   setField(terrain, field) {
     this.fieldTextures.setField(terrain, field);
+    this.contours.setField(terrain, field);
+  }
+
+  /** The contour overlay's message for the page ('' when none) for this view: a widened interval, a coarser field. */
+  contourNote(view) {
+    const scale = view.verticalScale ?? 1;
+    return this.contours.update(view, this.heightRange[0] / scale, this.heightRange[1] / scale);
   }
 
   /**
@@ -313,6 +325,7 @@ export class TerrainRenderer {
    */
   draw(camera, width, height, view = {}) {
     const gl = this.gl;
+    this.drawPixelScale = this.pixelScale(height); // the contours' line width and labels
     const mode = SHADING_MODES[view.shading ?? 'natural'] ?? 0;
     const verticalScale = view.verticalScale ?? 1;
     gl.viewport(0, 0, width, height);
@@ -325,7 +338,15 @@ export class TerrainRenderer {
     if (!view.hideTerrain) this.measureOverlay.draw(camera, width, height, verticalScale);
     // The sky where no terrain was drawn: after the terrain, so the depth test skips covered pixels.
     if (mode !== SHADING_MODES.plain) this.drawSky(camera, verticalScale);
+    // Tests judge the lines alone with view.contourLabels = false.
+    if (view.contours && view.contourLabels !== false && this.indexCount > 0 && !view.hideTerrain) this.contours.drawLabels(camera, width, height, view, this.drawPixelScale);
     gl.bindVertexArray(null);
+  }
+
+  /** Device pixels per CSS pixel of a drawing `height` pixels tall (a 2x screenshot: twice the screen's). */
+  pixelScale(height) {
+    const css = this.gl.canvas.clientHeight;
+    return css > 0 ? Math.max(1, height / css) : 1;
   }
 
   /** Uniforms the terrain and the sky share: the atmosphere and the tone curve. */
@@ -404,6 +425,7 @@ export class TerrainRenderer {
     this.imageTextures.setUniforms(u, this.imagePlacement ?? null, this.fieldTextures.terrain ?? { spacingX: 1, spacingY: 1 });
     gl.uniform1f(u.uImageOpacity, view.imageOpacity ?? 1);
     gl.uniform1f(u.uImageUnlit, view.imageUnlit ? 1 : 0);
+    this.contours.setUniforms(u, view, low, high, this.drawPixelScale);
     // Push the surface back a little so the outlines on it are not lost in the depth test.
     gl.enable(gl.POLYGON_OFFSET_FILL);
     gl.polygonOffset(1, 1);

@@ -46,8 +46,9 @@ export function createControlsPanel(container, settings, { camera, onChange, act
     else if (typeof s.default === 'number') controller = folder.add(settings, key, s.min, s.max, s.step);
     else controller = folder.add(settings, key);
     controller.name(label);
-    // A typed number is applied once typed (a cell size rebuilds the mesh), others as they move.
-    if (s.positive) controller.onFinishChange(changed);
+    // A typed value is applied once typed (a cell size rebuilds the mesh; a half-typed interval
+    // is no interval), others as they move.
+    if (s.positive || s.parse) controller.onFinishChange(changed);
     else controller.onChange(changed);
     controllers[key] = controller;
   }

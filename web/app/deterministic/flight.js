@@ -11,7 +11,8 @@
 //     "viewport": [400, 225], "dpr": 1,            canvas size in CSS pixels, device pixel ratio
 //     "settings": { "tau": 1, "exaggeration": 2, "operations": 1000, "geomorph": true,
 //                   "embedding": "exact", "culling": true, "backfaceCulling": true,
-//                   "imageOpacity": 1, "imageUnlit": false },       the last two for an image
+//                   "imageOpacity": 1, "imageUnlit": false,         these two for an image
+//                   "contours": true, "contourInterval": 50 },      contour lines; the interval in metres or "auto"
 //     "captures": [0, 30, 59],                     frames to screenshot
 //     "keyframes": [ { "time": 0, "position": [x, y, z], "target": [x, y, z], "fov": 50 }, ... ],
 //     "tolerance": { "threshold": 0.004, "maxDiffPixelRatio": 0.002, ... }  optional: see tolerance.js
@@ -25,6 +26,7 @@
 import { defaultSettings, coreSettings } from '../settings_table.js';
 import { FRAME } from '../../core/core.js';
 import { parseTolerance } from './tolerance.js';
+import { parseContourInterval } from '../../measure/contour_levels.js';
 
 export const DEFAULT_FPS = 30;
 export const DEFAULT_VIEWPORT = [400, 225];
@@ -49,6 +51,9 @@ const SETTING_KINDS = {
   // them, so the references of flights without an image record what they did.
   imageOpacity: { min: 0, max: 1 },
   imageUnlit: 'boolean',
+  // Contour lines (settings_table.js), likewise kept only when set: the interval in metres or 'auto'.
+  contours: 'boolean',
+  contourInterval: 'contourInterval',
 };
 
 /**
@@ -94,7 +99,13 @@ export function parseFlight(json, name = 'flight') {
       const kind = SETTING_KINDS[key];
       const label = `"settings"."${key}"`;
       if (!kind) fail(label, `is not a setting (${Object.keys(SETTING_KINDS).join(', ')})`);
-      if (kind === 'boolean') {
+      if (kind === 'contourInterval') {
+        try {
+          settings[key] = parseContourInterval(value);
+        } catch (error) {
+          fail(label, `${error.message}, got ${JSON.stringify(value)}`);
+        }
+      } else if (kind === 'boolean') {
         if (typeof value !== 'boolean') fail(label, `must be true or false, got ${JSON.stringify(value)}`);
         settings[key] = value;
       } else if (Array.isArray(kind)) {
@@ -147,6 +158,8 @@ export function flightSettings(flight) {
     embedding: s.embedding, freeze: false, wireframe: false, colorByLevel: false,
     ...(s.imageOpacity !== undefined && { imageOpacity: s.imageOpacity }),
     ...(s.imageUnlit !== undefined && { imageUnlit: s.imageUnlit }),
+    ...(s.contours !== undefined && { contours: s.contours }),
+    ...(s.contourInterval !== undefined && { contourInterval: s.contourInterval }),
   });
 }
 
