@@ -25,7 +25,6 @@ export class TerrainStage {
     this.current?.terrain.destroy();
     this.current = this.pipeline.current = loaded;
     this.makeWorld();
-    this.frameDefault();
     this.owner.adopt('cellSize', terrain.spacingX);
     this.panel.setCellSizeRange(terrain.spacingX);
     this.pipeline.forgetFigures(); // the last terrain's "converged" and triangles do not describe this one
@@ -33,6 +32,9 @@ export class TerrainStage {
       minHeight: terrain.minHeight, maxHeight: terrain.maxHeight, streamed: field.streamed === true };
     this.state.stream = null; // the frame loop publishes a streamed terrain's figures
     this.hud.setTerrain(field, terrain, loaded.loadMs);
+    // Framed once the HUD and the file bar describe this terrain: their heights bound the view,
+    // and R frames it again with them as they are then.
+    this.frameDefault();
     this.syncPanel();
     this.det?.setTerrain(terrain);
     this.requestRender();

@@ -127,8 +127,8 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
         loaded.terrain.destroy();
         return cancelled(signal, names);
       }
+      showSpacing(loaded.terrain, !loaded.field.spacingFromFile); // first: the opening view is framed below the file bar as it will be
       show(loaded, source);
-      showSpacing(loaded.terrain, !loaded.field.spacingFromFile);
       if (!quiet) {
         state.error = null;
         showStatus('');
@@ -172,8 +172,8 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
       loaded.terrain.destroy();
       return cancelled(signal, name);
     }
+    showSpacing(loaded.terrain, !loaded.field.spacingFromFile); // before show() frames the view under the bar
     show(loaded, source);
-    showSpacing(loaded.terrain, !loaded.field.spacingFromFile);
     state.error = null;
     showStatus('');
     return 'shown';
