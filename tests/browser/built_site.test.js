@@ -1,8 +1,8 @@
 // The production build (dist/, ./build.sh site) served by a plain static file server under a
 // sub-path (/hexlod/), as a static host would: the default terrain opens and shows, a dropped
 // file and a ?src= file open framed, R resets the view; a satellite image drapes, dropped or by
-// ?image=; a COG by ?src= streams, its tiles decoded by the bundled workers. Judged by pixels
-// and geometry.
+// ?image=; a COG by ?src= streams, its tiles decoded by the bundled workers; contours and a
+// measured path come from the address. Judged by pixels and geometry.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
@@ -108,4 +108,43 @@ test('the built site streams a COG by ?src=, its tiles decoded by the bundled wo
   } finally {
     await cogs.close();
   }
+});
+
+test('the built site draws contour lines and a measured path from the address, and both leave the picture when turned off', async () => {
+  const line = 'measure=p:1300000,1000000;1450000,1100000;1460000,960000';
+  const { page, problems } = await openPage(site.browser, `${site.url}?contours=1&cint=250&${line}`, { width: 640, height: 400 });
+  await pageReady(page);
+  await page.click('#measure-fold'); // the panel folds to its bar, as on a small screen, and the line is in view
+  await converged(page);
+  const shown = await page.evaluate(() => {
+    const h = window.hexlod, r = h.measure.result;
+    return { contours: { ...h.contours }, points: r.points.length, length: r.profile?.summary.length ?? 0 };
+  });
+  assert.equal(shown.contours.on, true);
+  assert.equal(shown.contours.interval, 250);
+  assert.ok(shown.contours.labels > 0, `labels drawn: ${JSON.stringify(shown.contours)}`);
+  assert.equal(shown.points, 3);
+  assert.ok(shown.length > 150000 && shown.length < 400000, `the path is ${shown.length} m long`);
+  const both = decode(await page.screenshot({ path: `${outDir}/built-measure-contours.png` }));
+  // The same view with contours off, then with the line hidden: each takes pixels away.
+  await page.evaluate(() => { window.hexlod.setSetting('contours', false); });
+  await nextFrame(page);
+  await nextFrame(page);
+  const noContours = decode(await page.screenshot());
+  await page.evaluate(() => { window.hexlod.measure.overlay.setLine(null, []); window.hexlod.requestRender(); });
+  await nextFrame(page);
+  await nextFrame(page);
+  const neither = decode(await page.screenshot());
+  const differing = (a, b) => {
+    let n = 0;
+    for (let k = 0; k < a.data.length; k += a.channels) {
+      if (Math.abs(a.data[k] - b.data[k]) + Math.abs(a.data[k + 1] - b.data[k + 1]) + Math.abs(a.data[k + 2] - b.data[k + 2]) > 60) n++;
+    }
+    return n / (a.width * a.height);
+  };
+  const contourShare = differing(both, noContours), lineShare = differing(noContours, neither);
+  assert.ok(contourShare > 0.01 && contourShare < 0.35, `contour lines change ${(100 * contourShare).toFixed(2)} % of the view`);
+  assert.ok(lineShare > 0.001 && lineShare < 0.1, `the measured line changes ${(100 * lineShare).toFixed(2)} % of the view`);
+  assert.deepEqual(problems, []);
+  await page.close();
 });
