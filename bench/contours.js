@@ -6,7 +6,8 @@
 // (?timing=1), so the times include SwiftShader's rasterisation. The view holds still and
 // converged; contours go on and off frame by frame so that both see the same load.
 //   node bench/contours.js [--frames 20] [--size 640x360] [--src URL] [--cint 50]
-import { startViewer, openPage } from '../lib/page_harness.js';
+import { startViewer } from '../lib/page_harness.js';
+import { openConvergedView, frameWithSetting } from '../lib/page_frames.js';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => { const k = args.indexOf(`--${name}`); return k >= 0 ? args[k + 1] : fallback; };
@@ -19,23 +20,11 @@ const median = (v) => [...v].sort((a, b) => a - b)[v.length >> 1];
 const viewer = await startViewer();
 try {
   const url = `${viewer.url}?timing=1&budget=40&cint=${encodeURIComponent(cint)}${src ? `&src=${encodeURIComponent(src)}` : ''}`;
-  const { page, problems } = await openPage(viewer.browser, url, { width, height });
-  await page.addStyleTag({ content: '#hud,#side,#drop-hint,#status{display:none !important}' });
-  await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
-  await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; }, null, { timeout: 300000, polling: 200 });
+  const { page, problems } = await openConvergedView(viewer.browser, url, { width, height });
   const samples = { off: [], on: [] }, draws = { off: [], on: [] };
   for (let f = 0; f < 2 * (frames + 2); ++f) {
     const on = f % 2 === 1;
-    const log = await page.evaluate((contours) => new Promise((resolve) => {
-      const h = window.hexlod;
-      h.setSetting('contours', contours);
-      h.frameLog = [];
-      h.recordFrames = true;
-      const want = h.frames + 1;
-      const wait = () => (h.frames >= want ? resolve(h.frameLog.at(-1)) : requestAnimationFrame(wait));
-      h.requestRender();
-      requestAnimationFrame(wait);
-    }), on);
+    const log = await frameWithSetting(page, 'contours', on);
     if (f < 4) continue; // the first frame with contours makes the height texture and the label points
     samples[on ? 'on' : 'off'].push(log.cpuMs);
     draws[on ? 'on' : 'off'].push(log.drawMs);

@@ -7,7 +7,8 @@
 // Also prints the core's share (LOD update and fan stream) of the same frames.
 // --modes lists more modes to compare (web/app/settings.js SHADING_MODES); the ratio is of the first two.
 //   node bench/shading.js [--frames 20] [--size 640x360] [--modes natural,plain,hillshade]
-import { startViewer, openPage } from '../lib/page_harness.js';
+import { startViewer } from '../lib/page_harness.js';
+import { openConvergedView, frameWithSetting } from '../lib/page_frames.js';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => { const k = args.indexOf(`--${name}`); return k >= 0 ? args[k + 1] : fallback; };
@@ -18,24 +19,12 @@ const median = (v) => [...v].sort((a, b) => a - b)[v.length >> 1];
 
 const viewer = await startViewer();
 try {
-  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?timing=1&budget=40`, { width, height });
-  await page.addStyleTag({ content: '#hud,#side,#drop-hint,#status{display:none !important}' });
-  await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
-  await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; }, null, { timeout: 300000, polling: 200 });
+  const { page, problems } = await openConvergedView(viewer.browser, `${viewer.url}?timing=1&budget=40`, { width, height });
   const samples = Object.fromEntries(modes.map((m) => [m, []]));
   const core = [];
   for (let f = 0; f < modes.length * (frames + 2); ++f) {
     const mode = modes[f % modes.length];
-    const log = await page.evaluate((m) => new Promise((resolve) => {
-      const h = window.hexlod;
-      h.setSetting('shading', m);
-      h.frameLog = [];
-      h.recordFrames = true;
-      const want = h.frames + 1;
-      const wait = () => (h.frames >= want ? resolve(h.frameLog.at(-1)) : requestAnimationFrame(wait));
-      h.requestRender();
-      requestAnimationFrame(wait);
-    }), mode);
+    const log = await frameWithSetting(page, 'shading', mode);
     if (f < 2 * modes.length) continue; // the first frames of each mode make its textures
     samples[mode].push(log.drawMs);
     core.push(log.lodMs + log.streamMs);

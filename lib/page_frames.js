@@ -1,0 +1,28 @@
+// What the page benchmarks share: a page opened bare (no HUD, panel or hints over the view) and
+// converged, and one frame drawn after a setting changed, with the frame's figures (the
+// frame log of web/app/frame_pipeline.js: cpuMs, drawMs, lodMs, streamMs).
+import { openPage } from './page_harness.js';
+
+/** Opens `url` with nothing over the terrain and waits until the mesh converged. */
+export async function openConvergedView(browser, url, viewport) {
+  const opened = await openPage(browser, url, viewport);
+  const { page } = opened;
+  await page.addStyleTag({ content: '#hud,#side,#drop-hint,#status{display:none !important}' });
+  await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
+  await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; }, null, { timeout: 300000, polling: 200 });
+  return opened;
+}
+
+/** Sets `key` to `value` as the panel would, draws one frame and returns its frame log entry. */
+export function frameWithSetting(page, key, value) {
+  return page.evaluate(([k, v]) => new Promise((resolve) => {
+    const h = window.hexlod;
+    h.setSetting(k, v);
+    h.frameLog = [];
+    h.recordFrames = true;
+    const want = h.frames + 1;
+    const wait = () => (h.frames >= want ? resolve(h.frameLog.at(-1)) : requestAnimationFrame(wait));
+    h.requestRender();
+    requestAnimationFrame(wait);
+  }), [key, value]);
+}
