@@ -31,7 +31,7 @@ export const LAYOUTS = ['triangles', 'fans'];
 export const MORPH_FRAMES = 8;
 
 const LOD = 'Level of detail', MORE = 'Level of detail/budgets and culling', VIEW = 'View', SHADING = 'Shading';
-const MESH = 'Mesh', URLS = 'Loading from a URL', IMAGE = 'Image', CONTOURS = 'Contours';
+const MESH = 'Mesh', URLS = 'Loading from a URL', IMAGE = 'Image';
 
 export const SETTINGS = {
   tau: { default: 1, min: 0.25, max: 16, step: 0.05, url: 'tau', panel: [LOD, 'error τ (px)'], effect: 'core',
@@ -72,10 +72,11 @@ export const SETTINGS = {
   imageUnlit: { default: false, panel: [IMAGE, 'unlit (its own shadows)'], effect: 'view' },
 
   // Contour lines of the full-resolution field (web/render/contours/): every 5th thicker and
-  // labelled; the interval in metres or 'auto' (web/measure/contour_levels.js).
-  contours: { default: false, url: 'contours', urlIfChanged: true, panel: [CONTOURS, 'contour lines'], effect: 'view' },
+  // labelled; the interval in metres or 'auto' (web/measure/contour_levels.js). Under View: a
+  // folder of their own made the open panel taller over the terrain of the opening view.
+  contours: { default: false, url: 'contours', urlIfChanged: true, panel: [VIEW, 'contour lines'], effect: 'view' },
   contourInterval: { default: 'auto', parse: parseContourInterval, url: 'cint', urlIfChanged: true,
-    panel: [CONTOURS, 'interval (m or auto)'], effect: 'view' },
+    panel: [VIEW, 'contour interval (m or auto)'], effect: 'view' },
 
   embedding: { default: 'exact', choices: ['exact', 'shifted'], panel: [MESH, 'embedding'], effect: 'mesh' },
   // Metres between samples; 0 until a terrain is loaded, then its slider spans around it.
