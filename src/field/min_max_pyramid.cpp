@@ -9,14 +9,16 @@ void MinMaxPyramid::build(const Heightfield& field) {
     width_ = field.width();
     height_ = field.height();
     levels_.clear();
-    // A tiled field's too: its bounds must be the whole field's once its tiles are in.
-    block_ = kBlock;
+    tiles_ = field.tiles();
+    fineLevels_ = tiles_ ? kFineLevels : 0;
+    chunkSlot_.clear(), fineLow_.clear(), fineHigh_.clear(), freeSlots_.clear();
+    const int32_t baseBlock = kBlock << fineLevels_;
     Level base;
-    base.columns = (width_ + block_ - 1) / block_;
-    base.rows = (height_ + block_ - 1) / block_;
+    base.columns = (width_ + baseBlock - 1) / baseBlock;
+    base.rows = (height_ + baseBlock - 1) / baseBlock;
     base.low.assign(size_t(base.columns) * base.rows, 1e30f);
     base.high.assign(size_t(base.columns) * base.rows, -1e30f);
-    if (!field.tiles()) {
+    if (!tiles_) {
         for (int32_t i = 0; i < height_; ++i) {
             const size_t blockRow = size_t(i / kBlock) * size_t(base.columns);
             for (int32_t j = 0; j < width_; ++j) {
@@ -26,6 +28,8 @@ void MinMaxPyramid::build(const Heightfield& field) {
                 base.high[b] = std::max(base.high[b], h);
             }
         }
+    } else {
+        chunkSlot_.assign(base.low.size(), -1);
     }
     levels_.push_back(std::move(base));
     while (levels_.back().columns > 1 || levels_.back().rows > 1) {
@@ -36,14 +40,9 @@ void MinMaxPyramid::build(const Heightfield& field) {
         coarse.low.assign(size_t(coarse.columns) * coarse.rows, 1e30f);
         coarse.high.assign(size_t(coarse.columns) * coarse.rows, -1e30f);
         levels_.push_back(std::move(coarse));
-        if (!field.tiles()) mergeUp(levels_.size() - 1, 0, 0, levels_.back().columns - 1, levels_.back().rows - 1);
+        if (!tiles_) mergeUp(levels_.size() - 1, 0, 0, levels_.back().columns - 1, levels_.back().rows - 1);
     }
-    if (field.tiles()) update(field, {0, 0, width_ - 1, height_ - 1});
-}
-
-void MinMaxPyramid::measureBase(const Heightfield& field, int32_t c0, int32_t r0, int32_t c1, int32_t r1) {
-    Level& base = levels_[0];
-    field.tiles()->blockRanges(block_, c0, r0, c1, r1, size_t(base.columns), base.low.data(), base.high.data());
+    if (tiles_) update(field, {0, 0, width_ - 1, height_ - 1});
 }
 
 // Level `level`'s blocks [c0, c1] x [r0, r1] from the four blocks under each.
@@ -63,30 +62,109 @@ void MinMaxPyramid::mergeUp(size_t level, int32_t c0, int32_t r0, int32_t c1, in
         }
 }
 
+void MinMaxPyramid::releaseChunk(size_t chunk) {
+    if (chunkSlot_[chunk] < 0) return;
+    freeSlots_.push_back(chunkSlot_[chunk]);
+    chunkSlot_[chunk] = -1;
+}
+
+// Chunk (cc, cr): its fine blocks kept when its heights are all at full resolution (the
+// tiles under it are held), dropped otherwise; its block of the base level measured.
+void MinMaxPyramid::updateChunk(int32_t cc, int32_t cr) {
+    Level& base = levels_[0];
+    const size_t chunk = size_t(cr) * size_t(base.columns) + size_t(cc);
+    const SampleRect rect{cc * kChunk, cr * kChunk, std::min(width_, (cc + 1) * kChunk) - 1, std::min(height_, (cr + 1) * kChunk) - 1};
+    float detail;
+    if (tiles_->levelIn(rect, detail) != 0) {
+        releaseChunk(chunk);
+        tiles_->range(rect, base.low[chunk], base.high[chunk]);
+        return;
+    }
+    if (chunkSlot_[chunk] < 0) {
+        if (freeSlots_.empty()) {
+            freeSlots_.push_back(int32_t(fineLow_.size() / kChunkBlocks));
+            fineLow_.resize(fineLow_.size() + kChunkBlocks);
+            fineHigh_.resize(fineHigh_.size() + kChunkBlocks);
+        }
+        chunkSlot_[chunk] = freeSlots_.back();
+        freeSlots_.pop_back();
+    }
+    float* low = fineLow_.data() + size_t(chunkSlot_[chunk]) * kChunkBlocks;
+    float* high = fineHigh_.data() + size_t(chunkSlot_[chunk]) * kChunkBlocks;
+    // Blocks past the field's edge stay empty (no query reaches them).
+    for (int32_t r = 0; r < 16; ++r)
+        for (int32_t c = 0; c < 16; ++c) {
+            const int32_t j0 = rect.j0 + c * kBlock, i0 = rect.i0 + r * kBlock;
+            float& l = low[r * 16 + c];
+            float& h = high[r * 16 + c];
+            l = 1e30f, h = -1e30f;
+            if (j0 <= rect.j1 && i0 <= rect.i1) tiles_->range({j0, i0, j0 + kBlock - 1, i0 + kBlock - 1}, l, h);
+        }
+    // Each fine level from the one below, then the chunk's block of the base level.
+    for (int32_t k = 1; k <= kFineLevels; ++k) {
+        const int32_t fineSide = 16 >> (k - 1), side = 16 >> k;
+        for (int32_t r = 0; r < side; ++r)
+            for (int32_t c = 0; c < side; ++c) {
+                float l = 1e30f, h = -1e30f;
+                for (int32_t fr = 2 * r; fr <= 2 * r + 1; ++fr)
+                    for (int32_t fc = 2 * c; fc <= 2 * c + 1; ++fc) {
+                        l = std::min(l, low[kFineOffset[k - 1] + fr * fineSide + fc]);
+                        h = std::max(h, high[kFineOffset[k - 1] + fr * fineSide + fc]);
+                    }
+                float& outLow = k < kFineLevels ? low[kFineOffset[k] + r * side + c] : base.low[chunk];
+                float& outHigh = k < kFineLevels ? high[kFineOffset[k] + r * side + c] : base.high[chunk];
+                outLow = l, outHigh = h;
+            }
+    }
+}
+
 void MinMaxPyramid::update(const Heightfield& field, const SampleRect& rect) {
     if (!field.tiles() || rect.empty() || levels_.empty()) return;
-    int32_t c0 = std::max(0, rect.j0 / block_), r0 = std::max(0, rect.i0 / block_);
-    int32_t c1 = std::min(levels_[0].columns - 1, rect.j1 / block_), r1 = std::min(levels_[0].rows - 1, rect.i1 / block_);
-    measureBase(field, c0, r0, c1, r1);
+    int32_t c0 = std::max(0, rect.j0 / kChunk), r0 = std::max(0, rect.i0 / kChunk);
+    int32_t c1 = std::min(levels_[0].columns - 1, rect.j1 / kChunk), r1 = std::min(levels_[0].rows - 1, rect.i1 / kChunk);
+    for (int32_t r = r0; r <= r1; ++r)
+        for (int32_t c = c0; c <= c1; ++c) updateChunk(c, r);
     for (size_t level = 1; level < levels_.size(); ++level) {
         c0 /= 2, r0 /= 2, c1 /= 2, r1 /= 2;
         mergeUp(level, c0, r0, c1, r1);
     }
 }
 
+// Block (c, r) of fine level `level` (kBlock << level samples a side) of a tiled field.
+void MinMaxPyramid::fineBlock(int32_t level, int32_t c, int32_t r, float& low, float& high) const {
+    const int32_t perChunk = 16 >> level, side = kBlock << level;
+    const int32_t slot = chunkSlot_[size_t(r / perChunk) * size_t(levels_[0].columns) + size_t(c / perChunk)];
+    if (slot < 0) {
+        tiles_->range({c * side, r * side, c * side + side - 1, r * side + side - 1}, low, high);
+        return;
+    }
+    const size_t k = size_t(slot) * kChunkBlocks + size_t(kFineOffset[level] + (r % perChunk) * perChunk + c % perChunk);
+    low = fineLow_[k], high = fineHigh_[k];
+}
+
 void MinMaxPyramid::query(int32_t j0, int32_t i0, int32_t j1, int32_t i1, float& low, float& high) const {
     j0 = std::clamp(j0, 0, width_ - 1), j1 = std::clamp(j1, 0, width_ - 1);
     i0 = std::clamp(i0, 0, height_ - 1), i1 = std::clamp(i1, 0, height_ - 1);
     // The finest level at which the range spans at most 4 blocks per side.
-    int32_t blockSize = block_;
-    size_t level = 0;
-    while (level + 1 < levels_.size() && std::max(j1 / blockSize - j0 / blockSize, i1 / blockSize - i0 / blockSize) >= 4) {
+    const int32_t levelCount = fineLevels_ + int32_t(levels_.size());
+    int32_t blockSize = kBlock;
+    int32_t level = 0;
+    while (level + 1 < levelCount && std::max(j1 / blockSize - j0 / blockSize, i1 / blockSize - i0 / blockSize) >= 4) {
         blockSize *= 2;
         ++level;
     }
-    const Level& l = levels_[level];
     low = 1e30f;
     high = -1e30f;
+    if (level < fineLevels_) {
+        for (int32_t r = i0 / blockSize; r <= i1 / blockSize; ++r)
+            for (int32_t c = j0 / blockSize; c <= j1 / blockSize; ++c) {
+                float l, h;
+                fineBlock(level, c, r, l, h);
+                low = std::min(low, l), high = std::max(high, h);
+            }
+        return;
+    }
+    const Level& l = levels_[size_t(level - fineLevels_)];
     for (int32_t r = i0 / blockSize; r <= i1 / blockSize; ++r)
         for (int32_t c = j0 / blockSize; c <= j1 / blockSize; ++c) {
             low = std::min(low, l.low[size_t(r) * l.columns + c]);
@@ -95,7 +173,8 @@ void MinMaxPyramid::query(int32_t j0, int32_t i0, int32_t j1, int32_t i1, float&
 }
 
 size_t MinMaxPyramid::memoryBytes() const {
-    size_t bytes = 0;
+    size_t bytes = (chunkSlot_.capacity() + freeSlots_.capacity()) * sizeof(int32_t) +
+                   (fineLow_.capacity() + fineHigh_.capacity()) * sizeof(float);
     for (const Level& l : levels_) bytes += (l.low.capacity() + l.high.capacity()) * sizeof(float);
     return bytes;
 }

@@ -5,8 +5,25 @@
 #include <cmath>
 #include <cstring>
 #include <new>
+#include <type_traits>
 
 namespace hexlod {
+
+namespace {
+
+// Calls f with the tile's samples as their type (a pointer), so that whole-tile passes read
+// them without a branch per sample.
+template <typename F>
+void withSamples(SampleType type, uint8_t* bytes, F&& f) {
+    switch (type) {
+        case SampleType::U8: f(bytes); break;
+        case SampleType::U16: f(reinterpret_cast<uint16_t*>(bytes)); break;
+        case SampleType::I16: f(reinterpret_cast<int16_t*>(bytes)); break;
+        case SampleType::F32: f(reinterpret_cast<float*>(bytes)); break;
+    }
+}
+
+} // namespace
 
 void SampleRect::add(const SampleRect& r) {
     if (r.empty()) return;
@@ -154,17 +171,14 @@ bool SampleTiles::missingRaw(double raw) const {
 }
 
 void SampleTiles::fillMissing(int32_t slot, size_t count) {
-    uint8_t* bytes = slots_[size_t(slot)].get();
-    for (size_t k = 0; k < count; ++k) {
-        if (!missingRaw(rawIn(slot, k))) continue;
-        ++missing_;
-        switch (type_) {
-            case SampleType::U8: bytes[k] = uint8_t(fillRaw_); break;
-            case SampleType::U16: reinterpret_cast<uint16_t*>(bytes)[k] = uint16_t(fillRaw_); break;
-            case SampleType::I16: reinterpret_cast<int16_t*>(bytes)[k] = int16_t(fillRaw_); break;
-            case SampleType::F32: reinterpret_cast<float*>(bytes)[k] = float(fillRaw_); break;
+    withSamples(type_, slots_[size_t(slot)].get(), [&](auto* samples) {
+        using T = std::remove_pointer_t<decltype(samples)>;
+        for (size_t k = 0; k < count; ++k) {
+            if (!missingRaw(double(samples[k]))) continue;
+            ++missing_;
+            samples[k] = T(fillRaw_);
         }
-    }
+    });
 }
 
 float SampleTiles::measureDetail(int32_t level, int32_t tx, int32_t ty) const {
@@ -172,15 +186,18 @@ float SampleTiles::measureDetail(int32_t level, int32_t tx, int32_t ty) const {
     const TileLevel& l = levels_[size_t(level)];
     const int32_t slot = l.slot[size_t(ty * l.tilesAcross + tx)];
     const int32_t w = std::min(l.tileWidth, l.width - tx * l.tileWidth), h = std::min(l.tileHeight, l.height - ty * l.tileHeight);
-    auto at = [&](int32_t u, int32_t v) { return double(toMetres(rawIn(slot, size_t(v) * size_t(l.tileWidth) + size_t(u)))); };
     double detail = 0.0;
-    for (int32_t v = 0; v < h; ++v)
-        for (int32_t u = 0; u < w; ++u) {
-            const double c = at(u, v);
-            if (u > 0 && u + 1 < w) detail = std::max(detail, std::abs(at(u - 1, v) - 2.0 * c + at(u + 1, v)));
-            if (v > 0 && v + 1 < h) detail = std::max(detail, std::abs(at(u, v - 1) - 2.0 * c + at(u, v + 1)));
-        }
-    return float(0.5 * detail);
+    withSamples(type_, slots_[size_t(slot)].get(), [&](auto* samples) {
+        // In raw units (metres are a linear map of them), scaled once at the end.
+        auto at = [&](int32_t u, int32_t v) { return double(samples[size_t(v) * size_t(l.tileWidth) + size_t(u)]); };
+        for (int32_t v = 0; v < h; ++v)
+            for (int32_t u = 0; u < w; ++u) {
+                const double c = at(u, v);
+                if (u > 0 && u + 1 < w) detail = std::max(detail, std::abs(at(u - 1, v) - 2.0 * c + at(u + 1, v)));
+                if (v > 0 && v + 1 < h) detail = std::max(detail, std::abs(at(u, v - 1) - 2.0 * c + at(u, v + 1)));
+            }
+    });
+    return float(0.5 * detail * std::abs(scale_.heightScale));
 }
 
 int32_t SampleTiles::finestLevelFor(int32_t region, float& detail) const {
@@ -253,13 +270,17 @@ void SampleTiles::widenRange(int32_t level, int32_t tx, int32_t ty) {
     const TileLevel& l = levels_[size_t(level)];
     const int32_t slot = l.slot[size_t(ty * l.tilesAcross + tx)];
     const int32_t w = std::min(l.tileWidth, l.width - tx * l.tileWidth), h = std::min(l.tileHeight, l.height - ty * l.tileHeight);
-    for (int32_t v = 0; v < h; ++v)
-        for (int32_t u = 0; u < w; ++u) {
-            const double raw = rawIn(slot, size_t(v) * size_t(l.tileWidth) + size_t(u));
-            if (missingRaw(raw)) continue;
-            if (!hasRange_) rangeLow_ = rangeHigh_ = raw, hasRange_ = true;
-            rangeLow_ = std::min(rangeLow_, raw), rangeHigh_ = std::max(rangeHigh_, raw);
+    withSamples(type_, slots_[size_t(slot)].get(), [&](auto* samples) {
+        for (int32_t v = 0; v < h; ++v) {
+            const auto* row = samples + size_t(v) * size_t(l.tileWidth);
+            for (int32_t u = 0; u < w; ++u) {
+                const double raw = double(row[u]);
+                if (missingRaw(raw)) continue;
+                if (!hasRange_) rangeLow_ = rangeHigh_ = raw, hasRange_ = true;
+                rangeLow_ = std::min(rangeLow_, raw), rangeHigh_ = std::max(rangeHigh_, raw);
+            }
         }
+    });
 }
 
 bool SampleTiles::rawRange(double& low, double& high) const {
@@ -288,58 +309,42 @@ void SampleTiles::range(const SampleRect& rect, float& low, float& high) const {
             // A bilinear blend stays within its four samples: the samples it reaches bound it.
             int32_t u0, v0, u1, v1;
             samplesFor(level, part, u0, v0, u1, v1);
-            const TileLevel& l = levels_[size_t(level)];
-            for (int32_t v = v0; v <= v1; ++v)
-                for (int32_t u = u0; u <= u1; ++u) {
-                    const float h = toMetres(rawAtLevel(l, u, v));
-                    low = std::min(low, h), high = std::max(high, h);
-                }
+            double rawLow = INFINITY, rawHigh = -INFINITY;
+            levelRawRange(level, u0, v0, u1, v1, rawLow, rawHigh);
+            // toMetres is monotonic: the extremes of the raw samples give the extremes in metres.
+            const float a = toMetres(rawLow), b = toMetres(rawHigh);
+            low = std::min(low, std::min(a, b)), high = std::max(high, std::max(a, b));
         }
 }
 
-void SampleTiles::blockRanges(int32_t block, int32_t c0, int32_t r0, int32_t c1, int32_t r1, size_t stride, float* low,
-                              float* high) const {
-    // Blocks that straddle regions (a tile side that is not a multiple of the block) take the
-    // general path.
-    const bool nested = regionWidth_ % block == 0 && regionHeight_ % block == 0;
-    std::vector<int32_t> u0(size_t(c1 - c0 + 1)), u1(u0.size()), v0(size_t(r1 - r0 + 1)), v1(v0.size());
-    for (int32_t ry = r0 * block / regionHeight_; ry <= std::min(regionsDown_ - 1, (r1 * block + block - 1) / regionHeight_); ++ry)
-        for (int32_t rx = c0 * block / regionWidth_; rx <= std::min(regionsAcross_ - 1, (c1 * block + block - 1) / regionWidth_); ++rx) {
-            const int32_t region = ry * regionsAcross_ + rx;
-            const SampleRect whole = regionRect(region);
-            const int32_t bc0 = std::max(c0, whole.j0 / block), bc1 = std::min(c1, whole.j1 / block);
-            const int32_t br0 = std::max(r0, whole.i0 / block), br1 = std::min(r1, whole.i1 / block);
-            const int32_t level = regionLevel_[size_t(region)];
-            if (!nested || level == 0) {
-                for (int32_t r = br0; r <= br1; ++r)
-                    for (int32_t c = bc0; c <= bc1; ++c) {
-                        const size_t b = size_t(r) * stride + size_t(c);
-                        range({c * block, r * block, c * block + block - 1, r * block + block - 1}, low[b], high[b]);
-                    }
-                continue;
+namespace {
+
+template <typename T>
+void scanRows(const uint8_t* bytes, int32_t stride, int32_t x0, int32_t y0, int32_t x1, int32_t y1, double& low, double& high) {
+    const T* samples = reinterpret_cast<const T*>(bytes);
+    T lo = samples[size_t(y0) * size_t(stride) + size_t(x0)], hi = lo;
+    for (int32_t y = y0; y <= y1; ++y) {
+        const T* row = samples + size_t(y) * size_t(stride);
+        for (int32_t x = x0; x <= x1; ++x) lo = std::min(lo, row[x]), hi = std::max(hi, row[x]);
+    }
+    low = std::min(low, double(lo)), high = std::max(high, double(hi));
+}
+
+} // namespace
+
+void SampleTiles::levelRawRange(int32_t level, int32_t u0, int32_t v0, int32_t u1, int32_t v1, double& low, double& high) const {
+    const TileLevel& l = levels_[size_t(level)];
+    for (int32_t ty = v0 / l.tileHeight; ty <= v1 / l.tileHeight; ++ty)
+        for (int32_t tx = u0 / l.tileWidth; tx <= u1 / l.tileWidth; ++tx) {
+            const uint8_t* bytes = slots_[size_t(l.slot[size_t(ty * l.tilesAcross + tx)])].get();
+            const int32_t x0 = std::max(u0, tx * l.tileWidth) - tx * l.tileWidth, x1 = std::min(u1, (tx + 1) * l.tileWidth - 1) - tx * l.tileWidth;
+            const int32_t y0 = std::max(v0, ty * l.tileHeight) - ty * l.tileHeight, y1 = std::min(v1, (ty + 1) * l.tileHeight - 1) - ty * l.tileHeight;
+            switch (type_) {
+                case SampleType::U8: scanRows<uint8_t>(bytes, l.tileWidth, x0, y0, x1, y1, low, high); break;
+                case SampleType::U16: scanRows<uint16_t>(bytes, l.tileWidth, x0, y0, x1, y1, low, high); break;
+                case SampleType::I16: scanRows<int16_t>(bytes, l.tileWidth, x0, y0, x1, y1, low, high); break;
+                case SampleType::F32: scanRows<float>(bytes, l.tileWidth, x0, y0, x1, y1, low, high); break;
             }
-            // Each block column's and row's span of the level's samples, once.
-            int32_t ignored;
-            for (int32_t c = bc0; c <= bc1; ++c) {
-                const SampleRect column{c * block, whole.i0, std::min(c * block + block - 1, width_ - 1), whole.i0};
-                samplesFor(level, column, u0[size_t(c - c0)], ignored, u1[size_t(c - c0)], ignored);
-            }
-            for (int32_t r = br0; r <= br1; ++r) {
-                const SampleRect row{whole.j0, r * block, whole.j0, std::min(r * block + block - 1, height_ - 1)};
-                samplesFor(level, row, ignored, v0[size_t(r - r0)], ignored, v1[size_t(r - r0)]);
-            }
-            const TileLevel& l = levels_[size_t(level)];
-            for (int32_t r = br0; r <= br1; ++r)
-                for (int32_t c = bc0; c <= bc1; ++c) {
-                    float lo = 1e30f, hi = -1e30f;
-                    for (int32_t v = v0[size_t(r - r0)]; v <= v1[size_t(r - r0)]; ++v)
-                        for (int32_t u = u0[size_t(c - c0)]; u <= u1[size_t(c - c0)]; ++u) {
-                            const float h = toMetres(rawAtLevel(l, u, v));
-                            lo = std::min(lo, h), hi = std::max(hi, h);
-                        }
-                    const size_t b = size_t(r) * stride + size_t(c);
-                    low[b] = lo, high[b] = hi;
-                }
         }
 }
 

@@ -91,11 +91,6 @@ public:
     /// Lowest and highest height in metres over the samples of `rect` (clamped to the field):
     /// a bound of the heights height() gives there.
     void range(const SampleRect& rect, float& low, float& high) const;
-    /// range() for every block of `block` samples a side over the blocks [c0, c1] x [r0, r1],
-    /// into low and high (row by row, `stride` blocks a row): the same bounds, computed region
-    /// by region with the sample spans of each block column and row worked out once (a
-    /// 40000² field's pyramid is built from them before its first frame).
-    void blockRanges(int32_t block, int32_t c0, int32_t r0, int32_t c1, int32_t r1, size_t stride, float* low, float* high) const;
     /// The coarsest level that heights come from in `rect`, and the largest detail (metres) of
     /// the tiles they come from (0 where that level is the full resolution).
     int32_t levelIn(const SampleRect& rect, float& detail) const;
@@ -111,6 +106,8 @@ private:
     float toMetres(double raw) const { return float(raw * scale_.heightScale + scale_.heightOffset); }
     float blended(int32_t level, int32_t j, int32_t i) const;
     double rawAtLevel(const TileLevel& l, int32_t u, int32_t v) const;
+    // The lowest and highest raw sample of `level` over [u0, u1] x [v0, v1], tile by tile (held).
+    void levelRawRange(int32_t level, int32_t u0, int32_t v0, int32_t u1, int32_t v1, double& low, double& high) const;
     bool missingRaw(double raw) const;
     void fillMissing(int32_t slot, size_t count);
     void widenRange(int32_t level, int32_t tx, int32_t ty);

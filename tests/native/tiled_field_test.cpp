@@ -12,6 +12,7 @@
 #include "api/hexlod.h"
 #include "api/hexlod_diagnostics.h"
 #include "api/terrain_handle.h"
+#include "field/min_max_pyramid.h"
 #include "fixture.h"
 
 using namespace hexlod;
@@ -346,4 +347,93 @@ TEST(TiledField, WantsFollowTheViewAndEvictedTilesFallBackWithoutCracks) {
     EXPECT_LT(out.triangles, refined) << "cells finer than what is left merged";
     EXPECT_FALSE(wantsNow().empty()) << "and the view asks for the tiles again";
     hexlod_terrain_destroy(t);
+}
+
+// A tiled field's height bounds: over the samples loaded while tiles come, the whole field's
+// once they are in, and in memory that follows the tiles held, not the field's size.
+TEST(TiledField, PyramidBoundsAreTheWholeFieldsOnceTheTilesAreInAndGrowWithTheTilesNotTheField) {
+    const test::Fixture& f = test::kJacksboro;
+    const std::vector<float> data = test::readF32(f);
+    ASSERT_FALSE(data.empty());
+    const Pyramid p = makePyramid(data, f.width, f.height);
+    hexlod_terrain* t = tiledWithCoarsest(p);
+    setUp(t, f, 0);
+    const Heightfield& tiled = t->core->field();
+    const auto whole = test::loadTerrain(f);
+    MinMaxPyramid wholeBounds, tiledBounds;
+    wholeBounds.build(whole->field());
+    tiledBounds.build(tiled);
+    uint32_t seed = 12345;
+    auto next = [&](int32_t n) { seed = seed * 1664525u + 1013904223u; return int32_t((seed >> 8) % uint32_t(n)); };
+    // Rectangles of every size, the level a query reads follows from it.
+    auto randomRect = [&](SampleRect& r) {
+        const int32_t side = 1 + next(next(2) ? 64 : f.width);
+        r.j0 = next(f.width), r.i0 = next(f.height), r.j1 = r.j0 + side, r.i1 = r.i0 + 1 + next(side + 1);
+    };
+    // Only the coarsest level: a bound of the heights the field gives now.
+    for (int32_t k = 0; k < 300; ++k) {
+        SampleRect r;
+        randomRect(r);
+        float low, high;
+        tiledBounds.query(r.j0, r.i0, r.j1, r.i1, low, high);
+        for (int32_t i = r.i0; i <= std::min(r.i1, f.height - 1); ++i)
+            for (int32_t j = r.j0; j <= std::min(r.j1, f.width - 1); ++j) {
+                ASSERT_GE(tiled.heightAt(j, i), low);
+                ASSERT_LE(tiled.heightAt(j, i), high);
+            }
+    }
+    const size_t coarseBytes = tiledBounds.memoryBytes();
+    // Every tile in: the very bounds of the field held whole, at every level.
+    int32_t across, down;
+    tilesAcross(p, 0, across, down);
+    for (int32_t ty = 0; ty < down; ++ty)
+        for (int32_t tx = 0; tx < across; ++tx) writeTile(t, p, 0, tx, ty);
+    tiledBounds.update(tiled, {0, 0, f.width - 1, f.height - 1});
+    for (int32_t k = 0; k < 3000; ++k) {
+        SampleRect r;
+        randomRect(r);
+        float wl, wh, tl, th;
+        wholeBounds.query(r.j0, r.i0, r.j1, r.i1, wl, wh);
+        tiledBounds.query(r.j0, r.i0, r.j1, r.i1, tl, th);
+        ASSERT_EQ(tl, wl) << r.j0 << ", " << r.i0 << " to " << r.j1 << ", " << r.i1;
+        ASSERT_EQ(th, wh) << r.j0 << ", " << r.i0 << " to " << r.j1 << ", " << r.i1;
+    }
+    const size_t fullBytes = tiledBounds.memoryBytes();
+    EXPECT_GT(fullBytes, coarseBytes) << "the full resolution's fine blocks are kept";
+    // The full resolution gone and back: the fine blocks' room is reused.
+    for (int32_t ty = 0; ty < down; ++ty)
+        for (int32_t tx = 0; tx < across; ++tx) ASSERT_EQ(hexlod_terrain_evict_tile(t, 0, tx, ty), 0);
+    tiledBounds.update(tiled, {0, 0, f.width - 1, f.height - 1});
+    for (int32_t ty = 0; ty < down; ++ty)
+        for (int32_t tx = 0; tx < across; ++tx) writeTile(t, p, 0, tx, ty);
+    tiledBounds.update(tiled, {0, 0, f.width - 1, f.height - 1});
+    EXPECT_LT(tiledBounds.memoryBytes(), fullBytes + 340 * 2 * sizeof(float)) << "not one chunk's blocks more";
+    hexlod_terrain_destroy(t);
+
+    // A field of 40000² (a national DEM's size) with only its coarsest level: bounds in a
+    // fraction of a whole field's pyramid (67 MB at 16-sample blocks).
+    std::vector<int32_t> dims;
+    for (int32_t side = 40000; ; side = (side + 1) / 2) {
+        dims.insert(dims.end(), {side, side, 512, 512});
+        if (side <= 512) break;
+    }
+    const int32_t levels = int32_t(dims.size() / 4);
+    hexlod_terrain* big = hexlod_terrain_create_tiled(40000, 40000, HEXLOD_SAMPLE_I16, levels, dims.data());
+    ASSERT_NE(big, nullptr) << hexlod_last_error();
+    int16_t* top = static_cast<int16_t*>(hexlod_terrain_tile_buffer(big, levels - 1, 0, 0));
+    ASSERT_NE(top, nullptr);
+    for (int32_t k = 0; k < 512 * 512; ++k) top[k] = int16_t(k % 997);
+    ASSERT_EQ(hexlod_terrain_commit_tile(big, levels - 1, 0, 0), 0) << hexlod_last_error();
+    hexlod_scale scale{};
+    scale.spacing_x_m = scale.spacing_y_m = 1.0;
+    ASSERT_EQ(hexlod_terrain_set_scale(big, &scale), 0) << hexlod_last_error();
+    ASSERT_EQ(hexlod_terrain_prepare(big, nullptr), 0) << hexlod_last_error();
+    MinMaxPyramid bigBounds;
+    bigBounds.build(big->core->field());
+    EXPECT_LT(bigBounds.memoryBytes(), size_t(1) << 20);
+    float low, high;
+    bigBounds.query(0, 0, 39999, 39999, low, high);
+    EXPECT_EQ(low, 0.0f);
+    EXPECT_EQ(high, 996.0f);
+    hexlod_terrain_destroy(big);
 }
