@@ -14,11 +14,12 @@
 //      from disk and opened whole, to its first frame: time and peak memory.
 //   5. With --page, the same in the page (headless Chromium, SwiftShader): ?src= of the COG on
 //      the range server, then a drag across the view, against ?src= of the 16385² .r16: time to
-//      the first frame, bytes fetched, the share of frames that waited, peak memory of every
-//      Chromium process.
+//      the first frame, bytes fetched, the share of frames that waited, the peak memory of
+//      Chromium (proportional set size of all its processes, a browser for each phase) and the
+//      core's WebAssembly memory.
 // Usage: node bench/cog_stream.js [--side N] [--latency MS] [--frames N] [--tau PX] [--page]
 import { spawn, execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync, openSync, writeSync, closeSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, openSync, writeSync, closeSync, readFileSync, readdirSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { decode } from 'fast-png';
 import { startRangeServer } from '../lib/range_server.js';
@@ -148,21 +149,41 @@ function child(phase, target) {
   });
 }
 
-/** Sum of the resident memory of every Chromium process, MB. */
-function chromiumRssMb() {
-  try {
-    const out = execFileSync('ps', ['-C', 'chromium', '-o', 'rss='], { encoding: 'utf8' });
-    return out.split('\n').reduce((sum, line) => sum + (Number(line.trim()) || 0), 0) / 1024;
-  } catch { return 0; }
+/**
+ * Memory of the Chromium this process started, MB: the proportional set size of each of its
+ * processes (shared pages split among the processes that map them, so shared libraries are
+ * not counted once per process). Other browsers on the machine are not counted.
+ */
+function chromiumPssMb() {
+  const parents = new Map();
+  for (const pid of readdirSync('/proc').filter((name) => /^\d+$/.test(name))) {
+    try {
+      const stat = readFileSync(`/proc/${pid}/stat`, 'utf8');
+      parents.set(Number(pid), { ppid: Number(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[1]), comm: stat.slice(stat.indexOf('(') + 1, stat.lastIndexOf(')')) });
+    } catch { /* the process ended */ }
+  }
+  const ours = (pid) => { for (let p = pid; p > 1; p = parents.get(p)?.ppid ?? 0) if (p === process.pid) return true; return false; };
+  let sum = 0;
+  for (const [pid, { comm }] of parents) {
+    if (pid === process.pid || !/chrom/i.test(comm) || !ours(pid)) continue;
+    try {
+      const line = readFileSync(`/proc/${pid}/smaps_rollup`, 'utf8').split('\n').find((l) => l.startsWith('Pss:'));
+      sum += Number(/(\d+)/.exec(line)[1]);
+    } catch { /* the process ended */ }
+  }
+  return sum / 1024;
 }
 
 /**
  * Opens `src` in the page and measures: navigation to the first frame of that terrain, then a
  * slow drag (orbiting the view) for `seconds`, counting the frames that waited for tiles.
  */
-async function pagePhase(viewer, src, seconds) {
-  let peak = chromiumRssMb();
-  const sampler = setInterval(() => { peak = Math.max(peak, chromiumRssMb()); }, 200);
+async function pagePhase(src, seconds) {
+  // A browser of its own, so that one phase's memory does not linger into the other's.
+  const viewer = await startViewer();
+  const idle = chromiumPssMb();
+  let peak = idle;
+  const sampler = setInterval(() => { peak = Math.max(peak, chromiumPssMb()); }, 200);
   try {
     const start = Date.now();
     const { page } = await openPage(viewer.browser, `${viewer.url}?test=1&src=${encodeURIComponent(src)}`, { width: 1280, height: 720 });
@@ -187,11 +208,14 @@ async function pagePhase(viewer, src, seconds) {
       await new Promise((resolve) => setTimeout(resolve, 250));
     }
     await page.mouse.up();
-    const end = await page.evaluate(() => ({ count: window.benchCount, stream: window.hexlod.stream, triangles: window.hexlod.triangles }));
+    const end = await page.evaluate(() => ({ count: window.benchCount, stream: window.hexlod.stream, triangles: window.hexlod.triangles,
+      wasmMb: window.hexlod.memory().wasmBytes / 2 ** 20 }));
+    peak = Math.max(peak, chromiumPssMb());
     await page.close();
-    return { firstFrameS, opened, ...end, peakRssMb: Math.max(peak, chromiumRssMb()) };
+    return { firstFrameS, opened, ...end, idleMb: idle, peakMb: peak };
   } finally {
     clearInterval(sampler);
+    await viewer.close();
   }
 }
 
@@ -226,18 +250,18 @@ if (args[0] === '--phase') {
       `peak memory ${(streamed.peakRssMb / whole.peakRssMb).toFixed(2)}, file ${(streamed.fileBytes / whole.fileBytes).toFixed(1)}`);
     if (args.includes('--page')) {
       writeFileSync(wholePath.replace(/\.r16$/, '.json'), JSON.stringify({ cell_size_x_m: HIMALAYA.cellX, cell_size_y_m: HIMALAYA.cellY }));
-      const viewer = await startViewer();
-      try {
-        const s = await pagePhase(viewer, cogUrl, 60), st = s.stream ?? {};
-        console.log(`in the page (headless Chromium, SwiftShader, 1280x720), ?src= of the COG: ${s.opened.status}${s.opened.error ? ` (${s.opened.error})` : ''}`);
-        console.log(`  navigation to first frame ${s.firstFrameS.toFixed(1)} s; after a 60 s drag: ${mb(st.bytesFetched ?? 0)} MB of ${mb(st.fileBytes ?? 1)} MB fetched, ` +
-          `${st.tilesIn} tiles, ${s.count.waited} of ${s.count.frames} frames waited for tiles; peak RSS of all Chromium processes ${s.peakRssMb.toFixed(0)} MB`);
-        const w = await pagePhase(viewer, `${server.url}/${wholePath.split('/').pop()}`, 2);
-        console.log(`  ?src= of the ${WHOLE_SIDE}² .r16, whole: ${w.opened.status}, navigation to first frame ${w.firstFrameS.toFixed(1)} s, peak RSS ${w.peakRssMb.toFixed(0)} MB`);
-        console.log(`  ratios, streamed / whole: first frame ${(s.firstFrameS / w.firstFrameS).toFixed(2)}, peak memory ${(s.peakRssMb / w.peakRssMb).toFixed(2)}`);
-      } finally {
-        await viewer.close();
-      }
+      const memory = (r) => `Chromium's memory (PSS, all processes) at its peak ${r.peakMb.toFixed(0)} MB, ${(r.peakMb - r.idleMb).toFixed(0)} MB over the browser ` +
+        `before the page; the core's WebAssembly memory ${r.wasmMb.toFixed(0)} MB`;
+      const s = await pagePhase(cogUrl, 60), st = s.stream ?? {};
+      console.log(`in the page (headless Chromium, SwiftShader, 1280x720), ?src= of the COG: ${s.opened.status}${s.opened.error ? ` (${s.opened.error})` : ''}`);
+      console.log(`  navigation to first frame ${s.firstFrameS.toFixed(1)} s; after a 60 s drag: ${mb(st.bytesFetched ?? 0)} MB of ${mb(st.fileBytes ?? 1)} MB fetched, ` +
+        `${st.tilesIn} tiles, ${s.count.waited} of ${s.count.frames} frames waited for tiles`);
+      console.log(`  ${memory(s)}`);
+      const w = await pagePhase(`${server.url}/${wholePath.split('/').pop()}`, 2);
+      console.log(`  ?src= of the ${WHOLE_SIDE}² .r16, whole: ${w.opened.status}, navigation to first frame ${w.firstFrameS.toFixed(1)} s`);
+      console.log(`  ${memory(w)}`);
+      console.log(`  ratios, streamed / whole: first frame ${(s.firstFrameS / w.firstFrameS).toFixed(2)}, ` +
+        `memory over the idle browser ${((s.peakMb - s.idleMb) / (w.peakMb - w.idleMb)).toFixed(2)}`);
     }
   } finally {
     await server.close();

@@ -65,7 +65,8 @@ test('a COG streamed over HTTP: overviews first, only the needed tiles, watertig
   assert.ok(firstTriangles > 0, 'the first frame draws from the overviews');
   assert.ok(stream.tilesIn > 0, 'the view asked for finer tiles');
   const fetched = source.stats.bytes;
-  assert.ok(fetched < 0.75 * source.size, `a corner view fetches part of the file: ${fetched} of ${source.size} bytes`);
+  // Measured: 8 tiles after the opening, 38 % of the bytes (the header and coarsest level included).
+  assert.ok(fetched < 0.5 * source.size, `a corner view fetches part of the file: ${fetched} of ${source.size} bytes`);
 
   // The same file loaded whole, same view and settings: the same cells, and where the full
   // resolution came, the same heights; every tile in, the very same mesh.
