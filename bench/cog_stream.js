@@ -121,7 +121,7 @@ async function streamPhase(url) {
   const flightS = (performance.now() - flightStart) / 1000;
   const out = { firstFrameS, bytesAtFirstFrame, bytesFetched: stream.bytesFetched, fileBytes: stream.fileBytes,
     tiles: stream.tilesIn, heldMb: stream.heldBytes / 2 ** 20, waitedShare: waited / FRAMES, frames: FRAMES, flightS, triangles,
-    coreMb: terrain.meshStats().bytes / 2 ** 20, peakRssMb: peakRssMb() };
+    coreMb: terrain.meshStats().bytes / 2 ** 20, wasmMb: core.buffer.byteLength / 2 ** 20, peakRssMb: peakRssMb() };
   stream.close();
   return out;
 }
@@ -241,7 +241,8 @@ if (args[0] === '--phase') {
     console.log(`  first frame ${streamed.firstFrameS.toFixed(2)} s after the open began (goal <= 2 s), ${mb(streamed.bytesAtFirstFrame)} MB read by then`);
     console.log(`  flight of ${streamed.frames} frames (${streamed.flightS.toFixed(1)} s): ${mb(streamed.bytesFetched)} MB of ${mb(streamed.fileBytes)} MB fetched ` +
       `(${(100 * streamed.bytesFetched / streamed.fileBytes).toFixed(2)} %), ${streamed.tiles} tiles, ${(100 * streamed.waitedShare).toFixed(0)} % of frames waited for tiles`);
-    console.log(`  peak resident memory ${streamed.peakRssMb.toFixed(0)} MB (tiles held ${streamed.heldMb.toFixed(0)} MB of the 512 MB cap, mesh ${streamed.coreMb.toFixed(0)} MB); ${streamed.triangles} triangles`);
+    console.log(`  peak resident memory ${streamed.peakRssMb.toFixed(0)} MB (tiles held ${streamed.heldMb.toFixed(0)} MB of the 512 MB cap, mesh ${streamed.coreMb.toFixed(0)} MB, ` +
+      `the core's WebAssembly memory ${streamed.wasmMb.toFixed(0)} MB in all); ${streamed.triangles} triangles`);
     writeRaw(wholePath, WHOLE_SIDE, Uint16Array);
     whole = await child('whole', wholePath);
     console.log(`opened whole: ${WHOLE_SIDE}² u16 (.r16 from disk, ${mb(whole.fileBytes)} MB): first frame ${whole.firstFrameS.toFixed(2)} s, ` +
