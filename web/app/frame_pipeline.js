@@ -7,6 +7,7 @@ import { FRAME } from '../core/core.js';
 
 const FRAME_LOG = 4096; // frames kept in state.frameLog while recording
 const SETTLE_FRAMES = 3; // frames after tiles went in before a streamed view can be at rest
+const HEIGHTS_REFRESH_MS = 2000; // while tiles keep coming, what reads heights is told this often at most
 // The FrameStats figures copied into state.lod and state.mesh (plain objects a test can read).
 const LOD_FIGURES = ['frame', 'pendingMerges', 'converged', 'splits', 'merges', 'updateMs', 'tau'];
 const MESH_FIGURES = ['triangles', 'cells', 'vertices', 'maxLevel'];
@@ -32,6 +33,11 @@ export class FramePipeline {
     // A streamed terrain's figures as tests read them (state.stream), filled in place.
     this.streamFigures = { waiting: 0, settled: false, bytesFetched: 0, fileBytes: 0, heldBytes: 0, capBytes: 0, tilesIn: 0, failures: [] };
     this.framesSinceTiles = 0; // frames since tiles last went into the core
+    // Called when a streamed terrain's heights changed (tiles went in): once a wait is over, and
+    // at most every HEIGHTS_REFRESH_MS while tiles keep coming. Set by main (the measuring tool).
+    this.onHeightsChanged = null;
+    this.heightsChangedAt = 0; // when onHeightsChanged last ran
+    this.heightsPending = false; // tiles went in since
     // What the HUD last showed of the stream (awaiting, and the failures list, replaced when
     // new ones come): a change is shown at once.
     this.shownAwaiting = false;
@@ -129,9 +135,16 @@ export class FramePipeline {
     // them and may want finer tiles, so the wait is over only then.
     let awaiting = false;
     if (stream) {
-      this.framesSinceTiles = stream.tick() > 0 ? 0 : this.framesSinceTiles + 1;
+      const arrived = stream.tick();
+      this.framesSinceTiles = arrived > 0 ? 0 : this.framesSinceTiles + 1;
       awaiting = stream.waiting > 0 || this.framesSinceTiles < SETTLE_FRAMES;
       if (awaiting) this.request();
+      if (arrived > 0) this.heightsPending = true;
+      if (this.heightsPending && this.onHeightsChanged && (!awaiting || now - this.heightsChangedAt > HEIGHTS_REFRESH_MS)) {
+        this.heightsPending = false;
+        this.heightsChangedAt = now;
+        this.onHeightsChanged();
+      }
     }
     const hud = this.hud, figures = this.hudFrame;
     figures.terrain = terrain;

@@ -171,6 +171,7 @@ async function main() {
   window.addEventListener('resize', requestRender);
   // The measuring tool (M): profile, distance and area of a line clicked on the terrain.
   const measure = installMeasuring({ canvas, rig, settings, stage, renderer, urlWriter, requestRender, state });
+  pipeline.onHeightsChanged = () => measure.heightsChanged(); // a streamed terrain's finer tiles came
 
   installPointerReadout(canvas, { rig, settings, terrain: () => stage.current,
     onCursor: (pick) => { state.cursor = pick; hud.setCursor(pick); },

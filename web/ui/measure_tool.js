@@ -124,6 +124,11 @@ export class MeasureTool {
     return this.result;
   }
 
+  /** The terrain's heights changed (a streamed terrain's tiles came): what is measured is measured again. */
+  heightsChanged() {
+    if (this.active && this.points.length >= 2) this.update();
+  }
+
   /** The sampler over the terrain on stage (full-resolution heights, its georeference). */
   sampler() {
     const loaded = this.terrain();
