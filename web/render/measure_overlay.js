@@ -9,6 +9,7 @@
 // up to its screen error above the true surface. Heights go to the GPU unscaled: the
 // exaggeration is a uniform, so changing it rebuilds nothing. Buffers are rebuilt only when the
 // line changes; draw() allocates nothing.
+import { linkProgram, uniformLocations } from './gl_program.js';
 
 const VERTEX = `#version 300 es
 layout(location = 0) in vec2 aCorner;   // (along 0..1, side -1..1)
@@ -70,16 +71,6 @@ const LINE_COLOR = [1.0, 0.82, 0.18], HOVER_COLOR = [0.2, 0.85, 1.0];
 /** Most vertices of the drawn line: a longer one is drawn from every k-th sample. */
 export const MAX_LINE_SAMPLES = 40000;
 
-function compile(gl, type, source) {
-  const shader = gl.createShader(type);
-  gl.shaderSource(shader, source);
-  gl.compileShader(shader);
-  if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS) && !gl.isContextLost()) {
-    throw new Error(`measure overlay shader: ${gl.getShaderInfoLog(shader)}`);
-  }
-  return shader;
-}
-
 export class MeasureOverlay {
   /** @param {WebGL2RenderingContext} gl */
   constructor(gl) {
@@ -94,14 +85,8 @@ export class MeasureOverlay {
   /** Program and buffers; again after a lost context came back (the data is uploaded anew). */
   createGlObjects() {
     const gl = this.gl;
-    const program = this.program = gl.createProgram();
-    gl.attachShader(program, compile(gl, gl.VERTEX_SHADER, VERTEX));
-    gl.attachShader(program, compile(gl, gl.FRAGMENT_SHADER, FRAGMENT));
-    gl.linkProgram(program);
-    if (!gl.getProgramParameter(program, gl.LINK_STATUS) && !gl.isContextLost()) {
-      throw new Error(`measure overlay shader link: ${gl.getProgramInfoLog(program)}`);
-    }
-    this.uniforms = Object.fromEntries(UNIFORMS.map((name) => [name, gl.getUniformLocation(program, name)]));
+    this.program = linkProgram(gl, VERTEX, FRAGMENT, 'measure overlay');
+    this.uniforms = uniformLocations(gl, this.program, UNIFORMS);
     // A quad as two triangles: (along, side).
     this.cornerBuffer = gl.createBuffer();
     gl.bindBuffer(gl.ARRAY_BUFFER, this.cornerBuffer);

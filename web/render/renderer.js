@@ -29,6 +29,7 @@ import { Atmosphere, BETA_RAYLEIGH, BETA_MIE, SCALE_HEIGHTS, MIE_G, SUN_IRRADIAN
 import { FieldTextures, TEXTURE_UNIT_GRADIENTS, TEXTURE_UNIT_SUN, TEXTURE_UNIT_OCCLUSION } from './shading/field_textures.js';
 import { ImageTextures, TEXTURE_UNIT_IMAGE_TILES, TEXTURE_UNIT_IMAGE_OVERVIEW } from './shading/image_textures.js';
 import { ContourOverlay, CONTOUR_UNIFORMS } from './contours/contour_overlay.js';
+import { linkProgram, uniformLocations } from './gl_program.js';
 
 export const ATTRIB_POSITION = 0;
 export const ATTRIB_NORMAL = 1;
@@ -51,26 +52,9 @@ const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeigh
 const SKY_UNIFORMS = ['uInverseViewProjection', 'uCameraPosition', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie',
   'uScaleHeight', 'uMieG', 'uSunDirection', 'uSunIrradiance', 'uSunAirMass', 'uExposure'];
 
-function compile(gl, type, source) {
-  const shader = gl.createShader(type);
-  gl.shaderSource(shader, source);
-  gl.compileShader(shader);
-  if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS) && !gl.isContextLost()) {
-    throw new Error(`shader compile failed: ${gl.getShaderInfoLog(shader)}`);
-  }
-  return shader;
-}
-
-function link(gl, vertex, fragment) {
-  const program = gl.createProgram();
-  gl.attachShader(program, compile(gl, gl.VERTEX_SHADER, resolveIncludes(vertex, SHADER_FILES)));
-  gl.attachShader(program, compile(gl, gl.FRAGMENT_SHADER, resolveIncludes(fragment, SHADER_FILES)));
-  gl.linkProgram(program);
-  if (!gl.getProgramParameter(program, gl.LINK_STATUS) && !gl.isContextLost()) {
-    throw new Error(`shader link failed: ${gl.getProgramInfoLog(program)}`);
-  }
-  return program;
-}
+// The terrain's and the sky's programs, their shared GLSL included.
+const link = (gl, vertex, fragment, what) =>
+  linkProgram(gl, resolveIncludes(vertex, SHADER_FILES), resolveIncludes(fragment, SHADER_FILES), what);
 
 // The atmosphere's constants as the uniforms take them, converted once: a plain array passed to
 // uniform*fv is read element by element by the browser, which boxes every double each frame.
@@ -149,10 +133,10 @@ export class TerrainRenderer {
    */
   createGlObjects() {
     const gl = this.gl;
-    this.program = link(gl, terrainVertex, terrainFragment);
-    this.uniforms = Object.fromEntries(UNIFORMS.map((name) => [name, gl.getUniformLocation(this.program, name)]));
-    this.skyProgram = link(gl, skyVertex, skyFragment);
-    this.skyUniforms = Object.fromEntries(SKY_UNIFORMS.map((name) => [name, gl.getUniformLocation(this.skyProgram, name)]));
+    this.program = link(gl, terrainVertex, terrainFragment, 'terrain');
+    this.uniforms = uniformLocations(gl, this.program, UNIFORMS);
+    this.skyProgram = link(gl, skyVertex, skyFragment, 'sky');
+    this.skyUniforms = uniformLocations(gl, this.skyProgram, SKY_UNIFORMS);
     this.skyVao = gl.createVertexArray();
     gl.bindVertexArray(this.skyVao);
     this.skyBuffer = gl.createBuffer();

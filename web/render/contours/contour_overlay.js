@@ -12,6 +12,7 @@ import { contourLevels } from '../../measure/contour_levels.js';
 import { ContourHeights, heightTexturePlan, MAX_TEXELS, TEXTURE_UNIT_CONTOUR_HEIGHTS } from './height_texture.js';
 import { makeGlyphAtlas, GLYPHS, CELL_W, CELL_H } from './glyph_atlas.js';
 import { LabelPlacer, LABEL_PX } from './labels.js';
+import { linkProgram, uniformLocations } from '../gl_program.js';
 
 export const TEXTURE_UNIT_GLYPHS = 6;
 /** Contour lines drawn at most: a finer interval is widened (it would be a grey smear). */
@@ -20,22 +21,6 @@ export const MAX_LINES = 500;
 const LINE_PX = 1.2;
 export const CONTOUR_UNIFORMS = ['uContourHeights', 'uContourTexel', 'uContourTexels', 'uContourStep', 'uContourTiles',
   'uContourKind', 'uContourScale', 'uContour', 'uContourSource'];
-
-function program(gl, vertex, fragment) {
-  const p = gl.createProgram();
-  for (const [type, source] of [[gl.VERTEX_SHADER, vertex], [gl.FRAGMENT_SHADER, fragment]]) {
-    const shader = gl.createShader(type);
-    gl.shaderSource(shader, source);
-    gl.compileShader(shader);
-    if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS) && !gl.isContextLost()) {
-      throw new Error(`contour label shader: ${gl.getShaderInfoLog(shader)}`);
-    }
-    gl.attachShader(p, shader);
-  }
-  gl.linkProgram(p);
-  if (!gl.getProgramParameter(p, gl.LINK_STATUS) && !gl.isContextLost()) throw new Error(`contour label shader: ${gl.getProgramInfoLog(p)}`);
-  return p;
-}
 
 export class ContourOverlay {
   /** @param {WebGL2RenderingContext} gl */
@@ -167,9 +152,8 @@ export class ContourOverlay {
 
   makeLabelGl() {
     const gl = this.gl;
-    this.labelProgram = program(gl, labelVertex, labelFragment);
-    this.labelUniforms = {};
-    for (const name of ['uViewport', 'uGlyphSize', 'uGlyphs', 'uAtlas']) this.labelUniforms[name] = gl.getUniformLocation(this.labelProgram, name);
+    this.labelProgram = linkProgram(gl, labelVertex, labelFragment, 'contour label');
+    this.labelUniforms = uniformLocations(gl, this.labelProgram, ['uViewport', 'uGlyphSize', 'uGlyphs', 'uAtlas']);
     this.atlas = makeGlyphAtlas(gl, TEXTURE_UNIT_GLYPHS);
     this.labelVao = gl.createVertexArray();
     gl.bindVertexArray(this.labelVao);
