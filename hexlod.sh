@@ -42,10 +42,23 @@ case "${1:-}" in
     scripts/setup.sh
     ./build.sh
     failed=()
-    echo "== native tests (GoogleTest via CTest)"
-    ctest --test-dir build/native --output-on-failure || failed+=(native)
-    echo "== Node tests (loaders, WASM core, CLI)"
+    # The native tests and the Node tests run side by side: each keeps one core of two busy (CTest
+    # runs one test at a time, node --test one file at a time on two cores), and the native ones
+    # (some 45 s) end well before the Node ones. The native output is kept and shown whole under
+    # its own heading once both are done, so neither layer's lines are mixed into the other's.
+    native_log=$(mktemp)
+    ctest --test-dir build/native --output-on-failure >"$native_log" 2>&1 &
+    native_pid=$!
+    trap 'kill "$native_pid" 2>/dev/null || true; rm -f "$native_log"' EXIT
+    echo "== Node tests (loaders, WASM core, CLI), the native tests running beside them"
     node --test tests/node/*.test.js || failed+=(node)
+    native_status=0
+    wait "$native_pid" || native_status=$?
+    echo "== native tests (GoogleTest via CTest)"
+    cat "$native_log"
+    rm -f "$native_log"
+    trap - EXIT
+    [ "$native_status" -eq 0 ] || failed+=(native)
     echo "== browser tests (headless Chromium)"
     node --test --test-concurrency=1 tests/browser/*.test.js || failed+=(browser)
     if [ ${#failed[@]} -gt 0 ]; then

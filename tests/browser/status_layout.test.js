@@ -5,7 +5,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { decode } from 'fast-png';
-import { startViewer, openPage, pageReady, dropFiles } from '../../lib/page_harness.js';
+import { startViewer, openPage, pageReady, dropFiles, converged } from '../../lib/page_harness.js';
 
 const VIEWPORTS = [
   { width: 1280, height: 720 }, { width: 960, height: 540 }, { width: 390, height: 844 }, { width: 320, height: 568 },
@@ -13,6 +13,12 @@ const VIEWPORTS = [
 // A long refusal, as a real one can be: the message wraps over several lines on a phone.
 const BAD = { name: 'a_rather_long_name_for_a_survey_tile_that_is_not_a_height_field.png', bytes: new TextEncoder().encode('not a PNG at all') };
 const STATUS_RED = [150, 24, 24]; // #status.error's background (public/style.css), over the terrain at 0.92
+// Only boxes and the message's red are judged, not the terrain: a coarse mesh (τ = 8 px) at a
+// 50 ms frame budget converges in a few of SwiftShader's frames and then draws no more, so the
+// clicks and screenshots do not wait behind frames (at the default τ and 4 ms the 1280×720 page
+// is still refining, a frame of seconds each, all through the test). Each window has a page of
+// its own, opened at that size.
+const QUERY = '?budget=50&tau=8';
 
 const boxOf = (page, selector) => page.evaluate((s) => {
   const r = document.querySelector(s).getBoundingClientRect();
@@ -37,9 +43,10 @@ test('after a refused file, the status line and the HUD are both on screen and a
   const viewer = await startViewer();
   try {
     for (const viewport of VIEWPORTS) {
-      const { page, problems } = await openPage(viewer.browser, viewer.url, viewport);
+      const { page, problems } = await openPage(viewer.browser, `${viewer.url}${QUERY}`, viewport);
       await pageReady(page);
       await page.waitForFunction(() => /triangles/.test(document.getElementById('hud').textContent));
+      await converged(page);
       await dropFiles(page, [BAD]);
       await page.waitForFunction(() => window.hexlod.error && document.getElementById('status').classList.contains('error'));
       const message = await page.evaluate(() => document.getElementById('status').textContent);

@@ -29,7 +29,7 @@ function copyRepository() {
   const files = execFileSync('git', ['ls-files', '-z', '--cached', '--others', '--exclude-standard'],
     { cwd: projectDir, encoding: 'utf8' }).split('\0');
   for (const file of files) {
-    if (!file || /^(build|dist|node_modules)\//.test(file) || !existsSync(join(projectDir, file))) continue;
+    if (!file || /^(build|dist|node_modules)(\/|$)/.test(file) || !existsSync(join(projectDir, file))) continue;
     mkdirSync(dirname(join(dir, file)), { recursive: true });
     copyFileSync(join(projectDir, file), join(dir, file)); // keeps the mode: hexlod.sh stays executable
   }
