@@ -28,6 +28,7 @@ import { openCog } from '../web/stream/cog_source.js';
 import { openStreamedTerrain } from '../web/stream/streamed_terrain.js';
 import { loadTerrain } from '../web/loaders/terrain_source.js';
 import { startViewer, openPage } from '../lib/page_harness.js';
+import { SETTINGS } from '../web/app/settings_table.js';
 
 const root = fileURLToPath(new URL('..', import.meta.url));
 const benchDir = `${root}build/bench`;
@@ -35,6 +36,7 @@ const args = process.argv.slice(2);
 const option = (name, fallback) => (args.includes(name) ? Number(args[args.indexOf(name) + 1]) : fallback);
 const SIDE = option('--side', 40000), LATENCY = option('--latency', 30), FRAMES = option('--frames', 600), TAU = option('--tau', 1);
 const WHOLE_SIDE = 16385;
+const CAP_MB = SETTINGS.tileCacheMB.default; // the tile cache's cap in the page
 const HIMALAYA = { min: 0, max: 8752, cellX: 806.9, cellY: 926 }; // public/terrain/globe_himalaya_2048.json
 
 /** Row y of the Himalaya tiled and mirrored at every seam, as int16 metres. */
@@ -186,7 +188,7 @@ async function pagePhase(src, seconds) {
   const sampler = setInterval(() => { peak = Math.max(peak, chromiumPssMb()); }, 200);
   try {
     const start = Date.now();
-    const { page } = await openPage(viewer.browser, `${viewer.url}?test=1&src=${encodeURIComponent(src)}`, { width: 1280, height: 720 });
+    const { page } = await openPage(viewer.browser, `${viewer.url}?test=1${src ? `&src=${encodeURIComponent(src)}` : ''}`, { width: 1280, height: 720 });
     await page.waitForFunction(() => window.hexlod?.status !== 'loading' && window.hexlod?.frames > 0, null, { timeout: 1800000, polling: 100 });
     const firstFrameS = (Date.now() - start) / 1000;
     const opened = await page.evaluate(() => ({ status: window.hexlod.status, error: window.hexlod.error, terrain: window.hexlod.terrain }));
@@ -263,6 +265,13 @@ if (args[0] === '--phase') {
       console.log(`  ${memory(w)}`);
       console.log(`  ratios, streamed / whole: first frame ${(s.firstFrameS / w.firstFrameS).toFixed(2)}, ` +
         `memory over the idle browser ${((s.peakMb - s.idleMb) / (w.peakMb - w.idleMb)).toFixed(2)}`);
+      // The viewer's own memory, on its default terrain (2049², 8 MB of samples): what a tab holds
+      // whatever it streams, so that the streamed terrain's share can be told from it.
+      const b = await pagePhase(null, 2);
+      console.log(`  the default terrain, for the viewer's own share: navigation to first frame ${b.firstFrameS.toFixed(1)} s`);
+      console.log(`  ${memory(b)}`);
+      console.log(`  the streamed COG over the viewer on its default terrain: ${(s.peakMb - b.peakMb).toFixed(0)} MB of Chromium's memory, ` +
+        `${(s.wasmMb - b.wasmMb).toFixed(0)} MB of it in the core's WebAssembly memory (cap ${CAP_MB} MB of samples)`);
     }
   } finally {
     await server.close();

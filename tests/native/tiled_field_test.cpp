@@ -77,7 +77,9 @@ void setUp(hexlod_terrain* t, const test::Fixture& f, int32_t morphFrames, bool 
     scale.spacing_y_m = f.spacingY;
     ASSERT_EQ(hexlod_terrain_set_scale(t, &scale), 0) << hexlod_last_error();
     ASSERT_EQ(hexlod_terrain_prepare(t, nullptr), 0) << hexlod_last_error();
-    if (declared) ASSERT_EQ(hexlod_terrain_declare_height_range(t, f.minHeight, f.maxHeight), 0) << hexlod_last_error();
+    if (declared) {
+        ASSERT_EQ(hexlod_terrain_declare_height_range(t, f.minHeight, f.maxHeight), 0) << hexlod_last_error();
+    }
     hexlod_mesh_settings mesh{HEXLOD_EMBEDDING_EXACT};
     ASSERT_EQ(hexlod_terrain_reset_mesh(t, &mesh), 0) << hexlod_last_error();
     hexlod_settings settings{};
