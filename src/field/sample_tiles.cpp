@@ -317,34 +317,20 @@ void SampleTiles::range(const SampleRect& rect, float& low, float& high) const {
         }
 }
 
-namespace {
-
-template <typename T>
-void scanRows(const uint8_t* bytes, int32_t stride, int32_t x0, int32_t y0, int32_t x1, int32_t y1, double& low, double& high) {
-    const T* samples = reinterpret_cast<const T*>(bytes);
-    T lo = samples[size_t(y0) * size_t(stride) + size_t(x0)], hi = lo;
-    for (int32_t y = y0; y <= y1; ++y) {
-        const T* row = samples + size_t(y) * size_t(stride);
-        for (int32_t x = x0; x <= x1; ++x) lo = std::min(lo, row[x]), hi = std::max(hi, row[x]);
-    }
-    low = std::min(low, double(lo)), high = std::max(high, double(hi));
-}
-
-} // namespace
-
 void SampleTiles::levelRawRange(int32_t level, int32_t u0, int32_t v0, int32_t u1, int32_t v1, double& low, double& high) const {
     const TileLevel& l = levels_[size_t(level)];
     for (int32_t ty = v0 / l.tileHeight; ty <= v1 / l.tileHeight; ++ty)
         for (int32_t tx = u0 / l.tileWidth; tx <= u1 / l.tileWidth; ++tx) {
-            const uint8_t* bytes = slots_[size_t(l.slot[size_t(ty * l.tilesAcross + tx)])].get();
             const int32_t x0 = std::max(u0, tx * l.tileWidth) - tx * l.tileWidth, x1 = std::min(u1, (tx + 1) * l.tileWidth - 1) - tx * l.tileWidth;
             const int32_t y0 = std::max(v0, ty * l.tileHeight) - ty * l.tileHeight, y1 = std::min(v1, (ty + 1) * l.tileHeight - 1) - ty * l.tileHeight;
-            switch (type_) {
-                case SampleType::U8: scanRows<uint8_t>(bytes, l.tileWidth, x0, y0, x1, y1, low, high); break;
-                case SampleType::U16: scanRows<uint16_t>(bytes, l.tileWidth, x0, y0, x1, y1, low, high); break;
-                case SampleType::I16: scanRows<int16_t>(bytes, l.tileWidth, x0, y0, x1, y1, low, high); break;
-                case SampleType::F32: scanRows<float>(bytes, l.tileWidth, x0, y0, x1, y1, low, high); break;
-            }
+            withSamples(type_, slots_[size_t(l.slot[size_t(ty * l.tilesAcross + tx)])].get(), [&](const auto* samples) {
+                auto lo = samples[size_t(y0) * size_t(l.tileWidth) + size_t(x0)], hi = lo;
+                for (int32_t y = y0; y <= y1; ++y) {
+                    const auto* row = samples + size_t(y) * size_t(l.tileWidth);
+                    for (int32_t x = x0; x <= x1; ++x) lo = std::min(lo, row[x]), hi = std::max(hi, row[x]);
+                }
+                low = std::min(low, double(lo)), high = std::max(high, double(hi));
+            });
         }
 }
 
