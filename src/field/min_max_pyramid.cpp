@@ -92,17 +92,17 @@ void MinMaxPyramid::updateChunk(int32_t cc, int32_t cr) {
     float* low = fineLow_.data() + size_t(chunkSlot_[chunk]) * kChunkBlocks;
     float* high = fineHigh_.data() + size_t(chunkSlot_[chunk]) * kChunkBlocks;
     // Blocks past the field's edge stay empty (no query reaches them).
-    for (int32_t r = 0; r < 16; ++r)
-        for (int32_t c = 0; c < 16; ++c) {
+    for (int32_t r = 0; r < kChunkSide; ++r)
+        for (int32_t c = 0; c < kChunkSide; ++c) {
             const int32_t j0 = rect.j0 + c * kBlock, i0 = rect.i0 + r * kBlock;
-            float& l = low[r * 16 + c];
-            float& h = high[r * 16 + c];
+            float& l = low[r * kChunkSide + c];
+            float& h = high[r * kChunkSide + c];
             l = 1e30f, h = -1e30f;
             if (j0 <= rect.j1 && i0 <= rect.i1) tiles_->range({j0, i0, j0 + kBlock - 1, i0 + kBlock - 1}, l, h);
         }
     // Each fine level from the one below, then the chunk's block of the base level.
     for (int32_t k = 1; k <= kFineLevels; ++k) {
-        const int32_t fineSide = 16 >> (k - 1), side = 16 >> k;
+        const int32_t fineSide = kChunkSide >> (k - 1), side = kChunkSide >> k;
         for (int32_t r = 0; r < side; ++r)
             for (int32_t c = 0; c < side; ++c) {
                 float l = 1e30f, h = -1e30f;
@@ -132,7 +132,7 @@ void MinMaxPyramid::update(const Heightfield& field, const SampleRect& rect) {
 
 // Block (c, r) of fine level `level` (kBlock << level samples a side) of a tiled field.
 void MinMaxPyramid::fineBlock(int32_t level, int32_t c, int32_t r, float& low, float& high) const {
-    const int32_t perChunk = 16 >> level, side = kBlock << level;
+    const int32_t perChunk = kChunkSide >> level, side = kBlock << level;
     const int32_t slot = chunkSlot_[size_t(r / perChunk) * size_t(levels_[0].columns) + size_t(c / perChunk)];
     if (slot < 0) {
         tiles_->range({c * side, r * side, c * side + side - 1, r * side + side - 1}, low, high);

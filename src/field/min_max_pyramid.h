@@ -46,8 +46,11 @@ private:
     };
     // A tiled field's levels under kChunk, per chunk: blocks of 16, 32, 64 and 128 samples.
     static constexpr int32_t kFineLevels = 4;
-    static constexpr int32_t kChunkBlocks = 16 * 16 + 8 * 8 + 4 * 4 + 2 * 2;
+    static constexpr int32_t kChunkSide = kChunk / kBlock; // finest blocks across a chunk
+    static_assert(kChunkSide >> kFineLevels == 1, "the fine levels end one level under the chunk");
+    // Where each fine level starts among a chunk's blocks, and their count: 16², 8², 4², 2².
     static constexpr int32_t kFineOffset[kFineLevels] = {0, 256, 320, 336};
+    static constexpr int32_t kChunkBlocks = 340;
 
     void mergeUp(size_t level, int32_t c0, int32_t r0, int32_t c1, int32_t r1);
     void updateChunk(int32_t cc, int32_t cr);
