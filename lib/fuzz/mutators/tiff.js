@@ -58,7 +58,9 @@ const doubles = (r, n) => Array.from({ length: n }, () => r.pick([0, -30, 30, 1 
 function valueFor(tag, m, r) {
   const S = TYPES.SHORT, L = TYPES.LONG;
   const sizeType = () => r.pick([S, L, L, TYPES.LONG8, TYPES.DOUBLE, TYPES.SLONG]);
-  const current = entryOf(m, tag) ? values(m, entryOf(m, tag)) : [];
+  // An earlier step may have made the tag text: its values are then a string, not numbers.
+  const held = entryOf(m, tag) ? values(m, entryOf(m, tag)) : [];
+  const current = typeof held === 'string' ? [] : Array.from(held);
   switch (tag) {
     case TAGS.ImageWidth: case TAGS.ImageLength: return [sizeType(), [nearSize(r, current[0] ?? 40)]];
     case TAGS.BitsPerSample: return [S, r.chance(0.8) ? [r.pick([0, 1, 7, 8, 12, 16, 24, 32, 64, 128])] : [16, 16, 16]];
@@ -74,7 +76,7 @@ function valueFor(tag, m, r) {
     case TAGS.ModelTiepoint: return [TYPES.DOUBLE, doubles(r, r.pick([6, 6, 12, 3]))];
     case TAGS.ModelTransformation: return [TYPES.DOUBLE, doubles(r, 16)];
     case TAGS.GeoKeyDirectory: {
-      const keys = current.length >= 4 ? current.slice() : [1, 1, 0, 1, 1024, 0, 1, 2];
+      const keys = current.length >= 4 ? current : [1, 1, 0, 1, 1024, 0, 1, 2];
       for (let k = r.range(1, 3); k > 0; k--) keys[r.int(keys.length)] = r.pick([0, 1, 2, 3, 1024, 1025, 2048, 3072, 3076, 34736, 34737, 32767, 65535, r.int(65536)]);
       if (r.chance(0.2)) keys.length = r.int(keys.length);
       return [S, keys];
