@@ -1,16 +1,15 @@
-#!/usr/bin/env node
-// hexlod command line: the page's loaders and WASM core, in Node.
+// hexlod command line: the page's loaders and WASM core, in Node (started by bin/hexlod.js).
 //   hexlod info <file> [--json]   size, spacing, height range and load time of a height field
 //   hexlod mesh <file> ...        refine (max error or camera), write OBJ and JSON (lib/mesh_command.js)
 //   hexlod bench <file> ...       a scripted flight, and @mapbox/martini on the same data (lib/bench_command.js)
 //   hexlod regress <file> <flight> ...  flights in headless Chromium and Node against references (lib/regress.js)
 //   hexlod profile <file> --line ...    the height profile along a polyline, as a summary and CSV (lib/profile_command.js)
-import { createNodeCore } from '../lib/node_core.js';
-import { UsageError, readInputs, parseOptions, FILE_OPTIONS, FILE_USAGE, parseFileOptions, loadFiles } from '../lib/cli_common.js';
-import { mesh, MESH_USAGE } from '../lib/mesh_command.js';
-import { bench, BENCH_USAGE } from '../lib/bench_command.js';
-import { regress, REGRESS_USAGE } from '../lib/regress.js';
-import { profile, PROFILE_USAGE, PROFILE_SHORT_USAGE } from '../lib/profile_command.js';
+import { createNodeCore } from './node_core.js';
+import { UsageError, readInputs, parseOptions, FILE_OPTIONS, FILE_USAGE, parseFileOptions, loadFiles } from './cli_common.js';
+import { mesh, MESH_USAGE } from './mesh_command.js';
+import { bench, BENCH_USAGE } from './bench_command.js';
+import { regress, REGRESS_USAGE } from './regress.js';
+import { profile, PROFILE_USAGE, PROFILE_SHORT_USAGE } from './profile_command.js';
 
 const INFO_USAGE = `usage: hexlod info <heightfield> [--json] [--width N --height N] [--encoding E]
   A height field: PNG (16/8-bit grayscale, Terrain-RGB, Terrarium), GeoTIFF (.tif), SRTM .hgt,
@@ -79,21 +78,23 @@ async function main(argv) {
   return typeof code === 'number' ? code : 0;
 }
 
-// A reader that stops early (hexlod bench --verbose | head) is not an error.
-process.stdout.on('error', (error) => {
-  if (error.code === 'EPIPE') process.exit(process.exitCode ?? 0);
-  throw error;
-});
-
-main(process.argv.slice(2)).then((code) => { process.exitCode = code; }, (error) => {
-  // One clear line on stderr, never a stack trace: usage mistakes (exit 2) end with the
-  // command's usage, bad files and core failures (exit 1) name what was wrong.
-  const message = String(error?.message ?? error).replace(/\s*\n\s*/g, ' ');
-  if (error instanceof UsageError || error?.code?.startsWith?.('ERR_PARSE_ARGS')) {
-    console.error(`hexlod: ${message}; ${SHORT_USAGE[current]}`);
-    process.exitCode = 2;
-  } else {
-    console.error(`hexlod: ${message}`);
-    process.exitCode = 1;
-  }
-});
+/** Runs the command line on `argv` (the words after `hexlod`); sets process.exitCode. */
+export function runCli(argv) {
+  // A reader that stops early (hexlod bench --verbose | head) is not an error.
+  process.stdout.on('error', (error) => {
+    if (error.code === 'EPIPE') process.exit(process.exitCode ?? 0);
+    throw error;
+  });
+  return main(argv).then((code) => { process.exitCode = code; }, (error) => {
+    // One clear line on stderr, never a stack trace: usage mistakes (exit 2) end with the
+    // command's usage, bad files and core failures (exit 1) name what was wrong.
+    const message = String(error?.message ?? error).replace(/\s*\n\s*/g, ' ');
+    if (error instanceof UsageError || error?.code?.startsWith?.('ERR_PARSE_ARGS')) {
+      console.error(`hexlod: ${message}; ${SHORT_USAGE[current]}`);
+      process.exitCode = 2;
+    } else {
+      console.error(`hexlod: ${message}`);
+      process.exitCode = 1;
+    }
+  });
+}
