@@ -168,7 +168,9 @@ typedef struct hexlod_frame {
     int32_t vertex_count;     /* vertex slots (the pool's capacity) */
     int32_t index_count;      /* indices */
     int32_t dirty_vertex_pairs, dirty_index_pairs; /* pairs in the dirty arrays */
-    int32_t reserved[12];
+    int32_t refined;          /* 1: the last update tested every due cell and resolved every failing
+                                 test, so the mesh is within tau; merges may still wait for fades */
+    int32_t reserved[11];
     /* pointers: Int32Array index 43..47 under wasm32 */
     const void* vertices_ptr;         /* the vertex pool */
     const uint32_t* indices_ptr;      /* the index array */

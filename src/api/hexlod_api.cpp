@@ -56,6 +56,7 @@ void fillFrame(hexlod_terrain* terrain, int32_t steps, hexlod_frame* out) {
     out->triangles = double(mesh.triangleCount());
     out->version = int32_t(stream.version() & 0x7FFFFFFF);
     out->converged = core.converged() ? 1 : 0;
+    out->refined = last.converged ? 1 : 0;
     out->operations = last.operations;
     out->splits = last.splits;
     out->merges = last.merges;

@@ -108,6 +108,7 @@ extern "C" const char* hexlod_struct_layout(void) {
     HEXLOD_FIELD(hexlod_frame, index_count);
     HEXLOD_FIELD(hexlod_frame, dirty_vertex_pairs);
     HEXLOD_FIELD(hexlod_frame, dirty_index_pairs);
+    HEXLOD_FIELD(hexlod_frame, refined);
     HEXLOD_FIELD(hexlod_frame, vertices_ptr);
     HEXLOD_FIELD(hexlod_frame, indices_ptr);
     HEXLOD_FIELD(hexlod_frame, dirty_vertices_ptr);

@@ -267,6 +267,11 @@ test('hexlod bench flies a short scripted flight, compares with martini and writ
   const report = JSON.parse(readFileSync(json, 'utf8'));
   assert.equal(report.frames.length, 8);
   assert.ok(report.frames.every((f) => f.operations <= 50 && f.triangles > 0));
+  // Within tau and fades pending are told apart: converged is exactly both settled.
+  const counts = r.stdout.match(/within tau in (\d+) of 8 frames, fades pending in (\d+), both settled in (\d+)/);
+  assert.ok(counts, r.stdout);
+  assert.deepEqual(counts.slice(1).map(Number), [report.flight.withinTauFrames, report.flight.fadingFrames, report.flight.convergedFrames]);
+  for (const f of report.frames) assert.equal(f.converged, f.refined && !f.fading, `frame ${f.frame}`);
   assert.ok(report.firstFrame.warm.converged);
   assert.ok(report.maxError.error.max <= 2 + 1e-6);
   assert.ok(report.martini.error.max <= report.maxError.error.max + 1e-6, 'martini matched at no more than our error');

@@ -206,7 +206,7 @@ export class FrameStats {
 
 // How each hexlod_frame field is read: 0 a double, 1 an int32, 2 unsigned (u32, pointers), 3 a flag.
 const READ_F64 = 0, READ_I32 = 1, READ_U32 = 2, READ_FLAG = 3;
-const FLAGS = new Set(['converged']);
+const FLAGS = new Set(['converged', 'refined']);
 // hexlod_frame fields whose JS names are not plain camelCase (the names callers read).
 const FRAME_NAMES = { tau_px: 'tau', vertices_ptr: 'vertexPointer', indices_ptr: 'indexPointer',
   dirty_vertices_ptr: 'dirtyVerticesPointer', dirty_indices_ptr: 'dirtyIndicesPointer', normals_ptr: 'normalsPointer' };
@@ -533,11 +533,14 @@ export class Terrain {
     return this.query().converged;
   }
 
-  /** Figures of the last update: {frame, pendingMerges, converged, splits, merges, updateMs, tau}. */
+  /**
+   * Figures of the last update: {frame, pendingMerges, converged, refined, splits, merges, updateMs,
+   * tau}; refined: within tau (every failing test resolved), though fades may be pending.
+   */
   lodStats() {
     const s = this.query();
     return {
-      frame: s.frame, pendingMerges: s.pendingMerges, converged: s.converged, splits: s.splits, merges: s.merges,
+      frame: s.frame, pendingMerges: s.pendingMerges, converged: s.converged, refined: s.refined, splits: s.splits, merges: s.merges,
       updateMs: s.updateMs, tau: s.tau,
     };
   }
