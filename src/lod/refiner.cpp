@@ -485,7 +485,7 @@ bool Refiner::sweep() {
     SweepSummaries::Maker maker;
     for (int32_t chunk = 0; chunk < groups; chunk += kChunk) {
         if (chunk > 0 && settings_.budgetMs > 0.0 && progressed()) {
-            const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+            const double ms = frameClockMs() - startMs_;
             if (ms >= halfBudget) {
                 sweepCursor_ = groupAt(chunk);
                 return false;
@@ -561,7 +561,7 @@ bool Refiner::drain() {
 }
 
 UpdateStats Refiner::update() {
-    start_ = std::chrono::steady_clock::now();
+    startMs_ = frameClockMs();
     operations_ = 0;
     tested_ = 0;
     ownKept_ = 0;
@@ -602,7 +602,7 @@ UpdateStats Refiner::update() {
     last_.merges = int32_t(mesh_->counts().merges - before.merges);
     last_.cellsTested = tested_;
     last_.ownVerdictsKept = ownKept_;
-    last_.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    last_.milliseconds = frameClockMs() - startMs_;
     last_.converged = converged;
     adaptTau();
     return last_;

@@ -27,7 +27,6 @@
 // compaction of the mesh) and refiner_achieved_error.cpp (the HUD's achieved error).
 #pragma once
 
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -36,6 +35,7 @@
 #include "lod/float_rounding.h"
 #include "lod/cell_bounds.h"
 #include "lod/cell_verdict.h"
+#include "lod/frame_clock.h"
 #include "lod/pending_merges.h"
 #include "lod/refinement_cache.h"
 #include "lod/sweep_summaries.h"
@@ -242,7 +242,7 @@ private:
     int32_t sweepCursor_ = 0;
 
     // Per-update state.
-    std::chrono::steady_clock::time_point start_;
+    double startMs_ = 0.0; // frameClockMs() when the update began
     int32_t operations_ = 0;
     int32_t unresolved_ = 0; // failing cells left this cycle that a step could still refine
     uint32_t visits_ = 0, visitsAtStart_ = 0;

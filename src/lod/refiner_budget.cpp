@@ -11,7 +11,7 @@ bool Refiner::outOfBudget(double share) {
     if (settings_.maxOperations > 0 && operations_ >= std::max(1, int32_t(double(settings_.maxOperations) * share))) return true;
     // Reading the clock costs more than testing a cell: look at it every 32 visits.
     if (settings_.budgetMs > 0.0 && (visits_ & 31) == 0) {
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+        const double ms = frameClockMs() - startMs_;
         if (ms >= settings_.budgetMs * share) return true;
     }
     return false;
