@@ -24,16 +24,16 @@ export async function freePort() {
 }
 
 /**
- * Starts headless Chromium (CHROMIUM_PATH or /usr/bin/chromium unless `path` is given). Throws
- * one-line errors when it is missing or does not start.
+ * Starts headless Chromium (CHROMIUM_PATH or /usr/bin/chromium unless `path` is given), with
+ * `extraArgs` after the usual flags. Throws one-line errors when it is missing or does not start.
  */
-export async function launchChromium(path = process.env.CHROMIUM_PATH || DEFAULT_CHROMIUM) {
+export async function launchChromium(path = process.env.CHROMIUM_PATH || DEFAULT_CHROMIUM, extraArgs = []) {
   if (!existsSync(path) || !statSync(path).isFile()) {
     throw new EnvironmentError(`no Chromium at ${path}: install Debian's (apt-get install chromium) or give --chromium PATH`);
   }
   const { chromium } = await import('playwright-core');
   try {
-    return await chromium.launch({ executablePath: path, headless: true, args: CHROMIUM_FLAGS });
+    return await chromium.launch({ executablePath: path, headless: true, args: [...CHROMIUM_FLAGS, ...extraArgs] });
   } catch (error) {
     // Playwright's own words for a program that exits at once ("Target page, context or browser
     // has been closed") do not say that the program is not a working Chromium.

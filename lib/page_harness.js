@@ -36,11 +36,12 @@ async function startDevServer({ hmr = false } = {}) {
  * `site: 'dev'` (default) is the Vite dev server; `site: 'built'` serves the production build in
  * dist/ (./build.sh site) from a plain static file server under the sub-path /hexlod/, as a
  * static host would, with the test fixtures under /fixtures/. `hmr`: the dev server watches
- * files and its client keeps a hot-reload connection, as for a developer.
+ * files and its client keeps a hot-reload connection, as for a developer. `chromiumArgs`: more
+ * command-line flags for the browser.
  */
-export async function startViewer({ site = 'dev', hmr = false } = {}) {
+export async function startViewer({ site = 'dev', hmr = false, chromiumArgs = [] } = {}) {
   const server = site === 'built' ? await startStaticSite() : await startDevServer({ hmr });
-  const browser = await launchChromium();
+  const browser = await launchChromium(undefined, chromiumArgs);
   mkdirSync(outDir, { recursive: true });
   return {
     url: server.url,
