@@ -37,11 +37,17 @@ async function startDevServer({ hmr = false } = {}) {
  * dist/ (./build.sh site) from a plain static file server under the sub-path /hexlod/, as a
  * static host would, with the test fixtures under /fixtures/. `hmr`: the dev server watches
  * files and its client keeps a hot-reload connection, as for a developer. `chromiumArgs`: more
- * command-line flags for the browser.
+ * command-line flags for the browser. `pixelRatio`: the device pixels per CSS pixel of the pages
+ * opened in it (0.5 for a test that judges what is drawn, not its fine detail: a quarter of the
+ * pixels to draw on the CPU).
  */
-export async function startViewer({ site = 'dev', hmr = false, chromiumArgs = [] } = {}) {
+export async function startViewer({ site = 'dev', hmr = false, chromiumArgs = [], pixelRatio = 1 } = {}) {
   const server = site === 'built' ? await startStaticSite() : await startDevServer({ hmr });
   const browser = await launchChromium(undefined, chromiumArgs);
+  // Pages open at `pixelRatio` device pixels per CSS pixel unless they ask otherwise: at 0.5 the
+  // page lays out as on the screen it emulates while SwiftShader draws a quarter of the pixels.
+  const newPage = browser.newPage.bind(browser);
+  browser.newPage = (options = {}) => newPage({ deviceScaleFactor: pixelRatio, ...options });
   mkdirSync(outDir, { recursive: true });
   return {
     url: server.url,
@@ -137,10 +143,11 @@ export async function terrainCoverage(page) {
   const background = decode(await page.screenshot());
   await page.evaluate(() => { window.hexlod.view.hideTerrain = false; });
   await nextFrame(page);
-  const boxes = await page.evaluate(() => [...document.querySelectorAll('#hud, #intake, #panel .lil-root, #status, #help')]
-    .map((e) => e.getBoundingClientRect()).filter((r) => r.width > 0 && r.height > 0)
-    .map((r) => [r.left, r.top, r.right, r.bottom]));
   const { width, height, channels } = shown;
+  // The boxes in CSS pixels, scaled to the screenshot's device pixels.
+  const boxes = await page.evaluate((scale) => [...document.querySelectorAll('#hud, #intake, #panel .lil-root, #status, #help')]
+    .map((e) => e.getBoundingClientRect()).filter((r) => r.width > 0 && r.height > 0)
+    .map((r) => [r.left * scale, r.top * scale, r.right * scale, r.bottom * scale]), width / (await page.evaluate(() => window.innerWidth)));
   const colours = new Set();
   let terrain = 0, sum = 0, sumSq = 0;
   for (let y = 0; y < height; ++y) {

@@ -15,7 +15,9 @@ const VIEWPORT = { width: 960, height: 540 };
 const read = (path) => ({ name: path.split('/').pop(), bytes: readFileSync(FIXTURES + path) });
 
 let viewer;
-before(async () => { viewer = await startViewer(); });
+// Pages at half a device pixel per CSS pixel: the layout of the window they emulate, a quarter of
+// the pixels for SwiftShader to draw; the opening view is judged at full resolution.
+before(async () => { viewer = await startViewer({ pixelRatio: 0.5 }); });
 after(async () => { await viewer?.close(); });
 
 /**
@@ -73,9 +75,11 @@ function everestHgt() {
 
 // The pages run at a 50 ms frame budget: SwiftShader draws about a frame a second, and at the
 // default 4 ms the default view takes some 160 frames to converge. Convergence is the same.
-const quick = (query = '') => `${viewer.url}?budget=50${query ? `&${query}` : ''}`;
+// At half a device pixel per CSS pixel, τ = 0.5 device pixels is the 1 CSS pixel a person at a
+// full-resolution screen gets: the same mesh, a quarter of the pixels.
+const quick = (query = '') => `${viewer.url}?budget=50&tau=0.5${query ? `&${query}` : ''}`;
 test('the page opens on the default terrain over at least 75 % of a 1280×720 view; panel and HUD fold', async () => {
-  const { page, problems } = await openPage(viewer.browser, quick(), { width: 1280, height: 720 });
+  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?budget=50`, { width: 1280, height: 720 }, { deviceScaleFactor: 1 });
   await pageReady(page);
   await page.waitForFunction(() => window.hexlod.triangles > 20000, null, { timeout: 120000 });
   const seen = await terrainCoverage(page);
@@ -105,7 +109,7 @@ test('the page opens on the default terrain over at least 75 % of a 1280×720 vi
   await page.close();
 
   // A phone: panel and HUD start folded.
-  const phone = await openPage(viewer.browser, quick(), { width: 390, height: 844 });
+  const phone = await openPage(viewer.browser, `${viewer.url}?budget=50`, { width: 390, height: 844 }, { deviceScaleFactor: 1 });
   await pageReady(phone.page);
   const layout = await phone.page.evaluate(() => ({
     panelClosed: document.querySelector('#panel .lil-gui.lil-root').classList.contains('lil-closed'),
@@ -210,7 +214,9 @@ function madeField(name, width, height, spacing, heightOf) {
 }
 
 test('odd fields open framed: under the sea, above 4000 m, flat, a spike, 2×2, a profile, a thin strip, 0.5 m lidar', async () => {
-  const { page, problems } = await openPage(viewer.browser, quick(), VIEWPORT);
+  // At full resolution: the colour counts that tell shading from one flat colour are those of
+  // this window's pixels.
+  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?budget=50`, VIEWPORT, { deviceScaleFactor: 1 });
   await pageReady(page);
   const wave = (low, high, period) => (i, j) => low + (high - low) * (0.5 + 0.25 * Math.sin(i / period) + 0.25 * Math.cos(j / (0.7 * period)));
   // The least coverage is what the whole field in view can fill: a spike 8 times higher than
