@@ -39,28 +39,44 @@ case "${1:-}" in
     exec npx vite --config vite.config.js --port "$port" --strictPort "${open_flag[@]}"
     ;;
   test)
+    suite_start=$EPOCHREALTIME
     scripts/setup.sh
     ./build.sh
+    layer_times=("setup and build $(since "$suite_start") s")
     failed=()
+    # Each test's duration goes to a file of JSON lines beside the usual report; the slowest are
+    # listed at the end (scripts/test_times.js).
+    times_dir=$(mktemp -d)
+    timing() { echo "--test-reporter=spec" "--test-reporter-destination=stdout" \
+      "--test-reporter=./lib/test_time_reporter.js" "--test-reporter-destination=$times_dir/$1.jsonl"; }
     # The native tests and the Node tests run side by side: each keeps one core of two busy (CTest
     # runs one test at a time, node --test one file at a time on two cores), and the native ones
-    # (some 45 s) end well before the Node ones. The native output is kept and shown whole under
-    # its own heading once both are done, so neither layer's lines are mixed into the other's.
+    # end well before the Node ones. The native output is kept and shown whole under its own
+    # heading once both are done, so neither layer's lines are mixed into the other's.
     native_log=$(mktemp)
+    layer_start=$EPOCHREALTIME
     ctest --test-dir build/native --output-on-failure >"$native_log" 2>&1 &
     native_pid=$!
-    trap 'kill "$native_pid" 2>/dev/null || true; rm -f "$native_log"' EXIT
+    trap 'kill "$native_pid" 2>/dev/null || true; rm -rf "$native_log" "$times_dir"' EXIT
     echo "== Node tests (loaders, WASM core, CLI), the native tests running beside them"
-    node --test tests/node/*.test.js || failed+=(node)
+    # shellcheck disable=SC2046
+    node --test $(timing node) tests/node/*.test.js || failed+=(node)
     native_status=0
     wait "$native_pid" || native_status=$?
     echo "== native tests (GoogleTest via CTest)"
     cat "$native_log"
-    rm -f "$native_log"
-    trap - EXIT
+    layer_times+=("Node and native tests $(since "$layer_start") s")
     [ "$native_status" -eq 0 ] || failed+=(native)
     echo "== browser tests (headless Chromium)"
-    node --test --test-concurrency=1 tests/browser/*.test.js || failed+=(browser)
+    layer_start=$EPOCHREALTIME
+    # shellcheck disable=SC2046
+    node --test --test-concurrency=1 $(timing browser) tests/browser/*.test.js || failed+=(browser)
+    layer_times+=("browser tests $(since "$layer_start") s")
+    echo "== times"
+    printf '  %s\n' "${layer_times[@]}" "whole suite $(since "$suite_start") s"
+    node scripts/test_times.js 5 "$times_dir"/*.jsonl
+    rm -rf "$native_log" "$times_dir"
+    trap - EXIT
     if [ ${#failed[@]} -gt 0 ]; then
       echo "hexlod: FAILED test layers: ${failed[*]}" >&2
       exit 1
