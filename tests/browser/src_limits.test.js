@@ -157,7 +157,7 @@ test('a Content-Length past the size cap is refused before the body; an endless 
 test('Cancel while a URL loads: the load stops, the page says so, the settings stay', async () => {
   const url = `${data.origin}/silent/volcano_maungawhau.png`;
   const { page, problems } = await openSrc(url, '&tau=2.5&exag=3');
-  await page.waitForSelector('#load-cancel:not([hidden])', { timeout: 30000 });
+  await page.waitForSelector('#load-cancel:not([hidden])', { timeout: 120000 }); // the page boots first, slow on a loaded machine
   let view = await seen(page);
   assert.equal(view.status, 'Loading volcano_maungawhau.png…');
   await page.screenshot({ path: `${outDir}/src-limits-cancel-button.png` });
@@ -179,7 +179,7 @@ test('a file dropped while a src loads wins: neither a late failure nor a late s
   for (const route of ['fail', 'slow']) {
     const path = `/${route}/2500/grandcanyon_512.png`;
     const { page, problems } = await openSrc(`${data.origin}${path}`);
-    await page.waitForFunction(() => window.hexlod?.loading, null, { timeout: 30000 });
+    await page.waitForFunction(() => window.hexlod?.loading, null, { timeout: 120000 });
     await dropFiles(page, fixtureFiles('volcano_maungawhau.png', 'volcano_maungawhau.json'));
     await terrainShown(page, 'volcano_maungawhau.png');
     await new Promise((resolve) => setTimeout(resolve, 4000)); // past the server's late answer
