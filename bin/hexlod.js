@@ -7,16 +7,18 @@ import { fileURLToPath } from 'node:url';
 
 const root = fileURLToPath(new URL('..', import.meta.url));
 const missing = [];
+let packages = true;
 try {
   import.meta.resolve('geotiff'); // one of the runtime packages, wherever npm put them
 } catch {
+  packages = false;
   missing.push('the npm packages');
 }
 const builds = ['build/wasm', 'build/wasm-diag']
   .filter((dir) => !existsSync(`${root}${dir}/hexlod_core.mjs`) || !existsSync(`${root}${dir}/hexlod_core.wasm`));
 if (builds.length) missing.push(`the WebAssembly core (${builds.join(', ')})`);
 if (missing.length) {
-  const fix = builds.length === missing.length ? './build.sh' : 'scripts/setup.sh && ./build.sh';
+  const fix = packages ? './build.sh' : 'scripts/setup.sh && ./build.sh';
   console.error(`hexlod: ${missing.join(' and ')} ${missing.length > 1 ? 'are' : 'is'} missing: run ${fix}`);
   process.exit(2);
 }
