@@ -145,9 +145,12 @@ export async function terrainCoverage(page) {
   await nextFrame(page);
   const { width, height, channels } = shown;
   // The boxes in CSS pixels, scaled to the screenshot's device pixels.
-  const boxes = await page.evaluate((scale) => [...document.querySelectorAll('#hud, #intake, #panel .lil-root, #status, #help')]
-    .map((e) => e.getBoundingClientRect()).filter((r) => r.width > 0 && r.height > 0)
-    .map((r) => [r.left * scale, r.top * scale, r.right * scale, r.bottom * scale]), width / (await page.evaluate(() => window.innerWidth)));
+  const boxes = await page.evaluate((shotWidth) => {
+    const scale = shotWidth / window.innerWidth;
+    return [...document.querySelectorAll('#hud, #intake, #panel .lil-root, #status, #help')]
+      .map((e) => e.getBoundingClientRect()).filter((r) => r.width > 0 && r.height > 0)
+      .map((r) => [r.left * scale, r.top * scale, r.right * scale, r.bottom * scale]);
+  }, width);
   const colours = new Set();
   let terrain = 0, sum = 0, sumSq = 0;
   for (let y = 0; y < height; ++y) {
