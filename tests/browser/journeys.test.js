@@ -16,7 +16,8 @@ const read = (path) => ({ name: path.split('/').pop(), bytes: readFileSync(FIXTU
 
 let viewer;
 // Pages at half a device pixel per CSS pixel: the layout of the window they emulate, a quarter of
-// the pixels for SwiftShader to draw; the opening view is judged at full resolution.
+// the pixels for SwiftShader to draw; the opening view, the phone and the odd fields are judged at
+// full resolution.
 before(async () => { viewer = await startViewer({ pixelRatio: 0.5 }); });
 after(async () => { await viewer?.close(); });
 
@@ -77,9 +78,12 @@ function everestHgt() {
 // default 4 ms the default view takes some 160 frames to converge. Convergence is the same.
 // At half a device pixel per CSS pixel, τ = 0.5 device pixels is the 1 CSS pixel a person at a
 // full-resolution screen gets: the same mesh, a quarter of the pixels.
-const quick = (query = '') => `${viewer.url}?budget=50&tau=0.5${query ? `&${query}` : ''}`;
+const quick = (query = '') => `${fullResolution()}&tau=0.5${query ? `&${query}` : ''}`;
+// The pages judged at full resolution (one device pixel per CSS pixel), at the default τ.
+const fullResolution = () => `${viewer.url}?budget=50`;
+const FULL = { deviceScaleFactor: 1 };
 test('the page opens on the default terrain over at least 75 % of a 1280×720 view; panel and HUD fold', async () => {
-  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?budget=50`, { width: 1280, height: 720 }, { deviceScaleFactor: 1 });
+  const { page, problems } = await openPage(viewer.browser, fullResolution(), { width: 1280, height: 720 }, FULL);
   await pageReady(page);
   await page.waitForFunction(() => window.hexlod.triangles > 20000, null, { timeout: 120000 });
   const seen = await terrainCoverage(page);
@@ -109,7 +113,7 @@ test('the page opens on the default terrain over at least 75 % of a 1280×720 vi
   await page.close();
 
   // A phone: panel and HUD start folded.
-  const phone = await openPage(viewer.browser, `${viewer.url}?budget=50`, { width: 390, height: 844 }, { deviceScaleFactor: 1 });
+  const phone = await openPage(viewer.browser, fullResolution(), { width: 390, height: 844 }, FULL);
   await pageReady(phone.page);
   const layout = await phone.page.evaluate(() => ({
     panelClosed: document.querySelector('#panel .lil-gui.lil-root').classList.contains('lil-closed'),
@@ -216,7 +220,7 @@ function madeField(name, width, height, spacing, heightOf) {
 test('odd fields open framed: under the sea, above 4000 m, flat, a spike, 2×2, a profile, a thin strip, 0.5 m lidar', async () => {
   // At full resolution: the colour counts that tell shading from one flat colour are those of
   // this window's pixels.
-  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?budget=50`, VIEWPORT, { deviceScaleFactor: 1 });
+  const { page, problems } = await openPage(viewer.browser, fullResolution(), VIEWPORT, FULL);
   await pageReady(page);
   const wave = (low, high, period) => (i, j) => low + (high - low) * (0.5 + 0.25 * Math.sin(i / period) + 0.25 * Math.cos(j / (0.7 * period)));
   // The least coverage is what the whole field in view can fill: a spike 8 times higher than
