@@ -128,23 +128,24 @@ async function fly(frames) {
 
 const where = (frame) => `${frame.functionName || '(anonymous)'} ${frame.url.replace(/^.*\/web\//, 'web/')}:${frame.lineNumber + 1}`;
 
-/** One window's frame-path samples sorted: HUD text, boxed numbers, and the rest by site. */
+/** One window's frame-path samples sorted: HUD text, boxed numbers, the engine's inside the core, and the rest (garbage) by site. */
 function sorted(samples) {
-  const inFrame = samples.filter((s) => s.stack.some((f) => FRAME_PATH.test(f.url)));
   const allowed = (s) => s.stack.some((f) => ALLOWED.some(([file, fn]) => file.test(f.url) && f.functionName === fn));
-  const hud = inFrame.filter(allowed);
-  const inCore = (s) => /^js-to-wasm/.test(s.stack[0].functionName);
-  const numbers = inFrame.filter((s) => !allowed(s) && s.size === boxedSize);
-  const engine = inFrame.filter((s) => !allowed(s) && s.size !== boxedSize && inCore(s));
-  const garbage = inFrame.filter((s) => !allowed(s) && s.size !== boxedSize && !inCore(s));
-  // Where: the innermost frame of ours (web/) of each sample.
+  const kind = (s) => (allowed(s) ? 'hud' : s.size === boxedSize ? 'numbers'
+    : /^js-to-wasm/.test(s.stack[0].functionName) ? 'engine' : 'garbage');
+  const counts = { hud: 0, numbers: 0, engine: 0, garbage: 0 };
+  // Where: the innermost frame of ours (web/) of each sample of garbage.
   const sites = new Map();
-  for (const s of garbage) {
+  for (const s of samples) {
+    if (!s.stack.some((f) => FRAME_PATH.test(f.url))) continue;
+    const k = kind(s);
+    counts[k] += 1;
+    if (k !== 'garbage') continue;
     const ours = s.stack.find((f) => /\/web\//.test(f.url)) ?? s.stack[0];
     const key = `${s.size} B in ${where(ours)} <- ${s.stack.filter((f) => /\/web\//.test(f.url)).slice(1, 3).map(where).join(' <- ')}`;
     sites.set(key, (sites.get(key) ?? 0) + 1);
   }
-  return { all: samples.length, hud: hud.length, numbers: numbers.length, engine: engine.length, garbage: garbage.length, sites };
+  return { all: samples.length, ...counts, sites };
 }
 
 test('flying with fly, walk with contours, and colour by level, the frame path allocates nothing once warm', async () => {
