@@ -60,6 +60,9 @@ export async function startViewer({ site = 'dev', hmr = false, chromiumArgs = []
   };
 }
 
+/** Page options for a test that judges fine detail in a viewer started at a lower `pixelRatio`. */
+export const FULL_RESOLUTION = { deviceScaleFactor: 1 };
+
 /**
  * Opens a page that records console errors, page errors and failed requests in `problems`.
  * `options`: more of Playwright's page options (deviceScaleFactor, hasTouch, isMobile).

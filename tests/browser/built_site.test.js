@@ -6,7 +6,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { startViewer, openPage, outDir, projectDir, terrainCoverage, pageReady, dropFiles, terrainShown,
+import { startViewer, openPage, FULL_RESOLUTION, outDir, projectDir, terrainCoverage, pageReady, dropFiles, terrainShown,
   converged, eyeClearance, nextFrame } from '../../lib/page_harness.js';
 import { BLUE_MARBLE_POINTS as POINTS, colourAt, coloursMatch, lookStraightDown, projectLonLat } from '../../lib/draped_points.js';
 import { decode } from 'fast-png';
@@ -20,7 +20,9 @@ const read = (name) => ({ name, bytes: readFileSync(FIXTURES + name) });
 // is ready, not converged: there the default budget's coarser mesh draws faster.)
 const QUICK = 'budget=50';
 let site;
-before(async () => { site = await startViewer({ site: 'built' }); });
+// Half a device pixel per CSS pixel but for the draped image's colours and the streamed tiles,
+// which are judged at full resolution.
+before(async () => { site = await startViewer({ site: 'built', pixelRatio: 0.5 }); });
 after(async () => { await site?.close(); });
 
 /** The terrain on screen over `minCoverage` of the view, shaded, the eye above it. */
@@ -76,7 +78,7 @@ test('the built site drapes a dropped satellite image by its world file, and ?im
   const image = [read('imagery/bmng_himalaya_4arcmin.jpg'), read('imagery/bmng_himalaya_4arcmin.jgw')];
   const imageUrl = '/fixtures/imagery/bmng_himalaya_4arcmin.jpg';
   for (const how of ['drop', '?image=']) {
-    const { page, problems } = await openPage(site.browser, how === 'drop' ? site.url : `${site.url}?image=${encodeURIComponent(imageUrl)}`, { width: 640, height: 640 });
+    const { page, problems } = await openPage(site.browser, how === 'drop' ? site.url : `${site.url}?image=${encodeURIComponent(imageUrl)}`, { width: 640, height: 640 }, FULL_RESOLUTION);
     await pageReady(page);
     if (how === 'drop') await dropFiles(page, image);
     await page.waitForFunction(() => window.hexlod.image !== null, null, { timeout: 60000 });
@@ -98,7 +100,7 @@ test('the built site streams a COG by ?src=, its tiles decoded by the bundled wo
   const cogs = await startRangeServer(`${FIXTURES}cog`, { latencyMs: 20 });
   try {
     const url = `${cogs.url}/himalaya_1024_i16.tif`;
-    const { page, problems } = await openPage(site.browser, `${site.url}?budget=50&tau=3&src=${encodeURIComponent(url)}`, { width: 480, height: 300 });
+    const { page, problems } = await openPage(site.browser, `${site.url}?budget=50&tau=3&src=${encodeURIComponent(url)}`, { width: 480, height: 300 }, FULL_RESOLUTION);
     await pageReady(page);
     const terrain = await page.evaluate(() => window.hexlod.terrain);
     assert.deepEqual([terrain?.name, terrain?.width, terrain?.streamed], ['himalaya_1024_i16.tif', 1024, true],

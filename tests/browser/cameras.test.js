@@ -7,7 +7,7 @@ import { startViewer, openPage, outDir, drawFrames } from '../../lib/page_harnes
 
 let viewer, page, problems;
 before(async () => {
-  viewer = await startViewer();
+  viewer = await startViewer({ pixelRatio: 0.5 });
   ({ page, problems } = await openPage(viewer.browser, viewer.url, { width: 480, height: 300 }));
   await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
   assert.equal(await page.evaluate(() => window.hexlod.status), 'ready');

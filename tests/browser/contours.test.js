@@ -10,7 +10,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { decode, encode } from 'fast-png';
 import { writeFileSync } from 'node:fs';
-import { startViewer, openPage, outDir, projectDir } from '../../lib/page_harness.js';
+import { startViewer, openPage, outDir, projectDir, FULL_RESOLUTION } from '../../lib/page_harness.js';
 
 const SIZE = { width: 480, height: 300 };
 const INTERVAL = 50;
@@ -19,7 +19,8 @@ const CAMERA = 'cam=orbit,15000,1500,17000,14000,2.6,0.5';
 const query = (extra = '') => `?src=${encodeURIComponent(DEM)}&tau=1&budget=40&exag=2&contours=1&cint=${INTERVAL}&${CAMERA}${extra}`;
 
 let viewer;
-before(async () => { viewer = await startViewer(); });
+// Pages at half a device pixel per CSS pixel unless a test names its own ratio.
+before(async () => { viewer = await startViewer({ pixelRatio: 0.5 }); });
 after(async () => { await viewer?.close(); });
 
 /** Opens the view with the page's boxes hidden and waits for the converged mesh. */
@@ -238,7 +239,7 @@ test('every sample depth is read exactly: u8, u16, i16 and f32 fields, lines on 
     u16: 'volcano_maungawhau.png' };
   for (const [type, file] of Object.entries(formats)) {
     const src = `/@fs${projectDir}tests/fixtures/${file}`;
-    const { page, problems } = await openPage(viewer.browser, `${viewer.url}?src=${encodeURIComponent(src)}&tau=1&budget=40&contours=1&cint=auto`, SIZE);
+    const { page, problems } = await openPage(viewer.browser, `${viewer.url}?src=${encodeURIComponent(src)}&tau=1&budget=40&contours=1&cint=auto`, SIZE, FULL_RESOLUTION);
     await page.addStyleTag({ content: '#hud, #side, #drop-hint, #status, #intake, #panel { display: none !important; }' });
     await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
     // Closer than the opening view, which shows the whole field small: lines far enough apart to judge.

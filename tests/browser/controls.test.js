@@ -10,7 +10,7 @@ let viewer, page, problems;
 // The pages open at a 50 ms frame budget: SwiftShader draws about a frame a second, and at the
 // default 4 ms the default view takes some 160 frames to converge. The budget test sets its own.
 before(async () => {
-  viewer = await startViewer();
+  viewer = await startViewer({ pixelRatio: 0.5 });
   ({ page, problems } = await openPage(viewer.browser, `${viewer.url}?budget=50`, { width: 480, height: 300 }));
   await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
 });

@@ -24,7 +24,7 @@ const pose = (page) => page.evaluate(() => {
 for (const site of ['dev', 'built']) {
   test(`${site} site: the default journey under the Content-Security-Policy reports no violation; the policy is in force`, async () => {
     assert.ok(POLICY?.includes("script-src 'self' 'wasm-unsafe-eval'"), 'public/index.html carries the policy');
-    const viewer = await startViewer({ site, hmr: site === 'dev' });
+    const viewer = await startViewer({ site, hmr: site === 'dev', pixelRatio: 0.5 });
     const context = await viewer.browser.newContext({ viewport: VIEWPORT, acceptDownloads: true }); // bypassCSP stays off
     try {
       const page = await context.newPage();

@@ -8,7 +8,7 @@ import { startViewer, openPage, outDir, projectDir, dropFiles } from '../../lib/
 
 const FIXTURES = `${projectDir}tests/fixtures/formats/`;
 let viewer;
-before(async () => { viewer = await startViewer(); });
+before(async () => { viewer = await startViewer({ pixelRatio: 0.5 }); });
 after(async () => { await viewer?.close(); });
 
 // The pages run at a 50 ms frame budget: the views converge in few of SwiftShader's slow frames.

@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import { startViewer, openPage, outDir, pixelStats } from '../../lib/page_harness.js';
 
 let viewer;
-before(async () => { viewer = await startViewer(); });
+before(async () => { viewer = await startViewer({ pixelRatio: 0.5 }); });
 after(async () => { await viewer?.close(); });
 
 /** Moves the orbit camera in the page and waits until `frames` more frames were drawn. */

@@ -54,7 +54,7 @@ const MEASURED = 'measure=p:1300000,1000000;1450000,1100000;1460000,960000';
 let viewer, page, cdp, boxedSize;
 before(async () => {
   boxedSize = await boxedNumberSize();
-  viewer = await startViewer();
+  viewer = await startViewer({ pixelRatio: 0.5 });
   // With a measured line, so its overlay is drawn in every frame profiled.
   ({ page } = await openPage(viewer.browser, `${viewer.url}?${MEASURED}`, { width: 240, height: 180 }));
   await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 180000 });

@@ -8,12 +8,13 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { decode, encode } from 'fast-png';
 import { readFileSync } from 'node:fs';
-import { startViewer, openPage, dropFiles, terrainShown, outDir } from '../../lib/page_harness.js';
+import { startViewer, openPage, dropFiles, terrainShown, outDir, FULL_RESOLUTION } from '../../lib/page_harness.js';
 import { BLUE_MARBLE_POINTS as POINTS, colourAt, coloursMatch, lookStraightDown, projectLonLat } from '../../lib/draped_points.js';
 
 // One browser and server for the file.
 let viewer;
-before(async () => { viewer = await startViewer(); });
+// Half a device pixel per CSS pixel but where colours at ground points are judged.
+before(async () => { viewer = await startViewer({ pixelRatio: 0.5 }); });
 after(async () => { await viewer?.close(); });
 
 // The draped view's window: the whole field from straight above, the image's 256 pixels over
@@ -23,7 +24,7 @@ const VIEW = 560;
 
 /** Opens the page, drapes the Blue Marble crop unlit from straight above, and returns the screenshot and the points' pixels. */
 async function drapedView(query = '') {
-  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1${query}`, { width: VIEW, height: VIEW });
+  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1${query}`, { width: VIEW, height: VIEW }, FULL_RESOLUTION);
   await page.waitForFunction(() => window.hexlod?.status === 'ready', null, { timeout: 240000 });
   // ?image= drapes it before the page is ready; else it is draped here.
   const draped = await page.evaluate(async (base) => {
@@ -107,7 +108,7 @@ function jpegHeader(width, height) {
 const text = (name, content) => ({ name, bytes: new TextEncoder().encode(content) });
 
 test('half over the field, bad images refused while it stays, back after a lost context, removed, and a photo PNG alone', async () => {
-  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1`, { width: 700, height: 700 });
+  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1`, { width: 700, height: 700 }, FULL_RESOLUTION);
   await page.waitForFunction(() => window.hexlod?.status === 'ready', null, { timeout: 240000 });
   await lookStraightDown(page);
   const shot = async (label) => {

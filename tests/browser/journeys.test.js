@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { decode } from 'fast-png';
 import { startViewer, openPage, outDir, projectDir, terrainCoverage, pageReady, dropFiles, terrainShown,
-  converged, eyeClearance, nextFrame } from '../../lib/page_harness.js';
+  converged, eyeClearance, nextFrame, FULL_RESOLUTION } from '../../lib/page_harness.js';
 
 const FIXTURES = `${projectDir}tests/fixtures/`;
 const VIEWPORT = { width: 960, height: 540 };
@@ -81,9 +81,8 @@ function everestHgt() {
 const quick = (query = '') => `${fullResolution()}&tau=0.5${query ? `&${query}` : ''}`;
 // The pages judged at full resolution (one device pixel per CSS pixel), at the default τ.
 const fullResolution = () => `${viewer.url}?budget=50`;
-const FULL = { deviceScaleFactor: 1 };
 test('the page opens on the default terrain over at least 75 % of a 1280×720 view; panel and HUD fold', async () => {
-  const { page, problems } = await openPage(viewer.browser, fullResolution(), { width: 1280, height: 720 }, FULL);
+  const { page, problems } = await openPage(viewer.browser, fullResolution(), { width: 1280, height: 720 }, FULL_RESOLUTION);
   await pageReady(page);
   await page.waitForFunction(() => window.hexlod.triangles > 20000, null, { timeout: 120000 });
   const seen = await terrainCoverage(page);
@@ -113,7 +112,7 @@ test('the page opens on the default terrain over at least 75 % of a 1280×720 vi
   await page.close();
 
   // A phone: panel and HUD start folded.
-  const phone = await openPage(viewer.browser, fullResolution(), { width: 390, height: 844 }, FULL);
+  const phone = await openPage(viewer.browser, fullResolution(), { width: 390, height: 844 }, FULL_RESOLUTION);
   await pageReady(phone.page);
   const layout = await phone.page.evaluate(() => ({
     panelClosed: document.querySelector('#panel .lil-gui.lil-root').classList.contains('lil-closed'),
@@ -220,7 +219,7 @@ function madeField(name, width, height, spacing, heightOf) {
 test('odd fields open framed: under the sea, above 4000 m, flat, a spike, 2×2, a profile, a thin strip, 0.5 m lidar', async () => {
   // At full resolution: the colour counts that tell shading from one flat colour are those of
   // this window's pixels.
-  const { page, problems } = await openPage(viewer.browser, fullResolution(), VIEWPORT, FULL);
+  const { page, problems } = await openPage(viewer.browser, fullResolution(), VIEWPORT, FULL_RESOLUTION);
   await pageReady(page);
   const wave = (low, high, period) => (i, j) => low + (high - low) * (0.5 + 0.25 * Math.sin(i / period) + 0.25 * Math.cos(j / (0.7 * period)));
   // The least coverage is what the whole field in view can fill: a spike 8 times higher than

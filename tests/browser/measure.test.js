@@ -7,10 +7,12 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { decode } from 'fast-png';
-import { startViewer, openPage, pageReady, drawFrames, outDir, projectDir } from '../../lib/page_harness.js';
+import { startViewer, openPage, pageReady, drawFrames, outDir, projectDir, FULL_RESOLUTION } from '../../lib/page_harness.js';
 
 let viewer;
-before(async () => { viewer = await startViewer(); });
+// Half a device pixel per CSS pixel but for the path, whose chart and ground line are judged by
+// their pixels.
+before(async () => { viewer = await startViewer({ pixelRatio: 0.5 }); });
 after(async () => { await viewer?.close(); });
 
 const DESKTOP = { width: 640, height: 480 };
@@ -81,7 +83,7 @@ const summaryText = (page) => page.evaluate(() => Object.fromEntries([...documen
   .map((dt) => [dt.textContent, dt.nextElementSibling.textContent])));
 
 test('a path: chart, figures, the line on the ground, hover, CSV and PNG, the address and a reload', async () => {
-  const { page, problems } = await openPage(viewer.browser, `${viewer.url}${quick}`, DESKTOP);
+  const { page, problems } = await openPage(viewer.browser, `${viewer.url}${quick}`, DESKTOP, FULL_RESOLUTION);
   await pageReady(page);
   await page.keyboard.press('m');
   assert.equal(await page.isVisible('#measure'), true, 'M shows the measuring panel');
@@ -186,7 +188,7 @@ test('a path: chart, figures, the line on the ground, hover, CSV and PNG, the ad
   await page.evaluate(() => window.hexlod.flushUrl());
   const href = await page.evaluate(() => location.href);
   assert.match(href, /[?&]measure=p:-?\d+(\.\d+)?,-?\d+(\.\d+)?;/);
-  const second = await openPage(viewer.browser, href, DESKTOP);
+  const second = await openPage(viewer.browser, href, DESKTOP, FULL_RESOLUTION);
   await pageReady(second.page);
   await drawFrames(second.page, 1);
   const restored = await toolState(second.page);

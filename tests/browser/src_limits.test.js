@@ -77,7 +77,7 @@ async function startDataServer() {
 
 let viewer, data, other;
 before(async () => {
-  [viewer, data, other] = await Promise.all([startViewer(), startDataServer(), startDataServer()]);
+  [viewer, data, other] = await Promise.all([startViewer({ pixelRatio: 0.5 }), startDataServer(), startDataServer()]);
 });
 after(async () => { await Promise.all([viewer?.close(), data?.close(), other?.close()]); });
 

@@ -40,7 +40,7 @@ function redPixels(png, box, scale) {
 }
 
 test('after a refused file, the status line and the HUD are both on screen and apart, phones included', async () => {
-  const viewer = await startViewer();
+  const viewer = await startViewer({ pixelRatio: 0.5 });
   try {
     for (const viewport of VIEWPORTS) {
       const { page, problems } = await openPage(viewer.browser, `${viewer.url}${QUERY}`, viewport);

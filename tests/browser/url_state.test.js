@@ -5,7 +5,7 @@ import assert from 'node:assert/strict';
 import { startViewer, openPage } from '../../lib/page_harness.js';
 
 let viewer;
-before(async () => { viewer = await startViewer(); });
+before(async () => { viewer = await startViewer({ pixelRatio: 0.5 }); });
 after(async () => { await viewer?.close(); });
 
 const ready = (page) => page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });

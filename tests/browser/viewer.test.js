@@ -5,7 +5,7 @@ import { decode } from 'fast-png';
 import { startViewer, openPage, outDir, pixelStats, skyFromTop, nextFrame } from '../../lib/page_harness.js';
 
 let viewer;
-before(async () => { viewer = await startViewer(); });
+before(async () => { viewer = await startViewer({ pixelRatio: 0.5 }); });
 after(async () => { await viewer?.close(); });
 
 // The default view, converged, in a small window: the first test judges it, the last draws it
