@@ -4,7 +4,7 @@
 // is taken, as the page pairs files dropped together.
 import { readFileSync, readdirSync, existsSync, statSync } from 'node:fs';
 import { basename, dirname, join } from 'node:path';
-import { worldFileNames } from '../web/imagery/world_file.js';
+import { worldFileNames } from '../web/geo/world_file.js';
 import { isUrl, urlFileName, fetchBytes } from './dem_source.js';
 
 /**

@@ -6,7 +6,7 @@ import { UsageError, parseOptions, parseNumber, loadForCommand, FILE_OPTIONS, FI
 import { fieldSampler } from '../web/measure/field_sampler.js';
 import { computeProfile } from '../web/measure/profile.js';
 import { profileCsv } from '../web/measure/profile_csv.js';
-import { geoCoordinates, formatCoordinates, crsToLocal } from '../web/measure/coordinates.js';
+import { geoCoordinates, formatCoordinates, crsToLocal } from '../web/geo/coordinates.js';
 import { formatLength } from '../web/measure/units.js';
 
 export const PROFILE_SHORT_USAGE = 'usage: hexlod profile <heightfield> --line X0,Y0,X1,Y1[,...] [--csv OUT] [--step M] [--crs]';

@@ -9,8 +9,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { startViewer, openPage, projectDir } from '../../lib/page_harness.js';
-import { readDirectory } from '../../web/loaders/tiff_directory.js';
-import { markerSegments } from '../../web/loaders/tiff_jpeg_stream.js';
+import { readDirectory } from '../../web/geo/tiff_directory.js';
+import { markerSegments } from '../../web/geo/tiff_jpeg_stream.js';
 
 const FIXTURES = `${projectDir}tests/fixtures/imagery/`;
 

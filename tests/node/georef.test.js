@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { loadHeightfield, HeightfieldError } from '../../web/loaders/index.js';
-import { compareCrs, crsOfEpsg, crsToSample, parseEpsg, sampleToCrs, UNKNOWN_CRS } from '../../web/loaders/georef.js';
+import { compareCrs, crsOfEpsg, crsToSample, parseEpsg, sampleToCrs, UNKNOWN_CRS } from '../../web/geo/georef.js';
 
 const ROOT = new URL('../../', import.meta.url);
 const read = (path) => new Uint8Array(readFileSync(new URL(path, ROOT)));

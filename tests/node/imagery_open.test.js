@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { openImage } from '../../web/imagery/open_image.js';
 import { ImageError } from '../../web/imagery/image_error.js';
-import { crsOfEpsg, makeGeoref } from '../../web/loaders/georef.js';
+import { crsOfEpsg, makeGeoref } from '../../web/geo/georef.js';
 
 const DIR = new URL('../fixtures/imagery/', import.meta.url);
 const file = (name) => ({ name, blob: new Blob([readFileSync(new URL(name, DIR))]) });

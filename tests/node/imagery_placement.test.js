@@ -2,12 +2,14 @@
 // texture coordinates, checked on known points, on half-overlapping images and on bad input.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { parseWorldFile, worldFileNames, isWorldFileName } from '../../web/imagery/world_file.js';
+import { parseWorldFile, worldFileNames, isWorldFileName } from '../../web/geo/world_file.js';
 import { placeImage } from '../../web/imagery/placement.js';
 import { ImageError } from '../../web/imagery/image_error.js';
-import { crsOfEpsg, makeGeoref, UNKNOWN_CRS } from '../../web/loaders/georef.js';
+import { crsOfEpsg, makeGeoref, UNKNOWN_CRS } from '../../web/geo/georef.js';
 
 const text = (s) => new TextEncoder().encode(s);
+// A world file's problems as the image reader reports them (image_location.js).
+const failAs = (name) => (problem) => { throw new ImageError(name, problem); };
 const near = (a, b, what, eps = 1e-9) => assert.ok(Math.abs(a - b) <= eps, `${what}: ${a} vs ${b}`);
 const uv = (p, column, row) => [column * p.scaleU + p.offsetU, row * p.scaleV + p.offsetV];
 
@@ -16,7 +18,7 @@ const UTM = crsOfEpsg(32611);
 const field = { width: 101, height: 51, georef: makeGeoref(UTM, 500000, 4000000, 10, -10, 'GeoTIFF') };
 
 test('world files: six numbers, north-up, named after their image', () => {
-  const g = parseWorldFile(text('2.5\n0\n0\n-2.5\n500001.25\n3999998.75\n'), 'o.pgw');
+  const g = parseWorldFile(text('2.5\n0\n0\n-2.5\n500001.25\n3999998.75\n'), failAs('o.pgw'));
   assert.deepEqual([g.dx, g.dy, g.x0, g.y0, g.crs, g.from], [2.5, -2.5, 500001.25, 3999998.75, UNKNOWN_CRS, 'world file']);
   assert.deepEqual(worldFileNames('Ortho.PNG'), ['ortho.pgw', 'ortho.pngw', 'ortho.wld']);
   assert.deepEqual(worldFileNames('scan.tiff'), ['scan.tfw', 'scan.tiffw', 'scan.wld']);
@@ -29,7 +31,7 @@ test('world files: six numbers, north-up, named after their image', () => {
     ['1\n0\n0\n0\n0\n0\n', /line 4: the pixel height is 0/],
     ['1e999\n0\n0\n-1\n0\n0\n', /line 1: "1e999" is not a number/],
   ]) {
-    assert.throws(() => parseWorldFile(text(body), 'w.pgw'), (e) => e instanceof ImageError && e.message.startsWith('w.pgw: ') && problem.test(e.message));
+    assert.throws(() => parseWorldFile(text(body), failAs('w.pgw')), (e) => e instanceof ImageError && e.message.startsWith('w.pgw: ') && problem.test(e.message));
   }
 });
 
@@ -47,7 +49,7 @@ test('an image on the field\'s own grid maps each sample to its pixel centre', (
 
 test('a finer image placed by a world file over the west half covers half the field', () => {
   // 2.5 m pixels: 4 per field cell. The image spans x 500000..500500 (the field spans 500000..501000).
-  const georef = parseWorldFile(text('2.5\n0\n0\n-2.5\n500001.25\n4000000\n'), 'west.pgw');
+  const georef = parseWorldFile(text('2.5\n0\n0\n-2.5\n500001.25\n4000000\n'), failAs('west.pgw'));
   const image = { name: 'west.png', width: 200, height: 201, georef };
   const p = placeImage(field, image);
   assert.match(p.note, /the image names no CRS: taken to be in EPSG:32611/);

@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { readTiffImage } from '../../web/imagery/image_tiff.js';
 import { ImageError } from '../../web/imagery/image_error.js';
-import { crsToSample } from '../../web/loaders/georef.js';
+import { crsToSample } from '../../web/geo/georef.js';
 
 const DIR = new URL('../fixtures/imagery/', import.meta.url);
 const read = (name) => new Uint8Array(readFileSync(new URL(name, DIR)));

@@ -138,3 +138,22 @@ test('every relative import names a file that exists', () => {
     .map(({ file, line, target }) => `${file}:${line} -> ${target}`);
   assert.equal(missing.length, 0, `${missing.length} imports of missing files:\n  ${missing.join('\n  ')}`);
 });
+
+test('the page reaches geography and TIFF reading only through web/geo/index.js', () => {
+  // web/geo/ is the one home of CRSs, georeferences and the TIFF reader; its files are its own.
+  const geo = `web${sep}geo${sep}`;
+  const broken = edges.filter(({ file, target }) => file.startsWith(`web${sep}`) && !file.startsWith(geo) &&
+    target.startsWith(geo) && target !== `${geo}index.js`).map(({ file, line, target }) => `${file}:${line} -> ${target}`);
+  assert.ok(edges.some(({ file, target }) => !file.startsWith(geo) && target === `${geo}index.js`), 'no import of web/geo/index.js found');
+  assert.equal(broken.length, 0, `${broken.length} imports of web/geo/ internals:\n  ${broken.join('\n  ')}`);
+});
+
+test('the geotiff library is opened in one place, which registers our decoders once', () => {
+  // Who imports the library's ways to open a file (or its registry of decoders).
+  const OPENERS = new Set(['default', 'fromArrayBuffer', 'fromSource', 'fromBlob', 'fromUrl', 'addDecoder']);
+  const opened = FOLDERS.flatMap(sourceFiles).filter((file) => file.startsWith(`web${sep}`) &&
+    parse(readFileSync(join(root, file), 'utf8'), { ecmaVersion: 'latest', sourceType: 'module' }).body.some((node) =>
+      node.type === 'ImportDeclaration' && node.source.value === 'geotiff' &&
+      node.specifiers.some((s) => OPENERS.has(s.type === 'ImportDefaultSpecifier' ? 'default' : s.imported?.name))));
+  assert.deepEqual(opened.sort(), [`web${sep}geo${sep}tiff_decoders.js`, `web${sep}geo${sep}tiff_open.js`]);
+});

@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { loadHeightfield } from '../../web/loaders/index.js';
-import { geoCoordinates, formatCoordinates, crsToLocal, localLabel } from '../../web/measure/coordinates.js';
+import { geoCoordinates, formatCoordinates, crsToLocal, localLabel } from '../../web/geo/coordinates.js';
 
 const ROOT = new URL('../../', import.meta.url);
 const read = (path) => new Uint8Array(readFileSync(new URL(path, ROOT)));

@@ -7,10 +7,10 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { getDecoder, fromArrayBuffer } from 'geotiff';
-import { tiffJpegStream, jpegFrame, markerSegments } from '../../web/loaders/tiff_jpeg_stream.js';
+import { tiffJpegStream, jpegFrame, markerSegments } from '../../web/geo/tiff_jpeg_stream.js';
 import { readTiffImage } from '../../web/imagery/image_tiff.js';
 import { ImageError } from '../../web/imagery/image_error.js';
-import { readDirectory } from '../../web/loaders/tiff_directory.js';
+import { readDirectory } from '../../web/geo/tiff_directory.js';
 
 const DIR = new URL('../fixtures/imagery/', import.meta.url);
 const read = (name) => new Uint8Array(readFileSync(new URL(name, DIR)));

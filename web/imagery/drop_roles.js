@@ -9,10 +9,8 @@
 
 import { extensionOf } from '../loaders/common.js';
 import { hasPngSignature } from '../loaders/png.js';
-import { hasTiffSignature } from '../loaders/geotiff.js';
-import { readDirectory } from '../loaders/tiff_directory.js';
+import { hasTiffSignature, readDirectory, isWorldFileName, worldFileNames } from '../geo/index.js';
 import { encodingFromName } from '../loaders/terrain_rgb.js';
-import { isWorldFileName, worldFileNames } from './world_file.js';
 import { ImageError } from './image_error.js';
 
 const JPEG_SIGNATURE = [0xff, 0xd8, 0xff];

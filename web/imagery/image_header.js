@@ -4,7 +4,7 @@
 // for exactly this, EXIF orientation included); TIFFs are read by image_tiff.js.
 
 import { imageSize } from 'image-size';
-import { hasTiffSignature } from '../loaders/geotiff.js';
+import { hasTiffSignature } from '../geo/index.js';
 import { ImageError } from './image_error.js';
 
 /** Bytes read to find a PNG, JPEG or WebP's size: JPEG's frame header may follow long EXIF and ICC blocks. */

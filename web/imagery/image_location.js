@@ -5,9 +5,8 @@
 // (hexlod mesh --image, which only needs texture coordinates) take these steps here, so both
 // place and refuse an image alike.
 
-import { degreesToMetres } from '../loaders/common.js';
+import { degreesToMetres, parseWorldFile } from '../geo/index.js';
 import { readImageHeader, HEADER_BYTES } from './image_header.js';
-import { parseWorldFile } from './world_file.js';
 import { placeImage } from './placement.js';
 import { readTiffImage } from './image_tiff.js';
 import { ImageError } from './image_error.js';
@@ -16,7 +15,7 @@ import { ImageError } from './image_error.js';
  * @typedef {object} ImageLocation
  * @property {number} width pixels
  * @property {number} height
- * @property {import('../loaders/georef.js').Georef|null} georef the one used (world file, else the file's own)
+ * @property {import('../geo/georef.js').Georef|null} georef the one used (world file, else the file's own)
  * @property {import('./placement.js').Placement} placement
  * @property {number|null} metresPerPixel across, on the ground (null when stretched over a field without spacing)
  */
@@ -27,7 +26,7 @@ import { ImageError } from './image_error.js';
  * @throws {ImageError} for a world file that is not one
  */
 export function worldFileGeoref(worldFile) {
-  return worldFile ? parseWorldFile(worldFile.bytes, worldFile.name) : null;
+  return worldFile ? parseWorldFile(worldFile.bytes, (problem) => { throw new ImageError(worldFile.name, problem); }) : null;
 }
 
 /**

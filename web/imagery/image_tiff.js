@@ -8,14 +8,8 @@
 // browser's, tiff_jpeg_band.js) where there is one; a band it fails on, and every other image,
 // is read by the geotiff library.
 
-import { fromArrayBuffer } from 'geotiff';
-import '../loaders/tiff_decoders.js';
-import { readDirectory } from '../loaders/tiff_directory.js';
-import { blockLayout, checkBlocks } from '../loaders/tiff_blocks.js';
-import { georefOfTiff } from '../loaders/tiff_georef.js';
-import { hasTiffSignature } from '../loaders/geotiff.js';
-import { shown } from '../loaders/common.js';
-import { libraryGuard, fileBuffer } from '../loaders/tiff_library.js';
+import { readDirectory, blockLayout, checkBlocks, georefOfTiff, hasTiffSignature, shown, libraryGuard, fileBuffer,
+  openTiffBuffer } from '../geo/index.js';
 import { ImageError } from './image_error.js';
 import { decodeJpegBand } from './tiff_jpeg_band.js';
 
@@ -28,7 +22,7 @@ const BAND_PIXELS = 1 << 21;
  * @param {Uint8Array} bytes the file
  * @param {string} name for messages
  * @param {object} options
- * @param {(width: number, height: number, georef: import('../loaders/georef.js').Georef|null) => void|false} options.begin
+ * @param {(width: number, height: number, georef: import('../geo/georef.js').Georef|null) => void|false} options.begin
  *   called once, after the file has proven its size and before the first band (the caller
  *   checks that it fits and lies on the field, and reserves textures); returning false stops
  *   there, with no band decoded (a caller that needs only the size and georeference)
@@ -37,7 +31,7 @@ const BAND_PIXELS = 1 << 21;
  * @param {(fraction: number) => Promise<void>} [options.pace] between slices of work
  * @param {import('./tiff_jpeg_band.js').JpegDecoder|null} [options.decodeJpeg] decodes the blocks
  *   of a JPEG-compressed grey, RGB or YCbCr image (the library does without it)
- * @returns {Promise<{ width: number, height: number, georef: import('../loaders/georef.js').Georef|null,
+ * @returns {Promise<{ width: number, height: number, georef: import('../geo/georef.js').Georef|null,
  *   kind: string, nodata: number|null }>}
  * @throws {ImageError}
  */
@@ -47,7 +41,7 @@ export async function readTiffImage(bytes, name, { begin, onBand, pace = async (
   if (!hasTiffSignature(bytes)) fail('not a TIFF file (bad signature)');
   const directory = readDirectory(bytes, fail);
   const buffer = fileBuffer(bytes);
-  const image = await guard('bad TIFF structure', async () => (await fromArrayBuffer(buffer)).getImage(0));
+  const image = await guard('bad TIFF structure', async () => (await openTiffBuffer(buffer)).getImage(0));
   const dir = image.fileDirectory;
   const tag = (key) => guard(`bad TIFF tag ${key}`, () => dir.loadValue(key));
   const [width, height] = [await tag('ImageWidth'), await tag('ImageLength')];

@@ -7,7 +7,7 @@
 // both sides, the image is stretched over the field: its outer pixel edges on the field's outer
 // samples.
 
-import { compareCrs } from '../loaders/georef.js';
+import { compareCrs } from '../geo/index.js';
 import { ImageError } from './image_error.js';
 
 /**
@@ -22,8 +22,8 @@ import { ImageError } from './image_error.js';
  */
 
 /**
- * @param {{ width: number, height: number, georef: import('../loaders/georef.js').Georef|null }} field
- * @param {{ name: string, width: number, height: number, georef: import('../loaders/georef.js').Georef|null }} image
+ * @param {{ width: number, height: number, georef: import('../geo/georef.js').Georef|null }} field
+ * @param {{ name: string, width: number, height: number, georef: import('../geo/georef.js').Georef|null }} image
  * @returns {Placement}
  * @throws {ImageError} when the CRSs differ or the image misses the field
  */

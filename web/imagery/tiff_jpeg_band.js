@@ -5,7 +5,7 @@
 // cropped (a JPEG block is always stored at full block size), so no more than about one band's
 // pixels is held besides the band.
 
-import { tiffJpegStream } from '../loaders/tiff_jpeg_stream.js';
+import { tiffJpegStream } from '../geo/index.js';
 
 /**
  * @typedef {(stream: Uint8Array) => Promise<{ width: number, height: number, rgba: Uint8Array|Uint8ClampedArray }>} JpegDecoder

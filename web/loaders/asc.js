@@ -3,9 +3,9 @@
 // numbers, north row first. Heights become float32 metres; NODATA cells are filled later.
 // The numbers are parsed straight from the bytes: no string per value, no copy of the text.
 
-import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, degreesToMetres } from './common.js';
+import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize } from './common.js';
+import { degreesToMetres, crsOfEpsg, makeGeoref, UNKNOWN_CRS } from '../geo/index.js';
 import { SampleSink, pacer } from './pacing.js';
-import { crsOfEpsg, makeGeoref, UNKNOWN_CRS } from './georef.js';
 
 const KEYS = ['ncols', 'nrows', 'xllcorner', 'xllcenter', 'yllcorner', 'yllcenter', 'cellsize', 'dx', 'dy', 'nodata_value'];
 

@@ -1,5 +1,6 @@
 // Shared pieces of the height-field loaders: the error type, size limits and
 // the call to the caller's allocate(). Plain ES module (browser and Node).
+import { shown } from '../geo/index.js';
 
 /**
  * Thrown for every bad input file. `message` is one line, "<file>: <problem>".
@@ -56,16 +57,6 @@ export function checkSize(file, width, height, maxSamples) {
   }
 }
 
-/** A value for a message: numbers as they are, anything else as JSON ("87" for a string). */
-export function shown(v) {
-  if (typeof v === 'number') return String(v);
-  if (Array.isArray(v) || ArrayBuffer.isView(v)) { // a tag's values: the first few, and how many
-    const values = Array.from(v.slice(0, 4), (x) => shown(x));
-    return v.length <= 4 ? `[${values.join(', ')}]` : `[${values.join(', ')}, … ${v.length} values]`;
-  }
-  const text = JSON.stringify(v) ?? String(v);
-  return text.length > 80 ? `${text.slice(0, 80)}…` : text;
-}
 
 /**
  * Calls allocate exactly once and checks that it kept its side of the contract.
@@ -118,22 +109,4 @@ export function baseNameOf(name) {
 /** Name of a file without its directories ('a/b/N27E086.hgt' -> 'N27E086.hgt'). */
 export function fileNameOf(name) {
   return name.slice(Math.max(name.lastIndexOf('/'), name.lastIndexOf('\\')) + 1);
-}
-
-/** Mean radius of the Earth in metres (the sphere EPSG:4326 distances are taken on here). */
-const EARTH_RADIUS_M = 6371008.8;
-const METRES_PER_DEGREE = (Math.PI / 180) * EARTH_RADIUS_M;
-
-/**
- * Ground spacing of a geographic grid (steps in degrees) at a latitude: north-south is the
- * arc of the step, east-west shrinks with cos(latitude). Accurate to ~0.5 % against the
- * ellipsoid, far below what a viewer can see.
- * @param {number} stepLonDeg degrees between columns
- * @param {number} stepLatDeg degrees between rows
- * @param {number} latitudeDeg latitude of the data's centre
- * @returns {{ spacingX: number, spacingY: number }} metres
- */
-export function degreesToMetres(stepLonDeg, stepLatDeg, latitudeDeg) {
-  const cos = Math.max(Math.cos((latitudeDeg * Math.PI) / 180), 1e-6);
-  return { spacingX: Math.abs(stepLonDeg) * METRES_PER_DEGREE * cos, spacingY: Math.abs(stepLatDeg) * METRES_PER_DEGREE };
 }

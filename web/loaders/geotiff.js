@@ -10,25 +10,12 @@
 // Spacing comes from the geotransform: metres (or feet) for projected grids, degrees for
 // geographic ones (EPSG:4326 and friends), turned into metres at the raster's mid latitude.
 
-import { fromArrayBuffer } from 'geotiff';
-import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, degreesToMetres, shown } from './common.js';
+import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize } from './common.js';
+import { hasTiffSignature, parseNodata, sampleTypeOf, spacingOf, readDirectory, libraryGuard, fileBuffer, openTiffBuffer, blockLayout,
+  checkBlocks, dataExtent, readBlocks, georefOfTiff, shiftGeoref } from '../geo/index.js';
 import { SampleSink, pacer } from './pacing.js';
-import './tiff_decoders.js';
-import { readDirectory } from './tiff_directory.js';
-import { libraryGuard, fileBuffer } from './tiff_library.js';
-import { blockLayout, checkBlocks, dataExtent } from './tiff_blocks.js';
-import { readBlocks } from './tiff_raster.js';
-import { georefOfTiff } from './tiff_georef.js';
-import { shiftGeoref } from './georef.js';
 
-const GEOGRAPHIC_MODEL = 2; // GTModelTypeGeoKey: 1 projected, 2 geographic
-const LINEAR_UNITS_M = { 9001: 1, 9002: 0.3048, 9003: 0.3048006096012192 }; // EPSG unit codes
 
-/** True when bytes start with a TIFF or BigTIFF header. */
-export function hasTiffSignature(bytes) {
-  return bytes.length >= 4 && ((bytes[0] === 0x49 && bytes[1] === 0x49 && (bytes[2] === 0x2a || bytes[2] === 0x2b) && bytes[3] === 0) ||
-    (bytes[0] === 0x4d && bytes[1] === 0x4d && bytes[2] === 0 && (bytes[3] === 0x2a || bytes[3] === 0x2b)));
-}
 
 /**
  * @returns {Promise<{ width, height, sampleType, samples, nodata: number|null, spacingX: number|null,
@@ -57,7 +44,7 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
 /**
  * The first image's size and sample type, checked, and where it lies: what a mosaic needs of a
  * tile before any tile is decoded (mosaic.js). Reads the directory, not the samples.
- * @returns {Promise<{ width: number, height: number, sampleType: string, georef: import('./georef.js').Georef|null }>}
+ * @returns {Promise<{ width: number, height: number, sampleType: string, georef: import('../geo/georef.js').Georef|null }>}
  */
 export async function probeGeoTiff(bytes, name, options = {}) {
   const { width, height, sampleType, image } = await openGeoTiff(bytes, name, options);
@@ -74,7 +61,7 @@ async function openGeoTiff(bytes, name, options) {
   // Every call into the library goes through the guard (tiff_library.js).
   const guard = libraryGuard(fail, HeightfieldError);
   const buffer = fileBuffer(bytes);
-  const image = await guard('bad TIFF structure', async () => (await fromArrayBuffer(buffer)).getImage(0));
+  const image = await guard('bad TIFF structure', async () => (await openTiffBuffer(buffer)).getImage(0));
   const dir = image.fileDirectory;
   const [width, height] = await guard('bad TIFF image size', () => Promise.all([dir.loadValue('ImageWidth'), dir.loadValue('ImageLength')]));
   if (width === undefined || height === undefined) fail('bad TIFF: image size missing');
@@ -86,50 +73,8 @@ async function openGeoTiff(bytes, name, options) {
   return { fail, guard, image, directory, width, height, format, bits, sampleType };
 }
 
-/**
- * The GDAL no-data tag (42113): ASCII text holding a number, "-32768" (with or without its
- * terminating NUL). "nan" and "inf" give no value: NaN samples are no-data anyway, and an
- * infinite one is damage.
- */
-export function parseNodata(value, fail) {
-  if (value === undefined) return null;
-  if (typeof value !== 'string') fail(`bad TIFF: the no-data tag (42113) holds ${shown(value)}, not the text of a number`);
-  const text = value.replace(/\0+$/, '').trim();
-  if (/^[+-]?(nan|inf|infinity)$/i.test(text)) return null;
-  const v = text === '' ? NaN : Number(text);
-  if (!Number.isFinite(v)) fail(`bad TIFF: the no-data tag (42113) is not a number (${JSON.stringify(text.slice(0, 40))})`);
-  return v;
-}
 
-export function sampleTypeOf(format, bits) {
-  if (format === 1 && bits === 8) return 'u8';
-  if (format === 1 && bits === 16) return 'u16';
-  if (format === 2 && bits === 16) return 'i16';
-  if ((format === 1 || format === 2) && bits === 32) return 'f32';
-  if (format === 3 && (bits === 32 || bits === 64)) return 'f32';
-  return null;
-}
 
-/** Metres between columns and rows from the geotransform, or nulls without one. */
-export function spacingOf(image, middleRow) {
-  let resolution, origin;
-  try {
-    resolution = image.getResolution();
-    origin = image.getOrigin();
-  } catch {
-    return { spacingX: null, spacingY: null, geographic: false };
-  }
-  const [rx, ry] = resolution.map(Math.abs);
-  if (!(rx > 0) || !(ry > 0) || !Number.isFinite(rx) || !Number.isFinite(ry)) return { spacingX: null, spacingY: null, geographic: false };
-  let keys = null;
-  try { keys = image.getGeoKeys(); } catch { keys = null; }
-  if (keys?.GTModelTypeGeoKey === GEOGRAPHIC_MODEL) {
-    const midLatitude = origin[1] + resolution[1] * middleRow; // resolution[1] < 0: rows go south
-    return { ...degreesToMetres(rx, ry, Math.max(-90, Math.min(90, midLatitude))), geographic: true };
-  }
-  const unit = LINEAR_UNITS_M[keys?.ProjLinearUnitsGeoKey] ?? 1;
-  return { spacingX: rx * unit, spacingY: ry * unit, geographic: false };
-}
 
 function rejectInfinities(samples, width, fail) {
   for (let i = 0; i < samples.length; i++) {

@@ -2,10 +2,10 @@
 // metres, no header, voids = -32768. A tile spans one degree; its name gives its south-west
 // corner (N27E086.hgt), hence the latitude that turns arc-seconds into metres.
 
-import { HeightfieldError, degreesToMetres, fileNameOf } from './common.js';
+import { HeightfieldError, fileNameOf } from './common.js';
+import { degreesToMetres, crsOfEpsg, makeGeoref } from '../geo/index.js';
 import { SampleSink } from './pacing.js';
 import { copyRows } from './copy_rows.js';
-import { crsOfEpsg, makeGeoref } from './georef.js';
 
 export const HGT_VOID = -32768;
 const SIDES = [1201, 3601];
@@ -29,7 +29,7 @@ export function tileLatitude(name) {
 /**
  * A tile's size (from its byte count) and where it lies (from its name), before any sample is
  * read: what a mosaic needs of a tile (mosaic.js).
- * @returns {{ width: number, height: number, sampleType: 'i16', georef: import('./georef.js').Georef|null }}
+ * @returns {{ width: number, height: number, sampleType: 'i16', georef: import('../geo/georef.js').Georef|null }}
  */
 export function probeHgt(bytes, name) {
   const side = SIDES.find((n) => n * n * 2 === bytes.length);

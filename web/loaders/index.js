@@ -11,7 +11,8 @@ import { decodeRaw, SizeNeededError } from './raw.js';
 import { decodePgm, hasPgmSignature } from './pgm.js';
 import { decodeHgt, probeHgt } from './hgt.js';
 import { decodeAsc, hasAscHeader } from './asc.js';
-import { decodeGeoTiff, hasTiffSignature, probeGeoTiff } from './geotiff.js';
+import { decodeGeoTiff, probeGeoTiff } from './geotiff.js';
+import { hasTiffSignature } from '../geo/index.js';
 import { loadMosaic } from './mosaic.js';
 import { parseSidecar, sidecarGeoref } from './sidecar.js';
 import { fillNodata } from './nodata.js';
@@ -45,7 +46,7 @@ export const ACCEPT_EXTENSIONS = Object.keys(KIND_OF_EXTENSION).map((e) => `.${e
  *   are always no-data in addition. Missing samples are already filled (see `missing`).
  * @property {number} missing how many no-data samples were filled by interpolation
  * @property {string|null} encoding 'terrain-rgb' | 'terrarium' for encoded PNGs
- * @property {import('./georef.js').Georef|null} georef where the samples lie on the Earth (the
+ * @property {import('../geo/georef.js').Georef|null} georef where the samples lie on the Earth (the
  *   sidecar's crs and bounds, else the file's own), null when nothing says
  * @property {{ column: number, row: number, width: number, height: number }|null} cropped for a
  *   sparse GeoTIFF whose empty blocks surround its data: where the field starts in the file's

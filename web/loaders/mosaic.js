@@ -8,10 +8,10 @@
 // allocated once, then each tile is decoded into an array of its own size, copied in and
 // dropped: the mosaic and one decoded tile are held at a time, never every tile.
 
-import { HeightfieldError, defaultAllocate, degreesToMetres } from './common.js';
+import { HeightfieldError, defaultAllocate } from './common.js';
+import { degreesToMetres, makeGeoref } from '../geo/index.js';
 import { SampleSink } from './pacing.js';
 import { fillNodata } from './nodata.js';
-import { makeGeoref } from './georef.js';
 
 /** How far (in samples) a tile's offset may lie from a whole number of steps: rounding in the files' doubles, not a shifted grid. */
 const GRID_TOLERANCE = 1e-3;

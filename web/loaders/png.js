@@ -16,7 +16,7 @@ import {
   HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, describeContent,
 } from './common.js';
 import { SampleSink, pacer } from './pacing.js';
-import { inflate, isInflateError } from './inflate.js';
+import { inflate, isInflateError } from '../geo/index.js';
 import { ENCODINGS, encodingFromName, detectEncoding } from './terrain_rgb.js';
 
 const SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];

@@ -2,7 +2,8 @@
 // terrain editors export them). The file does not say its size: a square one is inferred,
 // otherwise width and height come from the caller (a dialog, CLI flags) or a NAME.json sidecar.
 
-import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize, shown } from './common.js';
+import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize } from './common.js';
+import { shown } from '../geo/index.js';
 import { SampleSink } from './pacing.js';
 import { copyRows } from './copy_rows.js';
 

@@ -3,7 +3,7 @@
 // the rest (licence, origin, ...) is ignored.
 
 import { HeightfieldError } from './common.js';
-import { crsOfEpsg, makeGeoref, parseEpsg, UNKNOWN_CRS } from './georef.js';
+import { crsOfEpsg, makeGeoref, parseEpsg, UNKNOWN_CRS } from '../geo/index.js';
 
 /**
  * @typedef {object} Sidecar
@@ -17,7 +17,7 @@ import { crsOfEpsg, makeGeoref, parseEpsg, UNKNOWN_CRS } from './georef.js';
  * @property {number|null} nodata raw no-data value, if given
  * @property {{ west: number, east: number, south: number, north: number }|null} bounds the
  *   grid's outer cell edges in its CRS (`bounds`, `bounds_deg` or `bounds_epsgNNNN`), if given
- * @property {import('./georef.js').Crs} crs from `crs` ("EPSG:32611 ..."), or unknown
+ * @property {import('../geo/georef.js').Crs} crs from `crs` ("EPSG:32611 ..."), or unknown
  */
 
 /**
@@ -92,7 +92,7 @@ function parseBounds(value, key, fail) {
 /**
  * The georeference a sidecar gives a width x height grid (north row first): its bounds are the
  * outer edges of the outer cells, so sample centres lie half a cell inside.
- * @returns {import('./georef.js').Georef|null}
+ * @returns {import('../geo/georef.js').Georef|null}
  */
 export function sidecarGeoref(sidecar, width, height) {
   if (!sidecar?.bounds) return null;

@@ -20,13 +20,13 @@
  * @property {number} rows rows of samples
  * @property {(x: number, z: number) => number} heightAt metres, bilinear between the four
  *   samples around (x, z) metres; NaN outside [0, extentX] x [0, extentZ] or on no-data
- * @property {import('../loaders/georef.js').Georef|null} georef where the samples lie on the Earth
+ * @property {import('../geo/georef.js').Georef|null} georef where the samples lie on the Earth
  */
 
 /**
  * A sampler over a core terrain (web/core/core.js Terrain, after setScale and prepare).
  * @param {{width: number, height: number, spacingX: number, spacingY: number, heightAt: (x: number, z: number) => number}} terrain
- * @param {import('../loaders/georef.js').Georef|null} [georef]
+ * @param {import('../geo/georef.js').Georef|null} [georef]
  * @returns {FieldSampler}
  */
 export function fieldSampler(terrain, georef = null) {

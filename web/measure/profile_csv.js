@@ -4,11 +4,11 @@
 // first sample), then the CRS coordinates when the field has a georeference (easting_m,
 // northing_m, plus lon, lat where coordinates.js can invert the projection; lon, lat for a
 // geographic CRS), and height_m.
-import { geoCoordinates } from './coordinates.js';
+import { geoCoordinates } from '../geo/index.js';
 
 /**
  * @param {import('./profile.js').Profile} profile
- * @param {import('../loaders/georef.js').Georef|null} [georef]
+ * @param {import('../geo/georef.js').Georef|null} [georef]
  * @param {number} [spacingX] metres between columns (default: the profile's)
  * @param {number} [spacingY] metres between rows
  * @returns {string} CSV text, lines ending in '\n'

@@ -8,13 +8,8 @@
 // file (web/loaders/tiff_blocks.js, tiff_decoders.js), so a streamed tile equals the same
 // window of the file loaded whole.
 
-import GeoTIFF from 'geotiff';
-import '../loaders/tiff_decoders.js';
-import { hasTiffSignature, parseNodata, sampleTypeOf, spacingOf } from '../loaders/geotiff.js';
-import { blockLayout, measurer } from '../loaders/tiff_blocks.js';
-import { georefOfTiff } from '../loaders/tiff_georef.js';
-import { libraryGuard } from '../loaders/tiff_library.js';
-import { TYPED_ARRAYS, GETTERS, LITTLE_ENDIAN_HOST } from '../loaders/tiff_raster.js';
+import { hasTiffSignature, parseNodata, sampleTypeOf, spacingOf, blockLayout, measurer, georefOfTiff, libraryGuard, openTiffSource,
+  TYPED_ARRAYS, GETTERS, LITTLE_ENDIAN_HOST } from '../geo/index.js';
 import { SAMPLE_ARRAYS } from '../loaders/common.js';
 import { StreamError, checkAborted } from './stream_error.js';
 import { urlReader, blobReader } from './range_reader.js';
@@ -62,7 +57,7 @@ export async function openCog(input, options = {}) {
   const head = new Uint8Array((await source.fetch([{ offset: 0, length: 16 }], signal))[0]);
   if (head.length < 8) fail(head.length === 0 ? 'empty file' : `truncated: ${head.length} bytes, no TIFF header`);
   if (!hasTiffSignature(head)) fail('not a TIFF file (bad signature)');
-  const tiff = await guard('bad TIFF structure', () => GeoTIFF.fromSource(source, {}, signal));
+  const tiff = await guard('bad TIFF structure', () => openTiffSource(source, signal));
   const count = await guard('bad TIFF image directories', () => tiff.getImageCount());
 
   const levels = [], layouts = [];
@@ -133,7 +128,7 @@ export class CogSource {
     this.sampleType = full.sampleType;
     /** raw value of a missing sample, or null */
     this.nodata = full.nodata;
-    /** @type {import('../loaders/georef.js').Georef|null} sample centres to model coordinates */
+    /** @type {import('../geo/georef.js').Georef|null} sample centres to model coordinates */
     this.georef = georefOfTiff(full.image);
     /** {min, max} raw sample range of the whole file from GDAL's statistics, or null */
     this.statistics = full.statistics;

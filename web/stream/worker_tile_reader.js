@@ -85,7 +85,7 @@ export class WorkerTileReader {
     this.sampleType = info.sampleType;
     /** raw value of a missing sample, or null */
     this.nodata = info.nodata;
-    /** @type {import('../loaders/georef.js').Georef|null} */
+    /** @type {import('../geo/georef.js').Georef|null} */
     this.georef = info.georef;
     this.statistics = info.statistics ?? null;
     /** metres between columns and rows, or nulls */

@@ -14,7 +14,7 @@ import { fetchLimited, formatMB, LimitError } from './url_fetch.js';
 import { SETTINGS } from '../app/settings_table.js';
 import { dropRoles, IMAGE_EXTENSIONS } from '../imagery/drop_roles.js';
 import { ImageError } from '../imagery/image_error.js';
-import { worldFileCandidates } from '../imagery/world_file.js';
+import { worldFileCandidates } from '../geo/index.js';
 import { detectPngEncoding, hasPngSignature } from '../loaders/png.js';
 import { isTiffName, shouldStreamFile, openStream } from './stream_open.js';
 import { MAKE_COG } from '../stream/cog_source.js';

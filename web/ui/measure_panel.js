@@ -5,7 +5,7 @@
 import { ProfileChart } from './profile_chart.js';
 import { profileCsv } from '../measure/profile_csv.js';
 import { formatLength } from '../measure/units.js';
-import { geoCoordinates, formatCoordinates } from '../measure/coordinates.js';
+import { geoCoordinates, formatCoordinates } from '../geo/index.js';
 
 const HINT = {
   path: 'Click points on the ground · double click or Enter ends · Backspace undoes · Esc clears',

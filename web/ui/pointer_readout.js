@@ -3,7 +3,7 @@
 // around the point under the pointer (not while the measuring tool takes the clicks). The readout
 // carries the point's real coordinates when the field has a georeference (web/measure/coordinates.js).
 import { pickGround } from '../cameras/picking.js';
-import { geoCoordinates, formatCoordinates } from '../measure/coordinates.js';
+import { geoCoordinates, formatCoordinates } from '../geo/index.js';
 
 const READOUT_INTERVAL_MS = 50;
 

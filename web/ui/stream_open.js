@@ -6,8 +6,7 @@
 import { openCog } from '../stream/cog_source.js';
 import { openWorkerPool } from '../stream/worker_tile_reader.js';
 import { openStreamedTerrain, levelBytes } from '../stream/streamed_terrain.js';
-import { hasTiffSignature } from '../loaders/geotiff.js';
-import { readDirectory } from '../loaders/tiff_directory.js';
+import { hasTiffSignature, readDirectory } from '../geo/index.js';
 
 const TILE_WIDTH = 322; // TIFF tag: a tiled image has it, a striped one not
 

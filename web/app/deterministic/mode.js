@@ -14,7 +14,7 @@
 // conventional world file names beside it).
 import { mat4, vec3 } from 'gl-matrix';
 import { parseFlight, flightSettings, FlightCamera, FlightRecord } from './flight.js';
-import { worldFileNames } from '../../imagery/world_file.js';
+import { worldFileNames } from '../../geo/index.js';
 
 /** The camera the renderer draws with: posed from FlightCamera every frame (tests pose one the same way). */
 export class ScriptedCamera {

@@ -11,7 +11,7 @@
 // before the decode proper.
 
 import { getDecoder } from 'geotiff';
-import { shown } from './common.js';
+import { shown } from './shown.js';
 import { inflatedLength } from './inflate.js';
 import { lzwLength } from './tiff_lzw.js';
 import { jpegFrame } from './tiff_jpeg_stream.js';

@@ -5,7 +5,7 @@
 // Mercator (3857). NAD83 and ETRS89 latitudes and longitudes are given in their own datum
 // (within about a metre of WGS 84); no datum shift is applied.
 import proj4 from 'proj4';
-import { sampleToCrs } from '../loaders/georef.js';
+import { sampleToCrs } from './georef.js';
 
 /** What the HUD says of a field without a georeference. */
 export const localLabel = 'local metres (no CRS)';
@@ -21,7 +21,7 @@ export const localLabel = 'local metres (no CRS)';
  */
 
 /**
- * @param {import('../loaders/georef.js').Georef|null} georef
+ * @param {import('./georef.js').Georef|null} georef
  * @param {number} x local metres east of the first sample (x = column * spacingX)
  * @param {number} z local metres south of the first sample (z = row * spacingY)
  * @param {number} spacingX metres between columns, as the terrain has it

@@ -22,7 +22,7 @@ export const LITTLE_ENDIAN_HOST = new Uint8Array(new Uint16Array([1]).buffer)[0]
  * @param {import('geotiff').GeoTIFFImage} image
  * @param {Awaited<ReturnType<typeof import('./tiff_blocks.js').blockLayout>>} layout its blocks, checked
  * @param {Uint8Array} bytes the file
- * @param {import('./pacing.js').SampleSink} sink samples of the extent only
+ * @param {import('../loaders/pacing.js').SampleSink} sink samples of the extent only
  * @param {{ x: number, y: number, width: number, height: number }} extent the part of the image
 *   read (tiff_blocks.js dataExtent: whole blocks, except at the image's right and bottom edges)
  * @param {{ format: number, bits: number, nodata: number|null }} sample SampleFormat and

@@ -6,8 +6,7 @@
 // The same convention as our georeference (sample centres), with no CRS: that is the .prj's
 // job, so the image is taken to be in the terrain's CRS (georef.js compareCrs: 'assumed').
 
-import { makeGeoref, UNKNOWN_CRS } from '../loaders/georef.js';
-import { ImageError } from './image_error.js';
+import { makeGeoref, UNKNOWN_CRS } from './georef.js';
 
 /** The names a world file of `imageName` may have, lower case: x.pgw for x.png, x.jpgw, x.wld. */
 export function worldFileNames(imageName) {
@@ -30,12 +29,11 @@ export function isWorldFileName(name) {
 /**
  * Parses a world file.
  * @param {Uint8Array} bytes its text
- * @param {string} name for messages
- * @returns {import('../loaders/georef.js').Georef}
- * @throws {ImageError} when it is not six finite numbers, rotates the image, or has a zero step
+ * @param {(problem: string) => never} fail throws the caller's error for a problem: not six
+ *   finite numbers, a rotated image, a zero step
+ * @returns {import('./georef.js').Georef}
  */
-export function parseWorldFile(bytes, name) {
-  const fail = (problem) => { throw new ImageError(name, problem); };
+export function parseWorldFile(bytes, fail) {
   if (bytes.length > 4096) fail(`${bytes.length} bytes is not a world file (six numbers, one a line)`);
   const lines = new TextDecoder().decode(bytes).split(/\r?\n/).map((l) => l.trim()).filter((l) => l !== '');
   if (lines.length !== 6) fail(`a world file holds six numbers, one a line; this one has ${lines.length} lines`);
