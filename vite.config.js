@@ -23,7 +23,7 @@ export default defineConfig({
   server: { fs: { allow: [projectDir] }, host: '127.0.0.1', headers },
   preview: { headers },
   build: { outDir: '../dist', emptyOutDir: true, target: 'es2022', assetsInlineLimit: 0 },
-  // The tile workers (web/stream/tile_worker.js) import geotiff, whose decoders load by dynamic
+  // The tile workers (web/tiles/tile_worker.js) import geotiff, whose decoders load by dynamic
   // import: a worker bundle of several chunks, which only the module format allows.
   worker: { format: 'es' },
   clearScreen: false,

@@ -1,13 +1,13 @@
 // A Cloud-Optimized GeoTIFF named on the command line, streamed instead of read whole: a local
 // file is read by slices (fs.openAsBlob), an http(s) URL by Range requests. Only the header,
-// the coarsest level and the tiles the refinement asks for are read (web/stream/streamed_terrain.js).
+// the coarsest level and the tiles the refinement asks for are read (web/tiles/tiled_terrain.js).
 import { openAsBlob, existsSync, statSync } from 'node:fs';
 import { basename, extname } from 'node:path';
 import { isUrl, urlFileName } from './dem_source.js';
 import { createNodeCore } from './node_core.js';
-import { openCog } from '../web/stream/cog_source.js';
-import { StreamError } from '../web/stream/stream_error.js';
-import { openStreamedTerrain } from '../web/stream/streamed_terrain.js';
+import { openCog } from '../web/tiles/cog_source.js';
+import { TileError } from '../web/tiles/tile_error.js';
+import { openTiledTerrain } from '../web/tiles/tiled_terrain.js';
 
 const TIFF = new Set(['.tif', '.tiff']);
 
@@ -27,20 +27,20 @@ export async function openCogInput(input) {
   try {
     source = await openCog(url ? input : await openAsBlob(input), { name });
   } catch (error) {
-    if (!url && error instanceof StreamError && error.kind === 'not-cog') return null;
+    if (!url && error instanceof TileError && error.kind === 'not-cog') return null;
     throw error;
   }
   return url || source.hasOverviews ? source : null;
 }
 
 /**
- * A streamed terrain for a command: the loadForCommand shape plus `stream`.
- * @param {import('../web/stream/cog_source.js').CogSource} source
+ * A tiled terrain for a command: the loadForCommand shape plus `tiles`.
+ * @param {import('../web/tiles/cog_source.js').CogSource} source
  * @param {{x: number, y: number}|null} cellSize
  */
-export async function streamForCommand(source, cellSize) {
+export async function tilesForCommand(source, cellSize) {
   const core = await createNodeCore();
-  const loaded = await openStreamedTerrain(core, source, cellSize ? { spacing: cellSize } : {});
+  const loaded = await openTiledTerrain(core, source, cellSize ? { spacing: cellSize } : {});
   if (!cellSize && !loaded.field.spacingFromFile) {
     console.error(`hexlod: warning: ${loaded.field.source} has no cell size; using 1 m, set --cell-size`);
   }
@@ -52,16 +52,16 @@ export async function streamForCommand(source, cellSize) {
  * converged and no tile is awaited, or `maxUpdates`. Waits for tiles in flight between updates.
  * @returns {Promise<{updates: number, converged: boolean}>}
  */
-export async function settleStreamed(terrain, stream, maxUpdates, onUpdate = () => {}) {
+export async function settleTiles(terrain, tiles, maxUpdates, onUpdate = () => {}) {
   let updates = 0, quiet = 0;
   while (updates < maxUpdates && quiet < 2) {
     const figures = terrain.frame(null);
     onUpdate(figures);
     updates++;
-    const arrived = stream.tick();
-    const resting = figures.converged && figures.pendingMerges === 0 && stream.waiting === 0 && arrived === 0;
+    const arrived = tiles.tick();
+    const resting = figures.converged && figures.pendingMerges === 0 && tiles.waiting === 0 && arrived === 0;
     quiet = resting ? quiet + 1 : 0;
-    if (stream.waiting > 0 && arrived === 0) await new Promise((resolve) => setTimeout(resolve, 1));
+    if (tiles.waiting > 0 && arrived === 0) await new Promise((resolve) => setTimeout(resolve, 1));
   }
   return { updates, converged: quiet >= 2 };
 }

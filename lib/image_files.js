@@ -1,6 +1,6 @@
 // An image to drape and its world file, read whole for a command (hexlod mesh --image, a
 // regression flight's "image"), from disk or by http(s). Without a world file named, the first
-// of its conventional names beside the image (x.jgw, x.jpgw, x.wld: web/imagery/world_file.js)
+// of its conventional names beside the image (x.jgw, x.jpgw, x.wld: web/geo/world_file.js)
 // is taken, as the page pairs files dropped together.
 import { readFileSync, readdirSync, existsSync, statSync } from 'node:fs';
 import { basename, dirname, join } from 'node:path';

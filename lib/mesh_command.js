@@ -12,7 +12,7 @@ import { textureCoordinates, materialImagePath, materialPathOf, writeMaterial, M
 import { readImageFiles } from './image_files.js';
 import { RESTART_INDEX, STREAM_VERTEX_WORDS } from '../web/core/core.js';
 import { locateImageFile } from '../web/imagery/image_location.js';
-import { openCogInput, streamForCommand, settleStreamed } from './cog_input.js';
+import { openCogInput, tilesForCommand, settleTiles } from './cog_input.js';
 
 export const MESH_USAGE = `usage: hexlod mesh <heightfield>... (--max-error M | --camera X,Y,Z --target X,Y,Z) [options]
   Several .hgt or GeoTIFF tiles of one grid make one mosaic. A Cloud-Optimized GeoTIFF (tiled,
@@ -103,7 +103,7 @@ export function meshSettings(args) {
  * most budgetSplits operations or updates until converged (at most MAX_UPDATES).
  * @returns {{updates, operations, splits, merges, converged, refineMs, coreMs, camera}}
  */
-export async function refine(terrain, settings, stream = null) {
+export async function refine(terrain, settings, tiles = null) {
   terrain.resetMesh(settings.embedding);
   let camera = null;
   if (settings.mode === 'view') {
@@ -116,10 +116,10 @@ export async function refine(terrain, settings, stream = null) {
   terrain.configure({ budgetMs: 0, maxOperations: settings.budgetSplits ?? 0 });
   const run = { updates: 0, operations: 0, splits: 0, merges: 0, converged: false, refineMs: 0, coreMs: 0, camera };
   const limit = settings.budgetSplits !== null ? 1 : MAX_UPDATES;
-  if (stream) {
-    // A streamed COG: each update is a frame, so tiles that arrived change the heights.
+  if (tiles) {
+    // A tiled COG: each update is a frame, so tiles that arrived change the heights.
     const start = performance.now();
-    const settled = await settleStreamed(terrain, stream, limit, (figures) => {
+    const settled = await settleTiles(terrain, tiles, limit, (figures) => {
       run.operations += figures.operations;
       run.splits += figures.splits;
       run.merges += figures.merges;
@@ -134,7 +134,7 @@ export async function refine(terrain, settings, stream = null) {
     const start = performance.now();
     const operations = terrain.updateLod();
     run.refineMs += performance.now() - start;
-    const figures = terrain.lodStats();
+    const figures = { ...terrain.query() };
     run.updates += 1;
     run.operations += operations;
     run.splits += figures.splits;
@@ -172,14 +172,14 @@ export async function mesh(args) {
     return;
   }
   const cog = settings.files.length === 1 ? await openCogInput(settings.files[0]) : null;
-  const { terrain, field, spacingX, spacingY, stream } = cog
-    ? await streamForCommand(cog, settings.cellSize) : await loadForCommand(settings.files, settings.cellSize);
+  const { terrain, field, spacingX, spacingY, tiles } = cog
+    ? await tilesForCommand(cog, settings.cellSize) : await loadForCommand(settings.files, settings.cellSize);
   // The image is placed before refining, so a refused one costs no refinement.
   const image = settings.image !== null ? await placedImage(settings, terrain, field) : null;
-  const run = await refine(terrain, settings, stream);
-  stream?.close();
+  const run = await refine(terrain, settings, tiles);
+  tiles?.close();
 
-  const stats = terrain.meshStats();
+  const stats = { ...terrain.query() };
   // Copies: the views die at the next core call that grows memory.
   const levelView = terrain.levelView(false);
   const indices = levelView.indices.slice();
@@ -188,7 +188,7 @@ export async function mesh(args) {
   const positions = terrain.stream().vertices.slice();
   const { triangles, fans } = decodeFans(indices);
   const levels = levelFigures(indices, levelOffsets);
-  const bytes = terrain.meshStats().bytes; // now including the fan stream
+  const bytes = terrain.query().memoryBytes; // now including the fan stream
   const hash = terrain.meshHash();
   const errorStored = terrain.measureError(true);
   const errorOriginal = terrain.measureError(false);
@@ -271,7 +271,7 @@ export async function mesh(args) {
       original: errorOriginal,
     },
     hash,
-    streamed: stream ? { tiles: stream.tilesIn, bytesFetched: stream.bytesFetched, fileBytes: stream.fileBytes,
+    streamed: tiles ? { tiles: tiles.tilesIn, bytesFetched: tiles.bytesFetched, fileBytes: tiles.fileBytes,
       levels: field.levels } : null,
     image: image && {
       file: image.file,
@@ -311,9 +311,9 @@ export async function mesh(args) {
       `vs original samples: max ${m(errorOriginal.max)}, p99 ${m(errorOriginal.p99)}`,
     `hash      ${hash}`,
   ];
-  if (stream) {
+  if (tiles) {
     const mb = (bytes) => (bytes / 1048576).toFixed(1);
-    lines.push(`streamed  ${stream.tilesIn} tiles; ${mb(stream.bytesFetched)} of ${mb(stream.fileBytes)} MB of the file read ` +
+    lines.push(`streamed  ${tiles.tilesIn} tiles; ${mb(tiles.bytesFetched)} of ${mb(tiles.fileBytes)} MB of the file read ` +
       `(a COG of ${field.levels} levels: heights come from the finest level read)`);
   }
   if (image) lines.push(`image     ${imageLine(image)}`);

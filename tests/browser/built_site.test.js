@@ -69,7 +69,7 @@ test('the built site under /hexlod/ opens the default terrain; a drop, R and ?sr
   assert.deepEqual(missing, ['/fixtures/formats/canyon_u16_tiled_deflate.json'], 'only the optional sidecar is missing');
   // A TIFF by ?src= is first opened to stream; this host ignores Range, so the reader cut its
   // first answer short (a failed request to the browser) and the file was loaded whole.
-  assert.equal(await opened.page.evaluate(() => window.hexlod.terrain.streamed), false);
+  assert.equal(await opened.page.evaluate(() => window.hexlod.terrain.tiled), false);
   assert.deepEqual(opened.problems.filter((p) => !/status of 404/.test(p) && !/^request failed: .*canyon_u16_tiled_deflate\.tif$/.test(p)), []);
   await opened.page.close();
 });
@@ -103,10 +103,10 @@ test('the built site streams a COG by ?src=, its tiles decoded by the bundled wo
     const { page, problems } = await openPage(site.browser, `${site.url}?budget=50&tau=3&src=${encodeURIComponent(url)}`, { width: 480, height: 300 }, FULL_RESOLUTION);
     await pageReady(page);
     const terrain = await page.evaluate(() => window.hexlod.terrain);
-    assert.deepEqual([terrain?.name, terrain?.width, terrain?.streamed], ['himalaya_1024_i16.tif', 1024, true],
+    assert.deepEqual([terrain?.name, terrain?.width, terrain?.tiled], ['himalaya_1024_i16.tif', 1024, true],
       await page.evaluate(() => window.hexlod.error));
-    await page.waitForFunction(() => window.hexlod.converged && window.hexlod.stream?.settled, null, { timeout: 120000 });
-    const stream = await page.evaluate(() => window.hexlod.stream);
+    await page.waitForFunction(() => window.hexlod.converged && window.hexlod.tiles?.settled, null, { timeout: 120000 });
+    const stream = await page.evaluate(() => window.hexlod.tiles);
     assert.ok(stream.tilesIn > 0 && stream.bytesFetched < stream.fileBytes, JSON.stringify(stream));
     await assertShown(page, 'src-cog', 0.2);
     // Tile requests the view left are aborted: the browser logs them as failed.

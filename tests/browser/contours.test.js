@@ -320,7 +320,7 @@ test('a streamed terrain (a COG by ?src=) draws its contours from the mesh and s
   const cog = `/@fs${projectDir}tests/fixtures/cog/himalaya_1024_i16.tif`;
   const { page, problems } = await openPage(viewer.browser, `${viewer.url}?src=${encodeURIComponent(cog)}&budget=50&tau=3&contours=1`, SIZE);
   await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
-  await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged && window.hexlod.stream?.settled; }, null,
+  await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged && window.hexlod.tiles?.settled; }, null,
     { timeout: 300000, polling: 200 });
   await shoot(page, 'streamed');
   const s = await page.evaluate(() => ({ tiled: window.hexlod.terrainObject().tiled, contours: { ...window.hexlod.contours },

@@ -46,7 +46,7 @@ test('a JPEG GeoTIFF decoded by the browser shows the colours of the deflate one
     const result = await page.evaluate(async ({ web, fixtures, points, numbered }) => {
       const { readTiffImage } = await import(`${web}imagery/image_tiff.js`);
       const { browserJpegDecoder } = await import(`${web}imagery/browser_jpeg.js`);
-      const { crsToSample } = await import(`${web}loaders/georef.js`);
+      const { crsToSample } = await import(`${web}geo/georef.js`);
       const files = { 'rgb_numbered.tif': Uint8Array.from(atob(numbered), (c) => c.charCodeAt(0)) };
       const readWhole = async (name, decodeJpeg) => {
         const bytes = files[name] ?? new Uint8Array(await (await fetch(fixtures + name)).arrayBuffer());
@@ -83,7 +83,7 @@ test('a JPEG GeoTIFF decoded by the browser shows the colours of the deflate one
       // Opening the image to drape (open_image.js) hands the browser's decoder in by itself: the
       // bands reaching the GPU are the browser's decoding, not the library's (they differ a little).
       const { openImage } = await import(`${web}imagery/open_image.js`);
-      const { crsOfEpsg, makeGeoref } = await import(`${web}loaders/georef.js`);
+      const { crsOfEpsg, makeGeoref } = await import(`${web}geo/georef.js`);
       const haitiField = { width: 150, height: 200, spacingX: 10, spacingY: 10, georef: makeGeoref(crsOfEpsg(32618), 792995, 2050377, 10, -10, 'GeoTIFF') };
       const name = 'haiti_rgb_5m_tiled_jpeg_ycbcr.tif', blob = await (await fetch(fixtures + name)).blob();
       let uploaded = null, width = 0;

@@ -1,4 +1,4 @@
-// Streaming a Cloud-Optimized GeoTIFF by ranges (web/stream/cog_source.js) against the range
+// Streaming a Cloud-Optimized GeoTIFF by ranges (web/tiles/cog_source.js) against the range
 // server of lib/range_server.js, with latency: opening reads only the header and directories,
 // every tile equals the same window of the file decoded whole, and each fault reaches the
 // caller as its kind with a message that says what to do.
@@ -9,7 +9,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { fromArrayBuffer } from 'geotiff';
-import { openCog } from '../../web/stream/cog_source.js';
+import { openCog } from '../../web/tiles/cog_source.js';
 import { decodeGeoTiff } from '../../web/loaders/geotiff.js';
 import { defaultAllocate } from '../../web/loaders/common.js';
 import { startRangeServer } from '../../lib/range_server.js';

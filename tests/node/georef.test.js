@@ -1,4 +1,4 @@
-// Where every format places its samples on the Earth (web/loaders/georef.js): the CRS and the
+// Where every format places its samples on the Earth (web/geo/georef.js): the CRS and the
 // map to sample centres, from GeoTIFF tags, SRTM tile names, ESRI headers and sidecars. The
 // same place read from two formats of one DEM must agree.
 import { test } from 'node:test';

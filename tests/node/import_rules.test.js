@@ -157,3 +157,11 @@ test('the geotiff library is opened in one place, which registers our decoders o
       node.specifiers.some((s) => OPENERS.has(s.type === 'ImportDefaultSpecifier' ? 'default' : s.imported?.name))));
   assert.deepEqual(opened.sort(), [`web${sep}geo${sep}tiff_decoders.js`, `web${sep}geo${sep}tiff_open.js`]);
 });
+
+test('web/app/ wires the parts: web/ui/ never imports web/app/', () => {
+  const app = `web${sep}app${sep}`, ui = `web${sep}ui${sep}`;
+  const upward = edges.filter(({ file, target }) => file.startsWith(ui) && target.startsWith(app))
+    .map(({ file, line, target }) => `${file}:${line} -> ${target}`);
+  assert.ok(edges.some(({ file, target }) => file.startsWith(app) && target.startsWith(ui)), 'app/ imports ui/');
+  assert.equal(upward.length, 0, `ui/ imports app/:\n  ${upward.join('\n  ')}`);
+});

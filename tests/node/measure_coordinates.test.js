@@ -1,4 +1,4 @@
-// Real coordinates of points of a field (web/measure/coordinates.js) against GDAL's: the
+// Real coordinates of points of a field (web/geo/coordinates.js) against GDAL's: the
 // numbers below are gdaltransform's output (GDAL 3.6.2), printed by
 // scripts/make_measure_fixtures.sh and for the .hgt tile by `gdaltransform N27E086.hgt`.
 import { test } from 'node:test';

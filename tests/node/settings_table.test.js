@@ -4,12 +4,13 @@
 // unless the table says why the page differs.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { readdirSync, readFileSync } from 'node:fs';
 import { createNodeCore } from '../../lib/node_core.js';
 import { STREAM_LAYOUTS } from '../../web/core/core.js';
 import { SETTINGS, defaultSettings, coreSettings, checkSetting, URL_KEYS } from '../../web/app/settings_table.js';
 
 const core = await createNodeCore();
-const EFFECTS = ['core', 'heights', 'camera', 'view', 'mesh', 'ground', 'stream', 'none'];
+const EFFECTS = ['core', 'heights', 'camera', 'view', 'mesh', 'ground', 'tiles', 'none'];
 // Core fields the page decides outside the table: tau mode always, and the stream's normals
 // follow what the renderer draws (frame_pipeline.js).
 const OUTSIDE_TABLE = ['maxErrorM', 'noNormals'];
@@ -69,4 +70,22 @@ test('the check compares resolved defaults: a zero becomes the core default, and
   // And the core resolves a zero to its default, not to zero.
   assert.equal(defaults.tauPx, 1);
   assert.equal(defaults.verticalScale, 1);
+});
+
+test('the debug flags are settings: timing on or off, forced tile sides 0 or from their least', () => {
+  assert.equal(checkSetting('timing', '1'), true);
+  assert.equal(checkSetting('normalTile', '0'), 0);
+  assert.equal(checkSetting('normalTile', '16'), 16);
+  assert.equal(checkSetting('imageTile', '64'), 64);
+  assert.match(checkSetting('normalTile', '8').message, /^normaltile=8 is not 0 or a whole number of texels from 16 to 16384$/);
+  assert.match(checkSetting('imageTile', '63').message, /^imagetile=63 is not 0 or a whole number/);
+  assert.match(checkSetting('imageTile', '64.5').message, /^imagetile=64.5 is not/);
+});
+
+test('the address is read in web/app/ only: nothing that draws or loads reads URL flags of its own', () => {
+  const root = new URL('../../web/', import.meta.url);
+  const readers = readdirSync(root, { recursive: true }).filter((f) => f.endsWith('.js'))
+    .filter((f) => /location\??\.search/.test(readFileSync(new URL(f, root), 'utf8')));
+  assert.ok(readers.length > 0, 'the page reads its address somewhere');
+  assert.deepEqual(readers.filter((f) => !f.startsWith('app/')), []);
 });

@@ -1,4 +1,4 @@
-// JPEG-compressed TIFF blocks as complete JPEG streams (web/loaders/tiff_jpeg_stream.js), and
+// JPEG-compressed TIFF blocks as complete JPEG streams (web/geo/tiff_jpeg_stream.js), and
 // images read through a JPEG decoder given from outside (web/imagery/tiff_jpeg_band.js), on the
 // real 5 m satellite image stored as RGB and as YCbCr JPEG. The outside decoder here is the
 // geotiff library's, with the colour rules of a JFIF decoder such as the browser's: three

@@ -1,8 +1,8 @@
-// The tile cache (web/stream/tile_cache.js): least recently used out first, within its byte
+// The tile cache (web/tiles/tile_cache.js): least recently used out first, within its byte
 // cap, pinned tiles never out, and every evicted key handed to the caller once.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { TileCache, DEFAULT_CAP_BYTES, tileKey, keyLevel, keyTx, keyTy } from '../../web/stream/tile_cache.js';
+import { TileCache, DEFAULT_CAP_BYTES, tileKey, keyLevel, keyTx, keyTy } from '../../web/tiles/tile_cache.js';
 
 const tile = (bytes) => new Uint8Array(bytes);
 const keys = (...tiles) => tiles.map(([level, tx, ty]) => tileKey(level, tx, ty));

@@ -1,6 +1,6 @@
-// Tiles decoded in workers (web/stream/worker_tile_reader.js, tile_service.js, tile_worker.js):
+// Tiles decoded in workers (web/tiles/worker_tile_reader.js, tile_service.js, tile_worker.js):
 // the pool routes each read to its least busy worker, forwards aborts, turns the workers' errors
-// back into StreamErrors of the same kind, and its tiles equal the COG's own. Workers are
+// back into TileErrors of the same kind, and its tiles equal the COG's own. Workers are
 // scripted fakes (to steer routing exactly), the real service over a MessageChannel, and the
 // real worker script in a Node thread.
 import { test, before, after } from 'node:test';
@@ -8,11 +8,11 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { Worker as NodeWorker } from 'node:worker_threads';
-import { openCog } from '../../web/stream/cog_source.js';
-import { StreamError } from '../../web/stream/stream_error.js';
-import { serveTiles } from '../../web/stream/tile_service.js';
-import { openWorkerPool } from '../../web/stream/worker_tile_reader.js';
-import { TileFetcher } from '../../web/stream/tile_fetcher.js';
+import { openCog } from '../../web/tiles/cog_source.js';
+import { TileError } from '../../web/tiles/tile_error.js';
+import { serveTiles } from '../../web/tiles/tile_service.js';
+import { openWorkerPool } from '../../web/tiles/worker_tile_reader.js';
+import { TileFetcher } from '../../web/tiles/tile_fetcher.js';
 import { startRangeServer } from '../../lib/range_server.js';
 
 const fixtures = fileURLToPath(new URL('../fixtures/cog/', import.meta.url));
@@ -117,12 +117,12 @@ test('an abort rejects at once and is forwarded; the worker stays busy until it 
   const controller = new AbortController();
   const reading = pool.readTile(0, 1, 1, controller.signal);
   controller.abort();
-  await assert.rejects(reading, (e) => e instanceof StreamError && e.kind === 'aborted');
+  await assert.rejects(reading, (e) => e instanceof TileError && e.kind === 'aborted');
   assert.deepEqual(made[0].cancels, [made[0].reads[0].id]);
   assert.deepEqual(pool.loads, [1, 0]);
   const next = pool.readTile(0, 2, 2);
   assert.equal(made[1].reads.length, 1, 'the next read goes to the idle worker');
-  made[0].answer(0, { type: 'failed', error: { name: 'StreamError', kind: 'aborted', message: 'aborted' } });
+  made[0].answer(0, { type: 'failed', error: { name: 'TileError', kind: 'aborted', message: 'aborted' } });
   assert.deepEqual(pool.loads, [0, 1]);
   made[1].answer(0, { type: 'tile', samples: new Int16Array([7]) });
   assert.deepEqual(await next, new Int16Array([7]));
@@ -132,16 +132,16 @@ test('an abort rejects at once and is forwarded; the worker stays busy until it 
   pool.close();
 });
 
-test('the workers\' errors come back as StreamErrors of the same kind, RangeErrors as RangeErrors, and a dead worker takes no more reads', async () => {
+test('the workers\' errors come back as TileErrors of the same kind, RangeErrors as RangeErrors, and a dead worker takes no more reads', async () => {
   const made = [];
   const pool = await openWorkerPool('scripted.tif', { workers: 2, createWorker: () => new ScriptedWorker(made) });
   const notFound = pool.readTile(0, 0, 0), outside = pool.readTile(0, 9, 0);
-  made[0].answer(0, { type: 'failed', error: { name: 'StreamError', kind: 'http', status: 404, message: 'x: HTTP 404 (3 tries)' } });
+  made[0].answer(0, { type: 'failed', error: { name: 'TileError', kind: 'http', status: 404, message: 'x: HTTP 404 (3 tries)' } });
   made[1].answer(0, { type: 'failed', error: { name: 'RangeError', message: 'tile (9, 0) is outside' } });
-  await assert.rejects(notFound, (e) => e instanceof StreamError && e.kind === 'http' && e.status === 404 && /HTTP 404/.test(e.message));
+  await assert.rejects(notFound, (e) => e instanceof TileError && e.kind === 'http' && e.status === 404 && /HTTP 404/.test(e.message));
   await assert.rejects(outside, (e) => e instanceof RangeError && /outside/.test(e.message));
   const truncated = pool.readTile(0, 1, 0);
-  made[0].answer(1, { type: 'failed', error: { name: 'StreamError', kind: 'truncated', size: 1234, message: 'cut' } });
+  made[0].answer(1, { type: 'failed', error: { name: 'TileError', kind: 'truncated', size: 1234, message: 'cut' } });
   await assert.rejects(truncated, { kind: 'truncated', size: 1234 });
 
   const lost = pool.readTile(0, 2, 0);
@@ -197,13 +197,13 @@ test('over the real service, an abort cancels the worker\'s fetch, and a 404, a 
 
   server.options.dropAfterBytes = 1000;
   try {
-    await assert.rejects(pool.readTile(0, 1, 0), (e) => e instanceof StreamError && e.kind === 'network' && /3 tries/.test(e.message));
+    await assert.rejects(pool.readTile(0, 1, 0), (e) => e instanceof TileError && e.kind === 'network' && /3 tries/.test(e.message));
   } finally {
     server.options.dropAfterBytes = null;
   }
   server.options.failPaths = [`/${HIMALAYA}`];
   try {
-    await assert.rejects(pool.readTile(0, 1, 1), (e) => e instanceof StreamError && e.kind === 'http' && e.status === 404);
+    await assert.rejects(pool.readTile(0, 1, 1), (e) => e instanceof TileError && e.kind === 'http' && e.status === 404);
   } finally {
     server.options.failPaths = {};
   }
@@ -222,7 +222,7 @@ test('over the real service, an abort cancels the worker\'s fetch, and a 404, a 
 test('opening fails as openCog does, and every worker is ended', async () => {
   const made = [];
   await assert.rejects(openWorkerPool(`${server.url}/missing.tif`, { workers: 2, ...FAST_RETRIES, createWorker: () => new ChannelWorker(made) }),
-    (e) => e instanceof StreamError && e.kind === 'http' && e.status === 404);
+    (e) => e instanceof TileError && e.kind === 'http' && e.status === 404);
   assert.equal(made.length, 2);
   assert.ok(made.every((w) => w.terminated));
   await assert.rejects(openWorkerPool(new Blob(['{"width": 2}']), { workers: 1, createWorker: () => new ChannelWorker(made) }), { kind: 'bad-tiff' });
@@ -255,7 +255,7 @@ test('the worker script runs in a real thread: samples come back transferred and
       set onmessage(handler) { parentPort.on('message', (data) => handler({ data })); },
     };
     import(workerData.url);`;
-  const workerUrl = new URL('../../web/stream/tile_worker.js', import.meta.url).href;
+  const workerUrl = new URL('../../web/tiles/tile_worker.js', import.meta.url).href;
   class ThreadWorker {
     constructor() {
       this.thread = new NodeWorker(script, { eval: true, workerData: { url: workerUrl } });

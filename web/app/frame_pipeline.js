@@ -16,10 +16,10 @@ export class FramePipeline {
   /**
    * @param {object} parts  gl, canvas, renderer, rig (the cameras), settings, view (what the
    *   renderer draws), hud, state (the published figures), det (the deterministic mode or null),
-   *   timing (wait for the GPU after drawing), urlWriter, source() (the data's URL to share), imageSource() (the draped image's)
+   *   urlWriter, source() (the data's URL to share), imageSource() (the draped image's)
    */
-  constructor({ gl, canvas, renderer, rig, settings, view, hud, state, det, timing, urlWriter, source, imageSource }) {
-    Object.assign(this, { gl, canvas, renderer, rig, settings, view, hud, state, det, timing, urlWriter, source, imageSource });
+  constructor({ gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, source, imageSource }) {
+    Object.assign(this, { gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, source, imageSource });
     this.current = null; // { terrain, field, loadMs, world, streamVersion, blendsEnd }
     this.contextLost = false;
     this.frameRequested = false;
@@ -29,11 +29,11 @@ export class FramePipeline {
     // Made once, filled every frame.
     this.lodCamera = { eye: null, target: null, fovY: 0, aspect: 1, viewportHeight: 1, near: 0, far: 0 };
     this.timingFigures = { updateMs: 0, streamMs: 0, uploadMs: 0, drawMs: 0, frameMs: 0 };
-    this.hudFrame = { terrain: null, stats: null, timing: this.timingFigures, settings, camera: null, stream: null };
-    // A streamed terrain's figures as tests read them (state.stream), filled in place.
-    this.streamFigures = { waiting: 0, settled: false, bytesFetched: 0, fileBytes: 0, heldBytes: 0, capBytes: 0, tilesIn: 0, failures: [] };
+    this.hudFrame = { terrain: null, stats: null, timing: this.timingFigures, settings, camera: null, tiles: null };
+    // A tiled terrain's figures as tests read them (state.tiles), filled in place.
+    this.tileFigures = { waiting: 0, settled: false, bytesFetched: 0, fileBytes: 0, heldBytes: 0, capBytes: 0, tilesIn: 0, failures: [] };
     this.framesSinceTiles = 0; // frames since tiles last went into the core
-    // Called when a streamed terrain's heights changed (tiles went in): once a wait is over, and
+    // Called when a tiled terrain's heights changed (tiles went in): once a wait is over, and
     // at most every HEIGHTS_REFRESH_MS while tiles keep coming. Set by main (the measuring tool).
     this.onHeightsChanged = null;
     this.heightsChangedAt = 0; // when onHeightsChanged last ran
@@ -80,7 +80,7 @@ export class FramePipeline {
     if (this.current) this.updateTerrain(camera, width, height, now);
     const drawStart = performance.now();
     this.renderer.draw(camera, width, height, this.view);
-    if (this.timing) this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.UNSIGNED_BYTE, this.timingPixel); // waits for the draw
+    if (this.settings.timing) this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.UNSIGNED_BYTE, this.timingPixel); // waits for the draw
     timing.drawMs = performance.now() - drawStart;
     this.lastFrameMs = timing.frameMs = performance.now() - frameStart;
     if (state.recordFrames && state.frameLog.length < FRAME_LOG) { // tests and benchmarks only
@@ -128,16 +128,16 @@ export class FramePipeline {
     view.frame = stats.frame;
     this.publish(stats);
     if (!frozen && (!stats.converged || stats.frame < current.blendsEnd)) this.request();
-    const stream = current.stream ?? null;
+    const tiles = current.tiles ?? null;
     // After the frame's update: the tiles it wants are asked for, those that came go in. Frames
     // go on while tiles are awaited, so they show without input, and for SETTLE_FRAMES after
     // tiles went in: the next frame's stream step takes their heights, the one after refines on
     // them and may want finer tiles, so the wait is over only then.
     let awaiting = false;
-    if (stream) {
-      const arrived = stream.tick();
+    if (tiles) {
+      const arrived = tiles.tick();
       this.framesSinceTiles = arrived > 0 ? 0 : this.framesSinceTiles + 1;
-      awaiting = stream.waiting > 0 || this.framesSinceTiles < SETTLE_FRAMES;
+      awaiting = tiles.waiting > 0 || this.framesSinceTiles < SETTLE_FRAMES;
       if (awaiting) this.request();
       if (arrived > 0) this.heightsPending = true;
       if (this.heightsPending && this.onHeightsChanged && (!awaiting || now - this.heightsChangedAt > HEIGHTS_REFRESH_MS)) {
@@ -150,15 +150,15 @@ export class FramePipeline {
     figures.terrain = terrain;
     figures.stats = stats;
     figures.camera = camera;
-    figures.stream = stream;
-    figures.streamAwaiting = awaiting;
+    figures.tiles = tiles;
+    figures.tilesAwaiting = awaiting;
     hud.tick(now);
     // Tiles awaited or not, and failures, show at once (the last frame of a wait is not throttled away).
-    const failures = stream ? stream.failures : null;
+    const failures = tiles ? tiles.failures : null;
     hud.update(figures, now, awaiting !== this.shownAwaiting || failures !== this.shownFailures);
     this.shownAwaiting = awaiting;
     this.shownFailures = failures;
-    if (stream) this.publishStream(stream, awaiting);
+    if (tiles) this.publishTiles(tiles, awaiting);
     state.hud = hud.values;
     const eye = this.eye;
     eye[0] = camera.position[0], eye[1] = camera.position[1], eye[2] = camera.position[2];
@@ -187,18 +187,18 @@ export class FramePipeline {
     state.timing = this.timingFigures;
   }
 
-  // A streamed terrain's figures as tests read them (state.stream).
-  publishStream(stream, awaiting) {
-    const s = this.streamFigures;
-    s.waiting = stream.waiting;
+  // A tiled terrain's figures as tests read them (state.tiles).
+  publishTiles(tiles, awaiting) {
+    const s = this.tileFigures;
+    s.waiting = tiles.waiting;
     s.settled = !awaiting;
-    s.bytesFetched = stream.bytesFetched;
-    s.fileBytes = stream.fileBytes;
-    s.heldBytes = stream.heldBytes;
-    s.capBytes = stream.cache.capBytes;
-    s.tilesIn = stream.tilesIn;
-    s.failures = stream.failures;
-    this.state.stream = s;
+    s.bytesFetched = tiles.bytesFetched;
+    s.fileBytes = tiles.fileBytes;
+    s.heldBytes = tiles.heldBytes;
+    s.capBytes = tiles.cache.capBytes;
+    s.tilesIn = tiles.tilesIn;
+    s.failures = tiles.failures;
+    this.state.tiles = s;
   }
 
   // The camera as the core takes it, in the object made once.

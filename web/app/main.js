@@ -7,7 +7,7 @@ import { createFileIntake } from '../ui/file_intake.js';
 import { TerrainRenderer } from '../render/renderer.js';
 import { createImageStage } from './image_stage.js';
 import { CameraRig } from '../cameras/rig.js';
-import { defaultSettings } from './settings_table.js';
+import { defaultSettings, SETTINGS } from './settings_table.js';
 import { createView, deriveView } from './view_state.js';
 import { createControlsPanel } from '../ui/controls_panel.js';
 import { Hud } from '../ui/hud.js';
@@ -30,11 +30,8 @@ const DEFAULT_TERRAIN = [
   { name: 'globe_himalaya_2048.png', url: new URL('../../public/terrain/globe_himalaya_2048.png', import.meta.url).href },
   { name: 'globe_himalaya_2048.json', url: new URL('../../public/terrain/globe_himalaya_2048.json', import.meta.url).href },
 ];
-const params = new URLSearchParams(location.search);
 const REMOVE_IMAGE = 'remove image';
-// ?timing=1 waits for the GPU after drawing (a one-pixel readPixels: gl.finish does not wait in
-// Chromium) so that frame figures include it; for benchmarks only, since it stalls the pipeline.
-const TIMING = params.get('timing') === '1';
+const params = new URLSearchParams(location.search);
 // ?flight=URL: the deterministic mode of regression tests (web/app/deterministic/mode.js, README).
 const det = deterministicMode(params);
 
@@ -58,10 +55,10 @@ async function main() {
   const gl = canvas.getContext('webgl2', { antialias: true });
   if (!gl) throw new Error('this browser has no WebGL2');
   const core = await createCore();
-  const renderer = new TerrainRenderer(gl);
   const urlState = parseUrlState(location.search);
   const settings = Object.assign(defaultSettings(), urlState.settings);
   if (det) Object.assign(settings, (await det.load(), det.settings)); // the flight's settings win
+  const renderer = new TerrainRenderer(gl, { normalTile: () => settings.normalTile, imageTile: () => settings.imageTile });
   const view = createView(settings);
   const urlWriter = new UrlWriter();
   const requestRender = () => pipeline.request();
@@ -70,7 +67,7 @@ async function main() {
   const rig = new CameraRig(requestRender);
   rig.cameras.walk.eyeHeight = settings.eyeHeight;
   const cameraMode = { mode: rig.mode }; // the panel's view of the rig
-  const pipeline = new FramePipeline({ gl, canvas, renderer, rig, settings, view, hud, state, det, timing: TIMING, urlWriter,
+  const pipeline = new FramePipeline({ gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter,
     source: () => stage.source, imageSource: () => images.url });
   const syncPanel = () => { cameraMode.mode = rig.mode; stage.panel?.refresh(); };
   const stage = new TerrainStage({ canvas, renderer, rig, settings, pipeline, hud, state, det, syncPanel, requestRender });
@@ -134,7 +131,7 @@ async function main() {
 
   const toggleHelp = () => { helpBox.hidden = !helpBox.hidden; };
   const resetView = () => { if (stage.current) stage.frameDefault(); syncPanel(); requestRender(); };
-  stage.panel = createControlsPanel(document.getElementById('panel'), settings, {
+  stage.panel = createControlsPanel(document.getElementById('panel'), settings, SETTINGS, {
     camera: cameraMode,
     onChange: onSetting,
     folderActions: { Image: { [REMOVE_IMAGE]: () => images.remove() } },
@@ -152,7 +149,7 @@ async function main() {
 
   // Drop, file picker, ?src=, ?image=, progress, RAW size dialog and error display (file_intake.js).
   // A new terrain takes the image away: it belonged to the old ground.
-  const intake = stage.intake = createFileIntake({ core, state, settings,
+  const intake = stage.intake = createFileIntake({ core, state, settings, defaultUrlTimeoutS: SETTINGS.urlTimeout.default,
     show: (loaded, from) => { images.remove(); measure.clear(); stage.show(loaded, from); },
     showStatus, setCellSize: (metres) => onSetting('cellSize', metres), currentSpacing: () => stage.current.terrain,
     drape: (image, world, url) => images.drape(image, world, { url }) });
@@ -171,7 +168,7 @@ async function main() {
   window.addEventListener('resize', requestRender);
   // The measuring tool (M): profile, distance and area of a line clicked on the terrain.
   const measure = installMeasuring({ canvas, rig, settings, stage, renderer, urlWriter, requestRender, state });
-  pipeline.onHeightsChanged = () => measure.heightsChanged(); // a streamed terrain's finer tiles came
+  pipeline.onHeightsChanged = () => measure.heightsChanged(); // a tiled terrain's finer tiles came
 
   installPointerReadout(canvas, { rig, settings, terrain: () => stage.current,
     onCursor: (pick) => { state.cursor = pick; hud.setCursor(pick); },

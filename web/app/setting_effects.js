@@ -45,8 +45,8 @@ export function settingEffects(stage) {
       stage.hud.setTerrain(loaded.field, t, loaded.loadMs);
       stage.intake.showSpacing(t);
     },
-    stream(key, value) {
-      stage.current?.stream?.setCapBytes(value * 2 ** 20);
+    tiles(key, value) {
+      stage.current?.tiles?.setCapBytes(value * 2 ** 20);
     },
     none() {},
   };

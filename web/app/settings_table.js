@@ -10,7 +10,7 @@
 //   view      what the renderer draws (deriveView in view_state.js); no core call
 //   mesh      the hexagon mesh is rebuilt (embedding)
 //   ground    the field's spacing: the scale, the mesh and the cameras' ground positions
-//   stream    the streamed terrain's tile cache (its cap in bytes)
+//   tiles     the tiled terrain's tile cache (its cap in bytes)
 //   none      read where it is used (the freeze switch, limits of the next URL load)
 // core: the setting's hexlod_settings field (Terrain.configure's camelCase name) and how the
 // value maps to it. parse: a typed value's reader (throws why it is refused). coreDiffers: why
@@ -95,11 +95,30 @@ export const SETTINGS = {
   urlMaxMB: { default: 1024, min: 1, max: 4096, step: 1, url: 'maxmb', urlIfChanged: true, panel: [URLS, 'URL size cap (MB)'],
     effect: 'none' },
 
-  // A streamed COG (web/stream/): the tiles' samples held at most, MB; the least recently drawn
+  // A tiled COG (web/tiles/): the tiles' samples held at most, MB; the least recently drawn
   // go first. Also the size up to which a TIFF that cannot stream is loaded whole instead.
   tileCacheMB: { default: 512, min: 1, max: 4096, step: 1, url: 'tilecache', urlIfChanged: true, panel: [URLS, 'tile cache (MB)'],
-    effect: 'stream' },
+    effect: 'tiles' },
+
+  // Not in the panel, for tests and benchmarks. ?timing=1 waits for the GPU after drawing (a
+  // one-pixel readPixels: gl.finish does not wait in Chromium) so that frame figures include it;
+  // it stalls the pipeline. ?normaltile=N and ?imagetile=N make texture tiles of at most N
+  // texels a side, to test the tiling on any GPU (0: the GPU's limit).
+  timing: { default: false, url: 'timing', urlIfChanged: true, effect: 'none' },
+  normalTile: { default: 0, parse: tileSide('normaltile', 16), url: 'normaltile', urlIfChanged: true, effect: 'none' },
+  imageTile: { default: 0, parse: tileSide('imagetile', 64), url: 'imagetile', urlIfChanged: true, effect: 'none' },
 };
+
+/** A reader of a forced texture tile side: 0 (none) or a whole number of texels from `least`. */
+function tileSide(urlKey, least) {
+  return (value) => {
+    const n = Number(value);
+    if (value === '' || !Number.isInteger(n) || (n !== 0 && (n < least || n > 16384))) {
+      throw new Error(`${urlKey}=${value} is not 0 or a whole number of texels from ${least} to 16384`);
+    }
+    return n;
+  };
+}
 
 /** A fresh settings object with every default. */
 export function defaultSettings() {

@@ -12,7 +12,7 @@ export class TerrainStage {
    */
   constructor(parts) {
     Object.assign(this, parts);
-    this.current = null; // { terrain, field, loadMs, stream (a streamed COG's, else absent), world, streamVersion, blendsEnd }
+    this.current = null; // { terrain, field, loadMs, tiles (a COG's read tile by tile, else absent), world, streamVersion, blendsEnd }
     this.source = null;  // the data's URL, while the terrain on screen came from one (the address bar's src)
   }
 
@@ -21,7 +21,7 @@ export class TerrainStage {
     const { terrain, field } = loaded;
     this.source = from;
     this.rebuildMesh(terrain);
-    this.current?.stream?.close(); // its requests stop before its terrain goes
+    this.current?.tiles?.close(); // its requests stop before its terrain goes
     this.current?.terrain.destroy();
     this.current = this.pipeline.current = loaded;
     this.makeWorld();
@@ -29,8 +29,8 @@ export class TerrainStage {
     this.panel.setCellSizeRange(terrain.spacingX);
     this.pipeline.forgetFigures(); // the last terrain's "converged" and triangles do not describe this one
     this.state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
-      minHeight: terrain.minHeight, maxHeight: terrain.maxHeight, streamed: field.streamed === true };
-    this.state.stream = null; // the frame loop publishes a streamed terrain's figures
+      minHeight: terrain.minHeight, maxHeight: terrain.maxHeight, tiled: field.tiled === true };
+    this.state.tiles = null; // the frame loop publishes a tiled terrain's figures
     this.hud.setTerrain(field, terrain, loaded.loadMs);
     // Framed once the HUD and the file bar describe this terrain: their heights bound the view,
     // and R frames it again with them as they are then.

@@ -10,7 +10,7 @@ export function isTestMode(params) {
 
 /**
  * Publishes `state` (status, error, terrain, frames, triangles, mesh, lod, timing, hud, eye,
- * cursor, stream (a streamed terrain's waiting, bytesFetched, fileBytes, heldBytes, tilesIn,
+ * cursor, tiles (a tiled terrain's waiting, bytesFetched, fileBytes, heldBytes, tilesIn,
  * failures), ... kept up to date by the page) as window.hexlod, with the handles tests use to drive
  * the page: the camera rig, the settings and the view, setSetting(key, value) as the panel sets
  * one, requestRender(), glError(), screenshot(scale), terrainObject() (the core's Terrain),

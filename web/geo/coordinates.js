@@ -1,5 +1,5 @@
 // Real-world coordinates of a point of the field: the CRS coordinates its georeference gives
-// (web/loaders/georef.js), and latitude and longitude too, directly for a geographic CRS and
+// (web/geo/georef.js), and latitude and longitude too, directly for a geographic CRS and
 // through proj4 for the projected CRSs whose definition is a line we can write here: UTM on
 // WGS 84 (EPSG:326zz north, 327zz south), on NAD83 (269zz) and on ETRS89 (258zz), and Web
 // Mercator (3857). NAD83 and ETRS89 latitudes and longitudes are given in their own datum

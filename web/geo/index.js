@@ -1,6 +1,6 @@
 // Geography and TIFF reading, the public face of web/geo/: coordinate reference systems and
 // georeferences, world files, real coordinates of samples, and the TIFF reader that height
-// fields, draped images and streamed COG tiles share. Other folders import this module only;
+// fields, draped images and COG tiles share. Other folders import this module only;
 // the decoders behind the TIFF reader register themselves once (tiff_open.js).
 export * from './georef.js';
 export * from './coordinates.js';

@@ -1,4 +1,4 @@
-// What a TIFF's tags say, read the same way for height fields, draped images and streamed COG
+// What a TIFF's tags say, read the same way for height fields, draped images and tiled COG
 // tiles: its signature, its sample type, the GDAL no-data tag, and the metres between samples.
 import { shown } from './shown.js';
 import { degreesToMetres } from './ground_spacing.js';

@@ -1,6 +1,6 @@
 // The one way into the geotiff library's files: importing this module registers our LZW and
 // deflate decoders (tiff_decoders.js) in the library's global registry, once, before any TIFF
-// is opened, for height fields, draped images and streamed COG tiles alike.
+// is opened, for height fields, draped images and COG tiles alike.
 import GeoTIFF, { fromArrayBuffer } from 'geotiff';
 import './tiff_decoders.js';
 

@@ -18,7 +18,7 @@ import { tiffJpegStream } from '../geo/index.js';
  * @param {{ bytes: Uint8Array, width: number, height: number, tables: Uint8Array|null, rgb: boolean,
  *   layout: { tiled: boolean, blockWidth: number, blockHeight: number, offsets: ArrayLike<number>, counts: ArrayLike<number> } }} image
  *   the file, the image size in pixels, the JPEGTables tag, whether the samples are RGB
- *   (Photometric 2) rather than YCbCr or grey, and the block layout (web/loaders/tiff_blocks.js)
+ *   (Photometric 2) rather than YCbCr or grey, and the block layout (web/geo/tiff_blocks.js)
  * @param {number} y the band's first row, at the top of a block row
  * @param {number} rows whole block rows, or up to the image's last row
  * @param {JpegDecoder} decode

@@ -115,9 +115,14 @@ class MirroredBuffer {
 }
 
 export class TerrainRenderer {
-  /** @param {WebGL2RenderingContext} gl */
-  constructor(gl) {
+  /**
+   * @param {WebGL2RenderingContext} gl
+   * @param {{ normalTile?: () => number, imageTile?: () => number }} [forcedTiles] texels a side the
+   *   normal and image texture tiles may not exceed (0: the GPU's limit), read at each upload
+   */
+  constructor(gl, forcedTiles = {}) {
     this.gl = gl;
+    this.forcedTiles = forcedTiles;
     this.createGlObjects();
     this.heightRange = [0, 1];
     this.extent = [0, 0];
@@ -148,10 +153,10 @@ export class TerrainRenderer {
     this.inverseViewProjection = new Float32Array(16);
     // Textures from the field: made again from the field (kept by setField) after a lost context.
     this.fieldTextures?.forgetGl();
-    this.fieldTextures = this.fieldTextures ?? new FieldTextures(gl);
+    this.fieldTextures = this.fieldTextures ?? new FieldTextures(gl, this.forcedTiles.normalTile);
     // The draped image died with the context too: the page opens it again (imagePlacement stays).
     this.imageTextures?.forgetGl();
-    this.imageTextures = this.imageTextures ?? new ImageTextures(gl);
+    this.imageTextures = this.imageTextures ?? new ImageTextures(gl, this.forcedTiles.imageTile);
     this.contours?.forgetGl();
     this.contours = this.contours ?? new ContourOverlay(gl); // contour lines and labels (web/render/contours/)
     this.vertices = new MirroredBuffer(gl, gl.ARRAY_BUFFER);

@@ -1,9 +1,8 @@
-// The control panel (lil-gui): every setting with a panel place in the settings table
-// (web/app/settings_table.js), in the table's order and folders, then the camera, screenshots
+// The control panel (lil-gui): every setting with a panel place in the settings table it is
+// given (web/app/settings_table.js), in the table's order and folders, then the camera, screenshots
 // and help. The panel only edits the settings object and reports which key changed; the page
 // applies it.
 import GUI from 'lil-gui';
-import { SETTINGS } from '../app/settings_table.js';
 import { CAMERA_MODES } from '../cameras/rig.js';
 
 // The folders open at first (the terrain has the view: only the controls used most).
@@ -12,13 +11,14 @@ const OPEN_FOLDERS = new Set(['Level of detail']);
 /**
  * @param {HTMLElement} container
  * @param {object} settings the page's settings (edited in place)
+ * @param {Record<string, object>} table the settings table: each setting's panel place, choices and range
  * @param {{camera: {mode: string}, onChange: (key: string, value: any) => void,
  *   actions: Record<string, () => void>, folderActions?: Record<string, Record<string, () => void>>}} hooks
  *   actions: buttons, label -> function; folderActions: buttons in a settings folder, path -> label -> function
  * @returns {{gui: GUI, refresh: () => void, setCellSizeRange: (metres: number) => void,
  *   enableAction: (label: string, enabled: boolean) => void}}
  */
-export function createControlsPanel(container, settings, { camera, onChange, actions, folderActions = {} }) {
+export function createControlsPanel(container, settings, table, { camera, onChange, actions, folderActions = {} }) {
   // Its stylesheet is imported by public/style.css: the Content-Security-Policy refuses the
   // <style> element lil-gui would inject.
   const gui = new GUI({ container, title: 'Controls', injectStyles: false });
@@ -36,7 +36,7 @@ export function createControlsPanel(container, settings, { camera, onChange, act
     return folders.get(path);
   };
   const controllers = {};
-  for (const [key, s] of Object.entries(SETTINGS)) {
+  for (const [key, s] of Object.entries(table)) {
     if (!s.panel) continue;
     const [path, label] = s.panel, folder = folderOf(path);
     const changed = (value) => onChange(key, value);

@@ -11,13 +11,12 @@ import { ACCEPT_EXTENSIONS, ACCEPTED } from '../loaders/index.js';
 import { extensionOf, baseNameOf } from '../loaders/common.js';
 import { LoadSequence } from './load_sequence.js';
 import { fetchLimited, formatMB, LimitError } from './url_fetch.js';
-import { SETTINGS } from '../app/settings_table.js';
 import { dropRoles, IMAGE_EXTENSIONS } from '../imagery/drop_roles.js';
 import { ImageError } from '../imagery/image_error.js';
 import { worldFileCandidates } from '../geo/index.js';
 import { detectPngEncoding, hasPngSignature } from '../loaders/png.js';
-import { isTiffName, shouldStreamFile, openStream } from './stream_open.js';
-import { MAKE_COG } from '../stream/cog_source.js';
+import { isTiffName, shouldOpenTiled, openTiled } from './tiled_open.js';
+import { MAKE_COG } from '../tiles/cog_source.js';
 
 // The PNG colours menu: 'image' drapes a colour PNG; an encoding makes it heights.
 const PNG_CHOICE = { auto: 'auto', image: 'image', 'terrain-rgb': 'height', terrarium: 'height' };
@@ -46,18 +45,19 @@ const acceptWorldFile = (response) => response.ok && !/text\/html/.test(response
  * @param {{ core: import('../core/core.js').HexlodCore, state: object, settings: object,
  *   show: (loaded: object, source: string|null) => void,
  *   showStatus: (message: string, isError?: boolean) => void, setCellSize: (metres: number) => boolean,
- *   currentSpacing: () => {spacingX: number, spacingY: number} }} page
+ *   currentSpacing: () => {spacingX: number, spacingY: number}, defaultUrlTimeoutS: number }} page
  *   settings: the page's (urlTimeout in seconds and urlMaxMB, read at each URL load); show: the
  *   loaded terrain and the URL it came from (null for a file); setCellSize: the panel's cell
  *   size setting (east-west metres; north-south keeps its ratio), false when refused (the page
  *   shows why); currentSpacing: the terrain on screen's; drape(image, worldFile, url): drapes an
- *   image ({ name, blob }) on the terrain on screen (app/image_stage.js), null when refused
+ *   image ({ name, blob }) on the terrain on screen (app/image_stage.js), null when refused;
+ *   defaultUrlTimeoutS: the time limit of the page's own files (the setting's default)
  * @returns {{ openUrl, openImageUrl, openLinks, idle: () => Promise<void>, showSpacing: (terrain: object, assumed?: boolean) => void }}
  *   openUrl, openImageUrl and openLinks resolve to 'shown', 'failed' (the status line says why) or
  *   'cancelled' (by the Cancel button, or by a file opened meanwhile)
  */
 export function createFileIntake({ core, state, settings, show, showStatus, setCellSize, currentSpacing,
-  drape = async () => null }) {
+  defaultUrlTimeoutS, drape = async () => null }) {
   const $ = (id) => document.getElementById(id);
   const picker = $('file-input'), progress = $('load-progress'), encodingSelect = $('png-encoding');
   const cancelButton = $('load-cancel');
@@ -161,14 +161,14 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
   }
 
   /**
-   * Opens a COG (a URL or a File) as a streamed terrain and shows it once its coarsest level is
-   * in; the tiles the view needs follow frame by frame. Throws the stream's errors (StreamError).
+   * Opens a COG (a URL or a File) as a tiled terrain and shows it once its coarsest level is
+   * in; the tiles the view needs follow frame by frame. Throws the stream's errors (TileError).
    */
-  async function openStreamed(input, name, signal, source) {
+  async function openTiles(input, name, signal, source) {
     showStatus(`Opening ${name}…`);
-    const loaded = await openStream(core, input, { name, capBytes: settings.tileCacheMB * MB, signal, onProgress: loadProgress(signal) });
+    const loaded = await openTiled(core, input, { name, capBytes: settings.tileCacheMB * MB, signal, onProgress: loadProgress(signal) });
     if (signal.aborted) {
-      loaded.stream.close();
+      loaded.tiles.close();
       loaded.terrain.destroy();
       return cancelled(signal, name);
     }
@@ -184,9 +184,9 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
    * whole as any URL, if it fits the tile cache's cap (a file larger than that is what
    * streaming is for: the message says how to make it a COG).
    */
-  async function streamUrl(url, name, links, limits, signal) {
+  async function openUrlAsTiles(url, name, links, limits, signal) {
     try {
-      return await openStreamed(url, name, signal, url);
+      return await openTiles(url, name, signal, url);
     } catch (error) {
       if (signal.aborted) return cancelled(signal, name);
       if (error.kind !== 'no-range' && error.kind !== 'not-cog') return failed(`${name}: cannot stream it (${error.message})`);
@@ -274,10 +274,10 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
       const image = roles.image === null ? null : { name: picked[roles.image].name, blob: picked[roles.image] };
       // A lone COG streams from the File (read by slices, never whole); any other height field loads whole.
       if (picked.length === 1 && roles.field.length === 1 && image === null
-        && await shouldStreamFile(picked[0], only.head, settings.tileCacheMB * MB)) {
+        && await shouldOpenTiled(picked[0], only.head, settings.tileCacheMB * MB)) {
         if (signal.aborted) return cancelled(signal, names);
         try {
-          return await openStreamed(picked[0], names, signal, null);
+          return await openTiles(picked[0], names, signal, null);
         } catch (error) {
           return signal.aborted ? cancelled(signal, names) : failed(`${names}: cannot stream it (${error.message})`);
         }
@@ -351,7 +351,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
         links.push({ name: `${baseNameOf(name)}.json`, url: new URL(`./${baseNameOf(segment)}.json`, dataUrl).href, optional: true });
       }
       const limits = { timeoutMs: settings.urlTimeout * 1000, maxBytes: settings.urlMaxMB * MB };
-      if (isTiffName(name)) return streamUrl(url, name, links, limits, signal);
+      if (isTiffName(name)) return openUrlAsTiles(url, name, links, limits, signal);
       return fetchAndDecode(links, limits, signal, url, false);
     });
   }
@@ -364,7 +364,7 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
   function openLinks(links) {
     return loads.run((signal) => {
       indicator.start(false);
-      return fetchAndDecode(links, { timeoutMs: SETTINGS.urlTimeout.default * 1000, maxBytes: Infinity }, signal, null, true);
+      return fetchAndDecode(links, { timeoutMs: defaultUrlTimeoutS * 1000, maxBytes: Infinity }, signal, null, true);
     });
   }
 

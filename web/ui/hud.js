@@ -30,14 +30,14 @@ export class Hud {
     this.figures = document.createElement('div');
     this.image = document.createElement('div');
     this.cursor = document.createElement('div');
-    this.stream = document.createElement('div'); // a streamed terrain's tiles: shown folded or not
-    this.stream.className = 'hud-stream';
-    this.stream.hidden = true;
+    this.tiles = document.createElement('div'); // a streamed terrain's tiles: shown folded or not
+    this.tiles.className = 'hud-tiles';
+    this.tiles.hidden = true;
     this.summary.className = 'hud-summary';
     this.info.className = this.figures.className = 'hud-more';
     this.image.className = 'hud-image';
     this.image.hidden = true;
-    element.append(this.toggleButton, this.summary, this.stream, this.info, this.image, this.figures, this.cursor);
+    element.append(this.toggleButton, this.summary, this.tiles, this.info, this.image, this.figures, this.cursor);
     this.setCollapsed(collapsed);
     // rAF timestamps of the last FPS_WINDOW frames, a ring made once (tick runs every frame).
     this.frameTimes = new Float64Array(FPS_WINDOW);
@@ -63,16 +63,16 @@ export class Hud {
     this.lastErrorRefresh = -Infinity; // the error of the old terrain means nothing now
     const spacing = field.spacingFromFile ? '' : ' (assumed: the file has none)';
     this.terrainName = field.source;
-    this.stream.hidden = !field.streamed;
-    this.stream.textContent = '';
+    this.tiles.hidden = !field.tiled;
+    this.tiles.textContent = '';
     this.info.textContent = [
       `${field.source}  ${terrain.width} × ${terrain.height} ${field.sampleType}` +
         (field.cropped ? ` (the data of a sparse ${field.cropped.width} × ${field.cropped.height})` : '') +
-        (field.streamed ? `, streamed: ${field.levels} levels of ${field.tileWidth} × ${field.tileHeight} tiles` +
+        (field.tiled ? `, streamed: ${field.levels} levels of ${field.tileWidth} × ${field.tileHeight} tiles` +
           `${field.fileBytes ? ` in ${megabytes(field.fileBytes)} MB` : ''}` : ''),
       `spacing ${terrain.spacingX.toFixed(1)} × ${terrain.spacingY.toFixed(1)} m${spacing}, ` +
-        `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m${field.streamed ? ' (so far)' : ''}, ` +
-        `${field.streamed ? 'opened' : 'loaded'} in ${loadMs.toFixed(0)} ms`,
+        `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m${field.tiled ? ' (so far)' : ''}, ` +
+        `${field.tiled ? 'opened' : 'loaded'} in ${loadMs.toFixed(0)} ms`,
     ].join('\n');
   }
 
@@ -94,8 +94,8 @@ export class Hud {
   /**
    * Shows the figures of the frame just drawn (at most every REFRESH_MS, unless `force`).
    * @param {{terrain: object, stats: import('../core/core.js').FrameStats, timing: object, settings: object,
-   *   camera: object, stream: import('../stream/streamed_terrain.js').StreamedTerrain|null, streamAwaiting: boolean}} f
-   *   stream: a streamed terrain's, whose figures are shown; streamAwaiting: tiles are awaited or
+   *   camera: object, tiles: import('../tiles/tiled_terrain.js').TiledTerrain|null, tilesAwaiting: boolean}} f
+   *   tiles: a tiled terrain's, whose figures are shown; tilesAwaiting: tiles are awaited or
    *   just went in, so the error is provisional
    */
   update(f, now, force = false) {
@@ -117,18 +117,18 @@ export class Hud {
     const newest = times[(this.frameCount - 1) % FPS_WINDOW], oldest = times[(this.frameCount - kept) % FPS_WINDOW];
     const span = kept > 1 ? newest - oldest : 0;
     const fps = span > 0 && now - newest < 1000 ? ((kept - 1) * 1000) / span : 0;
-    const stream = f.stream ?? null;
+    const tiles = f.tiles ?? null;
     // A tiled terrain holds only the tiles in, not width x height samples.
-    const fieldBytes = stream ? stream.heldBytes : terrain.sampleBytes;
+    const fieldBytes = tiles ? tiles.heldBytes : terrain.sampleBytes;
     const meshBytes = memoryBytes, coreBytes = meshBytes + fieldBytes;
     // Measured against the samples in so far: finer tiles still to come may show more error.
-    const provisional = stream !== null && f.streamAwaiting === true;
+    const provisional = tiles !== null && f.tilesAwaiting === true;
     const errorText = error < 0 ? 'n/a' : `${error.toFixed(2)} px${provisional ? ' (provisional)' : ''}`;
     this.values = { fps, frameMs: timing.frameMs ?? 0, updateMs, triangles,
       full: kinds.full, semi: kinds.semi, boundarySemi: kinds.boundarySemi, vertices,
       splits, merges, coreMB: coreBytes / 2 ** 20,
       bytesPerTriangle: triangles ? meshBytes / triangles : 0, screenErrorPx: error, tau, errorProvisional: provisional,
-      stream: stream ? this.showStream(stream, provisional) : null };
+      tiles: tiles ? this.showTiles(tiles, provisional) : null };
     const v = this.values;
     this.figures.textContent = [
       `${camera.mode} camera   ${fps > 0 ? `${fps.toFixed(0)} fps` : 'idle'}   frame ${v.frameMs.toFixed(1)} ms   ` +
@@ -136,7 +136,7 @@ export class Hud {
       `${number(v.triangles)} triangles   hexagons: ${number(v.full)} full, ${number(v.semi + v.boundarySemi)} semi ` +
         `(${number(v.boundarySemi)} on the boundary)   ${number(v.vertices)} vertices`,
       `last frame: ${number(v.splits)} splits, ${number(v.merges)} merges`,
-      `core ${v.coreMB.toFixed(1)} MB (${stream ? 'tiles' : 'field'} ${(fieldBytes / MB).toFixed(1)} MB), ` +
+      `core ${v.coreMB.toFixed(1)} MB (${tiles ? 'tiles' : 'field'} ${(fieldBytes / MB).toFixed(1)} MB), ` +
         `mesh ${v.bytesPerTriangle.toFixed(0)} B/triangle`,
       `screen error ${errorText} (τ ${v.tau.toFixed(2)} px)   ×${settings.exaggeration} vertical`,
     ].join('\n');
@@ -144,9 +144,9 @@ export class Hud {
       `${number(v.triangles)} triangles   error ${errorText}`;
   }
 
-  /** The stream's line: tiles awaited and bytes fetched, and the last failures; returns it. */
-  showStream(stream, awaiting) {
-    const { waiting, bytesFetched, fileBytes, failures } = stream;
+  /** The tiles' line: tiles awaited and bytes fetched, and the last failures; returns it. */
+  showTiles(tiles, awaiting) {
+    const { waiting, bytesFetched, fileBytes, failures } = tiles;
     const fetched = `${megabytes(bytesFetched)}${fileBytes ? ` of ${megabytes(fileBytes)}` : ''} MB fetched`;
     let text = waiting > 0 ? `waiting for ${number(waiting)} tile${waiting === 1 ? '' : 's'} · ${fetched}`
       : awaiting ? `taking in tiles · ${fetched}` : `${failures.length ? 'no tiles awaited' : 'all tiles in view loaded'} · ${fetched}`;
@@ -154,8 +154,8 @@ export class Hud {
       const first = failures[0];
       text += ` · ${failures.length} tile${failures.length === 1 ? '' : 's'} failed (${first.kind}): ${first.message}`;
     }
-    this.stream.textContent = text;
-    this.stream.classList.toggle('error', failures.length > 0);
+    this.tiles.textContent = text;
+    this.tiles.classList.toggle('error', failures.length > 0);
     return text;
   }
 

@@ -124,7 +124,7 @@ export class MeasureTool {
     return this.result;
   }
 
-  /** The terrain's heights changed (a streamed terrain's tiles came): what is measured is measured again. */
+  /** The terrain's heights changed (a tiled terrain's tiles came): what is measured is measured again. */
   heightsChanged() {
     if (this.active && this.points.length >= 2) this.update();
   }

@@ -1,7 +1,7 @@
 // What the mouse pointer does besides the cameras' drags: the readout of the ground under it
 // (x, z, height and slope in the HUD, at most every 50 ms) and a double click, which orbits
 // around the point under the pointer (not while the measuring tool takes the clicks). The readout
-// carries the point's real coordinates when the field has a georeference (web/measure/coordinates.js).
+// carries the point's real coordinates when the field has a georeference (web/geo/coordinates.js).
 import { pickGround } from '../cameras/picking.js';
 import { geoCoordinates, formatCoordinates } from '../geo/index.js';
 

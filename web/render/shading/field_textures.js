@@ -5,7 +5,8 @@
 //   occlusion   per field and exaggeration
 //   sun         per field, exaggeration and sun direction
 // The normal texture is an array of tiles no larger than MAX_TEXTURE_SIZE a side (many GPUs
-// stop at 16384, one short of a 16385² field). ?normaltile=N forces smaller tiles (tests).
+// stop at 16384, one short of a 16385² field). The normalTile setting
+// (?normaltile=N) forces smaller tiles (tests).
 import { fieldOf, downsampleField, gradientTiles, halveImage, sunVisibility, ambientOcclusion } from './field_shading.js';
 
 export const TEXTURE_UNIT_GRADIENTS = 0;
@@ -18,15 +19,14 @@ export const SUN_MAX_SIDE = 2048;
 /** Texels of the field texture at most (RGBA16F, 8 bytes each: 128 MB); larger fields keep every n-th sample. */
 export const GRADIENT_MAX_TEXELS = 1 << 24;
 
-function forcedTileSize() {
-  const value = Number(new URLSearchParams(globalThis.location?.search ?? '').get('normaltile'));
-  return Number.isInteger(value) && value >= 16 ? value : Infinity;
-}
-
 export class FieldTextures {
-  /** @param {WebGL2RenderingContext} gl */
-  constructor(gl) {
+  /**
+   * @param {WebGL2RenderingContext} gl
+   * @param {() => number} forcedTile texels a side the tiles may not exceed, read at each upload (0: none)
+   */
+  constructor(gl, forcedTile = () => 0) {
     this.gl = gl;
+    this.forcedTile = forcedTile;
     this.terrain = null;
     this.field = null;
     this.times = { gradientsMs: 0, occlusionMs: 0, sunMs: 0 }; // the last computation of each, ms
@@ -61,7 +61,7 @@ export class FieldTextures {
 
   /** Makes what is out of date (all three, so every sampler has a texture). Allocates only when something changed. */
   prepare(verticalScale, sunDirection) {
-    // A tiled terrain (a streamed COG) has no whole field to make them from: never ready, so
+    // A tiled terrain (a tiled COG) has no whole field to make them from: never ready, so
     // the renderer shades with the mesh's normals.
     if (!this.terrain || this.terrain.handle === 0 || this.terrain.tiled) return;
     if (!this.gradients) this.makeGradients();
@@ -76,7 +76,7 @@ export class FieldTextures {
   makeGradients() {
     const gl = this.gl, start = performance.now();
     const field = this.view();
-    const maxTile = Math.min(gl.getParameter(gl.MAX_TEXTURE_SIZE), forcedTileSize());
+    const maxTile = Math.min(gl.getParameter(gl.MAX_TEXTURE_SIZE), this.forcedTile() || Infinity);
     const stride = Math.max(1, Math.ceil(Math.sqrt((field.width * field.height) / GRADIENT_MAX_TEXELS)));
     const tiles = gradientTiles(field, maxTile, stride);
     const layers = tiles.tilesX * tiles.tilesZ;

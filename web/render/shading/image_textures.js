@@ -5,7 +5,7 @@
 // bands of rows (GeoTIFF: each band goes to the tiles it touches, and into the overview, a row at a time).
 // A new image is filled into textures of its own while the one shown stays on screen: it takes
 // the old one's place at finish(), and abort() (a band that does not decode) leaves the old one.
-// ?imagetile=N forces tiles of at most N texels (tests of the tiling on any GPU).
+// The imageTile setting (?imagetile=N) forces tiles of at most N texels (tests of the tiling on any GPU).
 import { tileSource } from '../../imagery/image_tiling.js';
 import { OverviewRows } from '../../imagery/overview_rows.js';
 
@@ -13,15 +13,14 @@ export const TEXTURE_UNIT_IMAGE_TILES = 3;
 export const TEXTURE_UNIT_IMAGE_OVERVIEW = 4;
 const MAX_ANISOTROPY = 8;
 
-function forcedTileSize() {
-  const value = Number(new URLSearchParams(globalThis.location?.search ?? '').get('imagetile'));
-  return Number.isInteger(value) && value >= 64 ? value : Infinity;
-}
-
 export class ImageTextures {
-  /** @param {WebGL2RenderingContext} gl */
-  constructor(gl) {
+  /**
+   * @param {WebGL2RenderingContext} gl
+   * @param {() => number} forcedTile texels a side the tiles may not exceed, read at each upload (0: none)
+   */
+  constructor(gl, forcedTile = () => 0) {
     this.gl = gl;
+    this.forcedTile = forcedTile;
     this.shown = null;   // { tiles, overview, tiling } of the image on screen
     this.filling = null; // the same of the image being filled
     this.overviewRows = null; // the overview made from bands as they arrive
@@ -31,7 +30,7 @@ export class ImageTextures {
   limits() {
     const gl = this.gl;
     return {
-      maxTextureSize: Math.min(gl.getParameter(gl.MAX_TEXTURE_SIZE), forcedTileSize()),
+      maxTextureSize: Math.min(gl.getParameter(gl.MAX_TEXTURE_SIZE), this.forcedTile() || Infinity),
       maxLayers: gl.getParameter(gl.MAX_ARRAY_TEXTURE_LAYERS),
     };
   }

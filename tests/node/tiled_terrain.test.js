@@ -1,4 +1,4 @@
-// A terrain streamed from a COG on a range server with latency (web/stream/streamed_terrain.js
+// A terrain streamed from a COG on a range server with latency (web/tiles/tiled_terrain.js
 // over the core's tiled terrain): the first frame comes from the overviews, the tiles the view
 // needs follow, the stream stays watertight while they come, far fewer bytes than the file are
 // fetched, and the mesh converges to the one of the same file loaded whole.
@@ -8,8 +8,8 @@ import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { createNodeCore } from '../../lib/node_core.js';
 import { startRangeServer } from '../../lib/range_server.js';
-import { openCog } from '../../web/stream/cog_source.js';
-import { openStreamedTerrain } from '../../web/stream/streamed_terrain.js';
+import { openCog } from '../../web/tiles/cog_source.js';
+import { openTiledTerrain } from '../../web/tiles/tiled_terrain.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
 
 const fixtures = fileURLToPath(new URL('../fixtures/cog/', import.meta.url));
@@ -32,14 +32,14 @@ function cameraFor(terrain) {
 }
 
 /** Frames until nothing is waited for and the mesh converged, each checked watertight. */
-async function runToRest(terrain, stream, camera, { maxFrames = 2000, onFrame = () => {} } = {}) {
+async function runToRest(terrain, tiles, camera, { maxFrames = 2000, onFrame = () => {} } = {}) {
   let quiet = 0, frames = 0;
   for (; frames < maxFrames && quiet < 3; frames++) {
     const stats = terrain.frame(frames === 0 ? camera : null);
     terrain.checkStream();
     onFrame(stats, frames);
-    const arrived = stream ? stream.tick() : 0;
-    const waiting = stream ? stream.waiting : 0;
+    const arrived = tiles ? tiles.tick() : 0;
+    const waiting = tiles ? tiles.waiting : 0;
     quiet = waiting === 0 && arrived === 0 && stats.converged && stats.pendingMerges === 0 ? quiet + 1 : 0;
     if (waiting > 0) await new Promise((resolve) => setTimeout(resolve, 2)); // let the requests in flight land
   }
@@ -50,8 +50,8 @@ async function runToRest(terrain, stream, camera, { maxFrames = 2000, onFrame = 
 test('a COG streamed over HTTP: overviews first, only the needed tiles, watertight throughout, the whole file\'s mesh', async () => {
   const url = `${server.url}/${HIMALAYA}`;
   const source = await openCog(url);
-  const opened = await openStreamedTerrain(core, source);
-  const { terrain, stream } = opened;
+  const opened = await openTiledTerrain(core, source);
+  const { terrain, tiles } = opened;
   assert.equal(terrain.tiled, true);
   assert.deepEqual([terrain.width, terrain.height], [1024, 1024]);
   const afterOpen = source.stats.bytes;
@@ -61,9 +61,9 @@ test('a COG streamed over HTTP: overviews first, only the needed tiles, watertig
   terrain.configure(settings);
   const camera = cameraFor(terrain);
   let firstTriangles = 0;
-  await runToRest(terrain, stream, camera, { onFrame: (stats, k) => { if (k === 0) firstTriangles = stats.triangles; } });
+  await runToRest(terrain, tiles, camera, { onFrame: (stats, k) => { if (k === 0) firstTriangles = stats.triangles; } });
   assert.ok(firstTriangles > 0, 'the first frame draws from the overviews');
-  assert.ok(stream.tilesIn > 0, 'the view asked for finer tiles');
+  assert.ok(tiles.tilesIn > 0, 'the view asked for finer tiles');
   const fetched = source.stats.bytes;
   // Measured: 8 tiles after the opening, 38 % of the bytes (the header and coarsest level included).
   assert.ok(fetched < 0.5 * source.size, `a corner view fetches part of the file: ${fetched} of ${source.size} bytes`);
@@ -91,7 +91,7 @@ test('a COG streamed over HTTP: overviews first, only the needed tiles, watertig
     assert.ok(k < 200);
   }
   assert.equal(terrain.query(16).hash(), whole.query(16).hash());
-  stream.close();
+  tiles.close();
   terrain.destroy();
   whole.destroy();
 });
@@ -108,26 +108,26 @@ test('a COG from a Blob (a dropped file) is read by slices, never whole', async 
     return part;
   };
   const source = await openCog(blob, { name: HIMALAYA });
-  const { terrain, stream } = await openStreamedTerrain(core, source);
+  const { terrain, tiles } = await openTiledTerrain(core, source);
   terrain.resetMesh('exact');
   terrain.configure(settings);
-  await runToRest(terrain, stream, cameraFor(terrain));
+  await runToRest(terrain, tiles, cameraFor(terrain));
   assert.ok(sliced < 0.75 * bytes.length, `${sliced} of ${bytes.length} bytes sliced`);
-  stream.close();
+  tiles.close();
   terrain.destroy();
 });
 
 test('a COG without overviews streams when it fits the cap, and is refused with the way to make one when not', async () => {
   const source = await openCog(`${server.url}/${NO_OVERVIEWS}`);
   assert.equal(source.hasOverviews, false);
-  const { terrain, stream } = await openStreamedTerrain(core, source);
+  const { terrain, tiles } = await openTiledTerrain(core, source);
   terrain.resetMesh('exact');
   terrain.configure(settings);
-  await runToRest(terrain, stream, cameraFor(terrain));
-  stream.close();
+  await runToRest(terrain, tiles, cameraFor(terrain));
+  tiles.close();
   terrain.destroy();
 
-  await assert.rejects(openStreamedTerrain(core, await openCog(`${server.url}/${NO_OVERVIEWS}`), { capBytes: 100_000 }),
+  await assert.rejects(openTiledTerrain(core, await openCog(`${server.url}/${NO_OVERVIEWS}`), { capBytes: 100_000 }),
     (e) => e.kind === 'too-big' && /gdal_translate -of COG/.test(e.message) && /overviews/.test(e.message));
 });
 
@@ -135,20 +135,20 @@ test('a tile that fails is reported once with its kind, and the terrain stays dr
   const failing = await startRangeServer(fixtures, { latencyMs: 5 });
   try {
     const source = await openCog(`${failing.url}/${HIMALAYA}`, { retries: 1, backoffMs: 1 });
-    const { terrain, stream } = await openStreamedTerrain(core, source);
+    const { terrain, tiles } = await openTiledTerrain(core, source);
     terrain.resetMesh('exact');
     terrain.configure(settings);
     await failing.close(); // the server goes away: every later request fails
     for (let k = 0; k < 40; k++) {
       terrain.frame(k === 0 ? cameraFor(terrain) : null);
       terrain.checkStream();
-      stream.tick();
+      tiles.tick();
       await new Promise((resolve) => setTimeout(resolve, 5));
     }
-    assert.ok(stream.failures.length > 0, 'failed tiles are reported');
-    assert.ok(stream.failures.every((f) => f.kind === 'network' && /no answer/.test(f.message) && f.level >= 0), JSON.stringify(stream.failures[0]));
+    assert.ok(tiles.failures.length > 0, 'failed tiles are reported');
+    assert.ok(tiles.failures.every((f) => f.kind === 'network' && /no answer/.test(f.message) && f.level >= 0), JSON.stringify(tiles.failures[0]));
     assert.ok(terrain.query().triangles > 0);
-    stream.close();
+    tiles.close();
     terrain.destroy();
   } finally {
     await failing.close().catch(() => {});
@@ -158,7 +158,7 @@ test('a tile that fails is reported once with its kind, and the terrain stays dr
 test('a small tile cache lets the least recently used tiles go, never those the mesh stands on, and stays watertight', async () => {
   const source = await openCog(`${server.url}/${HIMALAYA}`);
   const tileBytes = 256 * 256 * 2;
-  const { terrain, stream } = await openStreamedTerrain(core, source, { capBytes: 6 * tileBytes });
+  const { terrain, tiles } = await openTiledTerrain(core, source, { capBytes: 6 * tileBytes });
   terrain.resetMesh('exact');
   terrain.configure(settings);
   const w = (terrain.width - 1) * terrain.spacingX, d = (terrain.height - 1) * terrain.spacingY;
@@ -171,13 +171,13 @@ test('a small tile cache lets the least recently used tiles go, never those the 
     terrain.frame({ eye: [x, 0.12 * w, 0.5 * d], target: [x, 0, 0.5 * d - 0.02 * w], up: [0, 1, 0], fovY: Math.PI / 3,
       aspect: 16 / 9, viewportHeight: 720, near: 10, far: 1e8 });
     terrain.checkStream();
-    stream.tick();
-    const pinnedBytes = [...stream.pinned].filter((key) => stream.cache.hasKey(key)).length * tileBytes;
-    assert.ok(stream.cache.bytes <= Math.max(6 * tileBytes, pinnedBytes + tileBytes), `${stream.cache.bytes} bytes held`);
+    tiles.tick();
+    const pinnedBytes = [...tiles.pinned].filter((key) => tiles.cache.hasKey(key)).length * tileBytes;
+    assert.ok(tiles.cache.bytes <= Math.max(6 * tileBytes, pinnedBytes + tileBytes), `${tiles.cache.bytes} bytes held`);
     await new Promise((resolve) => setTimeout(resolve, 3));
   }
   assert.ok(evicted > 0, 'tiles were let go');
-  assert.ok(stream.tilesIn > 6, `${stream.tilesIn} tiles came`);
-  stream.close();
+  assert.ok(tiles.tilesIn > 6, `${tiles.tilesIn} tiles came`);
+  tiles.close();
   terrain.destroy();
 });

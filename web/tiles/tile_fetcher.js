@@ -45,7 +45,7 @@ import { TileCache, tileKey } from './tile_cache.js';
  * @property {number} tx
  * @property {number} ty
  * @property {number} key tileKey(level, tx, ty)
- * @property {string} kind a StreamError kind ('http', 'network', 'truncated', 'decode', ...),
+ * @property {string} kind a TileError kind ('http', 'network', 'truncated', 'decode', ...),
  *   'invalid' for a tile the file does not have, 'internal' for anything else
  * @property {string} message for the user
  * @property {unknown} error what the reader threw

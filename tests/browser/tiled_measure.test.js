@@ -6,8 +6,8 @@ import assert from 'node:assert/strict';
 import { startViewer, openPage, pageReady, projectDir } from '../../lib/page_harness.js';
 import { startRangeServer } from '../../lib/range_server.js';
 import { createNodeCore } from '../../lib/node_core.js';
-import { openCog } from '../../web/stream/cog_source.js';
-import { openStreamedTerrain } from '../../web/stream/streamed_terrain.js';
+import { openCog } from '../../web/tiles/cog_source.js';
+import { openTiledTerrain } from '../../web/tiles/tiled_terrain.js';
 
 const COGS = `${projectDir}tests/fixtures/cog/`;
 const HIMALAYA = 'himalaya_1024_i16.tif'; // 1024², 256² tiles, overviews 512² and 256²
@@ -23,9 +23,9 @@ after(async () => {
 /** The field's extent in the page's metres: the same code opens the COG in Node. */
 async function extentOf(url) {
   const core = await createNodeCore();
-  const { terrain, stream } = await openStreamedTerrain(core, await openCog(url));
+  const { terrain, tiles } = await openTiledTerrain(core, await openCog(url));
   const extent = [(terrain.width - 1) * terrain.spacingX, (terrain.height - 1) * terrain.spacingY];
-  stream.close();
+  tiles.close();
   terrain.destroy();
   return extent;
 }
@@ -40,8 +40,8 @@ test('a path measured on a streamed COG is measured again as finer tiles come', 
   await page.addInitScript(() => {
     const poll = () => {
       const result = window.hexlod?.measure?.result;
-      if (!window.firstMeasure && result?.profile && window.hexlod.stream) {
-        window.firstMeasure = { summary: result.profile.summary, tilesIn: window.hexlod.stream.tilesIn };
+      if (!window.firstMeasure && result?.profile && window.hexlod.tiles) {
+        window.firstMeasure = { summary: result.profile.summary, tilesIn: window.hexlod.tiles.tilesIn };
       }
       requestAnimationFrame(poll);
     };
@@ -50,13 +50,13 @@ test('a path measured on a streamed COG is measured again as finer tiles come', 
   await page.goto(`${viewer.url}?budget=50&tau=3&measure=p:${points.join(';')}&src=${encodeURIComponent(url)}`);
   await pageReady(page);
   assert.equal(await page.evaluate(() => window.hexlod.status), 'ready', await page.evaluate(() => window.hexlod.error));
-  await page.waitForFunction(() => window.hexlod.converged && window.hexlod.stream?.settled && window.hexlod.hud?.errorProvisional === false,
+  await page.waitForFunction(() => window.hexlod.converged && window.hexlod.tiles?.settled && window.hexlod.hud?.errorProvisional === false,
     null, { timeout: 120000, polling: 100 });
   const seen = await page.evaluate(() => {
     const tool = window.hexlod.measure;
     const settled = tool.result.profile.summary;
     tool.update(); // measured afresh on the heights now loaded
-    return { first: window.firstMeasure, settled, afresh: tool.result.profile.summary, tilesIn: window.hexlod.stream.tilesIn };
+    return { first: window.firstMeasure, settled, afresh: tool.result.profile.summary, tilesIn: window.hexlod.tiles.tilesIn };
   });
   console.log(`path of ${points.length} points: gain ${seen.first.summary.gain.toFixed(1)} m with ${seen.first.tilesIn} tiles in, ` +
     `${seen.settled.gain.toFixed(1)} m with ${seen.tilesIn}`);

@@ -42,11 +42,11 @@ after(async () => {
   rmSync(tmp, { recursive: true, force: true });
 });
 
-/** Records every HUD stream line the page shows, from its first frame on. */
+/** Records every HUD tiles line the page shows, from its first frame on. */
 const recordHud = (page) => page.addInitScript(() => {
   window.hudLines = [];
   const poll = () => {
-    const line = window.hexlod?.hud?.stream;
+    const line = window.hexlod?.hud?.tiles;
     if (line && window.hudLines.at(-1) !== line) window.hudLines.push(line);
     window.sawProvisional ||= /\(provisional\)/.test(document.querySelector('#hud .hud-summary')?.textContent ?? '');
     requestAnimationFrame(poll);
@@ -55,7 +55,7 @@ const recordHud = (page) => page.addInitScript(() => {
 });
 
 /** Waits until no tile is awaited and the mesh has converged. */
-const settled = (page) => page.waitForFunction(() => window.hexlod.converged && window.hexlod.stream?.settled
+const settled = (page) => page.waitForFunction(() => window.hexlod.converged && window.hexlod.tiles?.settled
   && window.hexlod.hud?.errorProvisional === false, null, { timeout: 120000, polling: 100 });
 
 /**
@@ -123,9 +123,9 @@ test('?src= of a COG streams: tiles fill in unasked, less than the file is fetch
   await pageReady(page);
   const first = await page.evaluate(() => ({ status: window.hexlod.status, error: window.hexlod.error, terrain: window.hexlod.terrain }));
   assert.equal(first.status, 'ready', first.error);
-  assert.deepEqual([first.terrain.name, first.terrain.width, first.terrain.height, first.terrain.streamed], [HIMALAYA, 1024, 1024, true]);
+  assert.deepEqual([first.terrain.name, first.terrain.width, first.terrain.height, first.terrain.tiled], [HIMALAYA, 1024, 1024, true]);
   await settled(page);
-  const figures = await page.evaluate(() => ({ ...window.hexlod.stream, hud: window.hexlod.hud, lines: window.hudLines,
+  const figures = await page.evaluate(() => ({ ...window.hexlod.tiles, hud: window.hexlod.hud, lines: window.hudLines,
     sawProvisional: window.sawProvisional }));
   console.log(`streamed: ${figures.tilesIn} tiles in, ${figures.bytesFetched} of ${figures.fileBytes} bytes fetched, ` +
     `${figures.heldBytes} bytes of samples held; HUD: ${figures.lines.join(' → ')}`);
@@ -134,7 +134,7 @@ test('?src= of a COG streams: tiles fill in unasked, less than the file is fetch
   assert.ok(figures.bytesFetched < figures.fileBytes, `${figures.bytesFetched} of ${figures.fileBytes} bytes fetched`);
   assert.deepEqual(figures.failures, []);
   assert.ok(figures.lines.some((line) => /^waiting for \d+ tiles? · [\d.]+ of 1\.5 MB fetched/.test(line)), figures.lines.join('\n'));
-  assert.match(figures.hud.stream, /^all tiles in view loaded/);
+  assert.match(figures.hud.tiles, /^all tiles in view loaded/);
   assert.ok(figures.sawProvisional, 'while tiles were awaited, the error was marked provisional');
   assert.equal(figures.hud.errorProvisional, false);
   assert.doesNotMatch(await page.locator('#hud').innerText(), /provisional/);
@@ -170,7 +170,7 @@ test('?src= of a COG streams: tiles fill in unasked, less than the file is fetch
   const other = await openPage(viewer.browser, `${viewer.url}?${search}`, VIEWPORT);
   await pageReady(other.page);
   const loaded = await other.page.evaluate(() => ({ error: window.hexlod.error, terrain: window.hexlod.terrain }));
-  assert.equal(loaded.terrain?.streamed, false, `loaded whole: ${loaded.error}`);
+  assert.equal(loaded.terrain?.tiled, false, `loaded whole: ${loaded.error}`);
   await other.page.evaluate(() => {
     for (const [key, value] of [['normals', 'mesh'], ['shadows', false], ['occlusion', false]]) window.hexlod.setSetting(key, value);
   });
@@ -211,11 +211,11 @@ test('a dropped COG streams from the File, never read whole, and shows terrain; 
   await dropFiles(page, [{ name: HIMALAYA, bytes }]);
   await terrainShown(page, HIMALAYA);
   await settled(page);
-  const { stream, terrain, reads } = await page.evaluate(() => ({ stream: window.hexlod.stream, terrain: window.hexlod.terrain, reads: window.blobReads }));
-  console.log(`dropped: ${stream.tilesIn} tiles in; blob reads on the page: ${reads.join(', ')} bytes`);
-  assert.equal(terrain.streamed, true);
-  assert.equal(stream.fileBytes, bytes.length);
-  assert.ok(stream.tilesIn > 0);
+  const { tiles, terrain, reads } = await page.evaluate(() => ({ tiles: window.hexlod.tiles, terrain: window.hexlod.terrain, reads: window.blobReads }));
+  console.log(`dropped: ${tiles.tilesIn} tiles in; blob reads on the page: ${reads.join(', ')} bytes`);
+  assert.equal(terrain.tiled, true);
+  assert.equal(tiles.fileBytes, bytes.length);
+  assert.ok(tiles.tilesIn > 0);
   assert.ok(reads.every((size) => size < bytes.length), `a read of the whole file: ${reads}`);
   const seen = await terrainCoverage(page);
   assert.ok(seen.coverage > 0.2 && seen.colours > 30, JSON.stringify(seen));
@@ -224,12 +224,12 @@ test('a dropped COG streams from the File, never read whole, and shows terrain; 
   for (const name of [SMALL, STRIPS]) {
     await dropFiles(page, [{ name, bytes: readFileSync(COGS + name) }]);
     await terrainShown(page, name);
-    assert.equal(await page.evaluate(() => window.hexlod.terrain.streamed), false, `${name} loads whole`);
+    assert.equal(await page.evaluate(() => window.hexlod.terrain.tiled), false, `${name} loads whole`);
   }
   // By ?src=, a TIFF in strips cannot stream: it loads whole.
   const outcome = await page.evaluate((url) => window.hexlod.openUrl(url), `${ranged.url}/${STRIPS}`);
   assert.equal(outcome, 'shown', await page.evaluate(() => window.hexlod.error));
-  assert.equal(await page.evaluate(() => window.hexlod.terrain.streamed), false);
+  assert.equal(await page.evaluate(() => window.hexlod.terrain.tiled), false);
   assert.deepEqual(problems.filter((p) => !/404/.test(p)), []); // the strips' sidecar .json is not there
   await page.close();
 });
@@ -266,7 +266,7 @@ test('faults: each says what went wrong, and the terrain on screen stays', async
   assert.match(await page.locator('#status').innerText(), /tilecache=10000 is not a number from 1 to 4096/);
   assert.equal(await page.evaluate(() => window.hexlod.settings.tileCacheMB), 1);
   assert.equal(await page.evaluate(() => window.hexlod.setSetting('tileCacheMB', 64)), true);
-  await page.waitForFunction(() => window.hexlod.stream.capBytes === 64 * 2 ** 20, null, { timeout: 10000, polling: 50 });
+  await page.waitForFunction(() => window.hexlod.tiles.capBytes === 64 * 2 ** 20, null, { timeout: 10000, polling: 50 });
 
   // Tiles that fail once the file is open: a closer view asks for them; what is drawn stays,
   // and the HUD says why.
@@ -279,11 +279,11 @@ test('faults: each says what went wrong, and the terrain on screen stays', async
       orbit.distance *= 0.15;
       window.hexlod.requestRender();
     }, [fx, fz]);
-    await page.waitForFunction(() => window.hexlod.stream?.failures.length > 0, null, { timeout: 60000 });
-    const failed = await page.evaluate(() => ({ failures: window.hexlod.stream.failures, line: window.hexlod.hud.stream }));
+    await page.waitForFunction(() => window.hexlod.tiles?.failures.length > 0, null, { timeout: 60000 });
+    const failed = await page.evaluate(() => ({ failures: window.hexlod.tiles.failures, line: window.hexlod.hud.tiles }));
     console.log(`${what}: ${failed.line}`);
     assert.equal(failed.failures[0].kind, kind, what);
-    assert.match(await page.locator('#hud .hud-stream').innerText(), new RegExp(`\\d+ tiles? failed \\(${kind}\\)`), what);
+    assert.match(await page.locator('#hud .hud-tiles').innerText(), new RegExp(`\\d+ tiles? failed \\(${kind}\\)`), what);
     const drawn = await terrainCoverage(page);
     assert.ok(drawn.coverage > 0.3 && drawn.colours > 20, `${what}: the terrain is still drawn: ${JSON.stringify(drawn)}`);
     await page.screenshot({ path: `${outDir}/streaming-failed-${kind}.png` });

@@ -2,9 +2,9 @@
 // the fetcher works with either. Each worker opens the COG itself (a URL, or a Blob or File,
 // which is posted without copying its bytes) and sends decoded samples back by transfer. A read
 // goes to the worker with the fewest reads outstanding; an abort is forwarded to the worker, and
-// its errors come back as the same StreamError kinds as a CogSource's.
+// its errors come back as the same TileError kinds as a CogSource's.
 
-import { StreamError, checkAborted } from './stream_error.js';
+import { TileError, checkAborted } from './tile_error.js';
 import { errorFromMessage } from './tile_service.js';
 
 /** A module worker of tile_worker.js; Vite bundles it through the URL. */
@@ -27,7 +27,7 @@ export function defaultWorkerCount() {
  *   urlReader; createWorker: makes one worker (default createTileWorker; anything with
  *   postMessage, onmessage, onerror and terminate will do)
  * @returns {Promise<WorkerTileReader>} once every worker has opened the file
- * @throws {StreamError} as openCog: kinds 'http', 'network', 'no-range', 'not-cog', 'bad-tiff',
+ * @throws {TileError} as openCog: kinds 'http', 'network', 'no-range', 'not-cog', 'bad-tiff',
  *   'aborted'; an Error if a worker does not start
  */
 export async function openWorkerPool(input, options = {}) {
@@ -45,7 +45,7 @@ export async function openWorkerPool(input, options = {}) {
   let onAbort;
   try {
     const aborted = new Promise((_, reject) => {
-      onAbort = () => reject(new StreamError('aborted', `${name}: aborted`, { cause: signal.reason }));
+      onAbort = () => reject(new TileError('aborted', `${name}: aborted`, { cause: signal.reason }));
       signal?.addEventListener('abort', onAbort, { once: true });
     });
     const infos = await Promise.race([aborted, Promise.all(pool.map((worker) => opened(worker, input, openOptions)))]);
@@ -133,14 +133,14 @@ export class WorkerTileReader {
    * @param {number} ty tile row, 0 at the north
    * @param {AbortSignal} [signal] aborting rejects at once and cancels the worker's read
    * @returns {Promise<Int16Array|Uint16Array|Uint8Array|Float32Array>} tileWidth x tileHeight samples
-   * @throws {StreamError} kinds 'http', 'network', 'truncated', 'decode', 'aborted'; a
+   * @throws {TileError} kinds 'http', 'network', 'truncated', 'decode', 'aborted'; a
    *   RangeError for a tile the file does not have; an Error if the worker died
    */
   readTile(level, tx, ty, signal) {
     const where = `${this.name}: tile (${tx}, ${ty}) of level ${level}`;
     try {
       checkAborted(signal, where);
-      if (this._closed) throw new StreamError('aborted', `${where}: the tile reader was closed`);
+      if (this._closed) throw new TileError('aborted', `${where}: the tile reader was closed`);
     } catch (e) {
       return Promise.reject(e);
     }
@@ -153,7 +153,7 @@ export class WorkerTileReader {
         entry.onAbort = () => {
           this._pending.delete(id);
           slot.worker.postMessage({ type: 'cancel', id });
-          reject(new StreamError('aborted', `${where}: aborted`, { cause: signal.reason }));
+          reject(new TileError('aborted', `${where}: aborted`, { cause: signal.reason }));
         };
         signal.addEventListener('abort', entry.onAbort, { once: true });
       }
@@ -171,7 +171,7 @@ export class WorkerTileReader {
       slot.alive = false;
       slot.worker.terminate();
     }
-    for (const [id, entry] of this._pending) this._settle(id, entry, null, new StreamError('aborted', `${this.name}: the tile reader was closed`));
+    for (const [id, entry] of this._pending) this._settle(id, entry, null, new TileError('aborted', `${this.name}: the tile reader was closed`));
   }
 
   /** The live worker with the fewest reads outstanding, ties taken in turn. */

@@ -16,7 +16,7 @@
 // reader's { requests, bytes } so far. Every read gets exactly one answer, cancelled or not.
 
 import { openCog } from './cog_source.js';
-import { StreamError } from './stream_error.js';
+import { TileError } from './tile_error.js';
 
 /**
  * Answers the messages of a port until it closes.
@@ -71,10 +71,10 @@ export function infoOf(cog) {
   };
 }
 
-/** An error as a message: a StreamError keeps its kind, status and size; others their name. */
+/** An error as a message: a TileError keeps its kind, status and size; others their name. */
 export function errorToMessage(e) {
   const error = { name: e?.name ?? 'Error', message: String(e?.message ?? e) };
-  if (e instanceof StreamError) {
+  if (e instanceof TileError) {
     error.kind = e.kind;
     if (e.status !== undefined) error.status = e.status;
     if (e.size !== undefined) error.size = e.size;
@@ -82,13 +82,13 @@ export function errorToMessage(e) {
   return error;
 }
 
-/** The error a message stands for: a StreamError of the same kind, a RangeError, or an Error. */
+/** The error a message stands for: a TileError of the same kind, a RangeError, or an Error. */
 export function errorFromMessage(error) {
   if (error.kind !== undefined) {
     const details = {};
     if (error.status !== undefined) details.status = error.status;
     if (error.size !== undefined) details.size = error.size;
-    return new StreamError(error.kind, error.message, details);
+    return new TileError(error.kind, error.message, details);
   }
   if (error.name === 'RangeError') return new RangeError(error.message);
   const plain = new Error(error.message);

@@ -17,15 +17,15 @@
 //      the first frame, bytes fetched, the share of frames that waited, the peak memory of
 //      Chromium (proportional set size of all its processes, a browser for each phase) and the
 //      core's WebAssembly memory.
-// Usage: node bench/cog_stream.js [--side N] [--latency MS] [--frames N] [--tau PX] [--page]
+// Usage: node bench/cog_tiles.js [--side N] [--latency MS] [--frames N] [--tau PX] [--page]
 import { spawn, execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, openSync, writeSync, closeSync, readFileSync, readdirSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { decode } from 'fast-png';
 import { startRangeServer } from '../lib/range_server.js';
 import { createNodeCore } from '../lib/node_core.js';
-import { openCog } from '../web/stream/cog_source.js';
-import { openStreamedTerrain } from '../web/stream/streamed_terrain.js';
+import { openCog } from '../web/tiles/cog_source.js';
+import { openTiledTerrain } from '../web/tiles/tiled_terrain.js';
 import { loadTerrain } from '../web/loaders/terrain_source.js';
 import { startViewer, openPage } from '../lib/page_harness.js';
 import { SETTINGS } from '../web/app/settings_table.js';
@@ -104,27 +104,27 @@ async function streamPhase(url) {
   const start = performance.now();
   const core = await createNodeCore();
   const source = await openCog(url);
-  const { terrain, stream } = await openStreamedTerrain(core, source);
+  const { terrain, tiles } = await openTiledTerrain(core, source);
   terrain.resetMesh('exact');
   terrain.configure({ tauPx: TAU, budgetMs: 4, morphFrames: 8 });
   terrain.frame(flightCamera(terrain, 0));
   const firstFrameS = (performance.now() - start) / 1000;
-  const bytesAtFirstFrame = stream.bytesFetched;
+  const bytesAtFirstFrame = tiles.bytesFetched;
   let waited = 0, triangles = 0;
   const flightStart = performance.now();
   for (let k = 0; k < FRAMES; k++) {
     const frameStart = performance.now();
     const stats = terrain.frame(k === 0 ? null : flightCamera(terrain, k));
-    stream.tick();
-    if (stream.waiting > 0) waited++;
+    tiles.tick();
+    if (tiles.waiting > 0) waited++;
     triangles = stats.triangles;
     await sleep(Math.max(0, 1000 / 60 - (performance.now() - frameStart)));
   }
   const flightS = (performance.now() - flightStart) / 1000;
-  const out = { firstFrameS, bytesAtFirstFrame, bytesFetched: stream.bytesFetched, fileBytes: stream.fileBytes,
-    tiles: stream.tilesIn, heldMb: stream.heldBytes / 2 ** 20, waitedShare: waited / FRAMES, frames: FRAMES, flightS, triangles,
-    coreMb: terrain.meshStats().bytes / 2 ** 20, wasmMb: core.buffer.byteLength / 2 ** 20, peakRssMb: peakRssMb() };
-  stream.close();
+  const out = { firstFrameS, bytesAtFirstFrame, bytesFetched: tiles.bytesFetched, fileBytes: tiles.fileBytes,
+    tiles: tiles.tilesIn, heldMb: tiles.heldBytes / 2 ** 20, waitedShare: waited / FRAMES, frames: FRAMES, flightS, triangles,
+    coreMb: terrain.query().memoryBytes / 2 ** 20, wasmMb: core.buffer.byteLength / 2 ** 20, peakRssMb: peakRssMb() };
+  tiles.close();
   return out;
 }
 
@@ -197,7 +197,7 @@ async function pagePhase(src, seconds) {
       window.benchCount = { frames: 0, waited: 0, last: window.hexlod.frames };
       const count = () => {
         const s = window.hexlod, c = window.benchCount;
-        if (s.frames > c.last) { c.frames += s.frames - c.last; if (s.stream && s.stream.waiting > 0) c.waited += s.frames - c.last; c.last = s.frames; }
+        if (s.frames > c.last) { c.frames += s.frames - c.last; if (s.tiles && s.tiles.waiting > 0) c.waited += s.frames - c.last; c.last = s.frames; }
         requestAnimationFrame(count);
       };
       count();
@@ -210,7 +210,7 @@ async function pagePhase(src, seconds) {
       await new Promise((resolve) => setTimeout(resolve, 250));
     }
     await page.mouse.up();
-    const end = await page.evaluate(() => ({ count: window.benchCount, stream: window.hexlod.stream, triangles: window.hexlod.triangles,
+    const end = await page.evaluate(() => ({ count: window.benchCount, tiles: window.hexlod.tiles, triangles: window.hexlod.triangles,
       wasmMb: window.hexlod.memory().wasmBytes / 2 ** 20 }));
     peak = Math.max(peak, chromiumPssMb());
     await page.close();
@@ -255,7 +255,7 @@ if (args[0] === '--phase') {
       writeFileSync(wholePath.replace(/\.r16$/, '.json'), JSON.stringify({ cell_size_x_m: HIMALAYA.cellX, cell_size_y_m: HIMALAYA.cellY }));
       const memory = (r) => `Chromium's memory (PSS, all processes) at its peak ${r.peakMb.toFixed(0)} MB, ${(r.peakMb - r.idleMb).toFixed(0)} MB over the browser ` +
         `before the page; the core's WebAssembly memory ${r.wasmMb.toFixed(0)} MB`;
-      const s = await pagePhase(cogUrl, 60), st = s.stream ?? {};
+      const s = await pagePhase(cogUrl, 60), st = s.tiles ?? {};
       console.log(`in the page (headless Chromium, SwiftShader, 1280x720), ?src= of the COG: ${s.opened.status}${s.opened.error ? ` (${s.opened.error})` : ''}`);
       console.log(`  navigation to first frame ${s.firstFrameS.toFixed(1)} s; after a 60 s drag: ${mb(st.bytesFetched ?? 0)} MB of ${mb(st.fileBytes ?? 1)} MB fetched, ` +
         `${st.tilesIn} tiles, ${s.count.waited} of ${s.count.frames} frames waited for tiles`);

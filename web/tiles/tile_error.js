@@ -1,4 +1,4 @@
-// What went wrong while streaming a terrain file, as a kind the caller can act on (retry later,
+// What went wrong while reading a terrain file tile by tile, as a kind the caller can act on (retry later,
 // load the file whole, tell the user to make a COG) and a message a user can read.
 
 /**
@@ -14,7 +14,7 @@
  *   'bad-tiff'  not a TIFF, or a TIFF whose structure is damaged
  *   'aborted'   the caller's AbortSignal fired
  */
-export class StreamError extends Error {
+export class TileError extends Error {
   /**
    * @param {string} kind see above
    * @param {string} message
@@ -22,7 +22,7 @@ export class StreamError extends Error {
    */
   constructor(kind, message, details = {}) {
     super(message, details.cause === undefined ? undefined : { cause: details.cause });
-    this.name = 'StreamError';
+    this.name = 'TileError';
     this.kind = kind;
     if (details.status !== undefined) this.status = details.status;
     if (details.size !== undefined) this.size = details.size;
@@ -31,5 +31,5 @@ export class StreamError extends Error {
 
 /** Throws the 'aborted' error when the signal has fired. */
 export function checkAborted(signal, what) {
-  if (signal?.aborted) throw new StreamError('aborted', `${what}: aborted`, { cause: signal.reason });
+  if (signal?.aborted) throw new TileError('aborted', `${what}: aborted`, { cause: signal.reason });
 }

@@ -2,7 +2,7 @@
 // File read by slice (a dropped file is never read whole). Both count what they fetched, so
 // tests and the HUD can show how little of a large file a view needed.
 
-import { StreamError, checkAborted } from './stream_error.js';
+import { TileError, checkAborted } from './tile_error.js';
 
 /**
  * @typedef {object} RangeReader
@@ -36,7 +36,7 @@ export function urlReader(url, { retries = 3, backoffMs = 250, fetch: fetchFn = 
           if (!e.transient) throw e;
           if (attempt >= retries) {
             const tries = attempt + 1;
-            throw new StreamError(e.kind, `${url}: ${e.message} (${tries} ${tries === 1 ? 'try' : 'tries'})`, { status: e.status, cause: e.cause });
+            throw new TileError(e.kind, `${url}: ${e.message} (${tries} ${tries === 1 ? 'try' : 'tries'})`, { status: e.status, cause: e.cause });
           }
           await pause(backoffMs * 2 ** attempt, signal, url);
         }
@@ -65,7 +65,7 @@ export function urlReader(url, { retries = 3, backoffMs = 250, fetch: fetchFn = 
         const declared = Number(response.headers.get('content-length'));
         const size = Number.isFinite(declared) && response.headers.has('content-length') ? declared : null;
         if (size !== null) reader.size = size;
-        throw new StreamError('no-range', `${url}: the server ignores Range requests and sends the whole file` +
+        throw new TileError('no-range', `${url}: the server ignores Range requests and sends the whole file` +
           `${size === null ? '' : ` (${size} bytes)`}; load it whole, or serve it from a host that honours Range`, { size });
       }
       if (response.status === 416) { // the range starts at or past the end
@@ -82,7 +82,7 @@ export function urlReader(url, { retries = 3, backoffMs = 250, fetch: fetchFn = 
       const range = /^bytes (\d+)-(\d+)\/(\d+|\*)$/.exec(response.headers.get('content-range') ?? '');
       if (!range || Number(range[1]) !== offset) {
         controller.abort();
-        throw new StreamError('http', `${url}: the server answered bytes ${offset}.. with "${response.headers.get('content-range')}"`);
+        throw new TileError('http', `${url}: the server answered bytes ${offset}.. with "${response.headers.get('content-range')}"`);
       }
       noteTotal(range[0]);
       let body;
@@ -139,7 +139,7 @@ function transient(kind, message, cause) {
 function pause(ms, signal, what) {
   return new Promise((resolve, reject) => {
     const timer = setTimeout(() => { signal?.removeEventListener('abort', stop); resolve(); }, ms);
-    const stop = () => { clearTimeout(timer); reject(new StreamError('aborted', `${what}: aborted`, { cause: signal.reason })); };
+    const stop = () => { clearTimeout(timer); reject(new TileError('aborted', `${what}: aborted`, { cause: signal.reason })); };
     signal?.addEventListener('abort', stop, { once: true });
   });
 }

@@ -1,11 +1,11 @@
-// Which terrains the page streams, and opening one: a COG read by a pool of tile workers
-// (web/stream/worker_tile_reader.js) behind the core's tiled terrain (streamed_terrain.js).
+// Which terrains the page reads tile by tile, and opening one: a COG read by a pool of tile workers
+// (web/tiles/worker_tile_reader.js) behind the core's tiled terrain (tiled_terrain.js).
 // A URL to a TIFF is always tried this way (the page falls back to a whole load when the server
 // or the file cannot stream); a dropped TIFF streams only when loading it whole would be worse:
 // it has overviews, or its samples would not fit the tile cache.
-import { openCog } from '../stream/cog_source.js';
-import { openWorkerPool } from '../stream/worker_tile_reader.js';
-import { openStreamedTerrain, levelBytes } from '../stream/streamed_terrain.js';
+import { openCog } from '../tiles/cog_source.js';
+import { openWorkerPool } from '../tiles/worker_tile_reader.js';
+import { openTiledTerrain, levelBytes } from '../tiles/tiled_terrain.js';
 import { hasTiffSignature, readDirectory } from '../geo/index.js';
 
 const TILE_WIDTH = 322; // TIFF tag: a tiled image has it, a striped one not
@@ -20,7 +20,7 @@ export const isTiffName = (name) => /\.tiff?$/i.test(name);
  * directories read by slices (never the whole file).
  * @param {File} file @param {Uint8Array} head @param {number} capBytes
  */
-export async function shouldStreamFile(file, head, capBytes) {
+export async function shouldOpenTiled(file, head, capBytes) {
   if (!isTiffName(file.name) || !hasTiffSignature(head)) return false;
   let tiled = null; // unknown when the first directory lies beyond the head
   try {
@@ -36,15 +36,15 @@ export async function shouldStreamFile(file, head, capBytes) {
 }
 
 /**
- * Opens `input` (a URL or a File) as a streamed terrain: the worker pool opens the file, then
+ * Opens `input` (a URL or a File) as a tiled terrain: the worker pool opens the file, then
  * the coarsest level is read. The pool is closed when anything fails or the signal aborts.
- * @returns {Promise<{terrain, field, missing, loadMs, stream}>} as openStreamedTerrain
- * @throws {import('../stream/stream_error.js').StreamError} the pool's kinds, and 'too-big'
+ * @returns {Promise<{terrain, field, missing, loadMs, tiles}>} as openTiledTerrain
+ * @throws {import('../tiles/tile_error.js').TileError} the pool's kinds, and 'too-big'
  */
-export async function openStream(core, input, { name, capBytes, signal, onProgress }) {
+export async function openTiled(core, input, { name, capBytes, signal, onProgress }) {
   const source = await openWorkerPool(input, { name, signal });
   try {
-    return await openStreamedTerrain(core, source, { capBytes, signal, guessSpacing: true, onProgress });
+    return await openTiledTerrain(core, source, { capBytes, signal, guessSpacing: true, onProgress });
   } catch (error) {
     source.close();
     throw error;

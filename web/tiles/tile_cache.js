@@ -1,4 +1,4 @@
-// Decoded tiles of a streamed terrain, least recently used first out, within a byte cap. The
+// Decoded tiles of a tiled terrain, least recently used first out, within a byte cap. The
 // tiles the drawn mesh still uses are pinned by the caller and never evicted; the keys evicted
 // are kept until the caller takes them, so it can tell the core to drop the same tiles.
 

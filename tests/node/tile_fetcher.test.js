@@ -1,4 +1,4 @@
-// Streaming tiles the way the frame loop will (web/stream/tile_fetcher.js): the view's wanted
+// Streaming tiles the way the frame loop will (web/tiles/tile_fetcher.js): the view's wanted
 // tiles are given once a frame against the range server of lib/range_server.js with latency,
 // and the fetcher must ask for the most needed first, a few at a time, abort what the view no
 // longer needs, fetch nothing twice, keep its cache within the cap without losing pinned
@@ -8,9 +8,9 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { fromArrayBuffer } from 'geotiff';
-import { openCog } from '../../web/stream/cog_source.js';
-import { TileFetcher } from '../../web/stream/tile_fetcher.js';
-import { TileCache, tileKey } from '../../web/stream/tile_cache.js';
+import { openCog } from '../../web/tiles/cog_source.js';
+import { TileFetcher } from '../../web/tiles/tile_fetcher.js';
+import { TileCache, tileKey } from '../../web/tiles/tile_cache.js';
 import { startRangeServer } from '../../lib/range_server.js';
 
 const fixtures = fileURLToPath(new URL('../fixtures/cog/', import.meta.url));

@@ -1,4 +1,4 @@
-// A terrain streamed from a Cloud-Optimized GeoTIFF: the core's tiled terrain (hexlod_terrain_
+// A terrain read tile by tile from a Cloud-Optimized GeoTIFF: the core's tiled terrain (hexlod_terrain_
 // create_tiled) fed tile by tile. At open, the coarsest level is read whole, so the first frame
 // draws from the overviews; then, once per frame, the tiles the core asks for (most needed
 // first) are fetched, a few at a time, and handed to the core between frames, and the tiles the
@@ -6,7 +6,7 @@
 // Node (decoded in the main thread).
 import { TileCache, DEFAULT_CAP_BYTES, tileKey, keyLevel, keyTx, keyTy } from './tile_cache.js';
 import { TileFetcher } from './tile_fetcher.js';
-import { StreamError } from './stream_error.js';
+import { TileError } from './tile_error.js';
 import { MAKE_COG } from './cog_source.js';
 import { guessSpacing } from '../loaders/terrain_source.js';
 
@@ -25,7 +25,7 @@ export function levelBytes(level, sampleType) {
 }
 
 /**
- * Opens a streamed terrain: the core's tiled terrain over `source`'s levels, with the coarsest
+ * Opens a tiled terrain: the core's tiled terrain over `source`'s levels, with the coarsest
  * level in, scaled and prepared (no mesh yet: the caller makes it, as for any terrain).
  * @param {import('../core/core.js').HexlodCore} core
  * @param {import('./cog_source.js').CogSource | import('./worker_tile_reader.js').WorkerTileReader} source
@@ -34,18 +34,18 @@ export function levelBytes(level, sampleType) {
  *   capBytes: the tile cache's cap, bytes of samples (default 512 MB); spacing: metres between
  *   columns and rows instead of the file's; guessSpacing: as loadTerrain (terrain_source.js)
  * @returns {Promise<{terrain: import('../core/core.js').Terrain, field: object, missing: number,
- *   loadMs: number, stream: StreamedTerrain}>} the shape loadTerrain returns, plus the stream
- * @throws {StreamError} 'too-big' when even the coarsest level does not fit the cap (a TIFF
+ *   loadMs: number, tiles: TiledTerrain}>} the shape loadTerrain returns, plus the tiles
+ * @throws {TileError} 'too-big' when even the coarsest level does not fit the cap (a TIFF
  *   without overviews: the message says how to make them), or the reader's kinds
  */
-export async function openStreamedTerrain(core, source, options = {}) {
+export async function openTiledTerrain(core, source, options = {}) {
   const start = performance.now();
   const capBytes = options.capBytes ?? DEFAULT_CAP_BYTES;
   const { levels, sampleType } = source;
   const coarsest = levels.length - 1, top = levels[coarsest];
   const topBytes = levelBytes(top, sampleType);
   if (topBytes > capBytes) {
-    throw new StreamError('too-big', `${source.name}: ${levels[0].width}x${levels[0].height} samples ` +
+    throw new TileError('too-big', `${source.name}: ${levels[0].width}x${levels[0].height} samples ` +
       `(${Math.round(levelBytes(levels[0], sampleType) / MB)} MB) and its coarsest level alone needs ` +
       `${Math.round(topBytes / MB)} MB, more than the ${Math.round(capBytes / MB)} MB tile cache: ` +
       `give it overviews (${MAKE_COG}) to stream it`);
@@ -53,23 +53,23 @@ export async function openStreamedTerrain(core, source, options = {}) {
   const terrain = core.createTiledTerrain(levels, sampleType);
   try {
     // The coarsest level, whole: what the first frame draws.
-    const tiles = [];
-    for (let ty = 0; ty < top.tilesDown; ty++) for (let tx = 0; tx < top.tilesAcross; tx++) tiles.push([tx, ty]);
+    const overview = [];
+    for (let ty = 0; ty < top.tilesDown; ty++) for (let tx = 0; tx < top.tilesAcross; tx++) overview.push([tx, ty]);
     let done = 0, next = 0;
     const worker = async () => {
-      while (next < tiles.length) {
-        const [tx, ty] = tiles[next++];
+      while (next < overview.length) {
+        const [tx, ty] = overview[next++];
         const samples = await source.readTile(coarsest, tx, ty, options.signal);
         terrain.tileBuffer(coarsest, tx, ty).set(samples);
         terrain.commitTile(coarsest, tx, ty);
-        options.onProgress?.(++done / tiles.length, 'overview');
+        options.onProgress?.(++done / overview.length, 'overview');
       }
     };
-    await Promise.all(Array.from({ length: Math.min(options.concurrency ?? 6, tiles.length) }, worker));
+    await Promise.all(Array.from({ length: Math.min(options.concurrency ?? 6, overview.length) }, worker));
 
     const field = {
       source: source.name, format: 'cog', width: source.width, height: source.height, sampleType,
-      nodata: source.nodata, heightScale: 1, heightOffset: 0, georef: source.georef, streamed: true,
+      nodata: source.nodata, heightScale: 1, heightOffset: 0, georef: source.georef, tiled: true,
       spacingX: source.spacingX ?? 1, spacingY: source.spacingY ?? 1, spacingFromFile: source.spacingX != null,
       levels: levels.length, tileWidth: source.tileWidth, tileHeight: source.tileHeight, fileBytes: source.size,
     };
@@ -78,8 +78,8 @@ export async function openStreamedTerrain(core, source, options = {}) {
     terrain.prepare();
     if (options.guessSpacing && !field.spacingFromFile && !options.spacing) guessSpacing(terrain, field);
     if (source.statistics) terrain.declareHeightRange(source.statistics.min, source.statistics.max);
-    const stream = new StreamedTerrain(terrain, source, { capBytes, concurrency: options.concurrency });
-    return { terrain, field, missing: 0, loadMs: performance.now() - start, stream };
+    const tiles = new TiledTerrain(terrain, source, { capBytes, concurrency: options.concurrency });
+    return { terrain, field, missing: 0, loadMs: performance.now() - start, tiles };
   } catch (error) {
     terrain.destroy();
     throw error;
@@ -87,7 +87,7 @@ export async function openStreamedTerrain(core, source, options = {}) {
 }
 
 /** The per-frame exchange between the core and the fetcher, and its figures for the HUD. */
-export class StreamedTerrain {
+export class TiledTerrain {
   constructor(terrain, source, { capBytes, concurrency }) {
     this.terrain = terrain;
     this.source = source;

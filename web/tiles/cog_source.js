@@ -1,17 +1,17 @@
-// A Cloud-Optimized GeoTIFF opened for streaming: from a URL by HTTP Range requests, or from a
+// A Cloud-Optimized GeoTIFF opened to be read tile by tile: from a URL by HTTP Range requests, or from a
 // Blob or dropped File by slice, reading only the header and the image directories at open,
 // then one tile at a time. The levels are the full-resolution image and its overviews (GDAL's
 // reduced-resolution images in the same file), each tiled alike.
 //
 // The geotiff library parses the directories (header_source.js feeds it); the tiles are read
 // byte-exact by offset and count and decoded by the same decoders and block checks as a whole
-// file (web/loaders/tiff_blocks.js, tiff_decoders.js), so a streamed tile equals the same
+// file (web/geo/tiff_blocks.js, tiff_decoders.js), so a tile read this way equals the same
 // window of the file loaded whole.
 
 import { hasTiffSignature, parseNodata, sampleTypeOf, spacingOf, blockLayout, measurer, georefOfTiff, libraryGuard, openTiffSource,
   TYPED_ARRAYS, GETTERS, LITTLE_ENDIAN_HOST } from '../geo/index.js';
 import { SAMPLE_ARRAYS } from '../loaders/common.js';
-import { StreamError, checkAborted } from './stream_error.js';
+import { TileError, checkAborted } from './tile_error.js';
 import { urlReader, blobReader } from './range_reader.js';
 import { headerSource } from './header_source.js';
 
@@ -36,22 +36,22 @@ export const MAKE_COG = 'gdal_translate -of COG in.tif out.tif';
  * @param {{ signal?: AbortSignal, retries?: number, backoffMs?: number, fetch?: typeof fetch,
  *   name?: string }} [options] retries and backoffMs: see range_reader.js urlReader
  * @returns {Promise<CogSource>}
- * @throws {StreamError} kinds 'http', 'network', 'no-range', 'not-cog', 'bad-tiff', 'aborted'
+ * @throws {TileError} kinds 'http', 'network', 'no-range', 'not-cog', 'bad-tiff', 'aborted'
  */
 export async function openCog(input, options = {}) {
   const reader = input instanceof Blob ? blobReader(input) : urlReader(String(input), options);
   const name = options.name ?? reader.name;
   const source = headerSource(reader);
-  const fail = (problem) => { throw new StreamError('bad-tiff', `${name}: ${problem}`); };
+  const fail = (problem) => { throw new TileError('bad-tiff', `${name}: ${problem}`); };
   // A structure that points past the end of the file is a truncated file, not a bad one.
   const failInStructure = (problem) => {
     if (source.pastEnd) {
-      throw new StreamError('truncated', `${name}: the file ends at byte ${reader.size ?? '?'}, inside its image directories ` +
+      throw new TileError('truncated', `${name}: the file ends at byte ${reader.size ?? '?'}, inside its image directories ` +
         `(${problem}): it is truncated`, { size: reader.size });
     }
-    throw new StreamError('bad-tiff', `${name}: ${problem}`);
+    throw new TileError('bad-tiff', `${name}: ${problem}`);
   };
-  const guard = libraryGuard(failInStructure, StreamError);
+  const guard = libraryGuard(failInStructure, TileError);
   const signal = options.signal;
 
   const head = new Uint8Array((await source.fetch([{ offset: 0, length: 16 }], signal))[0]);
@@ -70,7 +70,7 @@ export async function openCog(input, options = {}) {
     if (full && !(subfile & REDUCED_IMAGE)) continue; // another page, not an overview of this one
     const width = image.getWidth(), height = image.getHeight();
     if (!image.isTiled) {
-      throw new StreamError('not-cog', `${name} is not a Cloud-Optimized GeoTIFF: image ${index} is stored in strips, ` +
+      throw new TileError('not-cog', `${name} is not a Cloud-Optimized GeoTIFF: image ${index} is stored in strips, ` +
         `so any view needs whole rows of the file; convert it with: ${MAKE_COG}`);
     }
     // The block checks of a whole-file load read the tile offsets from our own directory
@@ -165,7 +165,7 @@ export class CogSource {
    * @returns {Promise<Int16Array|Uint16Array|Uint8Array|Float32Array>} tileWidth x tileHeight
    *   samples of sampleType, row by row; tiles at the right and bottom edges hold what the file
    *   stores past the image (GDAL writes zeros or no-data): only the level's width and height count
-   * @throws {StreamError} kinds 'http', 'network', 'truncated', 'decode', 'aborted'
+   * @throws {TileError} kinds 'http', 'network', 'truncated', 'decode', 'aborted'
    */
   async readTile(level, tx, ty, signal) {
     const info = this.levels[level];
@@ -179,7 +179,7 @@ export class CogSource {
     const samples = new SAMPLE_ARRAYS[this.sampleType](info.tileWidth * info.tileHeight);
     if (count === 0) return samples.fill(this.nodata ?? 0); // a sparse file's empty tile (GDAL SPARSE_OK)
 
-    const truncated = (had) => new StreamError('truncated', `${where} lies at bytes ${offset}..${offset + count - 1}, ` +
+    const truncated = (had) => new TileError('truncated', `${where} lies at bytes ${offset}..${offset + count - 1}, ` +
       `past the end of the file (${had} bytes): the file is truncated`, { size: had });
     const size = this._reader.size;
     if (size !== null && offset + count > size) throw truncated(size);
@@ -196,7 +196,7 @@ export class CogSource {
       if (length !== needed) throw new Error(`${length > needed ? `more than ${needed}` : length} bytes, its ${info.tileWidth}x${info.tileHeight} samples need ${needed}`);
       decoded = await layout.decoder.decode(bytes.slice().buffer);
     } catch (e) {
-      throw new StreamError('decode', `${where} does not decode (${String(e?.message ?? e).split('\n')[0].slice(0, 120)})`, { cause: e });
+      throw new TileError('decode', `${where} does not decode (${String(e?.message ?? e).split('\n')[0].slice(0, 120)})`, { cause: e });
     }
     copySamples(decoded, samples, this._format, this._bits, layout);
     return samples;
