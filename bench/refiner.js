@@ -95,7 +95,7 @@ function wasmFlight(terrain, cameras) {
   terrain.setLodCamera(camera(cameras[0]));
   for (let n = 0; n < 1000; n++) {
     terrain.updateLod();
-    if (terrain.lodConverged()) break;
+    if (terrain.query().converged) break;
   }
   terrain.updateStream(); // the start's stream is not the flight's cost
   terrain.acknowledgeStream();
@@ -106,10 +106,10 @@ function wasmFlight(terrain, cameras) {
     terrain.updateLod();
     const used = process.cpuUsage(cpu);
     cpuMs.push((used.user + used.system) / 1e3);
-    updateMs.push(terrain.lodStats().updateMs);
+    updateMs.push(terrain.query().updateMs);
     terrain.updateStream();
     terrain.acknowledgeStream();
-    triangles.push(terrain.meshStats().triangles);
+    triangles.push(terrain.query().triangles);
   }
   return { p50: quantile(cpuMs, 0.5), p95: quantile(cpuMs, 0.95), wallP50: quantile(updateMs, 0.5), wallP95: quantile(updateMs, 0.95),
     min: Math.min(...triangles), max: Math.max(...triangles) };

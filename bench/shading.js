@@ -5,7 +5,7 @@
 // after drawing (?timing=1), so drawMs includes SwiftShader's rasterisation. The view holds
 // still and converged; the modes alternate frame by frame so that both see the same load.
 // Also prints the core's share (LOD update and fan stream) of the same frames.
-// --modes lists more modes to compare (web/app/settings.js SHADING_MODES); the ratio is of the first two.
+// --modes lists more modes to compare (web/app/settings_table.js SHADING_MODES); the ratio is of the first two.
 //   node bench/shading.js [--frames 20] [--size 640x360] [--modes natural,plain,hillshade]
 import { startViewer } from '../lib/page_harness.js';
 import { openConvergedView, frameWithSetting } from '../lib/page_frames.js';

@@ -94,9 +94,9 @@ function refineToConvergence(terrain) {
   while (updates < MAX_UPDATES) {
     operations += terrain.updateLod();
     updates += 1;
-    if (terrain.lodConverged()) break;
+    if (terrain.query().converged) break;
   }
-  return { ms: performance.now() - start, updates, operations, converged: terrain.lodConverged() };
+  return { ms: performance.now() - start, updates, operations, converged: terrain.query().converged };
 }
 
 /** Triangles of the stream that reach into the rectangle [0, xMax] x [0, zMax]. */
@@ -276,11 +276,11 @@ function nativeComparison(heights, terrain, path, settings) {
   for (const { eye, target } of path.cameras) {
     terrain.setLodCamera(nativeStyleCamera(eye, target, settings));
     terrain.updateLod();
-    updateMs.push(terrain.lodStats().updateMs);
+    updateMs.push(terrain.query().updateMs);
     const start = performance.now();
     terrain.updateStream();
     streamMs.push(performance.now() - start);
-    triangles.push(terrain.meshStats().triangles);
+    triangles.push(terrain.query().triangles);
   }
   const wasm = {
     updateMsP50: quantile(updateMs, 0.5),
@@ -361,7 +361,7 @@ export async function bench(args) {
     terrain.updateStream();
     const ms = performance.now() - start;
     firstFrame.push({ ms, updates: refined.updates, operations: refined.operations, converged: refined.converged,
-      triangles: terrain.meshStats().triangles, streamIndices: terrain.stream().indices.length });
+      triangles: terrain.query().triangles, streamIndices: terrain.stream().indices.length });
   }
 
   // 2. The flight, from that converged mesh: per frame one budgeted update, then the stream,
@@ -377,7 +377,7 @@ export async function bench(args) {
     const t1 = performance.now();
     terrain.updateStream();
     const t2 = performance.now();
-    const lod = terrain.lodStats();
+    const lod = { ...terrain.query() };
     const stream = terrain.stream();
     let uploadBytes = 0;
     for (let k = 1; k < stream.dirtyVertices.length; k += 2) uploadBytes += stream.dirtyVertices[k] * STREAM_VERTEX_BYTES;
@@ -387,7 +387,7 @@ export async function bench(args) {
     const frame = {
       frame: i, updateMs: t1 - t0, coreUpdateMs: lod.updateMs, streamMs: t2 - t1, operations, uploadBytes,
       fullBytes: stream.vertexBytes.length + stream.indices.length * 4, popPx: jumps.at(-1),
-      splits: lod.splits, merges: lod.merges, triangles: terrain.meshStats().triangles, converged: lod.converged, tau: lod.tau,
+      splits: lod.splits, merges: lod.merges, triangles: terrain.query().triangles, converged: lod.converged, tau: lod.tau,
       refined: lod.refined, fading: lod.pendingMerges > 0,
     };
     frames.push(frame);
@@ -442,7 +442,7 @@ export async function bench(args) {
   const refined = refineToConvergence(terrain);
   terrain.updateStream();
   const oursMs = performance.now() - start;
-  const oursTriangles = terrain.meshStats().triangles;
+  const oursTriangles = terrain.query().triangles;
   const oursOverField = trianglesOverField(terrain, xMax, zMax);
   const oursError = terrain.measureError(false);
   const ours = { maxError: settings.maxError, ms: oursMs, updates: refined.updates, converged: refined.converged,

@@ -10,7 +10,7 @@
 // every height has an answer, and a region's answer changes only when a tile arrives or goes.
 //
 // The refiner (lod/refiner.h) does not split a cell finer than the level its heights come from
-// (levelIn); it asks for the tiles it would need instead (streamed_wants.h).
+// (levelIn); it asks for the tiles it would need instead (lod/tile_wants.h).
 #pragma once
 
 #include <cstdint>

@@ -46,7 +46,7 @@ function converge(terrain, camera) {
 
 /** What a refused call must leave: the same mesh and stream, and nothing to do at the next frame. */
 function snapshot(terrain) {
-  return { hash: terrain.meshHash(), version: terrain.query().version, triangles: terrain.meshStats().triangles };
+  return { hash: terrain.meshHash(), version: terrain.query().version, triangles: terrain.query().triangles };
 }
 function assertUnchanged(terrain, before, what) {
   assert.deepEqual(snapshot(terrain), before, `${what}: the mesh and stream are as before`);
@@ -105,11 +105,11 @@ test('viewportHeight = Infinity is refused, not refined to full resolution', asy
   const camera = { eye: [15000, 5000, 40000], target: [15000, 1000, 15000], fovY: Math.PI / 3, aspect: 16 / 9, viewportHeight: 1080,
     near: 1, far: 1e7 };
   converge(terrain, camera);
-  const triangles = terrain.meshStats().triangles;
+  const triangles = terrain.query().triangles;
   assert.throws(() => terrain.setLodCamera({ ...camera, viewportHeight: Infinity }),
     /viewport_height_px is inf; it must be a finite number of device pixels from 1 to 100000/);
   converge(terrain, null);
-  assert.equal(terrain.meshStats().triangles, triangles);
+  assert.equal(terrain.query().triangles, triangles);
   terrain.destroy();
 });
 

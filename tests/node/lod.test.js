@@ -28,7 +28,7 @@ function converge(terrain, limit = 1000) {
   while (run.updates < limit) {
     const operations = terrain.updateLod();
     terrain.checkMesh();
-    const figures = terrain.lodStats();
+    const figures = { ...terrain.query() };
     run.updates += 1;
     run.operations += operations;
     run.splits += figures.splits;
@@ -47,7 +47,7 @@ for (const [base, ext, maxError] of [['volcano_maungawhau', 'f32', 1], ['jacksbo
     terrain.configure({ budgetMs: 0, maxOperations: 0 });
     const run = converge(terrain);
     assert.ok(run.splits > 0);
-    assert.equal(terrain.lodConverged(), true);
+    assert.equal(terrain.query().converged, true);
     for (const againstStored of [true, false]) {
       const error = terrain.measureError(againstStored);
       assert.ok(error.max <= maxError + 1e-6, `max error ${error.max} m (against ${againstStored ? 'stored' : 'original'} samples)`);
@@ -55,11 +55,11 @@ for (const [base, ext, maxError] of [['volcano_maungawhau', 'f32', 1], ['jacksbo
       assert.equal(error.uncovered, 0);
     }
     // A looser error needs fewer triangles, and coarsening to it converges too.
-    const fine = terrain.meshStats().triangles;
+    const fine = terrain.query().triangles;
     terrain.configure({ maxErrorM: maxError * 4 });
     const coarsening = converge(terrain);
     assert.ok(coarsening.merges > 0);
-    assert.ok(terrain.meshStats().triangles < fine);
+    assert.ok(terrain.query().triangles < fine);
     assert.ok(terrain.measureError(false).max <= maxError * 4 + 1e-6);
     terrain.destroy();
   });
@@ -83,16 +83,16 @@ test('moving the camera far away coarsens the mesh (merges, fewer triangles); co
   terrain.configure({ tauPx: 1, maxErrorM: 0 });
   const first = converge(terrain);
   assert.ok(first.splits > 0);
-  const near = terrain.meshStats().triangles;
+  const near = terrain.query().triangles;
   terrain.setLodCamera(FAR);
   const away = converge(terrain);
-  const far = terrain.meshStats().triangles;
+  const far = terrain.query().triangles;
   assert.ok(away.merges > 0, 'merges happened');
   assert.ok(far < near / 10, `${far} triangles far away, ${near} near`);
   terrain.setLodCamera(NEAR);
   const back = converge(terrain);
   assert.ok(back.splits > 0);
-  assert.equal(terrain.meshStats().triangles, near, 'the same view gives as many triangles again');
+  assert.equal(terrain.query().triangles, near, 'the same view gives as many triangles again');
   terrain.destroy();
 });
 
@@ -130,20 +130,20 @@ test('every LOD setting reaches the core: vertical scale, culling, triangle cap 
   terrain.setLodCamera(NEAR);
   terrain.configure({ tauPx: 1, maxErrorM: 0 });
   converge(terrain);
-  const base = terrain.meshStats().triangles;
-  const stats = terrain.lodStats();
+  const base = terrain.query().triangles;
+  const stats = { ...terrain.query() };
   assert.equal(stats.tau, 1);
   assert.ok(stats.updateMs > 0 && stats.updateMs < 60000, `the update was timed: ${stats.updateMs} ms`);
 
   terrain.configure({ verticalScale: 3 });
   converge(terrain);
-  assert.ok(terrain.meshStats().triangles > base, 'exaggerated heights need more triangles');
+  assert.ok(terrain.query().triangles > base, 'exaggerated heights need more triangles');
   terrain.configure({ verticalScale: 1 });
   converge(terrain);
 
   terrain.configure({ noFrustumCulling: true });
   converge(terrain);
-  assert.ok(terrain.meshStats().triangles > base, 'without culling, cells outside the view are refined too');
+  assert.ok(terrain.query().triangles > base, 'without culling, cells outside the view are refined too');
   terrain.configure({ noFrustumCulling: false });
   converge(terrain);
 
@@ -154,10 +154,10 @@ test('every LOD setting reaches the core: vertical scale, culling, triangle cap 
   for (let i = 0; i < 50; i++) {
     terrain.updateLod();
     terrain.checkMesh();
-    if (terrain.lodConverged()) break;
+    if (terrain.query().converged) break;
   }
-  assert.ok(terrain.meshStats().triangles < base / 2, `${terrain.meshStats().triangles} triangles under a cap of 5000`);
-  assert.ok(terrain.lodStats().tau > 1, `tau rose to ${terrain.lodStats().tau}`);
+  assert.ok(terrain.query().triangles < base / 2, `${terrain.query().triangles} triangles under a cap of 5000`);
+  assert.ok(terrain.query().tau > 1, `tau rose to ${terrain.query().tau}`);
   terrain.configure({ maxTriangles: 0, autoTau: false });
   terrain.destroy();
 });

@@ -425,12 +425,6 @@ export class Terrain {
     this.hasMesh = true;
   }
 
-  /** Figures of the hexagon mesh: triangles, cells, vertices, max level, bytes. */
-  meshStats() {
-    const s = this.query();
-    return { triangles: s.triangles, cells: s.cells, vertices: s.vertices, maxLevel: s.maxLevel, bytes: s.memoryBytes };
-  }
-
   /** Live cells by kind (paper §4.2): {full, semi, boundarySemi}. A pass over the cells. */
   cellKinds() {
     const s = this.query(FRAME.census);
@@ -526,23 +520,6 @@ export class Terrain {
   /** One refinement step within the budget; returns the number of operations it made. */
   updateLod() {
     return this.frame(null, FRAME.lod).operations;
-  }
-
-  /** True when the last update converged and no merge waits for a fade-out. */
-  lodConverged() {
-    return this.query().converged;
-  }
-
-  /**
-   * Figures of the last update: {frame, pendingMerges, converged, refined, splits, merges, updateMs,
-   * tau}; refined: within tau (every failing test resolved), though fades may be pending.
-   */
-  lodStats() {
-    const s = this.query();
-    return {
-      frame: s.frame, pendingMerges: s.pendingMerges, converged: s.converged, refined: s.refined, splits: s.splits, merges: s.merges,
-      updateMs: s.updateMs, tau: s.tau,
-    };
   }
 
   /**

@@ -277,7 +277,7 @@ export class FlightRecord {
   /**
    * Records the next frame, after its LOD update (`operations` is what updateLod returned). It
    * reads the figures of one core query (web/core/core.js FrameStats, the same object every frame):
-   * meshStats and meshHash build objects and strings, and this runs every frame.
+   * meshHash builds a string, and this runs every frame.
    */
   record(terrain, operations) {
     const f = this.done, x = this.fields, s = terrain.query(FRAME.hash);
