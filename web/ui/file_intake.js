@@ -15,8 +15,7 @@ import { dropRoles, IMAGE_EXTENSIONS } from '../imagery/drop_roles.js';
 import { ImageError } from '../imagery/image_error.js';
 import { worldFileCandidates } from '../geo/index.js';
 import { detectPngEncoding, hasPngSignature } from '../loaders/png.js';
-import { isTiffName, shouldOpenTiled, openTiled } from './tiled_open.js';
-import { MAKE_COG } from '../tiles/cog_source.js';
+import { isTiffName, shouldOpenTiled, openTiled, afterTilesFailed } from './tiled_open.js';
 
 // The PNG colours menu: 'image' drapes a colour PNG; an encoding makes it heights.
 const PNG_CHOICE = { auto: 'auto', image: 'image', 'terrain-rgb': 'height', terrarium: 'height' };
@@ -179,25 +178,16 @@ export function createFileIntake({ core, state, settings, show, showStatus, setC
     return 'shown';
   }
 
-  /**
-   * ?src= of a TIFF: streamed when the server honours Range and the file is tiled; else loaded
-   * whole as any URL, if it fits the tile cache's cap (a file larger than that is what
-   * streaming is for: the message says how to make it a COG).
-   */
+  /** ?src= of a TIFF: tile by tile when the server honours Range and the file is tiled; else as afterTilesFailed says. */
   async function openUrlAsTiles(url, name, links, limits, signal) {
     try {
       return await openTiles(url, name, signal, url);
     } catch (error) {
       if (signal.aborted) return cancelled(signal, name);
-      if (error.kind !== 'no-range' && error.kind !== 'not-cog') return failed(`${name}: cannot stream it (${error.message})`);
-      const cap = settings.tileCacheMB * MB;
-      const why = error.kind === 'no-range' ? 'its server ignores Range requests' : 'it is not tiled';
-      const advice = `too big to load whole and it cannot stream: ${why}. Make it a Cloud-Optimized GeoTIFF ` +
-        `(${MAKE_COG}) served from a host that honours Range requests, or raise the tile cache under Controls › Loading from a URL`;
-      if (error.size != null && error.size > cap) {
-        return failed(`${name}: ${formatMB(error.size)} MB, more than the ${formatMB(cap)} MB tile cache, ${advice}`);
-      }
-      return fetchAndDecode(links, { ...limits, maxBytes: Math.min(limits.maxBytes, cap) }, signal, url, false,
+      const next = afterTilesFailed(error, name, settings.tileCacheMB * MB);
+      if (next.failed) return failed(next.failed);
+      const { maxBytes, advice } = next.whole;
+      return fetchAndDecode(links, { ...limits, maxBytes: Math.min(limits.maxBytes, maxBytes) }, signal, url, false,
         (e) => (e instanceof LimitError && /size cap/.test(e.message) ? `${name}: ${e.message}, ${advice}` : null));
     }
   }

@@ -7,6 +7,8 @@ import { openCog } from '../tiles/cog_source.js';
 import { openWorkerPool } from '../tiles/worker_tile_reader.js';
 import { openTiledTerrain, levelBytes } from '../tiles/tiled_terrain.js';
 import { hasTiffSignature, readDirectory } from '../geo/index.js';
+import { MAKE_COG } from '../tiles/cog_source.js';
+import { formatMB } from './url_fetch.js';
 
 const TILE_WIDTH = 322; // TIFF tag: a tiled image has it, a striped one not
 
@@ -33,6 +35,26 @@ export async function shouldOpenTiled(file, head, capBytes) {
   } catch {
     return false; // not a COG after all: loaded whole as before, which says what is wrong with it
   }
+}
+
+/**
+ * What a ?src= TIFF that could not be opened tile by tile becomes: loaded whole as any URL when
+ * the server ignores Range or the file is not tiled, if it fits the tile cache (a file larger
+ * than that is what tiles are for); any other failure is the load's end.
+ * @param {import('../tiles/tile_error.js').TileError} error why it could not be opened tile by tile
+ * @param {string} name @param {number} capBytes the tile cache's cap
+ * @returns {{ failed: string } | { whole: { maxBytes: number, advice: string } }} the message of a
+ *   failure, or the whole load's size cap and what to say when the file passes it
+ */
+export function afterTilesFailed(error, name, capBytes) {
+  if (error.kind !== 'no-range' && error.kind !== 'not-cog') return { failed: `${name}: cannot stream it (${error.message})` };
+  const why = error.kind === 'no-range' ? 'its server ignores Range requests' : 'it is not tiled';
+  const advice = `too big to load whole and it cannot stream: ${why}. Make it a Cloud-Optimized GeoTIFF ` +
+    `(${MAKE_COG}) served from a host that honours Range requests, or raise the tile cache under Controls › Loading from a URL`;
+  if (error.size != null && error.size > capBytes) {
+    return { failed: `${name}: ${formatMB(error.size)} MB, more than the ${formatMB(capBytes)} MB tile cache, ${advice}` };
+  }
+  return { whole: { maxBytes: capBytes, advice } };
 }
 
 /**
