@@ -13,3 +13,30 @@ export function handleContextLoss(canvas, { onLost, onRestored }) {
   });
   canvas.addEventListener('webglcontextrestored', () => onRestored());
 }
+
+/**
+ * The page's recovery: the frame loop stops drawing while the context is lost; when it comes
+ * back the renderer makes its GL objects anew, the shading and the draped image are made again
+ * from what the page kept, and a frame is asked for.
+ */
+export function recoverLostContext(canvas, { pipeline, renderer, stage, images, state, showStatus, requestRender }) {
+  handleContextLoss(canvas, {
+    onLost() {
+      pipeline.setContextLost(true);
+      state.contextLost = true;
+      showStatus('The graphics context was lost; waiting for it to come back…', true);
+    },
+    onRestored() {
+      renderer.createGlObjects(); // the old GL objects died with the context
+      renderer.invalidate();
+      const world = stage.current?.world;
+      if (world) renderer.setShading(world.low, world.high, world.extentX, world.extentZ);
+      pipeline.setContextLost(false);
+      state.contextLost = false;
+      state.contextRestores += 1;
+      showStatus('');
+      images.restore().catch((error) => showStatus(error.message, true));
+      requestRender();
+    },
+  });
+}

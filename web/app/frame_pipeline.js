@@ -16,11 +16,14 @@ export class FramePipeline {
   /**
    * @param {object} parts  gl, canvas, renderer, rig (the cameras), settings, view (what the
    *   renderer draws), hud, state (the published figures), det (the deterministic mode or null),
-   *   urlWriter, source() (the data's URL to share), imageSource() (the draped image's)
+   *   urlWriter, source() (the data's URL to share), imageSource() (the draped image's),
+   *   shown() (the terrain on stage: { terrain, field, loadMs, world, tiles, streamVersion,
+   *   blendsEnd }, or null), onHeightsChanged() (a tiled terrain's heights changed: tiles went in)
    */
-  constructor({ gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, source, imageSource }) {
-    Object.assign(this, { gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, source, imageSource });
-    this.current = null; // { terrain, field, loadMs, world, streamVersion, blendsEnd }
+  constructor({ gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, source, imageSource, shown,
+    onHeightsChanged }) {
+    Object.assign(this, { gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, source, imageSource, shown,
+      onHeightsChanged });
     this.contextLost = false;
     this.frameRequested = false;
     this.lastFrameTime = 0;
@@ -33,9 +36,8 @@ export class FramePipeline {
     // A tiled terrain's figures as tests read them (state.tiles), filled in place.
     this.tileFigures = { waiting: 0, settled: false, bytesFetched: 0, fileBytes: 0, heldBytes: 0, capBytes: 0, tilesIn: 0, failures: [] };
     this.framesSinceTiles = 0; // frames since tiles last went into the core
-    // Called when a tiled terrain's heights changed (tiles went in): once a wait is over, and
-    // at most every HEIGHTS_REFRESH_MS while tiles keep coming. Set by main (the measuring tool).
-    this.onHeightsChanged = null;
+    // onHeightsChanged runs once a wait for tiles is over, and at most every HEIGHTS_REFRESH_MS
+    // while tiles keep coming.
     this.heightsChangedAt = 0; // when onHeightsChanged last ran
     this.heightsPending = false; // tiles went in since
     // What the HUD last showed of the stream (awaiting, and the failures list, replaced when
@@ -47,6 +49,11 @@ export class FramePipeline {
     this.lodFigures = { frame: 0, pendingMerges: 0, converged: false, splits: 0, merges: 0, updateMs: 0, tau: 0 };
     this.meshFigures = { triangles: 0, cells: 0, vertices: 0, maxLevel: 0, bytes: 0 };
     this.render = this.render.bind(this);
+  }
+
+  /** While the graphics context is lost, frames draw nothing (web/app/context_loss.js). */
+  setContextLost(lost) {
+    this.contextLost = lost;
   }
 
   /** Asks for a frame (at most one is pending). */
@@ -77,7 +84,7 @@ export class FramePipeline {
     camera.update(width / height);
     const timing = this.timingFigures;
     timing.updateMs = timing.streamMs = timing.uploadMs = 0;
-    if (this.current) this.updateTerrain(camera, width, height, now);
+    if (this.shown()) this.updateTerrain(camera, width, height, now);
     const drawStart = performance.now();
     this.renderer.draw(camera, width, height, this.view);
     if (this.settings.timing) this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.UNSIGNED_BYTE, this.timingPixel); // waits for the draw
@@ -90,13 +97,13 @@ export class FramePipeline {
     state.frames += 1;
     if (det) det.endFrame();
     if (moving) this.request();
-    if (this.current && !det) this.urlWriter.write(this.settings, camera, this.source(), this.imageSource());
+    if (this.shown() && !det) this.urlWriter.write(this.settings, camera, this.source(), this.imageSource());
   }
 
   // The core's part of a frame and its upload (the frame figures go to the HUD and state).
   updateTerrain(camera, width, height, now) {
     const { det, settings, view, renderer, state } = this;
-    const current = this.current, { terrain } = current;
+    const current = this.shown(), { terrain } = current;
     // The stream keeps the mesh's normals only while they are drawn (32 bytes a vertex saved).
     const noNormals = !renderer.usesMeshNormals(view);
     if (terrain.settings.noNormals !== noNormals) terrain.configure({ noNormals });
@@ -140,7 +147,7 @@ export class FramePipeline {
       awaiting = tiles.waiting > 0 || this.framesSinceTiles < SETTLE_FRAMES;
       if (awaiting) this.request();
       if (arrived > 0) this.heightsPending = true;
-      if (this.heightsPending && this.onHeightsChanged && (!awaiting || now - this.heightsChangedAt > HEIGHTS_REFRESH_MS)) {
+      if (this.heightsPending && (!awaiting || now - this.heightsChangedAt > HEIGHTS_REFRESH_MS)) {
         this.heightsPending = false;
         this.heightsChangedAt = now;
         this.onHeightsChanged();

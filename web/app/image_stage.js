@@ -1,22 +1,22 @@
-// The draped image of the terrain on screen: opened onto it (web/imagery/open_image.js), its
-// textures in the renderer, its note or refusal in the status line, its description in the HUD.
-// A refused image leaves the one shown before. The files it came from are kept, so that it can
-// be draped again when the graphics context comes back.
+// The draped image of the terrain on screen, the image layer of the layer list (layers.js; one
+// at a time for now): opened onto it (web/imagery/open_image.js), its textures in the renderer,
+// its note or refusal in the status line, its description in the HUD. A refused image leaves the
+// one shown before. The layer keeps the files it came from, so that it can be draped again when
+// the graphics context comes back.
 import { openImage } from '../imagery/open_image.js';
 import { ImageError } from '../imagery/image_error.js';
 
 /**
- * @param {{ renderer: object, stage: { current: object|null }, showStatus: (message: string, isError?: boolean) => void,
+ * @param {{ renderer: object, layers: import('./layers.js').Layers, showStatus: (message: string, isError?: boolean) => void,
  *   onChange: (image: object|null) => void, requestRender: () => void }} page
  *   onChange: the image shown changed (the HUD and the panel describe it)
  */
-export function createImageStage({ renderer, stage, showStatus, onChange, requestRender }) {
-  let current = null;
-  let files = null; // { image, worldFile, url } of the image shown
+export function createImageStage({ renderer, layers, showStatus, onChange, requestRender }) {
+  const shown = () => layers.images.at(-1)?.image ?? null;
 
   /** Opens the image onto the terrain on screen; throws ImageError. */
   async function open(image, worldFile) {
-    const { terrain, field } = stage.current;
+    const { terrain, field } = layers.ground;
     const ground = { width: terrain.width, height: terrain.height, spacingX: terrain.spacingX, spacingY: terrain.spacingY, georef: field.georef ?? null };
     const opened = await openImage(image, worldFile, ground, renderer.imageTextures);
     renderer.setImagePlacement(opened.placement);
@@ -24,16 +24,16 @@ export function createImageStage({ renderer, stage, showStatus, onChange, reques
   }
 
   function changed() {
-    onChange(current);
+    onChange(shown());
     requestRender();
   }
 
   return {
     /** The image draped now (DrapedImage of open_image.js), or null. */
-    get current() { return current; },
+    get current() { return shown(); },
 
     /** The URL the image shown came from (the address bar's image=), or null. */
-    get url() { return files?.url ?? null; },
+    get url() { return layers.imageUrl; },
 
     /**
      * Drapes an image ({ name, blob }) with its world file (or null) on the terrain on screen.
@@ -43,16 +43,16 @@ export function createImageStage({ renderer, stage, showStatus, onChange, reques
      * @returns {Promise<object|null>} the image shown, or null when it was refused (the status line says why)
      */
     async drape(image, worldFile = null, { url = null, throwRefusal = false } = {}) {
-      if (!stage.current) return null;
+      if (!layers.ground) return null;
       try {
-        current = await open(image, worldFile);
-        files = { image, worldFile, url };
-        showStatus(current.note ? `${image.name}: ${current.note}` : '');
+        const opened = await open(image, worldFile);
+        layers.images = [{ image: opened, files: { image, worldFile, url } }];
+        showStatus(opened.note ? `${image.name}: ${opened.note}` : '');
         changed();
-        return current;
+        return opened;
       } catch (error) {
         if (!(error instanceof ImageError)) throw error;
-        showStatus(`${error.message}${current ? ` (${current.name} stays)` : ''}`, true);
+        showStatus(`${error.message}${shown() ? ` (${shown().name} stays)` : ''}`, true);
         requestRender();
         if (throwRefusal) throw error;
         return null;
@@ -61,25 +61,32 @@ export function createImageStage({ renderer, stage, showStatus, onChange, reques
 
     /** The image goes; the procedural ground shows again. */
     remove() {
-      if (!current && !files) return;
+      if (layers.images.length === 0) return;
       renderer.imageTextures.remove();
       renderer.setImagePlacement(null);
-      current = files = null;
+      layers.images = [];
       changed();
     },
 
     /** The graphics context came back without textures: the image shown is draped again. */
     async restore() {
-      if (!files || !stage.current) return;
-      const { image, worldFile } = files;
+      const layer = layers.images.at(-1);
+      if (!layer || !layers.ground) return;
+      const { image, worldFile } = layer.files;
       try {
-        current = await open(image, worldFile);
+        layer.image = await open(image, worldFile);
       } catch (error) {
         if (!(error instanceof ImageError)) throw error;
-        current = files = null;
+        layers.images = [];
         showStatus(`${error.message} (after the graphics context came back)`, true);
       }
       changed();
     },
   };
+}
+
+/** What tests read of the image shown (window.hexlod.image): its size, placement and HUD line; null without one. */
+export function imageFigures(image, hud) {
+  return image && { name: image.name, width: image.width, height: image.height, metresPerPixel: image.metresPerPixel,
+    coverage: image.placement.coverage, how: image.placement.how, gpuBytes: image.gpuBytes, hud: hud.image.textContent };
 }

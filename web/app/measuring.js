@@ -28,7 +28,6 @@ export function installMeasuring({ canvas, rig, settings, stage, renderer, urlWr
     },
     onParam: (text) => { urlWriter.measure = text; } });
   tool.attach();
-  stage.measure = tool; // a new cell size moves its points with the ground (setting_effects.js)
   button.onclick = () => tool.toggle();
   // Not enumerable: the tool holds the terrain, which a test's evaluate(() => window.hexlod) would copy.
   Object.defineProperty(state, 'measure', { value: tool, enumerable: false, configurable: true });

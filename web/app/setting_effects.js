@@ -6,9 +6,12 @@ import { SETTINGS, coreSettings } from './settings_table.js';
 
 /**
  * @param {import('./terrain_stage.js').TerrainStage} stage the terrain on stage and its cameras
+ * @param {{ rescaleMeasure: (k: number) => void, showSpacing: (terrain: object) => void }} hooks
+ *   a new cell size moves the measured line with the ground (the measuring tool) and shows the
+ *   spacing in the file bar (the file intake)
  * @returns {(key: string, value: any, previous: any) => void}
  */
-export function settingEffects(stage) {
+export function settingEffects(stage, { rescaleMeasure, showSpacing }) {
   const { settings, rig, renderer } = stage;
   const terrain = () => stage.current?.terrain;
   const EFFECTS = {
@@ -39,11 +42,11 @@ export function settingEffects(stage) {
       t.setScale({ ...loaded.field, spacingX: value, spacingY: t.spacingY * k });
       stage.rescaleGround(k);
       stage.makeWorld();
-      stage.measure?.rescale(k); // the measured line stays on the same samples
+      rescaleMeasure(k); // the measured line stays on the same samples
       stage.keepCamerasAboveGround();
       renderer.invalidate();
       stage.hud.setTerrain(loaded.field, t, loaded.loadMs);
-      stage.intake.showSpacing(t);
+      showSpacing(t);
     },
     tiles(key, value) {
       stage.current?.tiles?.setCapBytes(value * 2 ** 20);

@@ -7,26 +7,29 @@ import { coreSettings } from './settings_table.js';
 
 export class TerrainStage {
   /**
-   * @param {object} parts canvas, renderer, rig, settings, pipeline, hud, state, det, and
-   *   syncPanel() and requestRender(); owner, panel and intake are set once made
+   * @param {object} parts canvas, renderer, rig, settings, layers (layers.js: the terrain shown is
+   *   its terrain layer), pipeline, hud, state, det, and
+   *   syncPanel(), requestRender() and onShown(terrain) (the settings and the panel take the new
+   *   terrain's cell size)
    */
   constructor(parts) {
     Object.assign(this, parts);
-    this.current = null; // { terrain, field, loadMs, tiles (a COG's read tile by tile, else absent), world, streamVersion, blendsEnd }
-    this.source = null;  // the data's URL, while the terrain on screen came from one (the address bar's src)
+  }
+
+  /** The terrain shown: { terrain, field, loadMs, tiles (a COG's read tile by tile, else absent), world, streamVersion, blendsEnd }. */
+  get current() {
+    return this.layers.ground;
   }
 
   /** Shows a loaded terrain; `from`: the URL it came from, null for a file (no URL to share). */
   show(loaded, from) {
     const { terrain, field } = loaded;
-    this.source = from;
     this.rebuildMesh(terrain);
     this.current?.tiles?.close(); // its requests stop before its terrain goes
     this.current?.terrain.destroy();
-    this.current = this.pipeline.current = loaded;
+    this.layers.terrain = { loaded, source: from };
     this.makeWorld();
-    this.owner.adopt('cellSize', terrain.spacingX);
-    this.panel.setCellSizeRange(terrain.spacingX);
+    this.onShown(terrain);
     this.pipeline.forgetFigures(); // the last terrain's "converged" and triangles do not describe this one
     this.state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
       minHeight: terrain.minHeight, maxHeight: terrain.maxHeight, tiled: field.tiled === true };
