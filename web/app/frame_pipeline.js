@@ -16,14 +16,12 @@ export class FramePipeline {
   /**
    * @param {object} parts  gl, canvas, renderer, rig (the cameras), settings, view (what the
    *   renderer draws), hud, state (the published figures), det (the deterministic mode or null),
-   *   urlWriter, source() (the data's URL to share), imageSource() (the draped image's),
-   *   shown() (the terrain on stage: { terrain, field, loadMs, world, tiles, streamVersion,
-   *   blendsEnd }, or null), onHeightsChanged() (a tiled terrain's heights changed: tiles went in)
+   *   urlWriter, layers (layers.js: the terrain drawn, { terrain, field, loadMs, world, tiles,
+   *   streamVersion, blendsEnd }, and the sources the address bar names), onHeightsChanged() (a
+   *   tiled terrain's heights changed: tiles went in)
    */
-  constructor({ gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, source, imageSource, shown,
-    onHeightsChanged }) {
-    Object.assign(this, { gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, source, imageSource, shown,
-      onHeightsChanged });
+  constructor({ gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, layers, onHeightsChanged }) {
+    Object.assign(this, { gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, layers, onHeightsChanged });
     this.contextLost = false;
     this.frameRequested = false;
     this.lastFrameTime = 0;
@@ -84,7 +82,8 @@ export class FramePipeline {
     camera.update(width / height);
     const timing = this.timingFigures;
     timing.updateMs = timing.streamMs = timing.uploadMs = 0;
-    if (this.shown()) this.updateTerrain(camera, width, height, now);
+    const shown = this.layers.ground;
+    if (shown) this.updateTerrain(shown, camera, width, height, now);
     const drawStart = performance.now();
     this.renderer.draw(camera, width, height, this.view);
     if (this.settings.timing) this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.UNSIGNED_BYTE, this.timingPixel); // waits for the draw
@@ -97,13 +96,13 @@ export class FramePipeline {
     state.frames += 1;
     if (det) det.endFrame();
     if (moving) this.request();
-    if (this.shown() && !det) this.urlWriter.write(this.settings, camera, this.source(), this.imageSource());
+    if (shown && !det) this.urlWriter.write(this.settings, camera, this.layers.source, this.layers.imageUrl);
   }
 
-  // The core's part of a frame and its upload (the frame figures go to the HUD and state).
-  updateTerrain(camera, width, height, now) {
+  // The core's part of a frame for the terrain `current` and its upload (the frame figures go to the HUD and state).
+  updateTerrain(current, camera, width, height, now) {
     const { det, settings, view, renderer, state } = this;
-    const current = this.shown(), { terrain } = current;
+    const { terrain } = current;
     // The stream keeps the mesh's normals only while they are drawn (32 bytes a vertex saved).
     const noNormals = !renderer.usesMeshNormals(view);
     if (terrain.settings.noNormals !== noNormals) terrain.configure({ noNormals });

@@ -32,9 +32,6 @@ export function createImageStage({ renderer, layers, showStatus, onChange, reque
     /** The image draped now (DrapedImage of open_image.js), or null. */
     get current() { return shown(); },
 
-    /** The URL the image shown came from (the address bar's image=), or null. */
-    get url() { return layers.imageUrl; },
-
     /**
      * Drapes an image ({ name, blob }) with its world file (or null) on the terrain on screen.
      * @param {{ url?: string|null, throwRefusal?: boolean }} [options] url: where it came from,

@@ -65,8 +65,7 @@ async function main() {
   rig.cameras.walk.eyeHeight = settings.eyeHeight;
   const cameraMode = { mode: rig.mode }; // the panel's view of the rig
   const syncPanel = () => { cameraMode.mode = rig.mode; panel.refresh(); };
-  const pipeline = new FramePipeline({ gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter,
-    source: () => layers.source, imageSource: () => layers.imageUrl, shown: () => layers.ground,
+  const pipeline = new FramePipeline({ gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, layers,
     onHeightsChanged: () => measure.heightsChanged() });
   const stage = new TerrainStage({ canvas, renderer, rig, settings, layers, pipeline, hud, state, det, syncPanel, requestRender,
     onShown: (terrain) => { owner.adopt('cellSize', terrain.spacingX); panel.setCellSizeRange(terrain.spacingX); } });
