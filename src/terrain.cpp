@@ -37,11 +37,20 @@ void* Terrain::tileBuffer(int32_t level, int32_t tx, int32_t ty) {
 }
 
 bool Terrain::commitTile(int32_t level, int32_t tx, int32_t ty) {
-    return field_->tiles() && field_->tiles()->commit(level, tx, ty, changedHeights_);
+    SampleTiles* tiles = field_->tiles();
+    if (!tiles || !tiles->commit(level, tx, ty, changedHeights_)) return false;
+    residency_.arrived(*tiles, level, tx, ty);
+    return true;
 }
 
 bool Terrain::evictTile(int32_t level, int32_t tx, int32_t ty) {
     return field_->tiles() && field_->tiles()->evict(level, tx, ty, changedHeights_);
+}
+
+bool Terrain::setTileCap(double bytes) {
+    if (!field_->tiles() || !(bytes >= 0.0)) return false;
+    residency_.setCapBytes(bytes);
+    return true;
 }
 
 const char* Terrain::declareHeightRange(double low, double high) {
@@ -150,7 +159,12 @@ UpdateStats Terrain::updateLod() {
 
 void Terrain::syncStream() {
     stream_.sync(mesh_, morph_);
-    // Now the stream has applied every change and the refiner is between updates.
+    // Now the stream has applied every change and the refiner is between updates: the tiles
+    // past the cap go (their heights fall back like any change), then the heights change.
+    if (SampleTiles* tiles = field_->tiles()) {
+        residency_.tick();
+        if (hasMesh_ && residency_.overCap(*tiles)) residency_.keepWithinCap(*tiles, tilesInUse(), changedHeights_);
+    }
     applyHeightChanges();
     if (compactPools_ && mesh_.wantsCompaction()) compact();
 }
@@ -176,7 +190,7 @@ bool Terrain::drawnHeightAt(double x, double z, float& height) const {
 
 size_t Terrain::memoryBytes() const {
     return mesh_.memoryBytes() + refiner_.memoryBytes() + stream_.memoryBytes() + renumbering_.capacity() * sizeof(int32_t) +
-           wants_.memoryBytes() + (moving_.capacity() + movingHeights_.capacity() + movingCells_.capacity()) * 4 + movingMark_.capacity();
+           wants_.memoryBytes() + residency_.memoryBytes() + (moving_.capacity() + movingHeights_.capacity() + movingCells_.capacity()) * 4 + movingMark_.capacity();
 }
 
 } // namespace hexlod

@@ -14,6 +14,7 @@
 
 #include "field/heightfield.h"
 #include "lod/refiner.h"
+#include "lod/tile_residency.h"
 #include "lod/tile_wants.h"
 #include "lod/view_criteria.h"
 #include "mesh/hex_mesh.h"
@@ -46,9 +47,16 @@ public:
     /// it; or let one go. The heights change at the end of the next syncStream (the vertices
     /// there blend to their new heights, the refiner tests the cells there again). False for
     /// a tile outside the levels, one not written or not held, or a terrain held whole.
+    /// The terrain lets tiles go itself past its tile cap (lod/tile_residency.h); evictTile is
+    /// for tests that take a tile away.
     void* tileBuffer(int32_t level, int32_t tx, int32_t ty);
     bool commitTile(int32_t level, int32_t tx, int32_t ty);
     bool evictTile(int32_t level, int32_t tx, int32_t ty);
+    /// A tiled terrain: the bytes of samples its tiles past the coarsest level may hold; the
+    /// next syncStream lets the least recently used ones go down to it. False for a terrain
+    /// held whole or a cap that is not a number >= 0.
+    bool setTileCap(double bytes);
+    const TileResidency& residency() const { return residency_; }
     /// A tiled terrain: the height range of all its samples, as the file states it
     /// (Heightfield::declareHeightRange); with a mesh, every bound is packed anew. Returns null
     /// or what is wrong.
@@ -56,7 +64,8 @@ public:
     /// The tiles the view needs next, most needed first (lod/tile_wants.h); none for a
     /// terrain held whole or when every cell has the samples it needs.
     const std::vector<TileWant>& tileWants();
-    /// The present tiles the drawn mesh stands on (TileWants::collectInUse).
+    /// The present tiles the drawn mesh stands on (TileWants::collectInUse). A pass over the
+    /// live cells.
     const std::vector<TileWant>& tilesInUse();
 
     Heightfield& field() { return *field_; }
@@ -156,9 +165,10 @@ private:
     Refiner refiner_;
     FanStream stream_;
     // A tiled terrain: the samples whose heights changed since the last sync, the tiles to
-    // fetch, and scratch lists of the vertices that move.
+    // fetch, which tiles stay, and scratch lists of the vertices that move.
     SampleRect changedHeights_;
     TileWants wants_;
+    TileResidency residency_;
     std::vector<int32_t> moving_, movingCells_;
     std::vector<float> movingHeights_;
     std::vector<uint8_t> movingMark_;

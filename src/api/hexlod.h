@@ -30,7 +30,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature, a struct layout or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 13
+#define HEXLOD_ABI_VERSION 14
 
 /* The status of every failure. */
 #define HEXLOD_ERROR (-1)
@@ -144,7 +144,7 @@ typedef struct hexlod_camera {
  * Dirty ranges: what changed since the last hexlod_terrain_acknowledge, as (first, count) pairs
  * of int32: vertex slots and indices. */
 typedef struct hexlod_frame {
-    /* doubles: Float64Array index 0..5 */
+    /* doubles: Float64Array index 0..6 */
     double update_ms;         /* the last LOD update's milliseconds */
     double tau_px;            /* the tau in use (auto tau may have raised it) */
     double frame;             /* the blends' clock, one tick per LOD update: the shader's F */
@@ -153,7 +153,9 @@ typedef struct hexlod_frame {
     double achieved_error_px; /* HEXLOD_FRAME_CENSUS: the largest projected-error bound (§5) over the
                                  cells in view whose bound is cached; at most tau once converged;
                                  -1 in max-error mode. Else kept from the last census. */
-    /* int32: Int32Array index 12..43 */
+    double tile_bytes;        /* a tiled terrain: bytes of samples held in tiles past the coarsest
+                                 level (see hexlod_terrain_set_tile_cap); 0 for one held whole */
+    /* int32: Int32Array index 14..42 */
     int32_t version;          /* the stream's version: it moves whenever anything was written */
     int32_t converged;        /* 1: the last update tested every due cell, resolved every failing test,
                                  and no merge waits for a fade-out */
@@ -170,7 +172,8 @@ typedef struct hexlod_frame {
     int32_t dirty_vertex_pairs, dirty_index_pairs; /* pairs in the dirty arrays */
     int32_t refined;          /* 1: the last update tested every due cell and resolved every failing
                                  test, so the mesh is within tau; merges may still wait for fades */
-    int32_t reserved[11];
+    int32_t tiles_evicted;    /* a tiled terrain: tiles it let go so far to stay within its tile cap */
+    int32_t reserved[8];
     /* pointers: Int32Array index 43..47 under wasm32 */
     const void* vertices_ptr;         /* the vertex pool */
     const uint32_t* indices_ptr;      /* the index array */
@@ -244,9 +247,15 @@ void* hexlod_terrain_tile_buffer(hexlod_terrain* terrain, int32_t level, int32_t
  * heights there come from it at the end of the next frame's stream step, where the vertices blend
  * to them (§7) and the cells are tested again. 0, or HEXLOD_ERROR for a tile with no buffer. */
 int32_t hexlod_terrain_commit_tile(hexlod_terrain* terrain, int32_t level, int32_t tx, int32_t ty);
-/* Lets a tile go (its memory serves the next tile); the heights there fall back to a coarser
- * level the same way. The coarsest level's tiles stay. 0, or HEXLOD_ERROR for a tile not held. */
-int32_t hexlod_terrain_evict_tile(hexlod_terrain* terrain, int32_t level, int32_t tx, int32_t ty);
+/* The bytes of samples a tiled terrain may hold in tiles past its coarsest level (which is held
+ * whole and not counted); unlimited until set. The terrain owns its tiles: at each frame's stream
+ * step that finds them over the cap, it lets the least recently used go (their heights fall back
+ * to a coarser level, the vertices blending there as for a commit), never one the drawn mesh
+ * stands on, so the tiles in use alone may exceed it. A tile let go is wanted again
+ * (hexlod_terrain_tile_wants) when the view needs it. hexlod_frame's tile_bytes and
+ * tiles_evicted report it. 0, or HEXLOD_ERROR for a terrain held whole or a cap that is not a
+ * number >= 0. */
+int32_t hexlod_terrain_set_tile_cap(hexlod_terrain* terrain, double cap_bytes);
 /* The height range (metres) of all the samples of a tiled terrain, when the file states it
  * (GDAL's STATISTICS_MINIMUM and STATISTICS_MAXIMUM): the tiles present cannot show it. The
  * refinement's cached bounds are packed in steps of the height range, so with the whole range
@@ -254,13 +263,6 @@ int32_t hexlod_terrain_evict_tile(hexlod_terrain* terrain, int32_t level, int32_
  * just as close to the samples (tau holds either way). Call after hexlod_terrain_prepare; the
  * range only widens. 0, or HEXLOD_ERROR for a terrain held whole or a bad range. */
 int32_t hexlod_terrain_declare_height_range(hexlod_terrain* terrain, double low_m, double high_m);
-/* The present tiles (not of the coarsest level) the drawn mesh stands on, for a cache that must
- * let tiles go: under each cell, those of the levels whose samples are as far apart as its step
- * down to a quarter of it. Letting another tile go changes heights there (the vertices blend)
- * and may let cells there merge. A pass over the cells: call it when the cache nears its cap, not every frame.
- * Same list form and lifetime as hexlod_terrain_tile_wants (priority_px 0). Returns the count,
- * or HEXLOD_ERROR without a mesh. */
-int32_t hexlod_terrain_tiles_in_use(hexlod_terrain* terrain, const hexlod_tile_want** tiles);
 /* The tiles the current view waits for, most needed first, at most 4096: those of the level the
  * children of every cell held back by the data need (a cell whose test with the detail its
  * level's samples show fails, while its children would be finer than that level). Collected

@@ -3,7 +3,9 @@
 // the paper lives here.
 #include "api/hexlod.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstddef>
 #include <new>
 #include <vector>
@@ -19,7 +21,7 @@ static_assert(sizeof(hexlod_scale) == 48 && offsetof(hexlod_scale, has_nodata) =
 static_assert(sizeof(hexlod_field_info) == 32, "hexlod_field_info layout");
 static_assert(sizeof(hexlod_settings) == 64 && offsetof(hexlod_settings, max_operations) == 32, "hexlod_settings layout");
 static_assert(sizeof(hexlod_camera) == 112 && offsetof(hexlod_camera, near_m) == 96, "hexlod_camera layout");
-static_assert(offsetof(hexlod_frame, version) == 48 && offsetof(hexlod_frame, vertex_count) == 48 + 4 * 15 &&
+static_assert(offsetof(hexlod_frame, version) == 56 && offsetof(hexlod_frame, vertex_count) == 56 + 4 * 15 &&
                   offsetof(hexlod_frame, vertices_ptr) == 172 && sizeof(hexlod_frame) == 192,
               "hexlod_frame layout");
 static_assert(offsetof(hexlod_level_view, index_count) == 12 && sizeof(hexlod_level_view) == 24, "hexlod_level_view layout");
@@ -65,6 +67,10 @@ void fillFrame(hexlod_terrain* terrain, int32_t steps, hexlod_frame* out) {
     out->cells = mesh.liveCells();
     out->vertices = mesh.liveVertices();
     out->max_level = mesh.maxLevel();
+    if (const hexlod::SampleTiles* tiles = core.field().tiles()) {
+        out->tile_bytes = core.residency().heldBytes(*tiles);
+        out->tiles_evicted = int32_t(std::min<int64_t>(core.residency().evictions(), INT32_MAX));
+    }
     if (steps & HEXLOD_FRAME_CENSUS) {
         const auto kinds = hexlod::countCellKinds(mesh);
         out->full_hexagons = kinds[0];
@@ -131,9 +137,10 @@ int32_t hexlod_terrain_commit_tile(hexlod_terrain* terrain, int32_t level, int32
     return 0;
 }
 
-int32_t hexlod_terrain_evict_tile(hexlod_terrain* terrain, int32_t level, int32_t tx, int32_t ty) {
+int32_t hexlod_terrain_set_tile_cap(hexlod_terrain* terrain, double cap_bytes) {
     if (!terrain) return fail(kNullHandle);
-    if (!terrain->core->evictTile(level, tx, ty)) return fail("the tile is not held, or is of the coarsest level (which stays)");
+    if (!terrain->core->field().tiles()) return fail("the terrain holds its samples whole: it has no tiles");
+    if (!terrain->core->setTileCap(cap_bytes)) return fail("the tile cap must be a number of bytes >= 0");
     return 0;
 }
 
@@ -155,10 +162,6 @@ int32_t handOut(hexlod_terrain* terrain, const std::vector<hexlod::TileWant>& fo
 
 } // namespace
 
-int32_t hexlod_terrain_tiles_in_use(hexlod_terrain* terrain, const hexlod_tile_want** tiles) {
-    if (const char* problem = needMesh(terrain)) return fail(problem);
-    return handOut(terrain, terrain->core->tilesInUse(), tiles);
-}
 
 int32_t hexlod_terrain_tile_wants(hexlod_terrain* terrain, const hexlod_tile_want** wants) {
     if (const char* problem = needMesh(terrain)) return fail(problem);

@@ -89,6 +89,7 @@ extern "C" const char* hexlod_struct_layout(void) {
     HEXLOD_FIELD(hexlod_frame, memory_bytes);
     HEXLOD_FIELD(hexlod_frame, triangles);
     HEXLOD_FIELD(hexlod_frame, achieved_error_px);
+    HEXLOD_FIELD(hexlod_frame, tile_bytes);
     HEXLOD_FIELD(hexlod_frame, version);
     HEXLOD_FIELD(hexlod_frame, converged);
     HEXLOD_FIELD(hexlod_frame, operations);
@@ -109,6 +110,7 @@ extern "C" const char* hexlod_struct_layout(void) {
     HEXLOD_FIELD(hexlod_frame, dirty_vertex_pairs);
     HEXLOD_FIELD(hexlod_frame, dirty_index_pairs);
     HEXLOD_FIELD(hexlod_frame, refined);
+    HEXLOD_FIELD(hexlod_frame, tiles_evicted);
     HEXLOD_FIELD(hexlod_frame, vertices_ptr);
     HEXLOD_FIELD(hexlod_frame, indices_ptr);
     HEXLOD_FIELD(hexlod_frame, dirty_vertices_ptr);

@@ -97,8 +97,9 @@ public:
     /// The tiles of `level` whose samples cover `rect` (clamped to the level).
     void tilesCovering(int32_t level, const SampleRect& rect, int32_t& tx0, int32_t& ty0, int32_t& tx1, int32_t& ty1) const;
 
-    /// Bytes of the tiles held (their slots), and of the bookkeeping.
+    /// Bytes of the tiles held (their slots), of one slot, and of the bookkeeping.
     size_t sampleBytes() const;
+    size_t slotBytes() const { return slotBytes_; }
     size_t memoryBytes() const;
 
 private:

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "api/hexlod.h"
@@ -155,8 +156,8 @@ TEST(TiledField, HeightsComeFromTheFinestLevelPresentAndEqualTheWholeFieldOnceIt
     for (int32_t i = 0; i < f.height; ++i)
         for (int32_t j = 0; j < f.width; ++j) ASSERT_EQ(tiled.heightAt(j, i), terrain->field().heightAt(j, i)) << j << ", " << i;
     // A full-resolution tile gone: its region reads the finest level left there, the coarsest.
-    ASSERT_EQ(hexlod_terrain_evict_tile(t, 0, 1, 1), 0);
-    EXPECT_NE(hexlod_terrain_evict_tile(t, int32_t(p.levels.size()) - 1, 0, 0), 0) << "the coarsest level stays";
+    ASSERT_TRUE(t->core->evictTile(0, 1, 1));
+    EXPECT_FALSE(t->core->evictTile(int32_t(p.levels.size()) - 1, 0, 0)) << "the coarsest level stays";
     const float back = tiled.heightAt(kTile + 10, kTile + 10);
     EXPECT_GE(back, low);
     EXPECT_LE(back, high);
@@ -310,37 +311,57 @@ TEST(TiledField, WantsFollowTheViewAndEvictedTilesFallBackWithoutCracks) {
         for (const hexlod_tile_want& want : wants) writeTile(t, p, want.level, want.tx, want.ty);
     }
     const double refined = out.triangles;
-    // What the mesh stands on stays; every other tile may go, and the mesh stays watertight
-    // and keeps its fine cells.
-    const hexlod_tile_want* inUse = nullptr;
-    const int32_t used = hexlod_terrain_tiles_in_use(t, &inUse);
-    ASSERT_GT(used, 0);
-    std::vector<hexlod_tile_want> keep(inUse, inUse + used);
+    // A cap of nothing: the terrain lets every tile go but those the mesh stands on, at the next
+    // stream step, and the mesh stays watertight and keeps its fine cells.
+    const std::vector<TileWant> keep = t->core->tilesInUse();
+    ASSERT_FALSE(keep.empty());
     const int32_t coarsest = int32_t(p.levels.size()) - 1;
-    for (const hexlod_tile_want& k : keep) {
-        EXPECT_TRUE(t->core->field().tiles()->present(k.level, k.tx, k.ty));
+    const SampleTiles& tiles = *t->core->field().tiles();
+    int32_t heldBefore = 0;
+    for (int32_t level = 0; level < coarsest; ++level) {
+        int32_t across, down;
+        tilesAcross(p, level, across, down);
+        for (int32_t ty = 0; ty < down; ++ty)
+            for (int32_t tx = 0; tx < across; ++tx) heldBefore += tiles.present(level, tx, ty);
+    }
+    for (const TileWant& k : keep) {
+        EXPECT_TRUE(tiles.present(k.level, k.tx, k.ty));
         EXPECT_LT(k.level, coarsest);
     }
-    int32_t others = 0;
+    EXPECT_EQ(out.tiles_evicted, 0);
+    EXPECT_EQ(out.tile_bytes, double(heldBefore) * kTile * kTile * sizeof(float));
+    EXPECT_NE(hexlod_terrain_set_tile_cap(t, -1.0), 0) << "a cap below 0";
+    EXPECT_NE(hexlod_terrain_set_tile_cap(t, NAN), 0) << "a cap that is not a number";
+    ASSERT_EQ(hexlod_terrain_set_tile_cap(t, 0.0), 0) << hexlod_last_error();
+    ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL, &out), 0);
+    // What the mesh stood on at that frame's stream step (its LOD update may have moved it).
+    const std::vector<TileWant> standsOn = t->core->tilesInUse();
+    const auto kept = [&](int32_t level, int32_t tx, int32_t ty) {
+        return std::any_of(standsOn.begin(), standsOn.end(), [&](const TileWant& k) { return k.level == level && k.tx == tx && k.ty == ty; });
+    };
+    int32_t heldAfter = 0;
     for (int32_t level = 0; level < coarsest; ++level) {
         int32_t across, down;
         tilesAcross(p, level, across, down);
         for (int32_t ty = 0; ty < down; ++ty)
             for (int32_t tx = 0; tx < across; ++tx) {
-                const bool kept = std::any_of(keep.begin(), keep.end(), [&](const hexlod_tile_want& k) { return k.level == level && k.tx == tx && k.ty == ty; });
-                if (!kept) others += hexlod_terrain_evict_tile(t, level, tx, ty) == 0;
+                heldAfter += tiles.present(level, tx, ty);
+                EXPECT_EQ(tiles.present(level, tx, ty), kept(level, tx, ty)) << "level " << level << " tile " << tx << ", " << ty;
             }
     }
-    EXPECT_GT(others, 0) << "some tiles were not in use";
+    EXPECT_EQ(out.tiles_evicted, heldBefore - heldAfter);
+    EXPECT_GT(out.tiles_evicted, 0) << "some tiles were not in use";
+    EXPECT_EQ(out.tile_bytes, double(heldAfter) * kTile * kTile * sizeof(float)) << "the tiles in use stay, over the cap";
     for (int32_t frame = 0; frame < 30; ++frame) {
         ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL, &out), 0);
         ASSERT_EQ(hexlod_diag_check_stream(t, nullptr), 0) << hexlod_last_error();
     }
     EXPECT_GT(out.triangles, 0.8 * refined) << "the cells near the camera stayed";
+    // Taken away even from under the mesh: the heights fall back, the cells there merge.
     int32_t across, down, evicted = 0;
     tilesAcross(p, 0, across, down);
     for (int32_t ty = 0; ty < down; ++ty)
-        for (int32_t tx = 0; tx < across; ++tx) evicted += hexlod_terrain_evict_tile(t, 0, tx, ty) == 0;
+        for (int32_t tx = 0; tx < across; ++tx) evicted += t->core->evictTile(0, tx, ty);
     EXPECT_GT(evicted, 0);
     for (int32_t frame = 0; frame < 60; ++frame) {
         ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL, &out), 0);
@@ -404,7 +425,7 @@ TEST(TiledField, PyramidBoundsAreTheWholeFieldsOnceTheTilesAreInAndGrowWithTheTi
     EXPECT_GT(fullBytes, coarseBytes) << "the full resolution's fine blocks are kept";
     // The full resolution gone and back: the fine blocks' room is reused.
     for (int32_t ty = 0; ty < down; ++ty)
-        for (int32_t tx = 0; tx < across; ++tx) ASSERT_EQ(hexlod_terrain_evict_tile(t, 0, tx, ty), 0);
+        for (int32_t tx = 0; tx < across; ++tx) ASSERT_TRUE(t->core->evictTile(0, tx, ty));
     tiledBounds.update(tiled, {0, 0, f.width - 1, f.height - 1});
     for (int32_t ty = 0; ty < down; ++ty)
         for (int32_t tx = 0; tx < across; ++tx) writeTile(t, p, 0, tx, ty);
@@ -438,4 +459,56 @@ TEST(TiledField, PyramidBoundsAreTheWholeFieldsOnceTheTilesAreInAndGrowWithTheTi
     EXPECT_EQ(low, 0.0f);
     EXPECT_EQ(high, 996.0f);
     hexlod_terrain_destroy(big);
+}
+
+// The terrain owns its tiles: past its cap it lets the least recently used go, a tile that
+// comes again counts as used anew, and the figures the frame reports follow.
+TEST(TiledField, PastItsCapTheTerrainLetsTheLeastRecentlyUsedTilesGo) {
+    const test::Fixture& f = test::kJacksboro;
+    const std::vector<float> data = test::readF32(f);
+    ASSERT_FALSE(data.empty());
+    const Pyramid p = makePyramid(data, f.width, f.height);
+    hexlod_terrain* t = tiledWithCoarsest(p);
+    setUp(t, f, 0);
+    // From far above: the mesh stays coarse and stands on no full-resolution tile.
+    const double w = (f.width - 1) * double(f.spacingX), d = (f.height - 1) * double(f.spacingY);
+    const hexlod_camera high{{0.5 * w, 1e6, 0.5 * d}, {0.5 * w, 0.0, 0.5 * d}, {0, 0, -1}, 0.5, 1.6, 800.0, 100.0, 1e8};
+    hexlod_frame out{};
+    ASSERT_EQ(hexlod_terrain_frame(t, &high, HEXLOD_FRAME_ALL, &out), 0) << hexlod_last_error();
+    ASSERT_TRUE(t->core->tilesInUse().empty());
+    const double tileBytes = double(kTile) * kTile * sizeof(float);
+    for (int32_t tx = 0; tx < 4; ++tx) {
+        writeTile(t, p, 0, tx, 0);
+        ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL, &out), 0);
+    }
+    EXPECT_EQ(out.tile_bytes, 4 * tileBytes) << "unlimited until a cap is set";
+    EXPECT_EQ(out.tiles_evicted, 0);
+    const SampleTiles& tiles = *t->core->field().tiles();
+    auto held = [&] {
+        std::vector<int32_t> columns;
+        for (int32_t tx = 0; tx < 4; ++tx)
+            if (tiles.present(0, tx, 0)) columns.push_back(tx);
+        return columns;
+    };
+    ASSERT_EQ(hexlod_terrain_set_tile_cap(t, 2.5 * tileBytes), 0) << hexlod_last_error();
+    EXPECT_EQ(held().size(), 4u) << "the cap acts at the next frame's stream step";
+    ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL, &out), 0);
+    EXPECT_EQ(held(), (std::vector<int32_t>{2, 3})) << "the two that came first went";
+    EXPECT_EQ(out.tiles_evicted, 2);
+    EXPECT_EQ(out.tile_bytes, 2 * tileBytes);
+    // The first comes again: now it is the most recently used.
+    writeTile(t, p, 0, 0, 0);
+    ASSERT_EQ(hexlod_terrain_set_tile_cap(t, tileBytes), 0);
+    ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL, &out), 0);
+    EXPECT_EQ(held(), (std::vector<int32_t>{0}));
+    EXPECT_EQ(out.tiles_evicted, 4);
+    EXPECT_EQ(out.tile_bytes, tileBytes);
+    ASSERT_EQ(hexlod_diag_check_stream(t, nullptr), 0) << hexlod_last_error();
+    hexlod_terrain_destroy(t);
+
+    hexlod_terrain* whole = hexlod_terrain_create(8, 8, HEXLOD_SAMPLE_F32);
+    ASSERT_NE(whole, nullptr);
+    EXPECT_EQ(hexlod_terrain_set_tile_cap(whole, tileBytes), HEXLOD_ERROR);
+    EXPECT_NE(std::string(hexlod_last_error()).find("whole"), std::string::npos) << hexlod_last_error();
+    hexlod_terrain_destroy(whole);
 }

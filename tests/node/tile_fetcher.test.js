@@ -1,16 +1,15 @@
 // Streaming tiles the way the frame loop will (web/tiles/tile_fetcher.js): the view's wanted
 // tiles are given once a frame against the range server of lib/range_server.js with latency,
 // and the fetcher must ask for the most needed first, a few at a time, abort what the view no
-// longer needs, fetch nothing twice, keep its cache within the cap without losing pinned
-// tiles, and report a tile that cannot be had once while the others arrive.
+// longer needs, fetch nothing twice, hold no tile once it is handed over (the core owns them),
+// and report a tile that cannot be had once while the others arrive.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { fromArrayBuffer } from 'geotiff';
 import { openCog } from '../../web/tiles/cog_source.js';
-import { TileFetcher } from '../../web/tiles/tile_fetcher.js';
-import { TileCache, tileKey } from '../../web/tiles/tile_cache.js';
+import { TileFetcher, tileKey } from '../../web/tiles/tile_fetcher.js';
 import { startRangeServer } from '../../lib/range_server.js';
 
 const fixtures = fileURLToPath(new URL('../fixtures/cog/', import.meta.url));
@@ -59,15 +58,15 @@ function watched(source) {
 }
 
 /**
- * Frames of the frame loop, every 4 ms, until done(arrived, failures) or the time is up: want
- * the list, then take the evicted keys, the arrived tiles and the failures.
+ * Frames of the frame loop, every 4 ms, until done(arrived, failures) or the time is up: take
+ * the arrived tiles (the core now holds them) and the failures, then want what of the list the
+ * core does not hold, as the core's wants do.
  */
-async function frames(fetcher, list, done, { ms = 3000, evicted = [] } = {}) {
-  const arrived = [], failures = [];
+async function frames(fetcher, list, done, { ms = 3000 } = {}) {
+  const arrived = [], failures = [], held = new Set();
   for (const start = Date.now(); ;) {
-    fetcher.want(list);
-    evicted.push(...fetcher.cache.takeEvicted());
-    for (const tile of fetcher.takeArrived()) arrived.push({ ...tile });
+    fetcher.want(list.filter((tile) => !held.has(key(tile))));
+    for (const tile of fetcher.takeArrived()) arrived.push({ ...tile }), held.add(tile.key);
     for (const failure of fetcher.takeFailures()) failures.push({ ...failure });
     if (done(arrived, failures)) return { arrived, failures };
     if (Date.now() - start > ms) assert.fail(`not done after ${ms} ms: ${arrived.length} arrived, ${failures.length} failed`);
@@ -101,15 +100,12 @@ test('tiles are asked for most needed first, never more than the concurrency at 
   for (const tile of arrived) {
     assert.ok(tile.samples instanceof Int16Array);
     assert.deepEqual(tile.samples, await reference.readTile(tile.level, tile.tx, tile.ty), `samples of ${name(tile)}`);
-    assert.equal(fetcher.cache.peekKey(tile.key), tile.samples);
   }
 
-  // Wanted again: all cached, nothing asked for.
+  // Wanted again once handed over (the core let it go): the fetcher kept nothing, it asks again.
   const requests = reader.started.length;
-  fetcher.want(list);
-  await sleep(40);
-  assert.equal(reader.started.length, requests);
-  assert.equal(fetcher.takeArrived().length, 0);
+  await frames(fetcher, [list[0]], (got) => got.length === 1);
+  assert.equal(reader.started.length, requests + 1);
   assert.equal(fetcher.waiting, 0);
 });
 
@@ -142,46 +138,11 @@ test('a tile the view stops wanting is aborted in flight (after its grace), or d
   assert.deepEqual(fetcher.takeFailures(), []);
   assert.equal(reader.outcomes.get(name(a)), 'aborted');
   assert.ok(!reader.started.includes(name(c)), 'the queued tile was never asked for');
-  assert.equal(fetcher.cache.hasKey(key(a)), false);
   assert.ok(reader.most <= 2, `${reader.most} at once: an aborted request holds its place until it ends`);
 
   // Wanted again later, it is fetched afresh.
-  const again = await frames(fetcher, [a, b, d], (got) => got.length === 1);
+  const again = await frames(fetcher, [a], (got) => got.length === 1);
   assert.deepEqual(again.arrived.map(name), [name(a)]);
-});
-
-test('the cache stays within its cap, keeps pinned tiles, and hands over what it evicted', async () => {
-  const reader = watched(await openCog(url()));
-  const cache = new TileCache({ capBytes: 4 * TILE_BYTES });
-  const fetcher = new TileFetcher(reader, { cache, concurrency: 2 });
-  const top = { level: 2, tx: 0, ty: 0, priority: 100 };
-  const row0 = [{ level: 1, tx: 0, ty: 0, priority: 50 }, { level: 1, tx: 1, ty: 0, priority: 40 }];
-  const row1 = [{ level: 1, tx: 0, ty: 1, priority: 30 }, { level: 1, tx: 1, ty: 1, priority: 20 }];
-  const evicted = [];
-  await frames(fetcher, [top, ...row0], (got) => got.length === 3, { evicted });
-  assert.equal(cache.bytes, 3 * TILE_BYTES);
-
-  // The mesh still draws the first tile of row 0 while the view moves to row 1.
-  cache.setPinned([key(top), key(row0[0])]);
-  await frames(fetcher, [top, ...row1], (got) => got.length === 2, { evicted });
-  assert.equal(cache.bytes, 4 * TILE_BYTES);
-  assert.ok(cache.hasKey(key(row0[0])), 'the pinned tile stays, though the oldest and no longer wanted');
-  assert.deepEqual(evicted, [key(row0[1])]);
-
-  // Unpinned, it is the least recently used (the wanted ones are marked used each frame).
-  cache.setPinned([key(top)]);
-  assert.deepEqual(evicted, [key(row0[1])], 'within the cap, unpinning evicts nothing');
-  const requests = reader.started.length;
-  await frames(fetcher, [top, row0[1], ...row1], (got) => got.length === 1, { evicted });
-  assert.equal(reader.started.length, requests + 1, 'only the evicted tile is fetched again');
-  assert.deepEqual(evicted, [key(row0[1]), key(row0[0])]);
-  assert.ok(cache.bytes <= cache.capBytes);
-  assert.equal(cache.evictions, 2);
-
-  // A smaller cap evicts at once, and never the pinned tile.
-  cache.capBytes = TILE_BYTES;
-  assert.equal(cache.bytes, TILE_BYTES);
-  assert.ok(cache.hasKey(key(top)));
 });
 
 test('a tile answered 404 is reported once with its kind and status, not asked for again until retryFailed, while the others arrive', async () => {
@@ -253,7 +214,7 @@ test('a tile outside the file is reported as invalid, and a throwing onError doe
   }
 });
 
-test('a tile dropped in flight whose read ends well anyway (a reader that ignores the signal) is not delivered nor cached', async () => {
+test('a tile dropped in flight whose read ends well anyway (a reader that ignores the signal) is not delivered', async () => {
   const pending = new Map();
   const deaf = { readTile: (level, tx, ty) => new Promise((resolve) => pending.set(`${level}:${tx},${ty}`, resolve)) };
   const fetcher = new TileFetcher(deaf, { concurrency: 1, graceFrames: 0 });
@@ -264,27 +225,25 @@ test('a tile dropped in flight whose read ends well anyway (a reader that ignore
   pending.get(name(a))(new Int16Array(4));
   await sleep(0);
   assert.deepEqual(fetcher.takeArrived(), []);
-  assert.equal(fetcher.cache.size, 0);
   assert.ok(pending.has(name(b)), 'its place went to the next tile');
   pending.get(name(b))(new Int16Array(4));
   await sleep(0);
   assert.deepEqual(fetcher.takeArrived().map(name), [name(b)]);
 });
 
-test('a tile evicted before the frame loop took it is not handed over, and its key is among the evicted', async () => {
-  const pending = new Map();
-  const manual = { readTile: (level, tx, ty) => new Promise((resolve) => pending.set(`${level}:${tx},${ty}`, resolve)) };
-  const cache = new TileCache({ capBytes: 8 });
-  const fetcher = new TileFetcher(manual, { cache });
+test('a tile that arrived and waits to be taken is not asked for again, and once taken the fetcher holds nothing', async () => {
+  const pending = new Map(), started = [];
+  const manual = { readTile: (level, tx, ty) => new Promise((resolve) => (started.push(`${level}:${tx},${ty}`), pending.set(`${level}:${tx},${ty}`, resolve))) };
+  const fetcher = new TileFetcher(manual);
   const a = { level: 0, tx: 0, ty: 0, priority: 2 }, b = { level: 0, tx: 1, ty: 0, priority: 1 };
   fetcher.want([a, b]);
   pending.get(name(a))(new Int16Array(4));
   await sleep(0);
-  pending.get(name(b))(new Int16Array(4)); // 16 bytes in a cache of 8: a goes
-  await sleep(0);
-  assert.deepEqual(cache.takeEvicted(), [key(a)]);
-  assert.deepEqual(fetcher.takeArrived().map(name), [name(b)]);
-  assert.equal(fetcher.waiting, 0);
-  fetcher.want([a, b]);
-  assert.equal(fetcher.waiting, 1, 'wanted and gone: fetched again');
+  fetcher.want([a, b]); // the core has not had it yet, so still wants it
+  assert.deepEqual(started, [name(a), name(b)], 'not asked for twice');
+  assert.equal(fetcher.waiting, 1);
+  assert.deepEqual(fetcher.takeArrived().map(name), [name(a)]);
+  assert.deepEqual(fetcher.takeArrived(), [], 'handed over once');
+  fetcher.want([a, b]); // wanted after it was handed over: the core let it go again
+  assert.deepEqual(started, [name(a), name(b), name(a)]);
 });

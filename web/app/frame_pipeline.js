@@ -32,7 +32,7 @@ export class FramePipeline {
     this.timingFigures = { updateMs: 0, streamMs: 0, uploadMs: 0, drawMs: 0, frameMs: 0 };
     this.hudFrame = { terrain: null, stats: null, timing: this.timingFigures, settings, camera: null, tiles: null };
     // A tiled terrain's figures as tests read them (state.tiles), filled in place.
-    this.tileFigures = { waiting: 0, settled: false, bytesFetched: 0, fileBytes: 0, heldBytes: 0, capBytes: 0, tilesIn: 0, failures: [] };
+    this.tileFigures = { waiting: 0, settled: false, bytesFetched: 0, fileBytes: 0, heldBytes: 0, capBytes: 0, tilesEvicted: 0, tilesIn: 0, failures: [] };
     this.framesSinceTiles = 0; // frames since tiles last went into the core
     // onHeightsChanged runs once a wait for tiles is over, and at most every HEIGHTS_REFRESH_MS
     // while tiles keep coming.
@@ -201,7 +201,8 @@ export class FramePipeline {
     s.bytesFetched = tiles.bytesFetched;
     s.fileBytes = tiles.fileBytes;
     s.heldBytes = tiles.heldBytes;
-    s.capBytes = tiles.cache.capBytes;
+    s.capBytes = tiles.capBytes;
+    s.tilesEvicted = tiles.tilesEvicted;
     s.tilesIn = tiles.tilesIn;
     s.failures = tiles.failures;
     this.state.tiles = s;

@@ -304,9 +304,13 @@ export class Terrain {
     this.core.check(this.m._hexlod_terrain_commit_tile(this.handle, level, tx, ty) < 0, `cannot commit tile (${tx}, ${ty}) of level ${level}`);
   }
 
-  /** Lets a tile go (the coarsest level's stay); false when it was not held. */
-  evictTile(level, tx, ty) {
-    return this.m._hexlod_terrain_evict_tile(this.handle, level, tx, ty) === 0;
+  /**
+   * The bytes of samples the tiles past the coarsest level may hold (hexlod_terrain_set_tile_cap):
+   * the core lets the least recently used go past it, never those the drawn mesh stands on.
+   * query()'s tileBytes and tilesEvicted report it.
+   */
+  setTileCap(bytes) {
+    this.core.check(this.m._hexlod_terrain_set_tile_cap(this.handle, bytes) < 0, `cannot set the tile cap to ${bytes} bytes`);
   }
 
   /** The height range of all the samples, metres, as the file states it (hexlod_terrain_declare_height_range). */
@@ -322,15 +326,6 @@ export class Terrain {
   tileWants() {
     const list = (this.wantList ??= []);
     return this.readTileList(list, this.m._hexlod_terrain_tile_wants(this.handle, this.wantsSlot), 'cannot collect the tiles to fetch');
-  }
-
-  /**
-   * The present tiles the drawn mesh stands on (hexlod_terrain_tiles_in_use): a pass over the
-   * cells, for a cache near its cap. Same list form as tileWants, its own reused list.
-   */
-  tilesInUse() {
-    const list = (this.inUseList ??= []);
-    return this.readTileList(list, this.m._hexlod_terrain_tiles_in_use(this.handle, this.wantsSlot), 'cannot collect the tiles in use');
   }
 
   /** Reads `count` hexlod_tile_want records the core pointed at into `list`. */

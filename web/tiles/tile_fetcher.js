@@ -1,23 +1,30 @@
 // Fetches the tiles a view needs, most needed first, a few at a time. The frame loop says once
 // per frame which tiles it wants; tiles it no longer wants leave the queue, and their requests
-// in flight are aborted. Arrived tiles go into the cache and wait for the frame loop to take
-// them, so the core sees new tiles only between frames. A tile that fails (after the reader's
-// own retries) is reported once and not asked for again until retryFailed().
+// in flight are aborted. Arrived tiles wait for the frame loop to take them, so the core sees
+// new tiles only between frames. A tile that fails (after the reader's own retries) is reported
+// once and not asked for again until retryFailed(). The fetcher holds no tile once taken: the
+// core owns the tiles it holds and lets them go itself (lod/tile_residency.h), and it wants
+// only tiles it does not hold.
 //
 // Each frame:
-//   cache.setPinned(keys of the tiles the drawn mesh uses)
-//   fetcher.want(tiles the view needs, with their screen errors)
-//   for (const key of cache.takeEvicted()) core drops the tile
 //   for (const tile of fetcher.takeArrived()) core takes tile.samples
+//   fetcher.want(tiles the core wants, with their screen errors)
 //   for (const failure of fetcher.takeFailures()) tell the user
 
-import { TileCache, tileKey } from './tile_cache.js';
+const AXIS = 2 ** 21; // tile columns and rows below 2^21, levels below 2^11: keys stay exact doubles
+
+/** One number for a tile, so per-frame lookups make no strings. */
+export function tileKey(level, tx, ty) {
+  return (level * AXIS + ty) * AXIS + tx;
+}
+
+/** @typedef {Int16Array|Uint16Array|Uint8Array|Float32Array} TileSamples */
 
 /**
  * @typedef {object} TileReader what reads tiles: a CogSource (cog_source.js) or a worker pool
  *   (worker_tile_reader.js)
  * @property {(level: number, tx: number, ty: number, signal?: AbortSignal) =>
- *   Promise<import('./tile_cache.js').TileSamples>} readTile
+ *   Promise<TileSamples>} readTile
  * @property {{ requests: number, bytes: number }} [stats] requests made and bytes received
  */
 
@@ -35,8 +42,7 @@ import { TileCache, tileKey } from './tile_cache.js';
  * @property {number} tx
  * @property {number} ty
  * @property {number} key tileKey(level, tx, ty)
- * @property {import('./tile_cache.js').TileSamples} samples tileWidth x tileHeight, row by row
- *   (the cache holds the same array)
+ * @property {TileSamples} samples tileWidth x tileHeight, row by row
  */
 
 /**
@@ -56,21 +62,16 @@ const byPriority = (a, b) => b.priority - a.priority;
 export class TileFetcher {
   /**
    * @param {TileReader} reader
-   * @param {{ cache?: TileCache, concurrency?: number, onError?: (failure: TileFailure) => void }} [options]
-   *   cache: where arrived tiles go (a new one of the default cap if none); its cap must hold
-   *   the wanted tiles and the pinned ones together, or the tiles it evicts are fetched again
-   *   each frame they are wanted; concurrency: most
-   *   requests in flight, aborted ones counted until they end; onError: called once per failed
+   * @param {{ concurrency?: number, onError?: (failure: TileFailure) => void, graceFrames?: number }} [options]
+   *   concurrency: most requests in flight, aborted ones counted until they end; onError: called once per failed
    *   tile, as it fails (the same records also wait in takeFailures); graceFrames: a request in
    *   flight is aborted once its tile was left out of this many want() calls in a row (0: at
    *   once). The list follows the mesh, which changes as tiles arrive: a tile may leave it for a
    *   few frames and come back, and its bytes would be fetched twice.
    */
-  constructor(reader, { cache = new TileCache(), concurrency = 6, onError = null, graceFrames = 30 } = {}) {
+  constructor(reader, { concurrency = 6, onError = null, graceFrames = 30 } = {}) {
     if (!(Number.isInteger(concurrency) && concurrency >= 1)) throw new RangeError(`concurrency must be a whole number >= 1, not ${concurrency}`);
     this.reader = reader;
-    /** @type {TileCache} */
-    this.cache = cache;
     this.concurrency = concurrency;
     this.onError = onError;
     this.graceFrames = graceFrames;
@@ -81,7 +82,8 @@ export class TileFetcher {
     this._inFlight = new Map(); // key -> job
     this._aborting = 0; // aborted requests not yet ended
     this._failed = new Set();
-    this._arrived = [];
+    this._arrived = []; // arrived and not yet taken
+    this._arrivedKeys = new Set(); // their keys
     this._arrivedOut = [];
     this._failures = [];
     this._failuresOut = [];
@@ -94,14 +96,14 @@ export class TileFetcher {
   }
 
   /**
-   * The tiles the view needs now, replacing the last list. Queues those neither cached, in
+   * The tiles the view needs now, replacing the last list. Queues those neither arrived, in
    * flight nor failed; drops from the queue and aborts in flight those no longer listed; starts
-   * requests up to the concurrency. Listed tiles already cached are marked as used.
+   * requests up to the concurrency.
    * @param {ArrayLike<WantedTile>} list read during the call only (the caller may reuse it)
    */
   want(list) {
     if (this._closed) return;
-    const wanted = this._wanted, cache = this.cache;
+    const wanted = this._wanted;
     wanted.clear();
     let queued = 0, failedWanted = 0;
     for (let i = 0; i < list.length; i++) {
@@ -109,7 +111,7 @@ export class TileFetcher {
       const key = tileKey(level, tx, ty);
       if (wanted.has(key)) continue;
       wanted.add(key);
-      if (cache.touchKey(key)) continue;
+      if (this._arrivedKeys.has(key)) continue;
       if (this._failed.has(key)) { failedWanted++; continue; }
       if (this._inFlight.has(key)) continue;
       let record = this._pool[queued];
@@ -131,20 +133,16 @@ export class TileFetcher {
   }
 
   /**
-   * The tiles decoded since the last call, in the order they arrived; each is in the cache.
-   * A tile evicted before it was taken is left out (its key is then among the cache's evicted
-   * ones, harmless to drop). Take the cache's evicted keys before these each frame, so a tile
-   * evicted and fetched again ends up held by the core.
+   * The tiles decoded since the last call, in the order they arrived; the fetcher lets them go.
    * @returns {ArrivedTile[]} owned by the fetcher and reused: valid until the next call
    */
   takeArrived() {
     const out = this._arrivedOut;
-    out.length = 0;
-    for (const tile of this._arrived) {
-      if (this.cache.peekKey(tile.key) === tile.samples) out.push(tile);
-    }
+    this._arrivedOut = this._arrived;
+    this._arrived = out;
     this._arrived.length = 0;
-    return out;
+    this._arrivedKeys.clear();
+    return this._arrivedOut;
   }
 
   /**
@@ -175,7 +173,7 @@ export class TileFetcher {
     return this._queue.length - this._next;
   }
 
-  /** Wanted tiles not cached and still to come (queued or in flight): the HUD's "waiting for N tiles". */
+  /** Wanted tiles still to come (queued or in flight): the HUD's "waiting for N tiles". */
   get waiting() {
     return this.queued + this._inFlight.size;
   }
@@ -219,8 +217,8 @@ export class TileFetcher {
     const queue = this._queue;
     while (this._next < queue.length && this._inFlight.size + this._aborting < this.concurrency) {
       const record = queue[this._next++];
-      // Cached or started since it was queued (a tile listed twice, or put by someone else).
-      if (this._inFlight.has(record.key) || this.cache.hasKey(record.key) || this._failed.has(record.key)) continue;
+      // Arrived or started since it was queued (a tile listed twice).
+      if (this._inFlight.has(record.key) || this._arrivedKeys.has(record.key) || this._failed.has(record.key)) continue;
       this._start(record);
     }
   }
@@ -248,7 +246,7 @@ export class TileFetcher {
 
   _arrive(job, samples) {
     if (this._ended(job)) {
-      this.cache.put(job.level, job.tx, job.ty, samples);
+      this._arrivedKeys.add(job.key);
       this._arrived.push({ level: job.level, tx: job.tx, ty: job.ty, key: job.key, samples });
       this.tilesArrived++;
       this.bytesArrived += samples.byteLength;

@@ -1,10 +1,9 @@
 // A terrain read tile by tile from a Cloud-Optimized GeoTIFF: the core's tiled terrain (hexlod_terrain_
 // create_tiled) fed tile by tile. At open, the coarsest level is read whole, so the first frame
 // draws from the overviews; then, once per frame, the tiles the core asks for (most needed
-// first) are fetched, a few at a time, and handed to the core between frames, and the tiles the
-// cache lets go are taken from the core. Runs in the browser (tiles decoded in workers) and in
-// Node (decoded in the main thread).
-import { TileCache, DEFAULT_CAP_BYTES, tileKey, keyLevel, keyTx, keyTy } from './tile_cache.js';
+// first) are fetched, a few at a time, and handed to the core between frames. The core owns the
+// tiles it holds: it lets them go itself past the cap given here (lod/tile_residency.h). Runs in
+// the browser (tiles decoded in workers) and in Node (decoded in the main thread).
 import { TileFetcher } from './tile_fetcher.js';
 import { TileError } from './tile_error.js';
 import { MAKE_COG } from './cog_source.js';
@@ -12,9 +11,8 @@ import { guessSpacing } from '../loaders/terrain_source.js';
 
 const BYTES = { u8: 1, u16: 2, i16: 2, f32: 4 };
 const MB = 2 ** 20;
-// Past this share of its cap, the cache learns every PIN_EVERY frames which tiles the mesh
-// stands on, and lets those go last.
-const PIN_SHARE = 0.85, PIN_EVERY = 30;
+/** The default cap of the samples held in tiles past the coarsest level: 512 MiB. */
+export const DEFAULT_CAP_BYTES = 512 * MB;
 
 /**
  * Bytes of samples of every tile of one level.
@@ -31,7 +29,8 @@ export function levelBytes(level, sampleType) {
  * @param {import('./cog_source.js').CogSource | import('./worker_tile_reader.js').WorkerTileReader} source
  * @param {{ capBytes?: number, concurrency?: number, signal?: AbortSignal, spacing?: {x: number, y: number},
  *   guessSpacing?: boolean, onProgress?: (fraction: number, phase: string) => void }} [options]
- *   capBytes: the tile cache's cap, bytes of samples (default 512 MB); spacing: metres between
+ *   capBytes: most bytes of samples the core holds in tiles past the coarsest level (default
+ *   512 MiB); spacing: metres between
  *   columns and rows instead of the file's; guessSpacing: as loadTerrain (terrain_source.js)
  * @returns {Promise<{terrain: import('../core/core.js').Terrain, field: object, missing: number,
  *   loadMs: number, tiles: TiledTerrain}>} the shape loadTerrain returns, plus the tiles
@@ -78,7 +77,8 @@ export async function openTiledTerrain(core, source, options = {}) {
     terrain.prepare();
     if (options.guessSpacing && !field.spacingFromFile && !options.spacing) guessSpacing(terrain, field);
     if (source.statistics) terrain.declareHeightRange(source.statistics.min, source.statistics.max);
-    const tiles = new TiledTerrain(terrain, source, { capBytes, concurrency: options.concurrency });
+    const tiles = new TiledTerrain(terrain, source, { concurrency: options.concurrency });
+    tiles.setCapBytes(capBytes);
     return { terrain, field, missing: 0, loadMs: performance.now() - start, tiles };
   } catch (error) {
     terrain.destroy();
@@ -88,41 +88,31 @@ export async function openTiledTerrain(core, source, options = {}) {
 
 /** The per-frame exchange between the core and the fetcher, and its figures for the HUD. */
 export class TiledTerrain {
-  constructor(terrain, source, { capBytes, concurrency }) {
+  constructor(terrain, source, { concurrency }) {
     this.terrain = terrain;
     this.source = source;
-    this.cache = new TileCache({ capBytes });
-    this.fetcher = new TileFetcher(source, { cache: this.cache, concurrency });
+    this.fetcher = new TileFetcher(source, { concurrency });
     /** tiles handed to the core so far, and the last failures (for the HUD) */
     this.tilesIn = 0;
     this.failures = [];
     this.closed = false;
-    this.frames = 0;
-    this.pinned = new Set();
   }
 
   /**
-   * One frame's exchange, after the frame's LOD update: what the core asks for goes to the
-   * fetcher; what the cache let go leaves the core; what arrived goes in (its heights change at
-   * the end of the next frame's stream step). Returns how many tiles went in.
+   * One frame's exchange, after the frame's LOD update: what arrived goes in (its heights change
+   * at the end of the next frame's stream step), then what the core still asks for goes to the
+   * fetcher (a tile just handed in is no longer asked for). Returns how many tiles went in.
    */
   tick() {
     if (this.closed) return 0;
-    const { terrain, fetcher, cache } = this;
-    if (++this.frames % PIN_EVERY === 0 && cache.bytes > PIN_SHARE * cache.capBytes) {
-      this.pinned.clear();
-      for (const { level, tx, ty } of terrain.tilesInUse()) this.pinned.add(tileKey(level, tx, ty));
-      cache.setPinned(this.pinned);
-    }
-    fetcher.want(terrain.tileWants());
-    for (const key of cache.takeEvicted()) terrain.evictTile(keyLevel(key), keyTx(key), keyTy(key));
+    const { terrain, fetcher } = this;
     let arrived = 0;
     for (const tile of fetcher.takeArrived()) {
       terrain.tileBuffer(tile.level, tile.tx, tile.ty).set(tile.samples);
       terrain.commitTile(tile.level, tile.tx, tile.ty);
-      cache.handOver(tile.key); // the core holds the samples now: the cache keeps their count only
       arrived++;
     }
+    fetcher.want(terrain.tileWants());
     this.tilesIn += arrived;
     const failed = fetcher.takeFailures();
     if (failed.length > 0) this.failures = failed.map(({ level, tx, ty, kind, message }) => ({ level, tx, ty, kind, message }));
@@ -143,14 +133,25 @@ export class TiledTerrain {
     return this.source.size ?? null;
   }
 
-  /** Bytes of samples the core holds in tiles. */
+  /** Bytes of samples the core holds in tiles past the coarsest level, as of the last frame. */
   get heldBytes() {
-    return this.cache.bytes;
+    return this.terrain.stats.tileBytes;
   }
 
-  /** The cache's cap, bytes of samples; a smaller one lets tiles go at the next tick. */
+  /** Tiles the core let go so far to stay within its cap, as of the last frame. */
+  get tilesEvicted() {
+    return this.terrain.stats.tilesEvicted;
+  }
+
+  /** The cap, bytes of samples in tiles past the coarsest level. */
+  get capBytes() {
+    return this.capBytesSet;
+  }
+
+  /** A smaller cap lets tiles go at the next frame's stream step. */
   setCapBytes(bytes) {
-    this.cache.capBytes = bytes;
+    this.terrain.setTileCap(bytes);
+    this.capBytesSet = bytes;
   }
 
   /** Stops every request; the terrain stays as it is. */
