@@ -92,9 +92,16 @@ test('dropped with its DEM in either order, the image drapes it; a new DEM alone
     assert.equal(draped.name, 'bmng_everest_4arcmin.jpg');
     assert.ok(draped.coverage > 0.99, `the image covers the Everest field (${draped.coverage})`);
   }
+  // The HUD lists the layers over the terrain as the layer list has them.
+  const layerLines = () => page.evaluate(() => {
+    const lines = document.querySelector('#hud .hud-image');
+    return lines.hidden ? null : lines.textContent;
+  });
+  assert.match(await layerLines(), /^image bmng_everest_4arcmin\.jpg {2}\d+ × \d+ px, [\d.]+ m\/px, covers 100 % of the field$/);
   await dropFiles(page, [fixture('formats/everest_16bit.png')]);
   await terrainShown(page, 'everest_16bit.png');
   assert.equal(await page.evaluate(() => window.hexlod.images.current), null, 'the old image went with the old ground');
+  assert.equal(await layerLines(), null, 'and its line in the HUD');
   assert.deepEqual(problems, []);
   await page.close();
 });

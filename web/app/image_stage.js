@@ -1,15 +1,16 @@
 // The draped image of the terrain on screen, the image layer of the layer list (layers.js; one
 // at a time for now): opened onto it (web/imagery/open_image.js), its textures in the renderer,
-// its note or refusal in the status line, its description in the HUD. A refused image leaves the
+// its note or refusal in the status line. A refused image leaves the
 // one shown before. The layer keeps the files it came from, so that it can be draped again when
 // the graphics context comes back.
 import { openImage } from '../imagery/open_image.js';
 import { ImageError } from '../imagery/image_error.js';
+import { describeImage } from '../imagery/describe_image.js';
 
 /**
  * @param {{ renderer: object, layers: import('./layers.js').Layers, showStatus: (message: string, isError?: boolean) => void,
  *   onChange: (image: object|null) => void, requestRender: () => void }} page
- *   onChange: the image shown changed (the HUD and the panel describe it)
+ *   onChange: the image shown changed (the panel offers to remove it); the layer list tells the HUD
  */
 export function createImageStage({ renderer, layers, showStatus, onChange, requestRender }) {
   const shown = () => layers.images.at(-1)?.image ?? null;
@@ -24,6 +25,7 @@ export function createImageStage({ renderer, layers, showStatus, onChange, reque
   }
 
   function changed() {
+    layers.changed('images');
     onChange(shown());
     requestRender();
   }
@@ -43,7 +45,7 @@ export function createImageStage({ renderer, layers, showStatus, onChange, reque
       if (!layers.ground) return null;
       try {
         const opened = await open(image, worldFile);
-        layers.images = [{ image: opened, files: { image, worldFile, url } }];
+        layers.images = [{ image: opened, files: { image, worldFile, url }, description: describeImage(opened) }];
         showStatus(opened.note ? `${image.name}: ${opened.note}` : '');
         changed();
         return opened;
@@ -72,6 +74,7 @@ export function createImageStage({ renderer, layers, showStatus, onChange, reque
       const { image, worldFile } = layer.files;
       try {
         layer.image = await open(image, worldFile);
+        layer.description = describeImage(layer.image);
       } catch (error) {
         if (!(error instanceof ImageError)) throw error;
         layers.images = [];
@@ -85,5 +88,5 @@ export function createImageStage({ renderer, layers, showStatus, onChange, reque
 /** What tests read of the image shown (window.hexlod.image): its size, placement and HUD line; null without one. */
 export function imageFigures(image, hud) {
   return image && { name: image.name, width: image.width, height: image.height, metresPerPixel: image.metresPerPixel,
-    coverage: image.placement.coverage, how: image.placement.how, gpuBytes: image.gpuBytes, hud: hud.image.textContent };
+    coverage: image.placement.coverage, how: image.placement.how, gpuBytes: image.gpuBytes, hud: hud.layerLines.textContent };
 }

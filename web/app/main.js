@@ -61,18 +61,18 @@ async function main() {
   const layers = new Layers(); // what is shown: the terrain, its image layers, its overlays
   const requestRender = () => pipeline.request();
   const hud = new Hud(document.getElementById('hud'), true); // one summary line on every screen: I unfolds it
+  layers.onChange((shown, part) => hud.showLayers(shown, part));
   const rig = new CameraRig(requestRender);
   rig.cameras.walk.eyeHeight = settings.eyeHeight;
   const cameraMode = { mode: rig.mode }; // the panel's view of the rig
   const syncPanel = () => { cameraMode.mode = rig.mode; panel.refresh(); };
   const pipeline = new FramePipeline({ gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, layers,
     onHeightsChanged: () => measure.heightsChanged() });
-  const stage = new TerrainStage({ canvas, renderer, rig, settings, layers, pipeline, hud, state, det, syncPanel, requestRender,
+  const stage = new TerrainStage({ canvas, renderer, rig, settings, layers, pipeline, state, det, syncPanel, requestRender,
     onShown: (terrain) => { owner.adopt('cellSize', terrain.spacingX); panel.setCellSizeRange(terrain.spacingX); } });
   const owner = new SettingsOwner(settings, settingEffects(stage,
     { rescaleMeasure: (k) => measure.rescale(k), showSpacing: (terrain) => intake.showSpacing(terrain) }));
   const images = createImageStage({ renderer, layers, showStatus, requestRender, onChange: (image) => {
-    hud.setImage(image);
     panel.enableAction(REMOVE_IMAGE, image !== null);
     state.image = imageFigures(image, hud);
   } });
@@ -94,10 +94,9 @@ async function main() {
   document.getElementById('help-close').onclick = toggleHelp;
   // Drop, file picker, ?src=, ?image=, progress, RAW size dialog and error display (file_intake.js).
   // A new terrain takes the image away: it belonged to the old ground.
-  const intake = createFileIntake({ core, state, settings, defaultUrlTimeoutS: SETTINGS.urlTimeout.default,
+  const intake = createFileIntake({ core, state, settings, layers, defaultUrlTimeoutS: SETTINGS.urlTimeout.default,
     show: (loaded, from) => { images.remove(); measure.clear(); stage.show(loaded, from); },
-    showStatus, setCellSize: (metres) => change('cellSize', metres), currentSpacing: () => layers.ground.terrain,
-    drape: (image, world, url) => images.drape(image, world, { url }) });
+    showStatus, setCellSize: (metres) => change('cellSize', metres), drape: (image, world, url) => images.drape(image, world, { url }) });
   if (window.hexlod === state) {
     installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting: change, screenshot, urlWriter,
       terrain: () => stage.current?.terrain, setLayout: (layout) => change('layout', layout), openUrl: (url) => intake.openUrl(url) });

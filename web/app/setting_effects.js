@@ -45,7 +45,7 @@ export function settingEffects(stage, { rescaleMeasure, showSpacing }) {
       rescaleMeasure(k); // the measured line stays on the same samples
       stage.keepCamerasAboveGround();
       renderer.invalidate();
-      stage.hud.setTerrain(loaded.field, t, loaded.loadMs);
+      stage.layers.changed('terrain'); // the HUD describes the new spacing
       showSpacing(t);
     },
     tiles(key, value) {

@@ -8,7 +8,7 @@ import { coreSettings } from './settings_table.js';
 export class TerrainStage {
   /**
    * @param {object} parts canvas, renderer, rig, settings, layers (layers.js: the terrain shown is
-   *   its terrain layer), pipeline, hud, state, det, and
+   *   its terrain layer), pipeline, state, det, and
    *   syncPanel(), requestRender() and onShown(terrain) (the settings and the panel take the new
    *   terrain's cell size)
    */
@@ -34,7 +34,7 @@ export class TerrainStage {
     this.state.terrain = { name: field.source, width: terrain.width, height: terrain.height,
       minHeight: terrain.minHeight, maxHeight: terrain.maxHeight, tiled: field.tiled === true };
     this.state.tiles = null; // the frame loop publishes a tiled terrain's figures
-    this.hud.setTerrain(field, terrain, loaded.loadMs);
+    this.layers.changed('terrain'); // the HUD describes it
     // Framed once the HUD and the file bar describe this terrain: their heights bound the view,
     // and R frames it again with them as they are then.
     this.frameDefault();

@@ -28,16 +28,16 @@ export class Hud {
     this.summary = document.createElement('div');
     this.info = document.createElement('div');
     this.figures = document.createElement('div');
-    this.image = document.createElement('div');
+    this.layerLines = document.createElement('div'); // the layers over the terrain
     this.cursor = document.createElement('div');
     this.tiles = document.createElement('div'); // a streamed terrain's tiles: shown folded or not
     this.tiles.className = 'hud-tiles';
     this.tiles.hidden = true;
     this.summary.className = 'hud-summary';
     this.info.className = this.figures.className = 'hud-more';
-    this.image.className = 'hud-image';
-    this.image.hidden = true;
-    element.append(this.toggleButton, this.summary, this.tiles, this.info, this.image, this.figures, this.cursor);
+    this.layerLines.className = 'hud-image';
+    this.layerLines.hidden = true;
+    element.append(this.toggleButton, this.summary, this.tiles, this.info, this.layerLines, this.figures, this.cursor);
     this.setCollapsed(collapsed);
     // rAF timestamps of the last FPS_WINDOW frames, a ring made once (tick runs every frame).
     this.frameTimes = new Float64Array(FPS_WINDOW);
@@ -58,7 +58,24 @@ export class Hud {
     this.toggleButton.setAttribute('aria-expanded', String(!collapsed));
   }
 
-  /** The terrain's description, once per load. */
+  /**
+   * Describes what the layer list (app/layers.js) shows, after `part` of it changed: the terrain
+   * ('terrain': a new one, or its scale), or the layers over it ('images', 'overlays').
+   */
+  showLayers(layers, part) {
+    if (part === 'terrain' && layers.ground) {
+      const { field, terrain, loadMs } = layers.ground;
+      this.setTerrain(field, terrain, loadMs);
+    }
+    if (part !== 'terrain') {
+      // One line a layer over the terrain, bottom first, as its stage describes it.
+      const lines = [...layers.images, ...layers.overlays].map((layer) => layer.description);
+      this.layerLines.hidden = lines.length === 0;
+      this.layerLines.textContent = lines.join('\n');
+    }
+  }
+
+  /** The terrain's description, once per load and when its scale changes. */
   setTerrain(field, terrain, loadMs) {
     this.lastErrorRefresh = -Infinity; // the error of the old terrain means nothing now
     const spacing = field.spacingFromFile ? '' : ' (assumed: the file has none)';
@@ -74,15 +91,6 @@ export class Hud {
         `heights ${terrain.minHeight.toFixed(0)} … ${terrain.maxHeight.toFixed(0)} m${field.tiled ? ' (so far)' : ''}, ` +
         `${field.tiled ? 'opened' : 'loaded'} in ${loadMs.toFixed(0)} ms`,
     ].join('\n');
-  }
-
-  /**
-   * The draped image's description (web/imagery/open_image.js DrapedImage), or null for none:
-   * its name, size, metres per pixel on the ground and the share of the field it covers.
-   */
-  setImage(image) {
-    this.image.hidden = !image;
-    this.image.textContent = image ? describeImage(image) : '';
   }
 
   /** A frame was drawn at rAF time `now` (ms). */
@@ -169,13 +177,4 @@ export class Hud {
         (pick.place ? `\n        ${pick.place}` : '')
       : 'cursor  —';
   }
-}
-
-/** "image ortho.jpg  8192 × 8192 px, 0.50 m/px, covers 62 % of the field" */
-export function describeImage({ name, width, height, metresPerPixel, placement }) {
-  const perPixel = metresPerPixel === null ? '' : `, ${metresPerPixel >= 10 ? metresPerPixel.toFixed(0) : metresPerPixel.toPrecision(2)} m/px`;
-  const share = placement.coverage * 100;
-  const covers = placement.how === 'stretched' ? 'stretched over the field'
-    : `covers ${share >= 99.95 ? '100' : share >= 1 ? share.toFixed(0) : share.toPrecision(1)} % of the field`;
-  return `image ${name}  ${width} × ${height} px${perPixel}, ${covers}`;
 }

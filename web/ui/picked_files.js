@@ -1,0 +1,79 @@
+// Files dropped or picked (File objects), as one load. Which file is what (web/imagery/drop_roles.js)
+// decides what the drop does to the layer list: a height field (with its sidecar), or the tiles
+// of a mosaic (web/loaders/mosaic.js), replaces the terrain; an image (with its world file) adds
+// the image layer over the terrain, the new one or the one on screen. A colour PNG opened alone
+// is a height field when its first row reads as heights, else an image.
+import { dropRoles } from '../imagery/drop_roles.js';
+import { ImageError } from '../imagery/image_error.js';
+import { detectPngEncoding, hasPngSignature } from '../loaders/png.js';
+import { shouldOpenTiled } from './tiled_open.js';
+
+// The PNG colours menu: 'image' drapes a colour PNG; an encoding makes it heights.
+const PNG_CHOICE = { auto: 'auto', image: 'image', 'terrain-rgb': 'height', terrarium: 'height' };
+const HEAD_BYTES = 64 * 1024; // of each opened file, to tell height fields from images
+const MB = 2 ** 20;
+
+/**
+ * @param {{ loads: import('./load_sequence.js').LoadSequence, indicator: object, settings: object,
+ *   layers: import('../app/layers.js').Layers, opening: ReturnType<import('./terrain_opening.js').createTerrainOpening>,
+ *   drape: (image: {name: string, blob: Blob}, worldFile: object|null) => Promise<object|null>,
+ *   showStatus: (message: string) => void, encoding: () => string }} page
+ * @returns {(list: FileList|File[]) => Promise<string>} opens them; resolves to 'shown', 'failed' or 'cancelled'
+ */
+export function pickedFilesOpener({ loads, indicator, settings, layers, opening, drape, showStatus, encoding }) {
+  const { decode, openTiles, failed, cancelled } = opening;
+
+  /** The drop's files as { name, head } (the first bytes) and, for a colour PNG alone, whether it holds heights. */
+  async function look(picked) {
+    const heads = await Promise.all(picked.map(async (file) => ({ name: file.name, head: new Uint8Array(await file.slice(0, HEAD_BYTES).arrayBuffer()) })));
+    // A colour PNG's first row is read only when the roles need it (it alone, 8-bit colour by
+    // its header); the bytes read then are the ones decoded.
+    const heightPng = new Set(), read = new Map();
+    const [only] = heads;
+    if (picked.length === 1 && encoding() === 'auto' && hasPngSignature(only.head) && only.head[24] === 8 && [2, 3, 6].includes(only.head[25])) {
+      read.set(0, new Uint8Array(await picked[0].arrayBuffer()));
+      if (await detectPngEncoding(read.get(0), only.name)) heightPng.add(only.name);
+    }
+    return { heads, read, heightPng };
+  }
+
+  return (list) => {
+    const picked = [...list];
+    return loads.run(async (signal) => {
+      indicator.start(true);
+      const names = picked.map((f) => f.name).join(' + ');
+      showStatus(`Loading ${names}…`);
+      const { heads, read, heightPng } = await look(picked);
+      let roles;
+      try {
+        roles = dropRoles(heads, { pngAsImage: PNG_CHOICE[encoding()], colourPngIsHeight: (f) => heightPng.has(f.name) });
+      } catch (error) {
+        if (!(error instanceof ImageError)) throw error;
+        return failed(error.message);
+      }
+      const image = roles.image === null ? null : { name: picked[roles.image].name, blob: picked[roles.image] };
+      if (roles.field.length === 0 && !layers.ground) {
+        return failed(`${image.name}: an image is draped over a terrain, and none is shown; open a height field with it or first`);
+      }
+      // A lone COG streams from the File (read by slices, never whole); any other height field loads whole.
+      if (picked.length === 1 && roles.field.length === 1 && image === null
+        && await shouldOpenTiled(picked[0], heads[0].head, settings.tileCacheMB * MB)) {
+        if (signal.aborted) return cancelled(signal, names);
+        try {
+          return await openTiles(picked[0], names, signal, null);
+        } catch (error) {
+          return signal.aborted ? cancelled(signal, names) : failed(`${names}: cannot stream it (${error.message})`);
+        }
+      }
+      const world = roles.worldFile === null ? null : { name: picked[roles.worldFile].name, blob: picked[roles.worldFile] };
+      if (roles.field.length > 0) {
+        const files = await Promise.all(roles.field.map(async (i) => ({ name: picked[i].name, bytes: read.get(i) ?? new Uint8Array(await picked[i].arrayBuffer()) })));
+        if (signal.aborted) return cancelled(signal, names);
+        const outcome = await decode(files, {}, signal, null, false);
+        if (outcome !== 'shown') return outcome;
+      }
+      if (!image || signal.aborted) return 'shown';
+      return (await drape(image, world)) ? 'shown' : 'failed';
+    });
+  };
+}
