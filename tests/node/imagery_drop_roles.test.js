@@ -1,8 +1,11 @@
-// Which dropped files are the height field and which the image to drape (web/imagery/drop_roles.js).
+// Which dropped files are the height field and which the image to drape (web/imagery/drop_roles.js),
+// and the table of image formats they follow (web/imagery/image_formats.js).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { dropRoles } from '../../web/imagery/drop_roles.js';
+import { dropRoles, IMAGE_EXTENSIONS } from '../../web/imagery/drop_roles.js';
+import { IMAGE_FORMATS, DRAPED_FORMATS } from '../../web/imagery/image_formats.js';
+import { readImageHeader } from '../../web/imagery/image_header.js';
 import { ImageError } from '../../web/imagery/image_error.js';
 
 const ROOT = new URL('../../', import.meta.url);
@@ -47,4 +50,22 @@ test('two images, or a world file without its image, are refused by name', () =>
     (e) => e instanceof ImageError && /^o\.jgw: a world file alone places nothing/.test(e.message));
   assert.throws(() => roles([['a.jpg', JPEG], ['b.jgw', text('1')]]),
     (e) => e instanceof ImageError && /^b\.jgw: does not belong to a\.jpg \(its world file is named a\.jgw or a\.jpgw or a\.wld\)/.test(e.message));
+});
+
+test('the image format table: each row knows its own first bytes and no other row\'s, and the picker and messages follow it', () => {
+  const heads = {
+    png: [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a],
+    jpeg: [0xff, 0xd8, 0xff, 0xe0],
+    webp: [...'RIFF'].map((c) => c.charCodeAt(0)).concat([0, 0, 0, 0], [...'WEBP'].map((c) => c.charCodeAt(0))),
+    tiff: [0x49, 0x49, 0x2a, 0x00, 8, 0, 0, 0],
+  };
+  assert.deepEqual(IMAGE_FORMATS.map((f) => f.format).sort(), Object.keys(heads).sort());
+  for (const [format, bytes] of Object.entries(heads)) {
+    const head = new Uint8Array([...bytes, ...new Array(32).fill(0)]);
+    assert.deepEqual(IMAGE_FORMATS.filter((f) => f.signature(head)).map((f) => f.format), [format], format);
+  }
+  assert.deepEqual(IMAGE_EXTENSIONS, ['.jpg', '.jpeg', '.webp', '.pgw', '.jgw', '.tfw', '.wld']);
+  assert.equal(DRAPED_FORMATS, 'PNG, JPEG, WebP and 8-bit GeoTIFF');
+  const gif = new Uint8Array([...'GIF89a'].map((c) => c.charCodeAt(0)).concat([1, 0, 1, 0, 0, 0, 0]));
+  assert.throws(() => readImageHeader(gif, 'a.gif'), /a.gif: a GIF image cannot be draped; PNG, JPEG, WebP and 8-bit GeoTIFF can/);
 });

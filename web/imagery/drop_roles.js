@@ -1,6 +1,7 @@
 // Which of the files a person opens at once are a height field (with its sidecar) and which are
 // an image to drape (with its world file), from their names and first bytes:
-//   - JPEG and WebP are always images; so is a colour (RGB, palette, YCbCr) 8-bit TIFF;
+//   - JPEG and WebP are always images (image_formats.js); so is a colour (RGB, palette, YCbCr)
+//     8-bit TIFF;
 //   - a colour PNG is an image when a world file comes with it, when a height field comes with
 //     it, or when its colours are no height encoding (loaders/terrain_rgb.js); else it is a
 //     Terrain-RGB or Terrarium height field, as before ('image' in the PNG colours menu forces it);
@@ -12,10 +13,11 @@ import { hasPngSignature } from '../loaders/png.js';
 import { hasTiffSignature, readDirectory, isWorldFileName, worldFileNames } from '../geo/index.js';
 import { encodingFromName } from '../loaders/terrain_rgb.js';
 import { ImageError } from './image_error.js';
+import { IMAGE_FORMATS, alwaysImageFormat } from './image_formats.js';
 
-const JPEG_SIGNATURE = [0xff, 0xd8, 0xff];
 /** What the file picker offers beside the height fields: images and their world files. */
-export const IMAGE_EXTENSIONS = ['.jpg', '.jpeg', '.webp', '.pgw', '.jgw', '.tfw', '.wld'];
+export const IMAGE_EXTENSIONS = [...IMAGE_FORMATS.filter((f) => f.alwaysImage).flatMap((f) => f.extensions),
+  'pgw', 'jgw', 'tfw', 'wld'].map((extension) => `.${extension}`);
 const PHOTOMETRIC = 262, SAMPLES_PER_PIXEL = 277, BITS_PER_SAMPLE = 258;
 
 /**
@@ -69,7 +71,7 @@ export function dropRoles(files, options = {}) {
 function kindOf({ name, head }) {
   const extension = extensionOf(name);
   if (isWorldFileName(name) && !['png', 'tif', 'tiff', 'hgt', 'asc', 'pgm', 'f32', 'json', 'r16', 'raw'].includes(extension)) return 'world';
-  if (['jpg', 'jpeg', 'webp'].includes(extension) || JPEG_SIGNATURE.every((b, i) => head[i] === b) || isWebp(head)) return 'image';
+  if (alwaysImageFormat(extension, head)) return 'image';
   if (hasPngSignature(head) && head.length >= 26) {
     const bitDepth = head[24], colourType = head[25];
     if (colourType === 2 || colourType === 6 || colourType === 3) return bitDepth === 8 ? 'colourPng' : 'height';
@@ -77,10 +79,6 @@ function kindOf({ name, head }) {
   }
   if (hasTiffSignature(head)) return tiffKind(head);
   return 'height';
-}
-
-function isWebp(head) {
-  return head.length >= 12 && String.fromCharCode(...head.subarray(0, 4)) === 'RIFF' && String.fromCharCode(...head.subarray(8, 12)) === 'WEBP';
 }
 
 /** A TIFF's kind from its first directory, when it lies in `head`. */

@@ -1,8 +1,8 @@
 // Opening an image to drape, from its file (and world file) to textures on the GPU:
 //   header -> size and kind -> the tiling and whether it fits (before decoding) -> the
 //   georeference (GeoTIFF tags or world file) -> its place on the field (image_location.js, shared
-//   with the command line; refused when it misses it or is in another CRS) -> decode (the browser's for PNG, JPEG, WebP; bands for GeoTIFF)
-//   into the textures.
+//   with the command line; refused when it misses it or is in another CRS) -> decode (the
+//   browser's, or the format's band reader: image_formats.js) into the textures.
 // Nothing of the image shown before is touched: the new one fills textures of its own, which
 // take the old one's place only when it is whole; a failure (a corrupt band) drops the
 // half-made textures and the old image stays on screen.
@@ -10,7 +10,7 @@
 import { readImageHeader, HEADER_BYTES } from './image_header.js';
 import { planImageTiling } from './image_tiling.js';
 import { worldFileGeoref, locateImage } from './image_location.js';
-import { readTiffImage } from './image_tiff.js';
+import { imageFormat } from './image_formats.js';
 import { ImageError } from './image_error.js';
 import { browserJpegDecoder } from './browser_jpeg.js';
 
@@ -45,11 +45,12 @@ export async function openImage(image, worldFile, field, gpu, options = {}) {
   const worldGeoref = worldFile ? worldFileGeoref({ name: worldFile.name, bytes: new Uint8Array(await worldFile.blob.arrayBuffer()) }) : null;
   const limits = { ...gpu.limits(), budgetBytes: options.budgetBytes, name };
 
-  if (header.format === 'tiff') {
+  const { readBands } = imageFormat(header.format);
+  if (readBands) {
     const bytes = new Uint8Array(await blob.arrayBuffer());
     let location = null, tiling = null, begun = false;
     try {
-      await readTiffImage(bytes, name, {
+      await readBands(bytes, name, {
         pace: options.pace,
         decodeJpeg: options.decodeJpeg === undefined ? browserJpegDecoder() : options.decodeJpeg,
         begin: (width, height, georef) => {

@@ -2,6 +2,7 @@
 // file picker. Both hand the files to one opener as one load.
 import { ACCEPT_EXTENSIONS, ACCEPTED } from '../loaders/index.js';
 import { IMAGE_EXTENSIONS } from '../imagery/drop_roles.js';
+import { DRAPED_FORMATS } from '../imagery/image_formats.js';
 
 /** @param {(files: FileList) => Promise<string>} openPicked */
 export function installDropTarget(openPicked) {
@@ -18,7 +19,7 @@ export function installDropTarget(openPicked) {
     if (dropped.length) await openPicked(dropped);
   });
   picker.accept = [...ACCEPT_EXTENSIONS, ...IMAGE_EXTENSIONS].join(',');
-  button.title = `Open a height field (${ACCEPTED}), an image to drape on it (PNG, JPEG, WebP, GeoTIFF, with its world file), or both`;
+  button.title = `Open a height field (${ACCEPTED}), an image to drape on it (${DRAPED_FORMATS}, with its world file), or both`;
   button.onclick = () => picker.click();
   picker.onchange = () => {
     if (picker.files.length) openPicked(picker.files); // takes the list at once: it is emptied next
