@@ -49,6 +49,15 @@ Pyramid makePyramid(const std::vector<float>& full, int32_t width, int32_t heigh
     return p;
 }
 
+// Jacksboro's pyramid, made once for the tests that use it (empty levels when the fixture is missing).
+const Pyramid& jacksboroPyramid() {
+    static const Pyramid pyramid = [] {
+        const std::vector<float> data = test::readF32(test::kJacksboro);
+        return data.empty() ? Pyramid{{{}}, {0}, {0}} : makePyramid(data, test::kJacksboro.width, test::kJacksboro.height);
+    }();
+    return pyramid;
+}
+
 std::vector<int32_t> dimsOf(const Pyramid& p) {
     std::vector<int32_t> dims;
     for (size_t k = 0; k < p.levels.size(); ++k) dims.insert(dims.end(), {p.widths[k], p.heights[k], kTile, kTile});
@@ -128,9 +137,8 @@ std::vector<std::vector<int64_t>> structureOf(const HexMesh& mesh) {
 
 TEST(TiledField, HeightsComeFromTheFinestLevelPresentAndEqualTheWholeFieldOnceItIsIn) {
     const test::Fixture& f = test::kJacksboro;
-    const std::vector<float> data = test::readF32(f);
-    ASSERT_FALSE(data.empty());
-    const Pyramid p = makePyramid(data, f.width, f.height);
+    const Pyramid& p = jacksboroPyramid();
+    ASSERT_FALSE(p.levels[0].empty());
     ASSERT_GE(p.levels.size(), 3u);
     hexlod_terrain* t = tiledWithCoarsest(p);
     setUp(t, f, 0);
@@ -167,14 +175,13 @@ TEST(TiledField, HeightsComeFromTheFinestLevelPresentAndEqualTheWholeFieldOnceIt
 
 TEST(TiledField, StreamingStaysWatertightAndConvergesToTheMeshOfTheWholeField) {
     const test::Fixture& f = test::kJacksboro;
-    const std::vector<float> data = test::readF32(f);
-    ASSERT_FALSE(data.empty());
-    const Pyramid p = makePyramid(data, f.width, f.height);
+    const Pyramid& p = jacksboroPyramid();
+    ASSERT_FALSE(p.levels[0].empty());
     const hexlod_camera camera = southCamera(f);
 
     // The field loaded whole, converged.
     hexlod_terrain* whole = hexlod_terrain_create(f.width, f.height, HEXLOD_SAMPLE_F32);
-    std::memcpy(hexlod_terrain_samples(whole), data.data(), data.size() * sizeof(float));
+    std::memcpy(hexlod_terrain_samples(whole), p.levels[0].data(), p.levels[0].size() * sizeof(float));
     setUp(whole, f, 0);
     hexlod_frame out{};
     for (int32_t frame = 0; frame < 200 && !out.converged; ++frame)
@@ -245,9 +252,8 @@ TEST(TiledField, StreamingStaysWatertightAndConvergesToTheMeshOfTheWholeField) {
 
 TEST(TiledField, WantsFollowTheViewAndEvictedTilesFallBackWithoutCracks) {
     const test::Fixture& f = test::kJacksboro;
-    const std::vector<float> data = test::readF32(f);
-    ASSERT_FALSE(data.empty());
-    const Pyramid p = makePyramid(data, f.width, f.height);
+    const Pyramid& p = jacksboroPyramid();
+    ASSERT_FALSE(p.levels[0].empty());
     hexlod_terrain* t = tiledWithCoarsest(p);
     // Every overview present: what the view asks for is full-resolution tiles.
     for (int32_t level = 1; level + 1 < int32_t(p.levels.size()); ++level) {
@@ -376,9 +382,8 @@ TEST(TiledField, WantsFollowTheViewAndEvictedTilesFallBackWithoutCracks) {
 // once they are in, and in memory that follows the tiles held, not the field's size.
 TEST(TiledField, PyramidBoundsAreTheWholeFieldsOnceTheTilesAreInAndGrowWithTheTilesNotTheField) {
     const test::Fixture& f = test::kJacksboro;
-    const std::vector<float> data = test::readF32(f);
-    ASSERT_FALSE(data.empty());
-    const Pyramid p = makePyramid(data, f.width, f.height);
+    const Pyramid& p = jacksboroPyramid();
+    ASSERT_FALSE(p.levels[0].empty());
     hexlod_terrain* t = tiledWithCoarsest(p);
     setUp(t, f, 0);
     const Heightfield& tiled = t->core->field();
@@ -465,9 +470,8 @@ TEST(TiledField, PyramidBoundsAreTheWholeFieldsOnceTheTilesAreInAndGrowWithTheTi
 // comes again counts as used anew, and the figures the frame reports follow.
 TEST(TiledField, PastItsCapTheTerrainLetsTheLeastRecentlyUsedTilesGo) {
     const test::Fixture& f = test::kJacksboro;
-    const std::vector<float> data = test::readF32(f);
-    ASSERT_FALSE(data.empty());
-    const Pyramid p = makePyramid(data, f.width, f.height);
+    const Pyramid& p = jacksboroPyramid();
+    ASSERT_FALSE(p.levels[0].empty());
     hexlod_terrain* t = tiledWithCoarsest(p);
     setUp(t, f, 0);
     // From far above: the mesh stays coarse and stands on no full-resolution tile.
