@@ -205,3 +205,50 @@ test('half over the field, bad images refused while it stays, back after a lost 
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('an overlay in the layer list is drawn over the terrain, listed in the HUD, made again after a lost context, and gone when removed', async () => {
+  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1`, { width: 400, height: 300 }, FULL_RESOLUTION);
+  await page.waitForFunction(() => window.hexlod?.status === 'ready', null, { timeout: 240000 });
+  // A square of magenta in the middle of the view, over the terrain (a kind of layer the page
+  // does not know: the renderer and the HUD take it from the list alone).
+  const magentaAt = async () => {
+    await page.evaluate(() => new Promise((resolve) => { window.hexlod.requestRender(); requestAnimationFrame(() => requestAnimationFrame(resolve)); }));
+    const image = decode(await page.screenshot({ clip: { x: 190, y: 140, width: 20, height: 20 } }));
+    const c = image.channels, [r, g, b] = [image.data[10 * 20 * c + 10 * c], image.data[10 * 20 * c + 10 * c + 1], image.data[10 * 20 * c + 10 * c + 2]];
+    return r > 240 && g < 15 && b > 240;
+  };
+  assert.equal(await magentaAt(), false);
+  await page.evaluate(() => {
+    const overlay = {
+      description: 'overlay test square', made: 0,
+      draw(gl, camera, width, height) {
+        gl.enable(gl.SCISSOR_TEST);
+        gl.scissor(Math.round(width / 2) - 20, Math.round(height / 2) - 20, 40, 40);
+        gl.clearColor(1, 0, 1, 1);
+        gl.clear(gl.COLOR_BUFFER_BIT);
+        gl.disable(gl.SCISSOR_TEST);
+      },
+      createGlObjects() { overlay.made++; },
+    };
+    window.hexlod.layers.overlays.push(overlay);
+    window.hexlod.layers.changed('overlays');
+  });
+  assert.equal(await magentaAt(), true, 'drawn');
+  assert.equal(await page.evaluate(() => document.querySelector('#hud .hud-image').textContent), 'overlay test square');
+  await page.evaluate(() => {
+    window.loseContext = document.getElementById('view').getContext('webgl2').getExtension('WEBGL_lose_context');
+    window.loseContext.loseContext();
+  });
+  await page.waitForFunction(() => window.hexlod.contextLost);
+  await page.evaluate(() => window.loseContext.restoreContext());
+  await page.waitForFunction(() => !window.hexlod.contextLost && window.hexlod.layers.overlays[0].made === 1);
+  assert.equal(await magentaAt(), true, 'drawn again after the context came back');
+  await page.evaluate(() => {
+    window.hexlod.layers.overlays.length = 0;
+    window.hexlod.layers.changed('overlays');
+  });
+  assert.equal(await magentaAt(), false, 'gone');
+  assert.equal(await page.evaluate(() => document.querySelector('#hud .hud-image').hidden), true);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

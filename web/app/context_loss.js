@@ -19,7 +19,7 @@ export function handleContextLoss(canvas, { onLost, onRestored }) {
  * back the renderer makes its GL objects anew, the shading and the draped image are made again
  * from what the page kept, and a frame is asked for.
  */
-export function recoverLostContext(canvas, { pipeline, renderer, stage, images, state, showStatus, requestRender }) {
+export function recoverLostContext(canvas, { pipeline, renderer, stage, images, layers, state, showStatus, requestRender }) {
   handleContextLoss(canvas, {
     onLost() {
       pipeline.setContextLost(true);
@@ -28,6 +28,7 @@ export function recoverLostContext(canvas, { pipeline, renderer, stage, images, 
     },
     onRestored() {
       renderer.createGlObjects(); // the old GL objects died with the context
+      for (const overlay of layers.overlays) overlay.createGlObjects(renderer.gl);
       renderer.invalidate();
       const world = stage.current?.world;
       if (world) renderer.setShading(world.low, world.high, world.extentX, world.extentZ);

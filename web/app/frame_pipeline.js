@@ -85,7 +85,7 @@ export class FramePipeline {
     const shown = this.layers.ground;
     if (shown) this.updateTerrain(shown, camera, width, height, now);
     const drawStart = performance.now();
-    this.renderer.draw(camera, width, height, this.view);
+    this.renderer.draw(camera, width, height, this.view, this.layers.overlays);
     if (this.settings.timing) this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.UNSIGNED_BYTE, this.timingPixel); // waits for the draw
     timing.drawMs = performance.now() - drawStart;
     this.lastFrameMs = timing.frameMs = performance.now() - frameStart;

@@ -15,7 +15,11 @@ export class Layers {
      * carries its description: the HUD lists them as they are.
      */
     this.images = [];
-    /** Vector overlays, bottom first (none yet). */
+    /**
+     * Overlays drawn over the terrain, bottom first: [{ description: its HUD line, draw(gl,
+     * camera, width, height, verticalScale), createGlObjects(gl) }]; the renderer draws them
+     * each frame (render/renderer.js draw). None yet.
+     */
     this.overlays = [];
     this.listeners = [];
   }

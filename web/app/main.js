@@ -78,6 +78,7 @@ async function main() {
   } });
   state.image = null;
   Object.defineProperty(state, 'images', { value: images, enumerable: false }); // for tests: drape and remove
+  Object.defineProperty(state, 'layers', { value: layers, enumerable: false }); // for tests: what is shown
   const { change, syncView, showContourNote } = createSettingChanges({ settings, view, renderer, rig, owner, state,
     showStatus, syncPanel, requestRender });
   const screenshot = screenshotTaker({ gl, rig, renderer, view, state, requestRender });
@@ -113,7 +114,7 @@ async function main() {
   installPointerReadout(canvas, { rig, settings, terrain: () => stage.current,
     onCursor: (pick) => { state.cursor = pick; hud.setCursor(pick); },
     onOrbit: () => { syncPanel(); requestRender(); }, measuring: () => measure.active });
-  recoverLostContext(canvas, { pipeline, renderer, stage, images, state, showStatus, requestRender });
+  recoverLostContext(canvas, { pipeline, renderer, stage, images, layers, state, showStatus, requestRender });
   await openFirstTerrain({ urlState, intake, stage, rig, measure, det, state, statusBox, openingStatus: OPENING_STATUS,
     showStatus, showContourNote, syncPanel });
   requestRender();

@@ -114,6 +114,8 @@ class MirroredBuffer {
   }
 }
 
+const NO_OVERLAYS = Object.freeze([]);
+
 export class TerrainRenderer {
   /**
    * @param {WebGL2RenderingContext} gl
@@ -312,7 +314,13 @@ export class TerrainRenderer {
    *   verticalScale?: number, hideTerrain?: boolean}} view frame and morphFrames drive the geomorph
    *   blend; hideTerrain draws the background alone (tests compare the two to find the terrain's pixels)
    */
-  draw(camera, width, height, view = {}) {
+  /**
+   * One frame: the terrain, the measured line, the overlays of the layer list (app/layers.js),
+   * bottom first, then the sky. An overlay is { draw(gl, camera, width, height, verticalScale),
+   * createGlObjects(gl) } (the latter after a lost context came back): a new kind of layer drawn
+   * over the terrain needs nothing of this file.
+   */
+  draw(camera, width, height, view = {}, overlays = NO_OVERLAYS) {
     const gl = this.gl;
     this.drawPixelScale = this.pixelScale(height); // the contours' line width and labels
     const mode = SHADING_MODES[view.shading ?? 'natural'] ?? 0;
@@ -325,6 +333,7 @@ export class TerrainRenderer {
     if (this.indexCount > 0 && !view.hideTerrain) this.drawTerrain(camera, view, mode, verticalScale);
     // The measured line: over the terrain, its hidden parts faint (the sky covers none of it).
     if (!view.hideTerrain) this.measureOverlay.draw(camera, width, height, verticalScale);
+    for (let k = 0; k < overlays.length && !view.hideTerrain; k++) overlays[k].draw(gl, camera, width, height, verticalScale);
     // The sky where no terrain was drawn: after the terrain, so the depth test skips covered pixels.
     if (mode !== SHADING_MODES.plain) this.drawSky(camera, verticalScale);
     // Tests judge the lines alone with view.contourLabels = false.
