@@ -323,13 +323,17 @@ TEST(TiledField, WantsFollowTheViewAndEvictedTilesFallBackWithoutCracks) {
     ASSERT_FALSE(keep.empty());
     const int32_t coarsest = int32_t(p.levels.size()) - 1;
     const SampleTiles& tiles = *t->core->field().tiles();
+    // Every tile of the levels finer than the coarsest.
+    const auto eachFinerTile = [&](const auto& visit) {
+        for (int32_t level = 0; level < coarsest; ++level) {
+            int32_t across, down;
+            tilesAcross(p, level, across, down);
+            for (int32_t ty = 0; ty < down; ++ty)
+                for (int32_t tx = 0; tx < across; ++tx) visit(level, tx, ty);
+        }
+    };
     int32_t heldBefore = 0;
-    for (int32_t level = 0; level < coarsest; ++level) {
-        int32_t across, down;
-        tilesAcross(p, level, across, down);
-        for (int32_t ty = 0; ty < down; ++ty)
-            for (int32_t tx = 0; tx < across; ++tx) heldBefore += tiles.present(level, tx, ty);
-    }
+    eachFinerTile([&](int32_t level, int32_t tx, int32_t ty) { heldBefore += tiles.present(level, tx, ty); });
     for (const TileWant& k : keep) {
         EXPECT_TRUE(tiles.present(k.level, k.tx, k.ty));
         EXPECT_LT(k.level, coarsest);
@@ -346,15 +350,10 @@ TEST(TiledField, WantsFollowTheViewAndEvictedTilesFallBackWithoutCracks) {
         return std::any_of(standsOn.begin(), standsOn.end(), [&](const TileWant& k) { return k.level == level && k.tx == tx && k.ty == ty; });
     };
     int32_t heldAfter = 0;
-    for (int32_t level = 0; level < coarsest; ++level) {
-        int32_t across, down;
-        tilesAcross(p, level, across, down);
-        for (int32_t ty = 0; ty < down; ++ty)
-            for (int32_t tx = 0; tx < across; ++tx) {
-                heldAfter += tiles.present(level, tx, ty);
-                EXPECT_EQ(tiles.present(level, tx, ty), kept(level, tx, ty)) << "level " << level << " tile " << tx << ", " << ty;
-            }
-    }
+    eachFinerTile([&](int32_t level, int32_t tx, int32_t ty) {
+        heldAfter += tiles.present(level, tx, ty);
+        EXPECT_EQ(tiles.present(level, tx, ty), kept(level, tx, ty)) << "level " << level << " tile " << tx << ", " << ty;
+    });
     EXPECT_EQ(out.tiles_evicted, heldBefore - heldAfter);
     EXPECT_GT(out.tiles_evicted, 0) << "some tiles were not in use";
     EXPECT_EQ(out.tile_bytes, double(heldAfter) * kTile * kTile * sizeof(float)) << "the tiles in use stay, over the cap";

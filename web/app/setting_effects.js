@@ -12,7 +12,7 @@ import { SETTINGS, coreSettings } from './settings_table.js';
  * @returns {(key: string, value: any, previous: any) => void}
  */
 export function settingEffects(stage, { rescaleMeasure, showSpacing }) {
-  const { settings, rig, renderer } = stage;
+  const { settings, rig, renderer, layers } = stage;
   const terrain = () => stage.current?.terrain;
   const EFFECTS = {
     // Every core setting in one call: the core keeps its previous settings when it refuses.
@@ -45,7 +45,7 @@ export function settingEffects(stage, { rescaleMeasure, showSpacing }) {
       rescaleMeasure(k); // the measured line stays on the same samples
       stage.keepCamerasAboveGround();
       renderer.invalidate();
-      stage.layers.changed('terrain'); // the HUD describes the new spacing
+      layers.changed('terrain'); // the HUD describes the new spacing
       showSpacing(t);
     },
     tiles(key, value) {

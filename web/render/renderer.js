@@ -309,16 +309,15 @@ export class TerrainRenderer {
   }
 
   /**
-   * Draws the terrain seen by a camera whose matrices are up to date.
+   * One frame seen by a camera whose matrices are up to date: the terrain, the measured line, the
+   * overlays of the layer list (app/layers.js), bottom first, then the sky.
    * @param {{colorByLevel?: boolean, outline?: boolean, frame?: number, morphFrames?: number,
    *   verticalScale?: number, hideTerrain?: boolean}} view frame and morphFrames drive the geomorph
    *   blend; hideTerrain draws the background alone (tests compare the two to find the terrain's pixels)
-   */
-  /**
-   * One frame: the terrain, the measured line, the overlays of the layer list (app/layers.js),
-   * bottom first, then the sky. An overlay is { draw(gl, camera, width, height, verticalScale),
-   * createGlObjects(gl) } (the latter after a lost context came back): a new kind of layer drawn
-   * over the terrain needs nothing of this file.
+   * @param {ArrayLike<{ draw: Function, createGlObjects: Function }>} [overlays] each drawn with
+   *   draw(gl, camera, width, height, verticalScale); createGlObjects(gl) is the page's to call
+   *   after a lost context came back. A new kind of layer drawn over the terrain needs nothing of
+   *   this file.
    */
   draw(camera, width, height, view = {}, overlays = NO_OVERLAYS) {
     const gl = this.gl;

@@ -53,7 +53,7 @@ export function pickedFilesOpener({ loads, indicator, settings, layers, opening,
       }
       const image = roles.image === null ? null : { name: picked[roles.image].name, blob: picked[roles.image] };
       if (roles.field.length === 0 && !layers.ground) {
-        return failed(`${image.name}: an image is draped over a terrain, and none is shown; open a height field with it or first`);
+        return failed(`${image?.name ?? names}: an image is draped over a terrain, and none is shown; open a height field with it or first`);
       }
       // A lone COG streams from the File (read by slices, never whole); any other height field loads whole.
       if (picked.length === 1 && roles.field.length === 1 && image === null
