@@ -20,8 +20,9 @@ export function textureCoordinates(vertices, placement, spacingX, spacingY) {
   const uv = new Float64Array(2 * n);
   for (let i = 0; i < n; i++) {
     const column = vertices[3 * i] / spacingX, row = vertices[3 * i + 2] / spacingY;
-    uv[2 * i] = column * placement.scaleU + placement.offsetU;
-    uv[2 * i + 1] = 1 - (row * placement.scaleV + placement.offsetV);
+    const [u, v] = placement.uvAt(column, row) ?? [-1, -1]; // off the CRSs' map: off the image
+    uv[2 * i] = u;
+    uv[2 * i + 1] = 1 - v;
   }
   return uv;
 }

@@ -71,7 +71,7 @@ test('a satellite image placed by its world file shows its colours at known grou
     await window.hexlod.images.drape({ name: 'haiti.tif', blob }, null);
     return { status: document.getElementById('status').textContent, still: window.hexlod.images.current?.name };
   }, `${viewer.fixturesUrl}imagery/`);
-  assert.match(refused.status, /^haiti\.tif: it is in EPSG:32618 and the terrain in EPSG:4326/);
+  assert.match(refused.status, /^haiti\.tif: it lies outside the terrain/);
   assert.equal(refused.still, 'bmng_himalaya_4arcmin.jpg');
   await whole.page.close();
   await tiled.page.close();
@@ -185,8 +185,8 @@ test('half over the field, bad images refused while it stays, back after a lost 
   assert.ok(low < 0.8 * high, `lit, a low sun darkens the image: ${low} against ${high}`);
   await page.evaluate((sun) => { const h = window.hexlod; h.setSetting('imageUnlit', true); h.setSetting('sunElevation', sun); }, sun);
 
-  // The panel's "remove image": the ground as before the image.
-  await page.evaluate(() => [...document.querySelectorAll('#panel button')].find((b) => b.textContent.trim() === 'remove image').click());
+  // The panel's "remove layer": the ground as before the image.
+  await page.evaluate(() => [...document.querySelectorAll('#panel button')].find((b) => b.textContent.trim() === 'remove layer').click());
   await page.waitForFunction(() => window.hexlod.image === null, null, { timeout: 10000 });
   assert.ok(!(await page.isVisible('#hud .hud-image')), 'no image line');
   const removed = await shot();

@@ -11,7 +11,7 @@ const text = (s) => new TextEncoder().encode(s);
 // A world file's problems as the image reader reports them (image_location.js).
 const failAs = (name) => (problem) => { throw new ImageError(name, problem); };
 const near = (a, b, what, eps = 1e-9) => assert.ok(Math.abs(a - b) <= eps, `${what}: ${a} vs ${b}`);
-const uv = (p, column, row) => [column * p.scaleU + p.offsetU, row * p.scaleV + p.offsetV];
+const uv = (p, column, row) => p.uvAt(column, row);
 
 // A field of 101 x 51 samples 10 m apart in UTM 11N, north-west sample centre at (500000, 4000000).
 const UTM = crsOfEpsg(32611);
@@ -65,7 +65,11 @@ test('a finer image placed by a world file over the west half covers half the fi
 test('bad placements are refused with a message naming the image', () => {
   const wgs = { name: 'wgs.tif', width: 100, height: 100, georef: makeGeoref(crsOfEpsg(4326), -117, 36, 0.001, -0.001, 'GeoTIFF') };
   assert.throws(() => placeImage(field, wgs), (e) => e instanceof ImageError &&
-    /^wgs\.tif: it is in EPSG:4326 and the terrain in EPSG:32611; reproject it .*gdalwarp -t_srs EPSG:32611/.test(e.message));
+    /^wgs\.tif: it lies outside the terrain \(the image spans x -117\.0005\.\.-116\.9005, y 35\.9005\.\.36\.0005, the terrain x 499995\.\.501005/.test(e.message),
+  'another CRS is reprojected: this one lies elsewhere');
+  const custom = { name: 'lcc.tif', width: 100, height: 100, georef: makeGeoref(crsOfEpsg(999999), 0, 0, 1, -1, 'GeoTIFF') };
+  assert.throws(() => placeImage(field, custom), (e) => e instanceof ImageError &&
+    /^lcc\.tif: it is in EPSG:999999 and the terrain in EPSG:32611, and EPSG:999999 has no definition to reproject with/.test(e.message));
   const away = { name: 'away.png', width: 100, height: 100, georef: makeGeoref(UNKNOWN_CRS, 900000, 4000000, 1, -1, 'world file') };
   assert.throws(() => placeImage(field, away), (e) => e instanceof ImageError &&
     /^away\.png: it lies outside the terrain \(the image spans x 899999\.5\.\.900099\.5, .* the terrain x 499995\.\.501005, y 3999495\.\.4000005, taking the image to be in EPSG:32611\)$/.test(e.message));

@@ -19,7 +19,8 @@ test('a larger image is cut into tiles whose aprons overlap, covering every pixe
   const t = planImageTiling(20000, 9000, { ...GPU, maxTextureSize: 4096 });
   assert.deepEqual([t.tilesX, t.tilesY], [5, 3], 'as few tiles as 4096² allows');
   assert.deepEqual([t.strideX, t.strideY, t.tileWidth, t.tileHeight], [4000, 3000, 4000 + 2 * APRON, 3000 + 2 * APRON], 'and no larger than they need be');
-  assert.deepEqual(t.overview, { width: 4096, height: 1843 }, 'the overview: as large as a texture may be, the image\'s shape');
+  assert.deepEqual(t.overview, { width: 4016, height: 3016 }, 'the overview: one more layer of the tiles\' size');
+  assert.equal(t.gpuBytes, Math.round(16 * 4016 * 3016 * 4 * 4 / 3), 'fifteen tiles and the overview');
   const covered = new Uint8Array(20000);
   for (let tx = 0; tx < t.tilesX; tx++) {
     const [x0, , x1] = tileSource(t, tx, 0);
@@ -38,7 +39,7 @@ test('too big is said before decoding: the browser\'s decode cap, the GPU\'s lay
   refused(30000, 30000, { wholeDecode: false, maxTextureSize: 1024, maxLayers: 256 }, /need 900 tiles \(at most 1024² each\), more than this GPU's 256/);
   // A 16384² image at the 8192 limit: 3 x 3 tiles within 1 % of the image's own memory, and its overview.
   const big = planImageTiling(16384, 16384, { ...GPU, wholeDecode: false });
-  assert.ok(big.gpuBytes < (16384 * 16384 * 1.01 + 4096 * 4096) * 4 * 4 / 3, `${big.gpuBytes} bytes`);
+  assert.ok(big.gpuBytes < (16384 * 16384 * 1.01 + 5478 * 5478) * 4 * 4 / 3, `${big.gpuBytes} bytes`);
 });
 
 test('image headers give the kind and size without decoding', () => {

@@ -1,5 +1,5 @@
 // What the page opens with: ?src=URL instead of the default terrain, then what the address
-// asks of it (a draped image, a camera, a measured line). A file the user opens meanwhile
+// asks of it (image layers, a camera, a measured line). A file the user opens meanwhile
 // cancels the src; the default terrain loads when, once every load has ended, none is on
 // screen (the src failed or was cancelled: its message stays in the status line).
 import { applyCameraState } from './url_state.js';
@@ -31,7 +31,9 @@ export async function openFirstTerrain({ urlState, intake, stage, rig, measure, 
   // opening message is taken away here, and only that one.
   if (statusBox.textContent === openingStatus) showStatus('');
   if (statusBox.textContent === '') showContourNote();
-  if (urlState.image && !det) await intake.openImageUrl(urlState.image);
+  for (const { kind, url } of det ? [] : urlState.layers) {
+    if (kind === 'image') await intake.openImageUrl(url);
+  }
   if (urlState.camera && !det) {
     applyCameraState(rig, urlState.camera);
     if (rig.mode === 'walk') rig.active.settle();

@@ -85,7 +85,7 @@ export class FramePipeline {
     const shown = this.layers.ground;
     if (shown) this.updateTerrain(shown, camera, width, height, now);
     const drawStart = performance.now();
-    this.renderer.draw(camera, width, height, this.view, this.layers.overlays);
+    this.renderer.draw(camera, width, height, this.view, this.layers);
     if (this.settings.timing) this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.UNSIGNED_BYTE, this.timingPixel); // waits for the draw
     timing.drawMs = performance.now() - drawStart;
     this.lastFrameMs = timing.frameMs = performance.now() - frameStart;
@@ -96,7 +96,7 @@ export class FramePipeline {
     state.frames += 1;
     if (det) det.endFrame();
     if (moving) this.request();
-    if (shown && !det) this.urlWriter.write(this.settings, camera, this.layers.source, this.layers.imageUrl);
+    if (shown && !det) this.urlWriter.write(this.settings, camera, this.layers.source, this.layers.layerUrls);
   }
 
   // The core's part of a frame for the terrain `current` and its upload (the frame figures go to the HUD and state).

@@ -1,26 +1,34 @@
-// What the page shows, in drawing order: the terrain, the image layers draped on it, and (next)
-// the vector overlays over both. The one answer to "what is shown": the frame pipeline draws the
-// terrain it holds, the address bar names its sources, the HUD describes its layers (told by
-// onChange), and a drop replaces its terrain or adds a layer over it (ui/picked_files.js). The
-// terrain stage (terrain_stage.js) and the image stage (image_stage.js) fill it and say what
-// changed; nothing else keeps a copy.
+// What the page shows, in drawing order: the terrain, the image layers draped on it (image
+// files and web map tiles), and the vector overlays over both. The one answer to "what is
+// shown": the frame pipeline draws the terrain and the visible image layers it holds, the
+// address bar names its sources, the HUD and the panel list its layers (told by onChange), and
+// a drop replaces its terrain or adds layers over it (ui/picked_files.js). The terrain stage
+// (terrain_stage.js) and the image stage (image_stage.js) fill it and say what changed;
+// nothing else keeps a copy.
+import { MAX_DRAPES } from '../render/shading/drape_layers.js';
+
+export { MAX_DRAPES };
 
 export class Layers {
   constructor() {
     /** The terrain shown: { loaded: { terrain, field, loadMs, world, tiles, ... }, source: its URL or null }, or null. */
     this.terrain = null;
     /**
-     * Image layers, bottom first: [{ image: the DrapedImage (imagery/open_image.js), files:
-     * { image, worldFile, url }, description: its HUD line }]. Every layer over the terrain
-     * carries its description: the HUD lists them as they are.
+     * Image layers, bottom first: [{ id, kind: 'image'|'tiles', name, description (its HUD
+     * line), visible, opacity, url (where it came from, for the address bar; null for a file),
+     * drape (what the renderer draws: render/shading/drape_layers.js Drape), ... its stage's own }].
      */
     this.images = [];
     /**
      * Overlays drawn over the terrain, bottom first: [{ description: its HUD line, draw(gl,
      * camera, width, height, verticalScale), createGlObjects(gl) }]; the renderer draws them
-     * each frame (render/renderer.js draw). None yet.
+     * each frame (render/renderer.js draw).
      */
     this.overlays = [];
+    /** The visible image layers' drapes, bottom first, at most MAX_DRAPES: made again at each change, read each frame. */
+    this.drapes = [];
+    /** The image layers that came from an address, bottom first, as the address bar names them: [{ kind, url }]. */
+    this.layerUrls = [];
     this.listeners = [];
   }
 
@@ -31,6 +39,10 @@ export class Layers {
 
   /** Tells the listeners `part` changed: 'terrain' (a new one, or its scale), 'images' or 'overlays'. */
   changed(part) {
+    if (part === 'images') {
+      this.drapes = this.images.filter((layer) => layer.visible && layer.drape).slice(0, MAX_DRAPES).map((layer) => layer.drape);
+      this.layerUrls = this.images.filter((layer) => layer.url).map((layer) => ({ kind: layer.kind, url: layer.url }));
+    }
     for (const listener of this.listeners) listener(this, part);
   }
 
@@ -44,8 +56,4 @@ export class Layers {
     return this.terrain?.source ?? null;
   }
 
-  /** The URL of the top image layer (the address bar's image), or null. */
-  get imageUrl() {
-    return this.images.at(-1)?.files.url ?? null;
-  }
 }

@@ -5,9 +5,10 @@
 import { createCore } from '../core/core.js';
 import { createFileIntake } from '../ui/file_intake.js';
 import { TerrainRenderer } from '../render/renderer.js';
-import { createImageStage, imageFigures } from './image_stage.js';
+import { createImageStage, imageFigures, layerFigures } from './image_stage.js';
+import { createLayerPanel } from '../ui/layer_panel.js';
 import { CameraRig } from '../cameras/rig.js';
-import { defaultSettings, SETTINGS } from './settings_table.js';
+import { defaultSettings, SETTINGS, IMAGE_FOLDER } from './settings_table.js';
 import { createView } from './view_state.js';
 import { createControlsPanel } from '../ui/controls_panel.js';
 import { Hud } from '../ui/hud.js';
@@ -27,7 +28,6 @@ import { createSettingChanges } from './setting_changes.js';
 import { openFirstTerrain } from './first_terrain.js';
 import { Layers } from './layers.js';
 
-const REMOVE_IMAGE = 'remove image';
 const params = new URLSearchParams(location.search);
 // ?flight=URL: the deterministic mode of regression tests (web/app/deterministic/mode.js, README).
 const det = deterministicMode(params);
@@ -72,31 +72,34 @@ async function main() {
     onShown: (terrain) => { owner.adopt('cellSize', terrain.spacingX); panel.setCellSizeRange(terrain.spacingX); } });
   const owner = new SettingsOwner(settings, settingEffects(stage,
     { rescaleMeasure: (k) => measure.rescale(k), showSpacing: (terrain) => intake.showSpacing(terrain) }));
-  const images = createImageStage({ renderer, layers, showStatus, requestRender, onChange: (image) => {
-    panel.enableAction(REMOVE_IMAGE, image !== null);
-    state.image = imageFigures(image, hud);
-  } });
+  const images = createImageStage({ renderer, layers, showStatus, requestRender });
+  layers.onChange((shown, part) => {
+    if (part !== 'images') return;
+    state.image = imageFigures(images.current, hud);
+    layerPanel.show(shown);
+  });
   state.image = null;
+  Object.defineProperty(state, 'imageLayers', { get: () => layerFigures(layers), enumerable: true }); // for tests
   Object.defineProperty(state, 'images', { value: images, enumerable: false }); // for tests: drape and remove
   Object.defineProperty(state, 'layers', { value: layers, enumerable: false }); // for tests: what is shown
   const { change, syncView, showContourNote } = createSettingChanges({ settings, view, renderer, rig, owner, state,
     showStatus, syncPanel, requestRender });
-  const screenshot = screenshotTaker({ gl, rig, renderer, view, state, requestRender });
+  const screenshot = screenshotTaker({ gl, rig, renderer, view, state, layers, requestRender });
   const saveScreenshot = (scale) => screenshot(scale).catch((error) => showStatus(error.message, true));
   const toggleHelp = () => { helpBox.hidden = !helpBox.hidden; };
   const resetView = () => { if (stage.current) stage.frameDefault(); syncPanel(); requestRender(); };
   const panel = createControlsPanel(document.getElementById('panel'), settings, SETTINGS, {
-    camera: cameraMode, onChange: change, folderActions: { Image: { [REMOVE_IMAGE]: () => images.remove() } },
+    camera: cameraMode, onChange: change,
     actions: { 'screenshot 1× (P)': () => saveScreenshot(1), 'screenshot 2×': () => saveScreenshot(2),
       'reset view (R)': resetView, 'measure (M)': () => measure.toggle(), 'help (H)': toggleHelp },
   });
-  panel.enableAction(REMOVE_IMAGE, false);
+  const layerPanel = createLayerPanel(panel.folder(IMAGE_FOLDER), images);
   syncView();
   document.getElementById('help-close').onclick = toggleHelp;
   // Drop, file picker, ?src=, ?image=, progress, RAW size dialog and error display (file_intake.js).
   // A new terrain takes the image away: it belonged to the old ground.
   const intake = createFileIntake({ core, state, settings, layers, defaultUrlTimeoutS: SETTINGS.urlTimeout.default,
-    show: (loaded, from) => { images.remove(); measure.clear(); stage.show(loaded, from); },
+    show: (loaded, from) => { images.removeFiles(); measure.clear(); stage.show(loaded, from); },
     showStatus, setCellSize: (metres) => change('cellSize', metres), drape: (image, world, url) => images.drape(image, world, { url }) });
   if (window.hexlod === state) {
     installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting: change, screenshot, urlWriter,

@@ -52,12 +52,12 @@ export function download(blob, name) {
  * The page's screenshot: the active camera's view drawn again at `scale` x the canvas, saved as
  * hexlod-<terrain>-<scale>x.png. Resolves to the file name; throws when the GPU cannot hold it.
  */
-export function screenshotTaker({ gl, rig, renderer, view, state, requestRender }) {
+export function screenshotTaker({ gl, rig, renderer, view, state, layers, requestRender }) {
   return async (scale) => {
     const camera = rig.active;
     const blob = await captureView(gl, scale, (width, height) => {
       camera.update(width / height);
-      renderer.draw(camera, width, height, view);
+      renderer.draw(camera, width, height, view, layers);
     });
     const name = `hexlod-${(state.terrain?.name ?? 'view').replace(/\.[^.]*$/, '')}-${scale}x.png`;
     download(blob, name);

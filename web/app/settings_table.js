@@ -31,7 +31,9 @@ export const LAYOUTS = ['triangles', 'fans'];
 export const MORPH_FRAMES = 8;
 
 const LOD = 'Level of detail', MORE = 'Level of detail/budgets and culling', VIEW = 'View', SHADING = 'Shading';
-const MESH = 'Mesh', URLS = 'Loading from a URL', IMAGE = 'Image';
+const MESH = 'Mesh', URLS = 'Loading from a URL';
+export const IMAGE_FOLDER = 'Image layers';
+const IMAGE = IMAGE_FOLDER;
 
 export const SETTINGS = {
   tau: { default: 1, min: 0.25, max: 16, step: 0.05, url: 'tau', panel: [LOD, 'error τ (px)'], effect: 'core',

@@ -2,7 +2,8 @@
 //   tau, budget, exag, ...     the settings with a URL key (settings_table.js)
 //   cam=orbit,x,y,z,distance,yaw,pitch   or   cam=fly|walk,x,y,z,yaw,pitch   metres, radians
 //   src=URL                    the data source, when it came from a URL
-//   image=URL                  the image draped on it, when it came from a URL
+//   image=URL, tiles=TEMPLATE  the image layers draped on it that came from an address, bottom
+//                              first (each repeatable, in any order: the order is the layers')
 //   measure=p:x,z;x,z;...      the measured path (a: for an area), metres (web/ui/measure_tool.js)
 //   timeout, maxmb, layout     only when not the defaults
 // Other parameters (timing, flight, test) are kept as they are. Every value is checked: a bad one
@@ -12,16 +13,18 @@ import { MIN_PITCH, MAX_PITCH } from '../cameras/orbit.js';
 import { parseMeasureParam } from '../ui/measure_tool.js';
 
 const WRITE_EVERY_MS = 300;
+const LAYER_KEYS = { image: 'image', tiles: 'tiles' }; // parameter -> the kind of image layer it adds
 const LIMIT = 1e9; // metres: past this a position is not a place on any terrain
 
 /**
  * Reads the view from a query string.
- * @returns {{settings: object, camera: object|null, src: string|null, image: string|null,
- *   measure: {kind: string, points: number[][]}|null, errors: string[]}}
+ * @returns {{settings: object, camera: object|null, src: string|null,
+ *   layers: Array<{kind: 'image'|'tiles', url: string}>, measure: {kind: string, points: number[][]}|null, errors: string[]}}
  */
 export function parseUrlState(search) {
   const params = new URLSearchParams(search);
-  const result = { settings: {}, camera: null, src: params.get('src'), image: params.get('image'), measure: null, errors: [] };
+  const layers = [...params].filter(([key, value]) => LAYER_KEYS[key] && value !== '').map(([key, url]) => ({ kind: LAYER_KEYS[key], url }));
+  const result = { settings: {}, camera: null, src: params.get('src'), layers, measure: null, errors: [] };
   if (params.has('measure')) {
     const measure = parseMeasureParam(params.get('measure'));
     if (measure instanceof Error) result.errors.push(measure.message);
@@ -96,20 +99,20 @@ export class UrlWriter {
     this.settings = null;
     this.camera = null;
     this.src = null;
-    this.image = null;
+    this.layerUrls = [];
     this.measure = null; // the measured line's `measure` value, set by the measuring tool when it changes
     this.flushLater = () => this.flush();
   }
 
   /**
    * @param {object} settings @param {object} camera the active camera @param {string|null} src the data's URL
-   * @param {string|null} [image] the draped image's URL
+   * @param {Array<{kind: 'image'|'tiles', url: string}>} [layerUrls] the image layers that came from an address, bottom first
    */
-  write(settings, camera, src, image = null) {
+  write(settings, camera, src, layerUrls = []) {
     this.settings = settings;
     this.camera = camera;
     this.src = src;
-    this.image = image;
+    this.layerUrls = layerUrls;
     this.pending = true;
     if (this.timer === null) this.timer = setTimeout(this.flushLater, WRITE_EVERY_MS);
   }
@@ -118,7 +121,7 @@ export class UrlWriter {
     clearTimeout(this.timer);
     this.timer = null;
     if (!this.pending) return;
-    const { settings, camera, src, image } = this;
+    const { settings, camera, src, layerUrls } = this;
     this.pending = false;
     const params = new URLSearchParams(location.search);
     for (const [key, name] of URL_KEYS) {
@@ -127,7 +130,8 @@ export class UrlWriter {
     }
     params.set('cam', cameraParam(camera));
     if (src) params.set('src', src); else params.delete('src');
-    if (image) params.set('image', image); else params.delete('image');
+    for (const key of Object.keys(LAYER_KEYS)) params.delete(key);
+    for (const { kind, url } of layerUrls) params.append(kind, url);
     params.delete('measure');
     // The measured line goes last and as it is (digits and , ; : need no escaping): readable.
     const measure = this.measure ? `&measure=${this.measure}` : '';

@@ -91,3 +91,17 @@ export function definitionOf(epsg) {
   if (epsg === 3857) return 'EPSG:3857';
   return null;
 }
+
+/**
+ * The map from one CRS's coordinates to another's, or null when either has no definition we
+ * can write. Identity for one CRS.
+ * @returns {((x: number, y: number) => [number, number])|null}
+ */
+export function crsTransform(from, to) {
+  if (from.epsg !== null && from.epsg === to.epsg) return (x, y) => [x, y];
+  const a = from.proj4 ?? (from.epsg === 4326 ? 'EPSG:4326' : definitionOf(from.epsg));
+  const b = to.proj4 ?? (to.epsg === 4326 ? 'EPSG:4326' : definitionOf(to.epsg));
+  if (!a || !b) return null;
+  const converter = proj4(a, b);
+  return (x, y) => converter.forward([x, y]);
+}

@@ -16,3 +16,4 @@ export * from './tiff_raster.js';
 export * from './tiff_georef.js';
 export * from './tiff_jpeg_stream.js';
 export { inflate, isInflateError } from './inflate.js';
+export * from './warp_grid.js';

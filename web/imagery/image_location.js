@@ -42,7 +42,7 @@ export function locateImage(field, { name, width, height }, worldGeoref, ownGeor
   const georef = worldGeoref ?? ownGeoref;
   const placement = placeImage(field, { name, width, height, georef });
   let metresPerPixel = null;
-  if (placement.how === 'georeferenced') {
+  if (placement.how !== 'stretched') {
     // An image that names no CRS is in the field's (placement.js).
     const geographic = georef.crs.epsg === null ? field.georef?.crs.geographic : georef.crs.geographic;
     metresPerPixel = geographic

@@ -4,7 +4,8 @@
 //     each with an apron of APRON pixels copied from its neighbours, so that filtering and the
 //     first mip levels never read past a tile's edge (no seam); for the coarser levels, where
 //     a screen pixel spans more than the apron, the shader reads an overview of the whole
-//     image (at most OVERVIEW_MAX a side) instead.
+//     image instead: the whole image resampled to one more layer of the same size (the
+//     array's last), so that an image takes two samplers however it is cut.
 // And whether it fits: the GPU memory it takes (RGBA8 with mipmaps: 4/3 of 4 bytes a texel) is
 // checked against a budget, and the pixels the browser decodes at once against a cap, so that a
 // person hears "too big" before the tab runs out of memory.
@@ -12,7 +13,6 @@
 import { ImageError } from './image_error.js';
 
 export const APRON = 8;
-export const OVERVIEW_MAX = 4096;
 /** Pixels the browser may decode at once (PNG, JPEG, WebP are decoded whole): 1 GiB of RGBA. */
 export const MAX_DECODED_PIXELS = 2 ** 28;
 /** GPU memory an image may take, by default. */
@@ -30,7 +30,8 @@ const MIPMAPPED = 4 / 3;
  * @property {number} strideY and down
  * @property {number} tilesX
  * @property {number} tilesY
- * @property {{ width: number, height: number }|null} overview the whole image, smaller, for coarse views
+ * @property {{ width: number, height: number }|null} overview the whole image, smaller, for coarse
+ *   views: the layer after the tiles, tileWidth × tileHeight
  * @property {number} gpuBytes tiles and overview, mipmaps included
  */
 
@@ -60,13 +61,12 @@ export function planImageTiling(width, height, { maxTextureSize, maxLayers, budg
     const most = maxTextureSize - 2 * APRON;
     const tilesX = Math.ceil(width / most), tilesY = Math.ceil(height / most);
     const strideX = Math.ceil(width / tilesX), strideY = Math.ceil(height / tilesY);
-    const scale = Math.min(1, Math.min(OVERVIEW_MAX, maxTextureSize) / Math.max(width, height));
-    tiling = { width, height, tileWidth: strideX + 2 * APRON, tileHeight: strideY + 2 * APRON, apron: APRON, strideX, strideY, tilesX, tilesY,
-      overview: { width: Math.max(1, Math.round(width * scale)), height: Math.max(1, Math.round(height * scale)) } };
+    const tileWidth = strideX + 2 * APRON, tileHeight = strideY + 2 * APRON;
+    tiling = { width, height, tileWidth, tileHeight, apron: APRON, strideX, strideY, tilesX, tilesY, overview: { width: tileWidth, height: tileHeight } };
   }
   const layers = tiling.tilesX * tiling.tilesY;
-  tiling.gpuBytes = Math.round((layers * tiling.tileWidth * tiling.tileHeight + (tiling.overview ? tiling.overview.width * tiling.overview.height : 0)) * 4 * MIPMAPPED);
-  if (layers > maxLayers) {
+  tiling.gpuBytes = Math.round(arrayLayers(tiling) * tiling.tileWidth * tiling.tileHeight * 4 * MIPMAPPED);
+  if (arrayLayers(tiling) > maxLayers) {
     throw new ImageError(name, `${size} pixels need ${layers} tiles (at most ${maxTextureSize}² each), more than this GPU's ${maxLayers}; ` +
       `use an image of at most ${shrink(Math.sqrt(layers / maxLayers))}`);
   }
@@ -86,4 +86,9 @@ export function planImageTiling(width, height, { maxTextureSize, maxLayers, budg
 export function tileSource(tiling, tx, ty) {
   const x0 = tx * tiling.strideX - tiling.apron, y0 = ty * tiling.strideY - tiling.apron;
   return [Math.max(0, x0), Math.max(0, y0), Math.min(tiling.width, x0 + tiling.tileWidth), Math.min(tiling.height, y0 + tiling.tileHeight)];
+}
+
+/** Layers of the image's texture array: its tiles, and the overview after them. */
+export function arrayLayers(tiling) {
+  return tiling.tilesX * tiling.tilesY + (tiling.overview ? 1 : 0);
 }

@@ -27,7 +27,8 @@ import { MeasureOverlay } from './measure_overlay.js';
 import { resolveIncludes } from './shading/includes.js';
 import { Atmosphere, BETA_RAYLEIGH, BETA_MIE, SCALE_HEIGHTS, MIE_G, SUN_IRRADIANCE, EXPOSURE } from './shading/atmosphere.js';
 import { FieldTextures, TEXTURE_UNIT_GRADIENTS, TEXTURE_UNIT_SUN, TEXTURE_UNIT_OCCLUSION } from './shading/field_textures.js';
-import { ImageTextures, TEXTURE_UNIT_IMAGE_TILES, TEXTURE_UNIT_IMAGE_OVERVIEW } from './shading/image_textures.js';
+import { ImageTextures } from './shading/image_textures.js';
+import { DrapeLayers, DRAPE_UNIFORMS } from './shading/drape_layers.js';
 import { ContourOverlay, CONTOUR_UNIFORMS } from './contours/contour_overlay.js';
 import { linkProgram, uniformLocations } from './gl_program.js';
 
@@ -48,7 +49,7 @@ const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeigh
   'uMieG', 'uSunIrradiance', 'uSunAirMass', 'uSkyLight', 'uExposure', 'uMode', 'uNormalSource', 'uShadows',
   'uOcclusionOn', 'uSnowLine', 'uTreeLine', 'uNoiseScale', 'uGradients', 'uGradientTexel', 'uGradientStep',
   'uGradientTile', 'uGradientTiles', 'uSunVisibility', 'uSunVisibilityMap', 'uOcclusion', 'uOcclusionMap',
-  'uImageTiles', 'uImageOverview', 'uImageOn', 'uImageMap', 'uImageSize', 'uImageTiling', 'uImageTile', 'uImageOpacity', 'uImageUnlit', ...CONTOUR_UNIFORMS];
+  'uImageOpacity', 'uImageUnlit', ...DRAPE_UNIFORMS, ...CONTOUR_UNIFORMS];
 const SKY_UNIFORMS = ['uInverseViewProjection', 'uCameraPosition', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie',
   'uScaleHeight', 'uMieG', 'uSunDirection', 'uSunIrradiance', 'uSunAirMass', 'uExposure'];
 
@@ -114,7 +115,7 @@ class MirroredBuffer {
   }
 }
 
-const NO_OVERLAYS = Object.freeze([]);
+const NOTHING_OVER = Object.freeze({ drapes: Object.freeze([]), overlays: Object.freeze([]) });
 
 export class TerrainRenderer {
   /**
@@ -156,9 +157,9 @@ export class TerrainRenderer {
     // Textures from the field: made again from the field (kept by setField) after a lost context.
     this.fieldTextures?.forgetGl();
     this.fieldTextures = this.fieldTextures ?? new FieldTextures(gl, this.forcedTiles.normalTile);
-    // The draped image died with the context too: the page opens it again (imagePlacement stays).
-    this.imageTextures?.forgetGl();
-    this.imageTextures = this.imageTextures ?? new ImageTextures(gl, this.forcedTiles.imageTile);
+    // The image layers' textures died with the context too: the page opens them again.
+    this.drapes?.forgetGl();
+    this.drapes = this.drapes ?? new DrapeLayers(gl);
     this.contours?.forgetGl();
     this.contours = this.contours ?? new ContourOverlay(gl); // contour lines and labels (web/render/contours/)
     this.vertices = new MirroredBuffer(gl, gl.ARRAY_BUFFER);
@@ -294,13 +295,9 @@ export class TerrainRenderer {
     return this.contours.update(view, this.heightRange[0] / scale, this.heightRange[1] / scale);
   }
 
-  /**
-   * Where the draped image lies on the field (web/imagery/placement.js), once its textures are
-   * filled (this.imageTextures); null: no image.
-   * @param {import('../imagery/placement.js').Placement|null} placement
-   */
-  setImagePlacement(placement) {
-    this.imagePlacement = placement;
+  /** Textures for one more image layer (web/imagery/open_image.js fills them). */
+  newImageTextures() {
+    return new ImageTextures(this.gl, this.forcedTiles.imageTile);
   }
 
   /** The sun: compass azimuth (0 north, 90 east) and elevation, degrees. */
@@ -309,17 +306,20 @@ export class TerrainRenderer {
   }
 
   /**
-   * One frame seen by a camera whose matrices are up to date: the terrain, the measured line, the
-   * overlays of the layer list (app/layers.js), bottom first, then the sky.
+   * One frame seen by a camera whose matrices are up to date: the terrain with the image layers
+   * of the layer list (app/layers.js) draped on it, the measured line, the layer list's
+   * overlays, bottom first, then the sky.
    * @param {{colorByLevel?: boolean, outline?: boolean, frame?: number, morphFrames?: number,
    *   verticalScale?: number, hideTerrain?: boolean}} view frame and morphFrames drive the geomorph
    *   blend; hideTerrain draws the background alone (tests compare the two to find the terrain's pixels)
-   * @param {ArrayLike<{ draw: Function, createGlObjects: Function }>} [overlays] each drawn with
-   *   draw(gl, camera, width, height, verticalScale); createGlObjects(gl) is the page's to call
-   *   after a lost context came back. A new kind of layer drawn over the terrain needs nothing of
-   *   this file.
+   * @param {{ drapes: import('./shading/drape_layers.js').Drape[], overlays: ArrayLike<{ draw: Function,
+   *   createGlObjects: Function }> }} [shown] the layer list: its visible image layers (drapes),
+   *   bottom first, and its overlays, each drawn with draw(gl, camera, width, height,
+   *   verticalScale); createGlObjects(gl) is the page's to call after a lost context came back.
+   *   A new kind of layer drawn over the terrain needs nothing of this file.
    */
-  draw(camera, width, height, view = {}, overlays = NO_OVERLAYS) {
+  draw(camera, width, height, view = {}, shown = NOTHING_OVER) {
+    const overlays = shown.overlays;
     const gl = this.gl;
     this.drawPixelScale = this.pixelScale(height); // the contours' line width and labels
     const mode = SHADING_MODES[view.shading ?? 'natural'] ?? 0;
@@ -329,7 +329,7 @@ export class TerrainRenderer {
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     gl.enable(gl.DEPTH_TEST);
     gl.depthFunc(gl.LEQUAL);
-    if (this.indexCount > 0 && !view.hideTerrain) this.drawTerrain(camera, view, mode, verticalScale);
+    if (this.indexCount > 0 && !view.hideTerrain) this.drawTerrain(camera, view, mode, verticalScale, shown.drapes);
     // The measured line: over the terrain, its hidden parts faint (the sky covers none of it).
     if (!view.hideTerrain) this.measureOverlay.draw(camera, width, height, verticalScale);
     for (let k = 0; k < overlays.length && !view.hideTerrain; k++) overlays[k].draw(gl, camera, width, height, verticalScale);
@@ -383,7 +383,7 @@ export class TerrainRenderer {
     return plain || view.normals === 'mesh' || !this.fieldTextures.ready;
   }
 
-  drawTerrain(camera, view, mode, verticalScale) {
+  drawTerrain(camera, view, mode, verticalScale, drapes) {
     const gl = this.gl;
     const plain = mode === SHADING_MODES.plain;
     // Field textures follow the exaggeration and the sun (shadows); the plain mode needs none.
@@ -417,9 +417,7 @@ export class TerrainRenderer {
     gl.uniform1i(u.uSunVisibility, TEXTURE_UNIT_SUN);
     gl.uniform1i(u.uOcclusion, TEXTURE_UNIT_OCCLUSION);
     this.fieldTextures.setUniforms(u);
-    gl.uniform1i(u.uImageTiles, TEXTURE_UNIT_IMAGE_TILES);
-    gl.uniform1i(u.uImageOverview, TEXTURE_UNIT_IMAGE_OVERVIEW);
-    this.imageTextures.setUniforms(u, this.imagePlacement ?? null, this.fieldTextures.terrain ?? { spacingX: 1, spacingY: 1 });
+    this.drapes.setUniforms(u, drapes, this.fieldTextures.terrain ?? { spacingX: 1, spacingY: 1 });
     gl.uniform1f(u.uImageOpacity, view.imageOpacity ?? 1);
     gl.uniform1f(u.uImageUnlit, view.imageUnlit ? 1 : 0);
     this.contours.setUniforms(u, view, low, high, this.drawPixelScale);

@@ -16,7 +16,7 @@ const OPEN_FOLDERS = new Set(['Level of detail']);
  *   actions: Record<string, () => void>, folderActions?: Record<string, Record<string, () => void>>}} hooks
  *   actions: buttons, label -> function; folderActions: buttons in a settings folder, path -> label -> function
  * @returns {{gui: GUI, refresh: () => void, setCellSizeRange: (metres: number) => void,
- *   enableAction: (label: string, enabled: boolean) => void}}
+ *   enableAction: (label: string, enabled: boolean) => void, folder: (path: string) => GUI}}
  */
 export function createControlsPanel(container, settings, table, { camera, onChange, actions, folderActions = {} }) {
   // Its stylesheet is imported by public/style.css: the Content-Security-Policy refuses the
@@ -73,6 +73,10 @@ export function createControlsPanel(container, settings, table, { camera, onChan
     /** A folder's button greys out while it has nothing to act on. */
     enableAction(label, enabled) {
       buttons[label].enable(enabled);
+    },
+    /** The folder at `path` ('Image layers'), for parts that add controls of their own. */
+    folder(path) {
+      return folderOf(path);
     },
     /** The cell size slider's range around a terrain's spacing. */
     setCellSizeRange(metres) {
