@@ -31,7 +31,8 @@ export const REGRESS_USAGE = `usage: hexlod regress <heightfield> <flight.json> 
   under the flight's tolerance. A height field is a file or an http(s) URL. A flight without
   "dem" uses the height field beside it with the same name (NAME.png, .tif, ...). A flight's
   "image" (and "worldFile", else the image's world file beside it) is draped before the first
-  frame; like "dem", a path relative to the flight or a URL. A refused image fails the flight.
+  frame, or its "layers" ([{"image", "worldFile", "opacity", "visible"}, ...], bottom first);
+  like "dem", paths relative to the flight or URLs. A refused image fails the flight.
   Exit code: 0 all passed, 1 a flight regressed, 2 bad input or usage (a flight file, a height
   field, no reference), 3 the browser or the machine failed; the highest that applies.
   --refs DIR        references (default: refs/ beside the flight files); one folder per flight
@@ -293,14 +294,17 @@ async function flyJob(job, index, context) {
   try {
     dem = await context.dems.get(job.source);
     const nodeStats = await replayInNode(job, dem);
-    const imageFiles = job.image === null ? null : await loadImageFiles(job.image, job.worldFile).catch((error) => {
-      throw new InputError(error.message); // an image that cannot be read is bad input, as a height field is
-    });
+    const layerFiles = [];
+    for (const layer of job.layers) {
+      layerFiles.push(layer.kind !== 'image' ? null : await loadImageFiles(layer.image, layer.worldFile).catch((error) => {
+        throw new InputError(error.message); // an image that cannot be read is bad input, as a height field is
+      }));
+    }
     const flown = { stats: nodeStats, images: new Map(), pageProblems: [], nodeDiff: null };
     if (!context.nodeOnly) {
       const session = await context.browser();
       try {
-        const page = await context.browserModule.flyInPage(session, { id: index, demFiles: dem.files, imageFiles, flightPath: job.flightPath, flight: job.flight });
+        const page = await context.browserModule.flyInPage(session, { id: index, demFiles: dem.files, layerFiles, flightPath: job.flightPath, flight: job.flight });
         Object.assign(flown, { stats: page.stats, images: page.images, pageProblems: page.problems, nodeDiff: compareStats(nodeStats, page.stats) });
       } catch (error) {
         if (error instanceof EnvironmentError) throw error;

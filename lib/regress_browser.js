@@ -103,19 +103,21 @@ export async function startBrowser({ chromium: chromiumPath = process.env.CHROMI
  * Flies one flight in a new page: captures the pixels of `captures` and the figures of every frame.
  * A browser that dies on the way throws EnvironmentError; a page that fails throws Error.
  * @param {{id: string|number, demFiles: {name: string, bytes: Uint8Array}[], flightPath: string, flight: object,
- *   imageFiles?: import('./image_files.js').ImageFiles|null}} job imageFiles: the flight's image to drape
+ *   layerFiles?: Array<import('./image_files.js').ImageFiles|null>}} job layerFiles: each image layer's files
+ *   (null for a layer of another kind), in the flight's order
  * @returns {Promise<{stats: object[], images: Map<number, {width, height, rgb: Uint8Array}>, problems: string[]}>}
  */
-export async function flyInPage(session, { id, demFiles, imageFiles = null, flightPath, flight, timeoutMs = 300000 }) {
+export async function flyInPage(session, { id, demFiles, layerFiles = [], flightPath, flight, timeoutMs = 300000 }) {
   if (!session.browser.isConnected()) throw new EnvironmentError('the browser closed during the run');
   const dem = session.files.add(id, 'dem', demFiles);
   const flightUrl = session.files.addPath(id, 'flight', flightPath);
-  // The image by URL parameters, as the height field: the page then looks for no world file itself.
+  // The images by URL parameters, as the height field: the page then looks for no world file itself.
   let imageQuery = '';
-  if (imageFiles) {
-    imageQuery = `&image=${encodeURIComponent(session.files.add(id, 'image', [imageFiles.image]))}`;
-    if (imageFiles.worldFile) imageQuery += `&world=${encodeURIComponent(session.files.add(id, 'world', [imageFiles.worldFile]))}`;
-  }
+  layerFiles.forEach((files, k) => {
+    if (!files) return;
+    imageQuery += `&image${k}=${encodeURIComponent(session.files.add(id, `image${k}`, [files.image]))}`;
+    if (files.worldFile) imageQuery += `&world${k}=${encodeURIComponent(session.files.add(id, `world${k}`, [files.worldFile]))}`;
+  });
   const [w, h] = flight.viewport;
   const page = await session.browser.newPage({ viewport: { width: w, height: h }, deviceScaleFactor: flight.dpr });
   const problems = [];

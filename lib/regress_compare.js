@@ -64,15 +64,20 @@ const SETTING_LABELS = { tau: 'tau', exaggeration: 'exaggeration', operations: '
   culling: 'culling', backfaceCulling: 'backfaceCulling', embedding: 'embedding' };
 const list = (values) => values.join(', ');
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+/** "a.tif (0.5), tiles host/{z}/{x}/{y}.png (hidden)", or "none". */
+const layerList = (layers) => (layers?.length ? layers.map((l) => `${l.image ?? `tiles ${l.tiles}`}${l.visible ? '' : ' (hidden)'}${l.opacity === 1 ? '' : ` (${l.opacity})`}`).join(', ') : 'none');
 
 /**
  * What a reference records of a flight and its height field: everything that decides its
  * figures and pixels (not its tolerance, which only judges them).
  */
 export function flightRecordOf(flight, dem) {
-  const { fps, frames, viewport, dpr, settings, captures, keyframes, image, worldFile } = flight;
-  // The image only when there is one: references of flights without stay as they were.
-  const draped = image ? { image, worldFile } : {};
+  const { fps, frames, viewport, dpr, settings, captures, keyframes, layers } = flight;
+  // The layers only when there are some, and one plain image as "image" and "worldFile":
+  // references of flights without layers, or with one image, stay as they were.
+  const [first] = layers;
+  const oneImage = layers.length === 1 && first.kind === 'image' && first.opacity === 1 && first.visible;
+  const draped = oneImage ? { image: first.image, worldFile: first.worldFile } : layers.length > 0 ? { layers } : {};
   return { spec: { fps, frames, viewport, dpr, settings, captures, keyframes, ...draped }, dem: { name: dem.name, bytes: dem.size, sha256: dem.sha256 } };
 }
 
@@ -93,6 +98,7 @@ export function flightChanges(reference, current) {
   for (const key of ['image', 'worldFile']) {
     if ((was[key] ?? null) !== (now[key] ?? null)) changes.push(`${key} ${was[key] ?? 'none'} → ${now[key] ?? 'none'}`);
   }
+  if (!same(was.layers ?? null, now.layers ?? null)) changes.push(`layers ${layerList(was.layers)} → ${layerList(now.layers)}`);
   if (!same(was.captures, now.captures)) changes.push(`captures ${list(was.captures)} → ${list(now.captures)}`);
   if (was.keyframes.length !== now.keyframes.length) {
     changes.push(`keyframes ${was.keyframes.length} → ${now.keyframes.length}`);

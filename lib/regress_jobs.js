@@ -38,17 +38,18 @@ function demOf(flightPath, flight) {
 
 /** A job for one flight file; a problem with it becomes the job's error, not an exception. */
 function jobFor(flightPath, demSource) {
-  const job = { name: flightName(flightPath), flightPath: resolve(flightPath), source: null, image: null, worldFile: null, flight: null, error: null };
+  const job = { name: flightName(flightPath), flightPath: resolve(flightPath), source: null, layers: [], flight: null, error: null };
   try {
     job.flight = readFlight(flightPath);
     job.source = demSource ?? demOf(flightPath, job.flight);
     if (!isUrl(job.source) && !existsSync(job.source)) throw new Error(`${flightPath}: its height field ${job.source}: no such file`);
-    // The image and its world file, like the height field, relative to the flight file.
+    // Each image layer's image and world file, like the height field, relative to the flight file.
     const beside = (text) => (text === null ? null : resolveDem(text, dirname(flightPath)));
-    job.image = beside(job.flight.image);
-    job.worldFile = beside(job.flight.worldFile);
-    for (const [what, path] of [['image', job.image], ['world file', job.worldFile]]) {
-      if (path !== null && !isUrl(path) && !existsSync(path)) throw new Error(`${flightPath}: its ${what} ${path}: no such file`);
+    job.layers = job.flight.layers.map((layer) => (layer.kind === 'image' ? { ...layer, image: beside(layer.image), worldFile: beside(layer.worldFile) } : layer));
+    for (const layer of job.layers.filter((l) => l.kind === 'image')) {
+      for (const [what, path] of [['image', layer.image], ['world file', layer.worldFile]]) {
+        if (path !== null && !isUrl(path) && !existsSync(path)) throw new Error(`${flightPath}: its ${what} ${path}: no such file`);
+      }
     }
   } catch (error) {
     job.error = String(error.message).split('\n')[0];

@@ -13,7 +13,7 @@ import { createServer } from 'node:http';
 import { tmpdir } from 'node:os';
 import { dirname, join, relative } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { decode } from 'fast-png';
+import { decode, encode } from 'fast-png';
 import { readPng, writePng } from '../../lib/regress_compare.js';
 import { startBrowser } from '../../lib/regress_browser.js';
 import { BLUE_MARBLE_POINTS, groundPoint, screenPoint, colourAt, coloursMatch } from '../../lib/draped_points.js';
@@ -296,7 +296,7 @@ test('a folder flown in the browser: a bad flight and one without a reference fa
   }
 });
 
-test('a flight that names an image drapes it before its first frame: its colours at projected ground points; a refused image fails the flight', async () => {
+test('a flight that names an image, or its image layers, drapes them before its first frame: their colours at projected ground points, a hidden one unseen; a refused image fails the flight', async () => {
   const dir = mkdtempSync(join(tmpdir(), 'hexlod-image-flight-'));
   try {
     // Straight down from 3200 km over the middle of the default terrain, north up, unlit so
@@ -329,6 +329,21 @@ test('a flight that names an image drapes it before its first frame: its colours
       assert.ok(at.every((v) => v > 0 && v < 400), `${name} is on screen at ${at}`);
       const got = colourAt({ width: frame.width, data: frame.rgb, channels: 3 }, at);
       assert.ok(coloursMatch(got, expected, 24), `${name} at ${at}: ${got}, the image has ${expected}`);
+    }
+
+    // Layers named by the flight, bottom first: the Blue Marble in Web Mercator (reprojected
+    // onto the geographic terrain), and over it a magenta picture the flight hides.
+    writeFileSync(join(dir, 'magenta.png'), encode({ width: 4, height: 4, data: new Uint8Array(48).map((_, i) => [255, 0, 255][i % 3]), channels: 3 }));
+    writeFileSync(join(dir, 'layers.flight.json'), JSON.stringify({ ...flight, image: undefined, layers: [
+      { image: relative(dir, join(root, 'tests/fixtures/reprojection/bmng_himalaya_3857.tif')) },
+      { image: 'magenta.png', visible: false }] }));
+    const layered = await hexlod(['regress', join(dir, 'layers.flight.json'), '--update', '--refs', refs, '--out', out]);
+    assert.equal(layered.code, 0, `${layered.stdout}\n${layered.stderr}`);
+    const layeredFrame = readPng(readFileSync(join(refs, 'layers/frame-0000.png')));
+    for (const [name, [lon, lat, expected]] of Object.entries(BLUE_MARBLE_POINTS)) {
+      const at = screenPoint(camera.viewProjection, groundPoint(lon, lat, spacingX, spacingY), 400, 400);
+      const got = colourAt({ width: layeredFrame.width, data: layeredFrame.rgb, channels: 3 }, at);
+      assert.ok(coloursMatch(got, expected, 24), `layers: ${name} at ${at}: ${got}, the image has ${expected}`);
     }
 
     // The Haiti orthophoto is in UTM: the flight fails with the image's own message.

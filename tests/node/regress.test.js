@@ -54,6 +54,12 @@ test('a flight file is checked key by key, and the message names the key', () =>
     [flightJson({ captures: [0, 99] }), /"captures"\[1\] must be an integer from 0 to 30/],
     [flightJson({ image: 3 }), /"image" must be a file path or an http\(s\) URL/],
     [flightJson({ worldFile: 'x.jgw' }), /"worldFile" goes with "image"/],
+    [flightJson({ image: 'a.jpg', layers: [] }), /"image" goes into "layers" when a flight has them/],
+    [flightJson({ layers: {} }), /"layers" must be an array/],
+    [flightJson({ layers: [{ opacity: 1 }] }), /"layers"\[0\] needs "image" or "tiles"/],
+    [flightJson({ layers: [{ image: 'a.jpg', tiles: 'x' }] }), /"layers"\[0\].tiles is not a key of an image layer/],
+    [flightJson({ layers: [{ tiles: 'x', opacity: 3 }] }), /"layers"\[0\].opacity must be a number from 0 to 1/],
+    [flightJson({ layers: [{ image: 'a.jpg', visible: 'no' }] }), /"layers"\[0\].visible must be true or false/],
     [flightJson({ settings: { imageOpacity: 2 } }), /"settings"."imageOpacity" must be a number from 0 to 1/],
     [flightJson({ settings: { imageUnlit: 1 } }), /"settings"."imageUnlit" must be true or false/],
   ];
@@ -72,14 +78,21 @@ test('a flight file is checked key by key, and the message names the key', () =>
   assert.equal(flight.frames, 31); // 3 s at 10 frames a second, both ends included
   assert.deepEqual(flight.captures, [0, 15, 30]);
   assert.equal(flight.keyframes[0].fov, 50);
-  assert.equal(flight.image, null);
+  assert.deepEqual(flight.layers, []);
   assert.ok(!('imageOpacity' in flight.settings), 'a flight without image settings records none (its references stay as they were)');
   const draped = parseFlight(flightJson({ image: 'a.jpg', worldFile: 'a.jgw', settings: { imageOpacity: 0.5, imageUnlit: true } }), 'f.json');
-  assert.deepEqual([draped.image, draped.worldFile, draped.settings.imageOpacity, draped.settings.imageUnlit], ['a.jpg', 'a.jgw', 0.5, true]);
+  assert.deepEqual([draped.layers, draped.settings.imageOpacity, draped.settings.imageUnlit],
+    [[{ kind: 'image', image: 'a.jpg', worldFile: 'a.jgw', opacity: 1, visible: true }], 0.5, true]);
   const settings = flightSettings(draped);
   assert.deepEqual([settings.imageOpacity, settings.imageUnlit], [0.5, true]);
   const record = (f) => flightRecordOf(f, { name: 'x.png', size: 1, sha256: 'ab' });
   assert.deepEqual(flightChanges(record(flight), record(draped)).filter((c) => /^(image|worldFile) /.test(c)), ['image none → a.jpg', 'worldFile none → a.jgw']);
+  // Several layers, each with its look; a flight names them and a change names what changed.
+  const layered = parseFlight(flightJson({ layers: [{ image: 'a.tif', opacity: 0.5 }, { tiles: 'http://t.example/{z}/{x}/{y}.png', visible: false }] }), 'f.json');
+  assert.deepEqual(layered.layers, [{ kind: 'image', image: 'a.tif', worldFile: null, opacity: 0.5, visible: true },
+    { kind: 'tiles', tiles: 'http://t.example/{z}/{x}/{y}.png', opacity: 1, visible: false }]);
+  assert.deepEqual(flightChanges(record(draped), record(layered)).filter((c) => /^(image|worldFile|layers) /.test(c)),
+    ['image a.jpg → none', 'worldFile a.jgw → none', 'layers none → a.tif (0.5), tiles http://t.example/{z}/{x}/{y}.png (hidden)']);
 });
 
 /** A terrain stand-in for the camera: 1000 x 600 m, heights 0..100, a flat ground at 50 m. */

@@ -66,17 +66,19 @@ export function createImageStage({ renderer, layers, showStatus, requestRender }
     /**
      * Drapes an image file ({ name, blob }) with its world file (or null) over the layers of the
      * terrain on screen.
-     * @param {{ url?: string|null, throwRefusal?: boolean }} [options] url: where it came from,
-     *   when a link can name it; throwRefusal: a refusal is also thrown (a regression flight
-     *   fails with it rather than fly without its image)
+     * @param {{ url?: string|null, throwRefusal?: boolean, opacity?: number, visible?: boolean }} [options]
+     *   url: where it came from, when a link can name it; throwRefusal: a refusal is also thrown
+     *   (a regression flight fails with it rather than fly without its image); opacity and
+     *   visible: the layer's, from the start
      * @returns {Promise<object|null>} the image shown, or null when it was refused (the status line says why)
      */
-    async drape(image, worldFile = null, { url = null, throwRefusal = false } = {}) {
+    async drape(image, worldFile = null, { url = null, throwRefusal = false, opacity = 1, visible = true } = {}) {
       if (!layers.ground) return null;
       const sidecars = { worldFile };
       try {
-        const layer = fileLayer({ kind: 'image', url, files: { image, sidecars } }, await open(image, sidecars));
+        const layer = fileLayer({ kind: 'image', url, opacity, files: { image, sidecars } }, await open(image, sidecars));
         stage.add(layer);
+        if (!visible) stage.setVisible(layer.id, false);
         if (layer.visible) showStatus(layer.image.note ? `${image.name}: ${layer.image.note}` : '');
         return layer.image;
       } catch (error) {

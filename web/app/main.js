@@ -105,8 +105,12 @@ async function main() {
     installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting: change, screenshot, urlWriter,
       terrain: () => stage.current?.terrain, setLayout: (layout) => change('layout', layout), openUrl: (url) => intake.openUrl(url) });
   }
-  // The flight drives the camera, and drapes its image, if it names one, before its first frame.
-  if (det) det.install(state, canvas, gl, requestRender, (image, world) => images.drape(image, world, { throwRefusal: true }));
+  // The flight drives the camera, and adds its image layers before its first frame.
+  const flightLayer = async ({ kind, opacity, visible }, image, world) => {
+    if (kind !== 'image') throw new Error('tile layers are not yet supported in flights');
+    await images.drape(image, world, { throwRefusal: true, opacity, visible });
+  };
+  if (det) det.install(state, canvas, gl, requestRender, (layer, image, world) => flightLayer(layer, image, world));
   else rig.attach(canvas);
   installKeys({ settings, setSetting: change, setCamera: (mode) => change('camera', mode), toggleHelp,
     closeHelp: () => { helpBox.hidden = true; }, toggleHud: () => hud.setCollapsed(!hud.collapsed),

@@ -7,6 +7,9 @@
 //     "dem": "../fixtures/grandcanyon_512.png",  optional: the height field, relative to this file
 //     "image": "../fixtures/ortho.jpg",            optional: an image draped before the first frame,
 //     "worldFile": "../fixtures/ortho.jgw",          and its world file (default: ortho.jgw ... beside it)
+//     "layers": [ { "image": "a.tif", "worldFile": "a.tfw", "opacity": 0.5, "visible": true },
+//                 { "tiles": "http://host/{z}/{x}/{y}.png" } ],  optional, instead of "image": image
+//                                                  layers, bottom first (worldFile, opacity, visible optional)
 //     "fps": 30,                                   frame clock: frame n shows time n / fps seconds
 //     "viewport": [400, 225], "dpr": 1,            canvas size in CSS pixels, device pixel ratio
 //     "settings": { "tau": 1, "exaggeration": 2, "operations": 1000, "geomorph": true,
@@ -60,7 +63,7 @@ const SETTING_KINDS = {
  * Checks a parsed flight file and fills its defaults.
  * @param {unknown} json the parsed file
  * @param {string} name the file's name, for messages
- * @returns {{dem: string|null, image: string|null, worldFile: string|null, fps: number, frames: number, viewport: number[], dpr: number,
+ * @returns {{dem: string|null, layers: object[], fps: number, frames: number, viewport: number[], dpr: number,
  *   settings: object, captures: number[], keyframes: {time: number, position: number[], target: number[], fov: number}[],
  *   tolerance: {flight: object, captures: Record<number, object>}}}
  * @throws FlightError naming the key that is wrong
@@ -68,7 +71,7 @@ const SETTING_KINDS = {
 export function parseFlight(json, name = 'flight') {
   const fail = (key, why) => { throw new FlightError(`${name}: ${key} ${why}`); };
   if (json === null || typeof json !== 'object' || Array.isArray(json)) fail('the file', 'must hold a JSON object');
-  const known = ['dem', 'image', 'worldFile', 'fps', 'viewport', 'dpr', 'settings', 'captures', 'keyframes', 'tolerance', 'description'];
+  const known = ['dem', 'image', 'worldFile', 'layers', 'fps', 'viewport', 'dpr', 'settings', 'captures', 'keyframes', 'tolerance', 'description'];
   for (const key of Object.keys(json)) if (!known.includes(key)) fail(`"${key}"`, `is not a flight key (${known.join(', ')})`);
   const number = (key, value, { min = -Infinity, max = Infinity, integer = false } = {}) => {
     if (typeof value !== 'number' || !Number.isFinite(value) || (integer && !Number.isInteger(value)) || value < min || value > max) {
@@ -84,6 +87,9 @@ export function parseFlight(json, name = 'flight') {
     if (json[key] !== undefined && (typeof json[key] !== 'string' || json[key] === '')) fail(`"${key}"`, 'must be a file path or an http(s) URL');
   }
   if (json.worldFile !== undefined && json.image === undefined) fail('"worldFile"', 'goes with "image"');
+  if (json.layers !== undefined && json.image !== undefined) fail('"image"', 'goes into "layers" when a flight has them');
+  const layers = json.image !== undefined ? [{ kind: 'image', image: json.image, worldFile: json.worldFile ?? null, opacity: 1, visible: true }]
+    : parseLayers(json.layers, fail, number);
   const fps = json.fps === undefined ? DEFAULT_FPS : number('"fps"', json.fps, { min: 1, max: 1000 });
   let viewport = DEFAULT_VIEWPORT;
   if (json.viewport !== undefined) {
@@ -143,7 +149,26 @@ export function parseFlight(json, name = 'flight') {
     captures = [...new Set(captures)].sort((a, b) => a - b);
   }
   const tolerance = parseTolerance(json.tolerance, captures, fail);
-  return { dem: json.dem ?? null, image: json.image ?? null, worldFile: json.worldFile ?? null, fps, frames, viewport, dpr, settings, captures, keyframes, tolerance };
+  return { dem: json.dem ?? null, layers, fps, frames, viewport, dpr, settings, captures, keyframes, tolerance };
+}
+
+/** A flight's "layers": [{ kind: 'image', image, worldFile, opacity, visible } | { kind: 'tiles', tiles, opacity, visible }]. */
+function parseLayers(layers, fail, number) {
+  if (layers === undefined) return [];
+  if (!Array.isArray(layers)) fail('"layers"', 'must be an array of { "image": path } or { "tiles": template } objects');
+  return layers.map((layer, i) => {
+    const key = `"layers"[${i}]`;
+    if (layer === null || typeof layer !== 'object' || Array.isArray(layer)) fail(key, 'must be an object { "image": path } or { "tiles": template }');
+    const kind = layer.image !== undefined ? 'image' : layer.tiles !== undefined ? 'tiles' : fail(key, 'needs "image" or "tiles"');
+    const allowed = kind === 'image' ? ['image', 'worldFile', 'opacity', 'visible'] : ['tiles', 'opacity', 'visible'];
+    for (const field of Object.keys(layer)) if (!allowed.includes(field)) fail(`${key}.${field}`, `is not a key of ${kind === 'image' ? 'an image' : 'a tile'} layer (${allowed.join(', ')})`);
+    for (const field of ['image', 'worldFile', 'tiles']) {
+      if (layer[field] !== undefined && (typeof layer[field] !== 'string' || layer[field] === '')) fail(`${key}.${field}`, 'must be a file path or an http(s) URL');
+    }
+    if (layer.visible !== undefined && typeof layer.visible !== 'boolean') fail(`${key}.visible`, `must be true or false, got ${JSON.stringify(layer.visible)}`);
+    const look = { opacity: layer.opacity === undefined ? 1 : number(`${key}.opacity`, layer.opacity, { min: 0, max: 1 }), visible: layer.visible ?? true };
+    return kind === 'image' ? { kind, image: layer.image, worldFile: layer.worldFile ?? null, ...look } : { kind, tiles: layer.tiles, ...look };
+  });
 }
 
 /**

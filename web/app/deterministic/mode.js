@@ -6,12 +6,14 @@
 //   dpr, or ?viewport=WxH and ?dpr=N), whatever the window's size and devicePixelRatio;
 // - the camera: the flight's path (user input is ignored);
 // - frames are drawn only when asked for, through window.hexlod.flight (see install()).
-// - the draped image: the flight's, draped once the terrain is shown and before the flight starts.
+// - the image layers: the flight's, added bottom first once the terrain is shown and before the
+//   flight starts.
 // URL parameters: flight=URL (required), viewport=WxH (CSS pixels), dpr=N, ops=N (operations
 // per LOD update); they override the flight file's values. src=URL picks the terrain as usual;
-// image=URL and world=URL pick the image and its world file (with image=, the world file is
-// world= or none; without, the flight's, relative to the flight file, else one of the image's
-// conventional world file names beside it).
+// imageK=URL and worldK=URL pick the image of layer K (from 0) and its world file (image= and
+// world= for the first; with an image given, the world file is the one given or none; without,
+// the flight's, relative to the flight file, else one of the image's conventional world file
+// names beside it).
 import { mat4, vec3 } from 'gl-matrix';
 import { parseFlight, flightSettings, FlightCamera, FlightRecord } from './flight.js';
 import { worldFileNames } from '../../geo/index.js';
@@ -117,19 +119,27 @@ export class DeterministicMode {
     this.flight = flight;
     this.settings = flightSettings(flight);
     const here = new URL(url, location.href);
-    this.image = this.params.has('image')
-      ? { url: this.params.get('image'), world: this.params.get('world'), findWorld: false }
-      : flight.image && { url: new URL(flight.image, here).href, world: flight.worldFile && new URL(flight.worldFile, here).href,
-        findWorld: !flight.worldFile };
+    // Each image layer's file, by the page's parameters (image0=, world0=, ...; image= and world=
+    // for the first) or relative to the flight file.
+    const given = (name, k) => this.params.get(`${name}${k}`) ?? (k === 0 ? this.params.get(name) : null);
+    this.layers = flight.layers.map((layer, k) => {
+      if (layer.kind !== 'image') return layer;
+      const url = given('image', k);
+      return url ? { ...layer, url, world: given('world', k), findWorld: false }
+        : { ...layer, url: new URL(layer.image, here).href, world: layer.worldFile && new URL(layer.worldFile, here).href, findWorld: !layer.worldFile };
+    });
+    if (this.layers.length === 0 && this.params.has('image')) {
+      this.layers = [{ kind: 'image', url: this.params.get('image'), world: this.params.get('world'), findWorld: false, opacity: 1, visible: true }];
+    }
     this.width = Math.round(flight.viewport[0] * flight.dpr);
     this.height = Math.round(flight.viewport[1] * flight.dpr);
     return flight;
   }
 
   /** Fixes the canvas's size and puts the API on window.hexlod.flight. */
-  install(state, canvas, gl, requestRender, drape) {
+  install(state, canvas, gl, requestRender, addLayer) {
     this.gl = gl;
-    this.drape = drape; // (image, worldFile) => the stage's drape, which throws a refusal
+    this.addLayer = addLayer; // (layer, image, worldFile) => the image stage's, which throws a refusal
     this.requestRender = requestRender;
     canvas.style.width = `${this.flight.viewport[0]}px`;
     canvas.style.height = `${this.flight.viewport[1]}px`;
@@ -159,14 +169,22 @@ export class DeterministicMode {
     this.flightCamera = new FlightCamera(this.flight, terrain, this.width, this.height);
     this.record = new FlightRecord(this.flight.frames);
     const { frames, fps, captures } = this.flight;
-    (this.image ? this.drapeImage() : Promise.resolve()).then(() => {
+    this.addLayers().then(() => {
       this.resolveReady({ frames, fps, captures, width: this.width, height: this.height });
       this.requestRender();
     }, (error) => this.fail(error.message));
   }
 
-  /** Fetches the flight's image (and world file) and drapes it; throws the refusal's message. */
-  async drapeImage() {
+  /** Adds the flight's layers, bottom first, fetching each image (and world file); throws a refusal's message. */
+  async addLayers() {
+    for (const layer of this.layers) {
+      if (layer.kind === 'image') await this.drapeImage(layer);
+      else await this.addLayer(layer, null, null);
+    }
+  }
+
+  /** Fetches an image layer's image (and world file) and drapes it. */
+  async drapeImage(layer) {
     const named = async (url, optional = false) => {
       const name = decodeURIComponent(new URL(url, location.href).pathname.split('/').pop() || url);
       let response;
@@ -179,15 +197,15 @@ export class DeterministicMode {
       if (!response.ok) throw new Error(`${name}: cannot read the flight's image (HTTP ${response.status})`);
       return { name, blob: await response.blob() };
     };
-    const image = await named(this.image.url);
-    let world = this.image.world ? await named(this.image.world) : null;
-    if (this.image.findWorld) {
+    const image = await named(layer.url);
+    let world = layer.world ? await named(layer.world) : null;
+    if (layer.findWorld) {
       for (const name of worldFileNames(image.name)) {
-        world = await named(new URL(name, new URL(this.image.url, location.href)).href, true);
+        world = await named(new URL(name, new URL(layer.url, location.href)).href, true);
         if (world) break;
       }
     }
-    await this.drape(image, world);
+    await this.addLayer(layer, image, world);
   }
 
   /** The page could not start (its message), e.g. the terrain did not load. */
