@@ -18,6 +18,7 @@
 // Usage: node bench/imagery.js [--viewport 640x360] [--runs 3] [--frames 20] [--size 8192]
 import { parseArgs } from 'node:util';
 import { startViewer, openPage, pageReady } from '../lib/page_harness.js';
+import { drawBlock } from '../lib/page_frames.js';
 
 const { values } = parseArgs({ options: { viewport: { type: 'string' }, runs: { type: 'string' }, frames: { type: 'string' },
   size: { type: 'string' } } });
@@ -117,27 +118,6 @@ function timedDrop(page, name) {
     };
     wait();
   }), name);
-}
-
-/** Draws `n` frames one after another, each asked for when the last has ended; their figures. */
-function drawBlock(page, n) {
-  return page.evaluate((count) => new Promise((resolve) => {
-    const h = window.hexlod;
-    h.frameLog = [];
-    h.recordFrames = true;
-    const next = () => {
-      if (h.frameLog.length >= count) {
-        h.recordFrames = false;
-        resolve(h.frameLog.map(({ cpuMs, drawMs }) => ({ cpuMs, drawMs })));
-        return;
-      }
-      const want = h.frames + 1;
-      h.requestRender();
-      const wait = () => (h.frames >= want ? next() : requestAnimationFrame(wait));
-      requestAnimationFrame(wait);
-    };
-    next();
-  }), n);
 }
 
 /**

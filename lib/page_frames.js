@@ -26,3 +26,24 @@ export function frameWithSetting(page, key, value) {
     requestAnimationFrame(wait);
   }), [key, value]);
 }
+
+/** Draws `n` frames one after another, each asked for when the last has ended; their figures (cpuMs, drawMs). */
+export function drawBlock(page, n) {
+  return page.evaluate((count) => new Promise((resolve) => {
+    const h = window.hexlod;
+    h.frameLog = [];
+    h.recordFrames = true;
+    const next = () => {
+      if (h.frameLog.length >= count) {
+        h.recordFrames = false;
+        resolve(h.frameLog.map(({ cpuMs, drawMs }) => ({ cpuMs, drawMs })));
+        return;
+      }
+      const want = h.frames + 1;
+      h.requestRender();
+      const wait = () => (h.frames >= want ? next() : requestAnimationFrame(wait));
+      requestAnimationFrame(wait);
+    };
+    next();
+  }), n);
+}
