@@ -119,8 +119,9 @@ export class TileSelection {
       let z = pixelMetres > 0 && scale > 0 ? Math.round(Math.log2(1 / (scale * view.tileSize * pixelMetres))) : maxZoom;
       z = Math.min(maxZoom, Math.max(minZoom, z));
       const n = 2 ** z;
-      const tx0 = Math.max(0, Math.floor(west * n)), tx1 = Math.min(n - 1, Math.floor(east * n));
-      const ty0 = Math.max(0, Math.floor(north * n)), ty1 = Math.min(n - 1, Math.floor(south * n));
+      // A patch ending on a tile edge does not reach into the tile beyond it.
+      const tx0 = Math.min(n - 1, Math.max(0, Math.floor(west * n))), tx1 = Math.max(tx0, Math.min(n - 1, Math.ceil(east * n) - 1));
+      const ty0 = Math.min(n - 1, Math.max(0, Math.floor(north * n))), ty1 = Math.max(ty0, Math.min(n - 1, Math.ceil(south * n) - 1));
       if ((tx1 - tx0 >= TILES_A_PATCH || ty1 - ty0 >= TILES_A_PATCH) && depth < MAX_DEPTH) {
         const mx = (x0 + x1) / 2, mz = (z0 + z1) / 2;
         push(x0, z0, mx, mz, depth + 1); push(mx, z0, x1, mz, depth + 1);
