@@ -23,12 +23,13 @@ export const TILE_FAULTS = [null, 'missing', 'no-cors', 'down', 'slow', 'not-ima
  * @param {number} [options.slowMs] the wait of the 'slow' fault
  * @param {string|null} [options.capabilities] path of a WMTS capabilities document to serve at /wmts
  * @param {string|null} [options.fault] one of TILE_FAULTS (setFault changes it)
+ * @param {number[]} [options.missingZooms] zooms whose tiles all answer 404 (a service that lacks them)
  * @returns {Promise<{ url: string, options: object, log: { path: string, tile: string|null, status: number, mode: string }[],
  *   tilesRequested: () => string[], setFault: (fault: string|null) => Promise<void>, reset: () => void, close: () => Promise<void> }>}
  *   url: the origin (no trailing slash); log: every request (tile: 'z/x/y' or null); tilesRequested: the tiles asked for, in order
  */
 export async function startTileServer(root, options = {}) {
-  const settings = { latencyMs: 0, slowMs: 2000, capabilities: null, fault: null, ...options };
+  const settings = { latencyMs: 0, slowMs: 2000, capabilities: null, fault: null, missingZooms: [], ...options };
   const log = [];
   let url = '';
 
@@ -53,7 +54,7 @@ export async function startTileServer(root, options = {}) {
       return answer(200, 'application/xml', Buffer.from(readFileSync(settings.capabilities, 'utf8').replaceAll(FIXTURE_HOST, url)));
     }
     if (!tile) return answer(404, 'text/plain', Buffer.from('not found'));
-    if (settings.fault === 'missing') return answer(404, 'text/plain', Buffer.from('tile not found'));
+    if (settings.fault === 'missing' || settings.missingZooms.includes(tile[0])) return answer(404, 'text/plain', Buffer.from('tile not found'));
     if (settings.fault === 'not-image') return answer(200, 'text/html', Buffer.from('<!doctype html><title>Error</title><p>No tile here.</p>'));
     const file = join(root, String(tile[0]), String(tile[1]), `${tile[2]}.png`);
     if (!existsSync(file) || !statSync(file).isFile()) return answer(404, 'text/plain', Buffer.from('tile not found'));
