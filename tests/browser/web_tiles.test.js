@@ -416,3 +416,63 @@ test('a layer chooses again at most every 100 ms, and stands in the zoom above f
     'no zoom 7 tile asked for twice');
   assert.ok(result.residentZooms.every((z) => z <= 6) && result.residentZooms.includes(6));
 });
+
+test('after a lost context the pages and the table are made again from the tiles put anew', async () => {
+  const page = await modulePage();
+  const result = await page.evaluate(async ({ web, tiles }) => {
+    const { WebTileTextures } = await import(`${web}render/shading/web_tile_textures.js`);
+    const canvas = document.createElement('canvas');
+    const gl = canvas.getContext('webgl2');
+    const lose = gl.getExtension('WEBGL_lose_context');
+    const timeout = (what) => new Promise((_, reject) => setTimeout(() => reject(new Error(`no ${what} event within 30 s`)), 30000));
+    const bitmap = async (z, x, y) => createImageBitmap(await (await fetch(`${tiles}${z}/${x}/${y}.png`)).blob(),
+      { premultiplyAlpha: 'none', colorSpaceConversion: 'default' });
+    const textures = new WebTileTextures(gl, { memoryBytes: 1 });
+    textures.setRange({ zoom: 7, x0: 89, y0: 49, width: 7, height: 8 });
+    const readPage = (page) => {
+      const fb = gl.createFramebuffer();
+      gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+      gl.framebufferTextureLayer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, textures.pages, 0, page);
+      const read = new Uint8Array(4 * 256 * 256);
+      gl.readPixels(0, 0, 256, 256, gl.RGBA, gl.UNSIGNED_BYTE, read);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+      return read;
+    };
+    const readTable = () => {
+      const fb = gl.createFramebuffer();
+      gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, textures.table, 0);
+      const read = new Uint32Array(4 * 7 * 8);
+      gl.readPixels(0, 0, 7, 8, gl.RGBA_INTEGER, gl.UNSIGNED_INT, read);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+      return Array.from(read.filter((_, k) => k % 4 < 2));
+    };
+    const tile = await bitmap(6, 46, 26);
+    textures.put(6, 46, 26, tile);
+    const before = { page: readPage(textures.resident.get([...textures.resident.keys()][0])), table: readTable() };
+    const lost = new Promise((resolve) => canvas.addEventListener('webglcontextlost', (e) => { e.preventDefault(); resolve(); }, { once: true }));
+    lose.loseContext();
+    await Promise.race([lost, timeout('webglcontextlost')]);
+    const keptWhileLost = textures.put(6, 46, 26, tile);
+    const restored = new Promise((resolve) => canvas.addEventListener('webglcontextrestored', resolve, { once: true }));
+    await new Promise((resolve) => setTimeout(resolve, 0)); // a restore asked for in the task that handled the loss never comes
+    lose.restoreContext();
+    await Promise.race([restored, timeout('webglcontextrestored')]);
+    textures.forgetGl();
+    const emptied = { resident: textures.figures.resident, entries: Array.from(textures.entries).some((v) => v !== 0) };
+    textures.put(6, 46, 26, tile);
+    textures.bind(0, 1);
+    const after = { page: readPage(textures.resident.get([...textures.resident.keys()][0])), table: readTable() };
+    const same = before.page.length === after.page.length && before.page.every((v, i) => v === after.page[i]);
+    return { keptWhileLost, emptied, same, tableBefore: before.table, tableAfter: after.table, cpu: Array.from(textures.entries),
+      error: gl.getError() };
+  }, { web: `/@fs${projectDir}web/`, tiles: `${viewer.fixturesUrl}webtiles/bmng/` });
+  await page.close();
+  assert.equal(result.keptWhileLost, false, 'nothing is kept while the context is lost');
+  assert.deepEqual(result.emptied, { resident: 0, entries: false }, 'forgetGl empties the table and the pages');
+  assert.ok(result.same, 'the page holds the same texels again');
+  assert.deepEqual(result.tableAfter, result.tableBefore);
+  assert.deepEqual(result.tableAfter, result.cpu);
+  assert.equal(result.tableAfter.filter((v, k) => k % 2 === 1 && v === 6).length, 4, 'the zoom 6 tile over 2 x 2 entries');
+  assert.equal(result.error, 0);
+});

@@ -54,7 +54,11 @@ export class WebTileTextures {
     this.forgetGl();
   }
 
-  /** The context was lost (or is new): the GL objects and every tile in them are gone; the table stays, emptied. */
+  /**
+   * The context was lost and is back (or is new): the GL objects and every tile in them are
+   * gone; the table's range stays, its entries emptied, and both textures are made again at
+   * the next put() or bind().
+   */
   forgetGl() {
     this.pages = null;
     this.table = null;
@@ -111,6 +115,7 @@ export class WebTileTextures {
     if (image.width !== this.tileSize || image.height !== this.tileSize) {
       throw new RangeError(`a tile of ${image.width} × ${image.height} texels, the pages take ${this.tileSize}²: resize it first`);
     }
+    if (this.gl.isContextLost()) return false; // the pages died with the context: the tile is fetched again after forgetGl()
     if (z > this.range.zoom || !this.rectOf(z, x, y)) {
       this.figures.refused++;
       return false;
