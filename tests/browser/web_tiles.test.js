@@ -387,14 +387,14 @@ test('a layer chooses again at most every 100 ms, and stands in the zoom above f
       await idle();
       out.second = layer.update(second, { height: 400 });
       await idle();
-      const zoom7 = layer.figures;
+      const zoom7 = { ...layer.figures };
       // Once zoom 7 failed, the next view wants the zoom 6 tiles above them instead.
       await new Promise((resolve) => setTimeout(resolve, 120));
       out.third = layer.update(third, { height: 400 });
       await idle();
       out.wanted = layer.wanted.map((t) => `${t.z}/${t.x}/${t.y}`);
       out.residentZooms = [...layer.textures.resident.keys()].map((k) => layer.textures.tileZ[layer.textures.resident.get(k)]);
-      out.figures = { before: zoom7, after: layer.figures };
+      out.figures = { before: zoom7, after: { ...layer.figures } };
       out.messages = messages;
       layer.dispose();
       return out;

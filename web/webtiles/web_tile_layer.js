@@ -37,6 +37,8 @@ const resizeTileImage = async (image, size) => {
  * @property {number} [memoryBytes] GPU memory cap of the tiles, mipmaps included (64 MB)
  * @property {number} [concurrency] requests in flight at most (6)
  * @property {number} [selectEveryMs] least time between two selections (100)
+ * @property {((x0: number, z0: number, x1: number, z1: number, out: number[]) => number[])|null} [heightRange]
+ *   drawn heights [low, high] over a ground rectangle (tile_selection.js): tighter culling
  * @property {() => number} [now] milliseconds
  */
 
@@ -49,7 +51,7 @@ export class WebTileLayer {
    */
   constructor(gl, spec, { toMercator, terrain, onChange = () => {}, onMessage = () => {}, fetch, decode = decodeTileImage,
     resize = resizeTileImage, memoryBytes = DEFAULT_MEMORY_BYTES, concurrency = 6, selectEveryMs = SELECT_EVERY_MS,
-    now = () => performance.now() } = {}) {
+    heightRange = null, now = () => performance.now() } = {}) {
     this.gl = gl;
     this.spec = typeof spec === 'string' ? parseTileSpec(spec) : spec;
     this.onChange = onChange;
@@ -75,7 +77,9 @@ export class WebTileLayer {
     this.wantedKeys = new Set();
     this.refused = new Set(); // tiles the GPU did not keep (every page needed): not asked for again until the next selection
     this.isThere = (k) => this.textures.has(k) || this.refused.has(k);
-    this.view = { position: null, viewProjection: null, viewportHeight: 0, fovY: 0, terrain: null, toMercator: null,
+    this.shownFigures = { resident: 0, bytes: 0, residentBytes: 0, evictions: 0, fetched: 0, bytesFetched: 0, failed: 0, aborted: 0,
+      inFlight: 0, wanted: 0, baseZoom: -1, tableZoom: -1 };
+    this.view = { heightRange, position: null, viewProjection: null, viewportHeight: 0, fovY: 0, terrain: null, toMercator: null,
       bounds: null, tileSize: DEFAULT_TILE_SIZE, minZoom: 0, maxZoom: 0 };
     this.setTerrain(terrain, toMercator);
   }
@@ -194,16 +198,16 @@ export class WebTileLayer {
 
   /**
    * What the layer holds and has fetched: tiles and bytes on the GPU, tiles and bytes fetched,
-   * evictions, requests in flight, tiles wanted and failed.
+   * evictions, requests in flight, tiles wanted and failed. The same object each call, brought
+   * up to date (a HUD may read it every frame).
    */
   get figures() {
-    const t = this.textures.figures, r = this.requests.figures;
-    return {
-      resident: t.resident, bytes: t.bytes, residentBytes: t.residentBytes, evictions: t.evictions,
-      fetched: r.fetched, bytesFetched: r.bytes, failed: r.failed, aborted: r.aborted,
-      inFlight: this.requests.pending, wanted: this.wanted.length, baseZoom: this.selection.baseZoom,
-      tableZoom: this.textures.range?.zoom ?? -1,
-    };
+    const f = this.shownFigures, t = this.textures.figures, r = this.requests.figures;
+    f.resident = t.resident; f.bytes = t.bytes; f.residentBytes = t.residentBytes; f.evictions = t.evictions;
+    f.fetched = r.fetched; f.bytesFetched = r.bytes; f.failed = r.failed; f.aborted = r.aborted;
+    f.inFlight = this.requests.pending; f.wanted = this.wanted.length; f.baseZoom = this.selection.baseZoom;
+    f.tableZoom = this.textures.range?.zoom ?? -1;
+    return f;
   }
 
   /** The context came back: the tiles are fetched again as the view wants them. */
