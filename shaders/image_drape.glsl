@@ -72,13 +72,15 @@ vec4 drapeTiles(highp sampler2DArray pages, highp usampler2D table, int slot, ve
     if (any(lessThan(entryAt, ivec2(0))) || any(greaterThanEqual(entryAt, textureSize(table, 0)))) return vec4(0.0);
     uvec2 entry = texelFetch(table, entryAt, 0).rg;
     if (entry.x == 0u) return vec4(0.0);
-    // The tile of zoom z = entry.y covering t: 2^d tiles of zoom Z a side, d = Z - z. The
-    // table's first tile modulo 2^d keeps the numbers small (float precision at zoom 20).
-    int d = uDrapeTable[slot].z - int(entry.y);
-    ivec2 into = uDrapeTable[slot].xy & ivec2((1 << d) - 1);
-    float scale = 1.0 / float(1 << d);
-    vec2 q = (t + vec2(into)) * scale;
-    return textureGrad(pages, vec3(fract(q), float(entry.x - 1u)), dtx * scale, dty * scale);
+    // The tile of zoom z = entry.y over this entry spans 2^k entries a side, k = Z - z; its
+    // corner, in entries from the table's first tile, keeps the numbers small (float
+    // precision at zoom 20).
+    int k = uDrapeTable[slot].z - int(entry.y);
+    ivec2 origin = uDrapeTable[slot].xy;
+    ivec2 tile = (entryAt + origin) >> k;
+    float scale = 1.0 / exp2(float(k));
+    vec2 uv = (t - vec2((tile << k) - origin)) * scale;
+    return textureGrad(pages, vec3(uv, float(entry.x - 1u)), dtx * scale, dty * scale);
 }
 
 vec4 drapeLayer(int slot, highp sampler2DArray pages, highp usampler2D table, vec2 xz) {

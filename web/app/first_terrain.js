@@ -14,11 +14,11 @@ const DEFAULT_TERRAIN = [
 /**
  * @param {{ urlState: object, intake: object, stage: object, rig: object, measure: object, det: object|null,
  *   state: object, statusBox: HTMLElement, openingStatus: string, showStatus: Function, showContourNote: () => void,
- *   syncPanel: () => void }} parts
+ *   syncPanel: () => void, addTiles: (spec: string) => void }} parts addTiles: a web map tile layer (?tiles=)
  * @throws {Error} when the default terrain does not load, or a flight's terrain is not the one shown
  */
 export async function openFirstTerrain({ urlState, intake, stage, rig, measure, det, state, statusBox, openingStatus,
-  showStatus, showContourNote, syncPanel }) {
+  showStatus, showContourNote, syncPanel, addTiles }) {
   const src = urlState.src;
   const outcome = src ? await intake.openUrl(src) : null;
   if (det && src && outcome !== 'shown') throw new Error(state.error ?? `${src}: loading cancelled`); // a flight is meaningless over another terrain
@@ -33,6 +33,7 @@ export async function openFirstTerrain({ urlState, intake, stage, rig, measure, 
   if (statusBox.textContent === '') showContourNote();
   for (const { kind, url } of det ? [] : urlState.layers) {
     if (kind === 'image') await intake.openImageUrl(url);
+    else addTiles(url);
   }
   if (urlState.camera && !det) {
     applyCameraState(rig, urlState.camera);

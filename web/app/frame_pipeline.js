@@ -84,6 +84,9 @@ export class FramePipeline {
     timing.updateMs = timing.streamMs = timing.uploadMs = 0;
     const shown = this.layers.ground;
     if (shown) this.updateTerrain(shown, camera, width, height, now);
+    // Web map tile layers choose the tiles this view needs (cheap while it stays the same).
+    const images = this.layers.images;
+    for (let k = 0; k < images.length; k++) if (images[k].visible) images[k].update?.(camera, width, height);
     const drawStart = performance.now();
     this.renderer.draw(camera, width, height, this.view, this.layers);
     if (this.settings.timing) this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.UNSIGNED_BYTE, this.timingPixel); // waits for the draw

@@ -168,7 +168,8 @@ export function imageFigures(image, hud) {
     gpuBytes: image.gpuBytes, hud: hud.layerLines.textContent };
 }
 
-/** What tests read of the image layers (window.hexlod.imageLayers), bottom first. */
+/** What tests read of the image layers (window.hexlod.imageLayers), bottom first; a tile layer's figures too (webtiles/web_tile_layer.js). */
 export function layerFigures(layers) {
-  return layers.images.map(({ id, kind, name, visible, opacity, url }) => ({ id, kind, name, visible, opacity, url }));
+  return layers.images.map(({ id, kind, name, visible, opacity, url, tiles }) =>
+    ({ id, kind, name, visible, opacity, url, ...(tiles && { tiles: { ...tiles.figures } }) }));
 }

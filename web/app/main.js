@@ -6,7 +6,9 @@ import { createCore } from '../core/core.js';
 import { createFileIntake } from '../ui/file_intake.js';
 import { TerrainRenderer } from '../render/renderer.js';
 import { createImageStage, imageFigures, layerFigures } from './image_stage.js';
+import { createWebTileStage } from './web_tile_stage.js';
 import { createLayerPanel } from '../ui/layer_panel.js';
+import { createAttribution } from '../ui/attribution.js';
 import { CameraRig } from '../cameras/rig.js';
 import { defaultSettings, SETTINGS, IMAGE_FOLDER } from './settings_table.js';
 import { createView } from './view_state.js';
@@ -77,6 +79,7 @@ async function main() {
     if (part !== 'images') return;
     state.image = imageFigures(images.current, hud);
     layerPanel.show(shown);
+    attribution.show(shown);
   });
   state.image = null;
   Object.defineProperty(state, 'imageLayers', { get: () => layerFigures(layers), enumerable: true }); // for tests
@@ -84,7 +87,8 @@ async function main() {
   Object.defineProperty(state, 'layers', { value: layers, enumerable: false }); // for tests: what is shown
   const { change, syncView, showContourNote } = createSettingChanges({ settings, view, renderer, rig, owner, state,
     showStatus, syncPanel, requestRender });
-  const screenshot = screenshotTaker({ gl, rig, renderer, view, state, layers, requestRender });
+  const attribution = createAttribution(document.getElementById('attribution'));
+  const screenshot = screenshotTaker({ gl, rig, renderer, view, state, layers, attribution, requestRender });
   const saveScreenshot = (scale) => screenshot(scale).catch((error) => showStatus(error.message, true));
   const toggleHelp = () => { helpBox.hidden = !helpBox.hidden; };
   const resetView = () => { if (stage.current) stage.frameDefault(); syncPanel(); requestRender(); };
@@ -93,7 +97,9 @@ async function main() {
     actions: { 'screenshot 1× (P)': () => saveScreenshot(1), 'screenshot 2×': () => saveScreenshot(2),
       'reset view (R)': resetView, 'measure (M)': () => measure.toggle(), 'help (H)': toggleHelp },
   });
-  const layerPanel = createLayerPanel(panel.folder(IMAGE_FOLDER), images);
+  const webTiles = createWebTileStage({ gl, layers, images, showStatus, requestRender });
+  layers.onChange((shown, part) => { if (part === 'terrain') webTiles.terrainChanged(); });
+  const layerPanel = createLayerPanel(panel.folder(IMAGE_FOLDER), images, { addTiles: (spec) => webTiles.add(spec) });
   syncView();
   document.getElementById('help-close').onclick = toggleHelp;
   // Drop, file picker, ?src=, ?image=, progress, RAW size dialog and error display (file_intake.js).
@@ -106,9 +112,10 @@ async function main() {
       terrain: () => stage.current?.terrain, setLayout: (layout) => change('layout', layout), openUrl: (url) => intake.openUrl(url) });
   }
   // The flight drives the camera, and adds its image layers before its first frame.
-  const flightLayer = async ({ kind, opacity, visible }, image, world) => {
-    if (kind !== 'image') throw new Error('tile layers are not yet supported in flights');
-    await images.drape(image, world, { throwRefusal: true, opacity, visible });
+  const flightLayer = async (layer, image, world) => {
+    const { kind, opacity, visible } = layer;
+    if (kind === 'tiles') webTiles.add(layer.tiles, { opacity, visible, throwRefusal: true });
+    else await images.drape(image, world, { throwRefusal: true, opacity, visible });
   };
   if (det) det.install(state, canvas, gl, requestRender, (layer, image, world) => flightLayer(layer, image, world));
   else rig.attach(canvas);
@@ -123,7 +130,7 @@ async function main() {
     onOrbit: () => { syncPanel(); requestRender(); }, measuring: () => measure.active });
   recoverLostContext(canvas, { pipeline, renderer, stage, images, layers, state, showStatus, requestRender });
   await openFirstTerrain({ urlState, intake, stage, rig, measure, det, state, statusBox, openingStatus: OPENING_STATUS,
-    showStatus, showContourNote, syncPanel });
+    showStatus, showContourNote, syncPanel, addTiles: (spec) => webTiles.add(spec) });
   requestRender();
   state.status = 'ready';
 }

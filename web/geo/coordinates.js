@@ -105,3 +105,9 @@ export function crsTransform(from, to) {
   const converter = proj4(a, b);
   return (x, y) => converter.forward([x, y]);
 }
+
+/** (x, y) in a CRS -> [lon, lat] in degrees, or null when the CRS has no definition we can write. */
+export function toLonLat(crs) {
+  if (crs.geographic) return (x, y) => [x, y];
+  return crsTransform(crs, { epsg: 4326, label: 'EPSG:4326', geographic: true });
+}

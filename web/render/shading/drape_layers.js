@@ -64,11 +64,15 @@ export class DrapeLayers {
       this.kind[slot] = ready ? KIND[drape.kind] : 0;
       gl.uniform1i(u[PAGES_UNIFORMS[slot]], TEXTURE_UNIT_PAGES[slot]);
       gl.uniform1i(u[TABLE_UNIFORMS[slot]], TEXTURE_UNIT_TABLES[slot]);
-      gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_PAGES[slot]);
-      gl.bindTexture(gl.TEXTURE_2D_ARRAY, ready ? textures.pages : null);
-      // An unsigned sampler's unit must not hold a texture of another kind: empty unless tiles.
-      gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_TABLES[slot]);
-      gl.bindTexture(gl.TEXTURE_2D, ready && drape.kind === 'tiles' ? textures.table : null);
+      if (ready && drape.kind === 'tiles') {
+        textures.bind(TEXTURE_UNIT_PAGES[slot], TEXTURE_UNIT_TABLES[slot]);
+      } else {
+        gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_PAGES[slot]);
+        gl.bindTexture(gl.TEXTURE_2D_ARRAY, ready ? textures.pages : null);
+        // An unsigned sampler's unit must not hold a texture of another kind: empty unless tiles.
+        gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_TABLES[slot]);
+        gl.bindTexture(gl.TEXTURE_2D, null);
+      }
       if (!ready) continue;
       const w = drape.warp;
       this.opacity[slot] = drape.opacity;
