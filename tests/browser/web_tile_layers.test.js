@@ -20,7 +20,7 @@ const VIEW = 560;
 let viewer, server;
 before(async () => {
   [viewer, server] = await Promise.all([startViewer({ pixelRatio: 0.5 }),
-    startTileServer(`${projectDir}tests/fixtures/webtiles/bmng`, { latencyMs: 20 })]);
+    startTileServer(`${projectDir}tests/fixtures/webtiles/bmng`, { latencyMs: 20, capabilities: `${projectDir}tests/fixtures/webtiles/wmts_capabilities.xml` })]);
 });
 after(async () => { await viewer?.close(); await server?.close(); });
 
@@ -31,7 +31,7 @@ async function settled(page) {
   await page.waitForFunction(() => {
     const h = window.hexlod;
     h.requestRender();
-    const tiles = h.imageLayers.filter((l) => l.kind === 'tiles');
+    const tiles = h.imageLayers.filter((l) => l.kind === 'tiles' && l.visible); // hidden layers fetch nothing
     const quiet = tiles.every((l) => l.tiles.inFlight === 0 && l.tiles.resident > 0);
     h.quietChecks = quiet ? (h.quietChecks ?? 0) + 1 : 0;
     return h.quietChecks >= 5;
@@ -40,6 +40,16 @@ async function settled(page) {
 }
 
 const status = (page) => page.evaluate(() => document.getElementById('status').textContent);
+
+/** Types `text` into the panel's "add tiles" field and leaves it, as a person does. */
+function typeTiles(page, text) {
+  return page.evaluate((s) => {
+    const field = [...document.querySelectorAll('#panel .lil-controller.lil-string')].find((c) => /add tiles/.test(c.textContent)).querySelector('input');
+    field.value = s;
+    field.dispatchEvent(new Event('input'));
+    field.dispatchEvent(new Event('blur')); // typed and left: the field's value is taken
+  }, text);
+}
 
 test('?tiles= drapes web map tiles: GDAL\'s colours at ground points, tiles only where the view is, the attribution in the corner and the screenshot, the address keeps it', async () => {
   server.reset();
@@ -110,14 +120,7 @@ test('faults keep what is drawn and say so once: missing tiles, a server that re
   await settled(page);
   const before = decode(await page.screenshot());
   const centre = (await projectLonLat(page, { c: [89.1, 31.8333] })).c; // Siling Co: above the status line
-  const add = async (text) => {
-    await page.evaluate((s) => {
-      const field = [...document.querySelectorAll('#panel .lil-controller.lil-string')].find((c) => /add tiles/.test(c.textContent)).querySelector('input');
-      field.value = s;
-      field.dispatchEvent(new Event('input'));
-      field.dispatchEvent(new Event('blur')); // typed and left: the field's value is taken
-    }, text);
-  };
+  const add = (text) => typeTiles(page, text);
   // A template without {z}: refused, no layer added.
   await add('http://127.0.0.1:1/{x}/{y}.png');
   assert.match(await status(page), /the tile template has no \{z\} \(the zoom\)/);
@@ -166,5 +169,32 @@ test('an image file and web map tiles as layers of one terrain: the address keep
     [['image', imageUrl], ['tiles', spec()]]);
   assert.deepEqual([...problems, ...again.problems], []);
   await again.page.close();
+  await page.close();
+});
+
+test('a WMTS service\'s address in the panel adds its layers in Web Mercator, the first shown, and says which it could not use', async () => {
+  server.reset();
+  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1`, { width: VIEW, height: VIEW }, FULL_RESOLUTION);
+  await page.waitForFunction(() => window.hexlod?.status === 'ready', null, { timeout: 240000 });
+  await lookStraightDown(page);
+  await typeTiles(page, `${server.url}/wmts`);
+  await page.waitForFunction(() => window.hexlod.imageLayers.length === 2, null, { timeout: 60000 });
+  const layers = await page.evaluate(() => window.hexlod.imageLayers.map(({ name, visible, url }) => ({ name, visible, url })));
+  assert.deepEqual(layers.map((l) => [l.name, l.visible]), [['Blue Marble (REST)', true], ['Blue Marble (KVP)', false]]);
+  assert.match(await status(page), /^hexlod test tiles: 2 layers added \(Blue Marble \(REST\), Blue Marble \(KVP\)\), the first shown; not in Web Mercator: bmng_geographic, nepal_local$/);
+  await settled(page);
+  const png = decode(await page.screenshot({ path: `${outDir}/webtiles-wmts.png` }));
+  const at = await projectLonLat(page, Object.fromEntries(POINTS.map((p) => [p.name, [p.lon, p.lat]])));
+  // The status line (its message names the layers) covers the south of the view.
+  const statusTop = await page.evaluate(() => document.getElementById('status').getBoundingClientRect().top);
+  const seen = POINTS.filter((p) => at[p.name][1] < statusTop);
+  assert.ok(seen.length >= 3, `${seen.length} points above the status line`);
+  for (const p of seen) {
+    assert.ok(coloursMatch(colourAt(png, at[p.name]), p.z7.rgba.slice(0, 3), 16), `WMTS: ${p.name} at ${at[p.name]}: ${colourAt(png, at[p.name])}`);
+  }
+  // The address keeps each layer as a template: a reload needs no capabilities document.
+  assert.ok(layers.every((l) => /\{z\}|\{TileMatrix\}|TILEMATRIX=\{z\}/i.test(l.url) || l.url.includes('{')), layers.map((l) => l.url).join(' '));
+  assert.ok(server.log.some((e) => /GetCapabilities/i.test(e.path)), 'the capabilities were asked for');
+  assert.deepEqual(problems, []);
   await page.close();
 });

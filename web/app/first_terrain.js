@@ -14,7 +14,7 @@ const DEFAULT_TERRAIN = [
 /**
  * @param {{ urlState: object, intake: object, stage: object, rig: object, measure: object, det: object|null,
  *   state: object, statusBox: HTMLElement, openingStatus: string, showStatus: Function, showContourNote: () => void,
- *   syncPanel: () => void, addTiles: (spec: string) => void }} parts addTiles: a web map tile layer (?tiles=)
+ *   syncPanel: () => void, addTiles: (text: string) => Promise<object[]> }} parts addTiles: web map tile layers (?tiles=: a template, or a WMTS service)
  * @throws {Error} when the default terrain does not load, or a flight's terrain is not the one shown
  */
 export async function openFirstTerrain({ urlState, intake, stage, rig, measure, det, state, statusBox, openingStatus,
@@ -33,7 +33,7 @@ export async function openFirstTerrain({ urlState, intake, stage, rig, measure, 
   if (statusBox.textContent === '') showContourNote();
   for (const { kind, url } of det ? [] : urlState.layers) {
     if (kind === 'image') await intake.openImageUrl(url);
-    else addTiles(url);
+    else await addTiles(url);
   }
   if (urlState.camera && !det) {
     applyCameraState(rig, urlState.camera);

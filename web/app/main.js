@@ -99,7 +99,7 @@ async function main() {
   });
   const webTiles = createWebTileStage({ gl, layers, images, showStatus, requestRender });
   layers.onChange((shown, part) => { if (part === 'terrain') webTiles.terrainChanged(); });
-  const layerPanel = createLayerPanel(panel.folder(IMAGE_FOLDER), images, { addTiles: (spec) => webTiles.add(spec) });
+  const layerPanel = createLayerPanel(panel.folder(IMAGE_FOLDER), images, { addTiles: (text) => webTiles.addFrom(text) });
   syncView();
   document.getElementById('help-close').onclick = toggleHelp;
   // Drop, file picker, ?src=, ?image=, progress, RAW size dialog and error display (file_intake.js).
@@ -130,7 +130,7 @@ async function main() {
     onOrbit: () => { syncPanel(); requestRender(); }, measuring: () => measure.active });
   recoverLostContext(canvas, { pipeline, renderer, stage, images, layers, state, showStatus, requestRender });
   await openFirstTerrain({ urlState, intake, stage, rig, measure, det, state, statusBox, openingStatus: OPENING_STATUS,
-    showStatus, showContourNote, syncPanel, addTiles: (spec) => webTiles.add(spec) });
+    showStatus, showContourNote, syncPanel, addTiles: (text) => webTiles.addFrom(text) });
   requestRender();
   state.status = 'ready';
 }

@@ -4,10 +4,13 @@
 // through its CRS (web/geo/) and a control grid the drape shader interpolates, fetches the tiles
 // the view needs, and follows a new terrain: a tile layer belongs to the world, not to one file.
 import { WebTileLayer } from '../webtiles/web_tile_layer.js';
-import { TileSpecError, layerHost } from '../webtiles/tile_template.js';
+import { TileSpecError, layerHost, formatTileSpec } from '../webtiles/tile_template.js';
+import { readWmtsCapabilities } from '../webtiles/wmts_capabilities.js';
 import { lonLatToWorld } from '../webtiles/web_mercator.js';
 import { toLonLat, makeWarpGrid, sampleToCrs } from '../geo/index.js';
 
+// Layers of one WMTS service added at once (the first shown, the others hidden until asked for).
+const MAX_WMTS_LAYERS = 8;
 // The control grid's largest error, in tiles of the table's zoom: a quarter of a texel of a 512² tile.
 const WARP_TOLERANCE_TILES = 0.25 / 512;
 
@@ -63,7 +66,7 @@ export function createWebTileStage({ gl, layers, images, showStatus, requestRend
      * regression flight fails with it).
      * @returns {object|null} the layer, or null
      */
-    add(spec, { opacity = 1, visible = true, throwRefusal = false } = {}) {
+    add(spec, { opacity = 1, visible = true, throwRefusal = false, name = null } = {}) {
       const refuse = (message) => {
         showStatus(message, true);
         if (throwRefusal) throw new Error(message);
@@ -80,9 +83,9 @@ export function createWebTileStage({ gl, layers, images, showStatus, requestRend
         return refuse(error.message);
       }
       const layer = {
-        kind: 'tiles', name: layerHost(tiles.spec), url: spec, attribution: tiles.attribution, opacity, tiles,
+        kind: 'tiles', name: name ?? layerHost(tiles.spec), url: spec, attribution: tiles.attribution, opacity, tiles,
         drape: { kind: 'tiles', warp: warpOf(tiles, placed), opacity, textures: tiles.textures },
-        description: describe(layerHost(tiles.spec), tiles),
+        description: describe(name ?? layerHost(tiles.spec), tiles),
         update: (camera, width, height) => {
           viewport.height = height;
           tiles.update(camera, viewport);
@@ -93,6 +96,40 @@ export function createWebTileStage({ gl, layers, images, showStatus, requestRend
       images.add(layer);
       if (!visible) images.setVisible(layer.id, false);
       return layer;
+    },
+
+    /**
+     * Adds what a person gives in the panel's field or ?tiles=: a tile template (add), or the
+     * address of a WMTS service or its capabilities document (no placeholder in it), whose
+     * layers usable in Web Mercator are added, the first shown and the others hidden.
+     * @returns {Promise<object[]>} the layers added
+     */
+    async addFrom(text, look = {}) {
+      const address = String(text).split('|')[0];
+      if (/[{}]/.test(address) || !/^https?:\/\//i.test(address)) {
+        const layer = stage.add(text, look);
+        return layer ? [layer] : [];
+      }
+      let service;
+      try {
+        service = await readWmtsCapabilities(address);
+      } catch (error) {
+        if (!(error instanceof TileSpecError)) throw error;
+        showStatus(`${address}: not a tile template (it has no {z}, {x} and {y}), and as a WMTS service: ${error.message}`, true);
+        return [];
+      }
+      const added = [];
+      for (const offered of service.layers.slice(0, MAX_WMTS_LAYERS)) {
+        const layer = stage.add(formatTileSpec(offered.spec), { ...look, name: offered.title, visible: added.length === 0 && look.visible !== false });
+        if (layer) added.push(layer);
+      }
+      const more = service.layers.length - added.length;
+      const skipped = service.skipped.length ? `; not in Web Mercator: ${service.skipped.map((s) => s.identifier).join(', ')}` : '';
+      if (added.length > 0) {
+        showStatus(`${service.title || address}: ${added.length} layer${added.length > 1 ? 's' : ''} added (${added.map((l) => l.name).join(', ')})` +
+          `${added.length > 1 ? ', the first shown' : ''}${more > 0 ? `; ${more} more not added` : ''}${skipped}`);
+      }
+      return added;
     },
 
     /** A new terrain on screen: every tile layer follows it (or goes, with a message, when it cannot take tiles). */

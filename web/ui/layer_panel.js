@@ -6,12 +6,12 @@
 /**
  * @param {import('lil-gui').GUI} folder the panel's image folder
  * @param {{ setVisible(id, visible): boolean, setOpacity(id, opacity): void, move(id, step): void, remove(id): void }} stage
- * @param {{ addTiles?: (spec: string) => void }} [hooks] addTiles: a web map tile layer from the field
+ * @param {{ addTiles?: (text: string) => void }} [hooks] addTiles: web map tile layers from the field (a template, or a WMTS service's address)
  */
 export function createLayerPanel(folder, stage, { addTiles } = {}) {
   if (addTiles) {
     const field = { tiles: '' };
-    const controller = folder.add(field, 'tiles').name('add tiles (URL template)');
+    const controller = folder.add(field, 'tiles').name('add tiles (template or WMTS)');
     controller.onFinishChange((text) => {
       if (text.trim() === '') return;
       addTiles(text.trim());
