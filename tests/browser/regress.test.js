@@ -16,6 +16,7 @@ import { fileURLToPath } from 'node:url';
 import { decode, encode } from 'fast-png';
 import { readPng, writePng } from '../../lib/regress_compare.js';
 import { startBrowser } from '../../lib/regress_browser.js';
+import { startTileServer } from '../../lib/tile_server.js';
 import { BLUE_MARBLE_POINTS, groundPoint, screenPoint, colourAt, coloursMatch } from '../../lib/draped_points.js';
 import { parseFlight, FlightCamera } from '../../web/app/deterministic/flight.js';
 import { ScriptedCamera } from '../../web/app/deterministic/mode.js';
@@ -296,7 +297,7 @@ test('a folder flown in the browser: a bad flight and one without a reference fa
   }
 });
 
-test('a flight that names an image, or its image layers, drapes them before its first frame: their colours at projected ground points, a hidden one unseen; a refused image fails the flight', async () => {
+test('a flight that names an image, or its image layers (files or web map tiles), drapes them before its first frame: their colours at projected ground points, a hidden one unseen, tiles waited for; a refused image fails the flight', async () => {
   const dir = mkdtempSync(join(tmpdir(), 'hexlod-image-flight-'));
   try {
     // Straight down from 3200 km over the middle of the default terrain, north up, unlit so
@@ -344,6 +345,28 @@ test('a flight that names an image, or its image layers, drapes them before its 
       const at = screenPoint(camera.viewProjection, groundPoint(lon, lat, spacingX, spacingY), 400, 400);
       const got = colourAt({ width: layeredFrame.width, data: layeredFrame.rgb, channels: 3 }, at);
       assert.ok(coloursMatch(got, expected, 24), `layers: ${name} at ${at}: ${got}, the image has ${expected}`);
+    }
+
+    // A layer of web map tiles from a server with latency: each frame waits for its tiles, so
+    // a second run matches the references made by the first.
+    const server = await startTileServer(join(root, 'tests/fixtures/webtiles/bmng'), { latencyMs: 30 });
+    try {
+      writeFileSync(join(dir, 'tiles.flight.json'), JSON.stringify({ ...flight, image: undefined,
+        layers: [{ tiles: `${server.url}/{z}/{x}/{y}.png|zoom=3-7` }] }));
+      const made = await hexlod(['regress', join(dir, 'tiles.flight.json'), '--update', '--refs', refs, '--out', out]);
+      assert.equal(made.code, 0, `${made.stdout}\n${made.stderr}`);
+      const tiled = readPng(readFileSync(join(refs, 'tiles/frame-0000.png')));
+      const points = JSON.parse(readFileSync(join(root, 'tests/fixtures/webtiles/bmng_points.json'), 'utf8')).points.filter((p) => p.name !== 'Khumbu snow');
+      for (const p of points) {
+        const at = screenPoint(camera.viewProjection, groundPoint(p.lon, p.lat, spacingX, spacingY), 400, 400);
+        const got = colourAt({ width: tiled.width, data: tiled.rgb, channels: 3 }, at);
+        assert.ok(coloursMatch(got, p.z7.rgba.slice(0, 3), 16), `tiles: ${p.name} at ${at}: ${got}, GDAL's tiles have ${p.z7.rgba}`);
+      }
+      assert.ok(server.tilesRequested().length > 0);
+      const again = await hexlod(['regress', join(dir, 'tiles.flight.json'), '--refs', refs, '--out', out]);
+      assert.equal(again.code, 0, `the second run matches the first: ${again.stdout}\n${again.stderr}`);
+    } finally {
+      await server.close();
     }
 
     // The Haiti orthophoto is in UTM: the flight fails with the image's own message.

@@ -7,6 +7,7 @@ import { FRAME } from '../core/core.js';
 
 const FRAME_LOG = 4096; // frames kept in state.frameLog while recording
 const SETTLE_FRAMES = 3; // frames after tiles went in before a streamed view can be at rest
+const TILE_WAIT_MS = 20; // a flight's frame looks again this often for the web map tiles it waits for
 const HEIGHTS_REFRESH_MS = 2000; // while tiles keep coming, what reads heights is told this often at most
 // The FrameStats figures copied into state.lod and state.mesh (plain objects a test can read).
 const LOD_FIGURES = ['frame', 'pendingMerges', 'converged', 'splits', 'merges', 'updateMs', 'tau'];
@@ -47,6 +48,7 @@ export class FramePipeline {
     this.lodFigures = { frame: 0, pendingMerges: 0, converged: false, splits: 0, merges: 0, updateMs: 0, tau: 0 };
     this.meshFigures = { triangles: 0, cells: 0, vertices: 0, maxLevel: 0, bytes: 0 };
     this.render = this.render.bind(this);
+    this.requestLater = () => this.request(); // the frame again a little later: a flight's frame waiting for its tiles
   }
 
   /** While the graphics context is lost, frames draw nothing (web/app/context_loss.js). */
@@ -82,11 +84,21 @@ export class FramePipeline {
     camera.update(width / height);
     const timing = this.timingFigures;
     timing.updateMs = timing.streamMs = timing.uploadMs = 0;
+    // Web map tile layers choose the tiles this view needs (cheap while it stays the same). A
+    // flight's frame waits until they are all there: its pixels must not depend on the network.
+    const images = this.layers.images;
+    let waiting = false;
+    for (let k = 0; k < images.length; k++) {
+      if (!images[k].visible || !images[k].update) continue;
+      images[k].update(camera, width, height);
+      if (det && !images[k].settled) waiting = true;
+    }
+    if (waiting) {
+      setTimeout(this.requestLater, TILE_WAIT_MS);
+      return;
+    }
     const shown = this.layers.ground;
     if (shown) this.updateTerrain(shown, camera, width, height, now);
-    // Web map tile layers choose the tiles this view needs (cheap while it stays the same).
-    const images = this.layers.images;
-    for (let k = 0; k < images.length; k++) if (images[k].visible) images[k].update?.(camera, width, height);
     const drawStart = performance.now();
     this.renderer.draw(camera, width, height, this.view, this.layers);
     if (this.settings.timing) this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.UNSIGNED_BYTE, this.timingPixel); // waits for the draw

@@ -97,7 +97,7 @@ async function main() {
     actions: { 'screenshot 1× (P)': () => saveScreenshot(1), 'screenshot 2×': () => saveScreenshot(2),
       'reset view (R)': resetView, 'measure (M)': () => measure.toggle(), 'help (H)': toggleHelp },
   });
-  const webTiles = createWebTileStage({ gl, layers, images, showStatus, requestRender });
+  const webTiles = createWebTileStage({ gl, layers, images, showStatus, requestRender, deterministic: det !== null });
   layers.onChange((shown, part) => { if (part === 'terrain') webTiles.terrainChanged(); });
   const layerPanel = createLayerPanel(panel.folder(IMAGE_FOLDER), images, { addTiles: (text) => webTiles.addFrom(text) });
   syncView();

@@ -17,9 +17,10 @@ const WARP_TOLERANCE_TILES = 0.25 / 512;
 /**
  * @param {{ gl: WebGL2RenderingContext, layers: import('./layers.js').Layers, images: object,
  *   showStatus: (message: string, isError?: boolean) => void, requestRender: () => void }} page
- *   images: the image stage, which adds the layer to the list and keeps its order and look
+ *   images: the image stage, which adds the layer to the list and keeps its order and look;
+ *   deterministic: a flight's page, whose layers choose tiles for every view (no time between choices)
  */
-export function createWebTileStage({ gl, layers, images, showStatus, requestRender }) {
+export function createWebTileStage({ gl, layers, images, showStatus, requestRender, deterministic = false }) {
   const viewport = { height: 0 };
 
   /**
@@ -77,6 +78,7 @@ export function createWebTileStage({ gl, layers, images, showStatus, requestRend
       let tiles;
       try {
         tiles = new WebTileLayer(gl, spec, { toMercator: placed.toMercator, terrain: placed.world, onChange: requestRender,
+          ...(deterministic && { selectEveryMs: 0 }),
           onMessage: (message) => showStatus(`${layerHost(tiles?.spec ?? { template: spec })}: ${message}`, true) });
       } catch (error) {
         if (!(error instanceof TileSpecError)) throw error;
@@ -90,6 +92,7 @@ export function createWebTileStage({ gl, layers, images, showStatus, requestRend
           viewport.height = height;
           tiles.update(camera, viewport);
         },
+        get settled() { return tiles.settled; },
         dispose: () => tiles.dispose(),
         restore: () => tiles.forgetGl(),
       };

@@ -197,6 +197,20 @@ export class WebTileLayer {
   }
 
   /**
+   * Whether the tiles of the last selection are all there (on the GPU, refused by it, or
+   * failed) and nothing is in flight: a deterministic flight draws a frame only then, so its
+   * pixels do not depend on how fast the server answered.
+   */
+  get settled() {
+    if (this.dirty || this.requests.pending > 0) return false;
+    for (let i = 0; i < this.wanted.length; i++) {
+      const key = this.wanted[i].key;
+      if (!this.textures.has(key) && !this.refused.has(key) && !this.requests.isFailed(key)) return false;
+    }
+    return true;
+  }
+
+  /**
    * What the layer holds and has fetched: tiles and bytes on the GPU, tiles and bytes fetched,
    * evictions, requests in flight, tiles wanted and failed. The same object each call, brought
    * up to date (a HUD may read it every frame).
