@@ -28,7 +28,7 @@ function fakeGpu(maxTextureSize = 4096) {
 
 // A 10 m field in UTM 18N over the Haiti image's west half, and the Himalaya (EPSG:4326).
 const haitiField = { width: 150, height: 200, spacingX: 10, spacingY: 10, georef: makeGeoref(crsOfEpsg(32618), 792995, 2050377, 10, -10, 'GeoTIFF') };
-const himalaya = { width: 2048, height: 2048, spacingX: 806.9, spacingY: 926, georef: makeGeoref(crsOfEpsg(4326), 72.9375, 37.9125, 1 / 120, -1 / 120, 'sidecar') };
+const himalaya = { width: 2048, height: 2048, spacingX: 806.9, spacingY: 926, georef: makeGeoref(crsOfEpsg(4326, true), 72.9375, 37.9125, 1 / 120, -1 / 120, 'sidecar') };
 
 test('a GeoTIFF image on a field in its CRS: bands to the GPU, then its description', async () => {
   const gpu = fakeGpu();

@@ -26,6 +26,8 @@ import { installMeasuring } from './measuring.js';
 import { createSettingChanges } from './setting_changes.js';
 import { openFirstTerrain } from './first_terrain.js';
 import { Layers } from './layers.js';
+import { setCrsSource } from '../geo/index.js';
+import { fetchCrsDefinition } from './crs_source.js';
 
 const REMOVE_IMAGE = 'remove image';
 const params = new URLSearchParams(location.search);
@@ -52,6 +54,7 @@ async function main() {
   const gl = canvas.getContext('webgl2', { antialias: true });
   if (!gl) throw new Error('this browser has no WebGL2');
   const core = await createCore();
+  setCrsSource(fetchCrsDefinition); // EPSG definitions, fetched when a file names a code
   const urlState = parseUrlState(location.search);
   const settings = Object.assign(defaultSettings(), urlState.settings);
   if (det) Object.assign(settings, (await det.load(), det.settings)); // the flight's settings win
