@@ -8,7 +8,9 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { readFileSync } from 'node:fs';
+import { copyFileSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { loadHeightfield } from '../../web/loaders/index.js';
 import { geoCoordinates, sampleToCrs } from '../../web/geo/index.js';
@@ -116,4 +118,23 @@ test('hexlod info and profile --crs: the code, the name, and GDAL\'s latitudes a
   const deg = (v, ns) => `${Math.abs(v).toFixed(4)}° ${v < 0 ? ns[1] : ns[0]}`;
   assert.match(r.stdout, new RegExp(`^from +E 1 030 750 m N 1 579 050 m \\(EPSG:5070\\) · ${deg(first.lat, 'NS')} ${deg(first.lon, 'EW')}$`, 'm'));
   assert.match(r.stdout, new RegExp(`^to +E 1 051 350 m N 1 559 150 m \\(EPSG:5070\\) · ${deg(last.lat, 'NS')} ${deg(last.lon, 'EW')}$`, 'm'));
+});
+
+test('hexlod mesh --image reads the .prj beside the image: its CRS is no longer assumed', () => {
+  const dir = mkdtempSync(join(tmpdir(), 'hexlod-prj-'));
+  const imagery = (name) => fileURLToPath(new URL(`../fixtures/imagery/${name}`, import.meta.url));
+  for (const name of ['bmng_himalaya_4arcmin.jpg', 'bmng_himalaya_4arcmin.jgw']) copyFileSync(imagery(name), join(dir, name));
+  const terrain = fileURLToPath(new URL('../../public/terrain/globe_himalaya_2048.png', import.meta.url));
+  const mesh = () => run('mesh', terrain, '--max-error', '3000', '--obj', join(dir, 'm.obj'), '--json', join(dir, 'm.json'),
+    '--image', join(dir, 'bmng_himalaya_4arcmin.jpg'));
+  const assumed = mesh();
+  assert.equal(assumed.status, 0, assumed.stderr);
+  assert.match(assumed.stdout, /\(the image names no CRS: taken to be in EPSG:4326\)/);
+  writeFileSync(join(dir, 'bmng_himalaya_4arcmin.prj'), 'GEOGCS["GCS_WGS_1984",DATUM["D_WGS_1984",SPHEROID["WGS_1984",6378137.0,298.257223563]],' +
+    'PRIMEM["Greenwich",0.0],UNIT["Degree",0.0174532925199433],AUTHORITY["EPSG",4326]]');
+  const named = mesh();
+  assert.equal(named.status, 0, named.stderr);
+  assert.doesNotMatch(named.stdout, /names no CRS/);
+  const report = JSON.parse(readFileSync(join(dir, 'm.json'), 'utf8'));
+  assert.deepEqual([report.image.prj, report.image.crs, report.image.placement], ['bmng_himalaya_4arcmin.prj', 'EPSG:4326', 'georeferenced']);
 });

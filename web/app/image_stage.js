@@ -7,6 +7,8 @@ import { openImage } from '../imagery/open_image.js';
 import { ImageError } from '../imagery/image_error.js';
 import { describeImage } from '../imagery/describe_image.js';
 
+const NO_SIDECARS = { worldFile: null, prj: null, auxXml: null };
+
 /**
  * @param {{ renderer: object, layers: import('./layers.js').Layers, showStatus: (message: string, isError?: boolean) => void,
  *   onChange: (image: object|null) => void, requestRender: () => void }} page
@@ -16,10 +18,10 @@ export function createImageStage({ renderer, layers, showStatus, onChange, reque
   const shown = () => layers.images.at(-1)?.image ?? null;
 
   /** Opens the image onto the terrain on screen; throws ImageError. */
-  async function open(image, worldFile) {
+  async function open(image, sidecars) {
     const { terrain, field } = layers.ground;
     const ground = { width: terrain.width, height: terrain.height, spacingX: terrain.spacingX, spacingY: terrain.spacingY, georef: field.georef ?? null };
-    const opened = await openImage(image, worldFile, ground, renderer.imageTextures);
+    const opened = await openImage(image, sidecars, ground, renderer.imageTextures);
     renderer.setImagePlacement(opened.placement);
     return opened;
   }
@@ -35,17 +37,18 @@ export function createImageStage({ renderer, layers, showStatus, onChange, reque
     get current() { return shown(); },
 
     /**
-     * Drapes an image ({ name, blob }) with its world file (or null) on the terrain on screen.
+     * Drapes an image ({ name, blob }) with its sidecars ({ worldFile, prj, auxXml }, each
+     * { name, blob } or null) on the terrain on screen.
      * @param {{ url?: string|null, throwRefusal?: boolean }} [options] url: where it came from,
      *   when a link can name it; throwRefusal: a refusal is also thrown (a regression flight
      *   fails with it rather than fly without its image)
      * @returns {Promise<object|null>} the image shown, or null when it was refused (the status line says why)
      */
-    async drape(image, worldFile = null, { url = null, throwRefusal = false } = {}) {
+    async drape(image, sidecars = NO_SIDECARS, { url = null, throwRefusal = false } = {}) {
       if (!layers.ground) return null;
       try {
-        const opened = await open(image, worldFile);
-        layers.images = [{ image: opened, files: { image, worldFile, url }, description: describeImage(opened) }];
+        const opened = await open(image, sidecars);
+        layers.images = [{ image: opened, files: { image, sidecars, url }, description: describeImage(opened) }];
         showStatus(opened.note ? `${image.name}: ${opened.note}` : '');
         changed();
         return opened;
@@ -71,9 +74,9 @@ export function createImageStage({ renderer, layers, showStatus, onChange, reque
     async restore() {
       const layer = layers.images.at(-1);
       if (!layer || !layers.ground) return;
-      const { image, worldFile } = layer.files;
+      const { image, sidecars } = layer.files;
       try {
-        layer.image = await open(image, worldFile);
+        layer.image = await open(image, sidecars);
         layer.description = describeImage(layer.image);
       } catch (error) {
         if (!(error instanceof ImageError)) throw error;

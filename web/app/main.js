@@ -100,13 +100,13 @@ async function main() {
   // A new terrain takes the image away: it belonged to the old ground.
   const intake = createFileIntake({ core, state, settings, layers, defaultUrlTimeoutS: SETTINGS.urlTimeout.default,
     show: (loaded, from) => { images.remove(); measure.clear(); stage.show(loaded, from); },
-    showStatus, setCellSize: (metres) => change('cellSize', metres), drape: (image, world, url) => images.drape(image, world, { url }) });
+    showStatus, setCellSize: (metres) => change('cellSize', metres), drape: (image, sidecars, options) => images.drape(image, sidecars, options) });
   if (window.hexlod === state) {
     installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting: change, screenshot, urlWriter,
       terrain: () => stage.current?.terrain, setLayout: (layout) => change('layout', layout), openUrl: (url) => intake.openUrl(url) });
   }
   // The flight drives the camera, and drapes its image, if it names one, before its first frame.
-  if (det) det.install(state, canvas, gl, requestRender, (image, world) => images.drape(image, world, { throwRefusal: true }));
+  if (det) det.install(state, canvas, gl, requestRender, (image, sidecars) => images.drape(image, sidecars, { throwRefusal: true }));
   else rig.attach(canvas);
   installKeys({ settings, setSetting: change, setCamera: (mode) => change('camera', mode), toggleHelp,
     closeHelp: () => { helpBox.hidden = true; }, toggleHud: () => hud.setCollapsed(!hud.collapsed),

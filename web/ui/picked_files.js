@@ -16,7 +16,7 @@ const MB = 2 ** 20;
 /**
  * @param {{ loads: import('./load_sequence.js').LoadSequence, indicator: object, settings: object,
  *   layers: import('../app/layers.js').Layers, opening: ReturnType<import('./terrain_opening.js').createTerrainOpening>,
- *   drape: (image: {name: string, blob: Blob}, worldFile: object|null) => Promise<object|null>,
+ *   drape: (image: {name: string, blob: Blob}, sidecars: { worldFile, prj, auxXml }) => Promise<object|null>,
  *   showStatus: (message: string) => void, encoding: () => string }} page
  * @returns {(list: FileList|File[]) => Promise<string>} opens them; resolves to 'shown', 'failed' or 'cancelled'
  */
@@ -73,7 +73,7 @@ export function pickedFilesOpener({ loads, indicator, settings, layers, opening,
         if (outcome !== 'shown') return outcome;
       }
       if (!image || signal.aborted) return 'shown';
-      return (await drape(image, world)) ? 'shown' : 'failed';
+      return (await drape(image, { worldFile: world, prj: null, auxXml: null })) ? 'shown' : 'failed';
     });
   };
 }

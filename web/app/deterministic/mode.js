@@ -187,7 +187,7 @@ export class DeterministicMode {
         if (world) break;
       }
     }
-    await this.drape(image, world);
+    await this.drape(image, { worldFile: world, prj: null, auxXml: null });
   }
 
   /** The page could not start (its message), e.g. the terrain did not load. */
