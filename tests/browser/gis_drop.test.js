@@ -5,13 +5,16 @@
 // the .prj's CRS, and the status line names each skipped file and why. Dropped as files and as
 // a folder (with a folder inside, read through the entries API), judged by the screenshot's
 // pixels: each quadrant of the image shows its colour at its ground points, and the ground
-// outside the image is as it was without it. A drop of nothing but sidecars keeps the terrain.
+// outside the image is as it was without it; the cursor's readout gives the point's latitude
+// and longitude. A drop of nothing but sidecars keeps the terrain.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { decode, encode } from 'fast-png';
 import { readFileSync } from 'node:fs';
 import { startViewer, openPage, dropFiles, terrainShown, converged, outDir, FULL_RESOLUTION } from '../../lib/page_harness.js';
 import { colourAt, coloursMatch, lookStraightDown, screenPoint } from '../../lib/draped_points.js';
+import { useNodeCrsDefinitions } from '../../lib/crs_definitions.js';
+import { crsOfEpsg, resolveCrs, toLonLat } from '../../web/geo/index.js';
 
 let viewer;
 // Half a device pixel per CSS pixel for the browser, but the page that judges ground points' colours is at full resolution.
@@ -116,6 +119,20 @@ test('a GIS drop: the DEM placed by its .aux.xml, the orthophoto by its world fi
   // Everything at once, as files.
   await dropFiles(page, [...extras(), ...orthophoto(), ...dem()]);
   await assertDraped(page, bare, 'files');
+
+  // The readout under the pointer: Conus Albers metres and their latitude and longitude, as
+  // proj4 gives them in Node from the same definition (4 decimals: within 1e-4 degrees).
+  const { at } = await view(page, 'cursor');
+  await page.mouse.move(at.ne[0] - 3, at.ne[1] - 2);
+  await page.mouse.move(at.ne[0], at.ne[1]);
+  await page.waitForFunction(() => window.hexlod.cursor?.place?.includes('EPSG:5070'), null, { timeout: 10000 });
+  const place = await page.evaluate(() => window.hexlod.cursor.place);
+  const m = /^E (1 0\d\d \d{3}) m N (1 5\d\d \d{3}) m \(EPSG:5070\) · (\d+\.\d{4})° N (\d+\.\d{4})° W$/.exec(place);
+  assert.ok(m, place);
+  useNodeCrsDefinitions();
+  const [lon, lat] = toLonLat(await resolveCrs(crsOfEpsg(5070)))(Number(m[1].replace(/ /g, '')), Number(m[2].replace(/ /g, '')));
+  assert.ok(Math.abs(lat - Number(m[3])) < 1e-4 && Math.abs(-lon - Number(m[4])) < 1e-4, `${place}: Node has ${lat}, ${lon}`);
+  assert.ok(Math.abs(Number(m[1].replace(/ /g, '')) - POINTS.ne[0]) < 500, `${place}: near the NE quadrant's centre`);
 
   // Another terrain, then the same files as a dropped folder: survey/ holds the DEM and GDAL's
   // files, survey/ortho/ the image's; the browser gives a folder's entries in batches.
