@@ -4,6 +4,7 @@
 import { defineConfig } from 'vite';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
+import { crsFilesPlugin } from './lib/crs_files_plugin.js';
 
 const projectDir = fileURLToPath(new URL('.', import.meta.url));
 
@@ -26,5 +27,7 @@ export default defineConfig({
   // The tile workers (web/tiles/tile_worker.js) import geotiff, whose decoders load by dynamic
   // import: a worker bundle of several chunks, which only the module format allows.
   worker: { format: 'es' },
+  // The EPSG definitions, one file per code (crs/CODE.json), served and built beside the page.
+  plugins: [crsFilesPlugin()],
   clearScreen: false,
 });

@@ -10,11 +10,14 @@ import { mesh, MESH_USAGE } from './mesh_command.js';
 import { bench, BENCH_USAGE } from './bench_command.js';
 import { regress, REGRESS_USAGE } from './regress.js';
 import { profile, PROFILE_USAGE, PROFILE_SHORT_USAGE } from './profile_command.js';
+import { useNodeCrsDefinitions } from './crs_definitions.js';
+import { geoCoordinates, formatCoordinates } from '../web/geo/coordinates.js';
 
 const INFO_USAGE = `usage: hexlod info <heightfield> [--json] [--width N --height N] [--encoding E]
   A height field: PNG (16/8-bit grayscale, Terrain-RGB, Terrarium), GeoTIFF (.tif), SRTM .hgt,
   ESRI .asc, PGM (P5), RAW/R16 (.r16, .raw), or .f32; a .json sidecar with the same name beside
-  it is read too (required for .f32).
+  it is read too (required for .f32), and so are its .prj and GDAL .aux.xml (its CRS). Prints
+  its CRS (EPSG code and name) and the latitude and longitude of its centre when it has one.
 ${FILE_USAGE}`;
 const USAGE = [INFO_USAGE, MESH_USAGE, BENCH_USAGE, REGRESS_USAGE, PROFILE_USAGE].join('\n\n');
 // The one line a usage mistake ends with, per command.
@@ -46,6 +49,8 @@ async function info(args) {
     minHeight: terrain.minHeight,
     maxHeight: terrain.maxHeight,
     missingSamples: missing,
+    crs: crsReport(field, terrain),
+    notes: field.notes ?? [],
     loadMs: Number(loadMs.toFixed(1)),
   };
   if (values.json) {
@@ -53,14 +58,29 @@ async function info(args) {
     return;
   }
   const spacingNote = field.spacingFromFile ? 'from the file' : 'assumed: the file gives none';
+  const { crs } = report;
   console.log([
     `file     ${report.file} (${report.format}, ${report.sampleType})`,
     `size     ${report.width} x ${report.height} samples`,
     `spacing  ${report.spacingX} x ${report.spacingY} m (${spacingNote})`,
     `heights  ${report.minHeight.toFixed(2)} .. ${report.maxHeight.toFixed(2)} m`,
     `missing  ${missing} samples filled`,
+    `crs      ${crs ? `${crs.label}${crs.name && crs.name !== crs.label ? ` ${crs.name}` : ''}${crs.definition ? '' : ' (no definition: no latitude and longitude)'}` : 'none (local metres)'}`,
+    ...(crs ? [`centre   ${crs.centreText}`] : []),
+    ...report.notes.map((note) => `note     ${note}`),
     `load     ${report.loadMs} ms`,
   ].join('\n'));
+}
+
+/** The field's CRS for info: code, name, whether it has a definition, and its centre's coordinates. */
+function crsReport(field, terrain) {
+  const georef = field.georef;
+  if (!georef) return null;
+  const { crs } = georef;
+  const at = geoCoordinates(georef, ((terrain.width - 1) / 2) * terrain.spacingX, ((terrain.height - 1) / 2) * terrain.spacingY,
+    terrain.spacingX, terrain.spacingY);
+  return { epsg: crs.epsg, label: crs.label, name: crs.name, geographic: crs.geographic, definition: crs.proj4 !== null,
+    centre: { x: at.easting ?? at.lon, y: at.northing ?? at.lat, lat: at.lat, lon: at.lon }, centreText: formatCoordinates(at) };
 }
 
 const commands = { info, mesh, bench, regress, profile };
@@ -80,6 +100,7 @@ async function main(argv) {
 
 /** Runs the command line on `argv` (the words after `hexlod`); sets process.exitCode. */
 export function runCli(argv) {
+  useNodeCrsDefinitions(); // EPSG codes resolve from the definitions packages on disk
   // A reader that stops early (hexlod bench --verbose | head) is not an error.
   process.stdout.on('error', (error) => {
     if (error.code === 'EPIPE') process.exit(process.exitCode ?? 0);

@@ -1,10 +1,11 @@
 // Pieces shared by the hexlod commands: argument parsing with one-line errors, reading a
 // height field and its sidecar, loading it into the WASM core, and the camera of
 // view-dependent refinement.
-import { readFileSync, existsSync, statSync } from 'node:fs';
+import { readFileSync, readdirSync, existsSync, statSync } from 'node:fs';
 import { basename, extname, join, dirname } from 'node:path';
 import { createNodeCore } from './node_core.js';
 import { loadTerrain } from '../web/loaders/terrain_source.js';
+import { crsSidecarNames } from '../web/geo/sidecar_names.js';
 
 /** A mistake in the command line (exit code 2); its message is one line. */
 export class UsageError extends Error {}
@@ -119,7 +120,10 @@ export function parseFileOptions(values) {
   return { width: size('width'), height: size('height'), encoding };
 }
 
-/** The file and, when one sits beside it, its .json sidecar, as loader inputs. */
+/**
+ * The file and, when they sit beside it, its .json sidecar, its .prj and its GDAL .aux.xml
+ * (x.prj, x.tif.aux.xml or x.aux.xml: web/geo/sidecar_names.js), as loader inputs.
+ */
 export function readInputs(path) {
   if (!existsSync(path)) throw new Error(`${path}: no such file`);
   if (!statSync(path).isFile()) throw new Error(`${path}: not a file`);
@@ -127,6 +131,12 @@ export function readInputs(path) {
   const sidecar = join(dirname(path), basename(path, extname(path)) + '.json');
   if (extname(path).toLowerCase() !== '.json' && existsSync(sidecar)) {
     files.push({ name: basename(sidecar), bytes: new Uint8Array(readFileSync(sidecar)) });
+  }
+  if (!/\.(json|prj|xml)$/i.test(path)) {
+    const beside = besideFile(path), { prj, auxXml } = crsSidecarNames(basename(path));
+    for (const found of [beside(prj), beside(auxXml)]) {
+      if (found !== null) files.push({ name: basename(found), bytes: new Uint8Array(readFileSync(found)) });
+    }
   }
   return files;
 }
@@ -157,6 +167,19 @@ export async function loadFiles(core, files, options) {
     if (error.needsSize) error.message += ' (--width and --height)';
     throw error;
   }
+}
+
+/**
+ * (names) -> the path of the first of them that lies beside `path`, else null. Names match in
+ * any case: a file written elsewhere may be X.JGW or X.PRJ.
+ */
+export function besideFile(path) {
+  const folder = dirname(path);
+  const present = new Map(readdirSync(folder).map((n) => [n.toLowerCase(), n]));
+  return (names) => {
+    const found = names.map((n) => present.get(n.toLowerCase())).find((n) => n !== undefined && statSync(join(folder, n)).isFile());
+    return found === undefined ? null : join(folder, found);
+  };
 }
 
 /** Metres east and south from the first sample to the last column and row. */

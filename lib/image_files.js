@@ -1,15 +1,18 @@
 // An image to drape and its world file, read whole for a command (hexlod mesh --image, a
 // regression flight's "image"), from disk or by http(s). Without a world file named, the first
 // of its conventional names beside the image (x.jgw, x.jpgw, x.wld: web/geo/world_file.js)
-// is taken, as the page pairs files dropped together.
-import { readFileSync, readdirSync, existsSync, statSync } from 'node:fs';
-import { basename, dirname, join } from 'node:path';
+// is taken, as the page pairs files dropped together; from disk, its .prj and GDAL .aux.xml
+// beside it too (x.prj, x.jpg.aux.xml: web/geo/sidecar_names.js), which give its CRS.
+import { readFileSync, existsSync, statSync } from 'node:fs';
+import { basename } from 'node:path';
 import { worldFileNames } from '../web/geo/world_file.js';
+import { crsSidecarNames } from '../web/geo/sidecar_names.js';
 import { isUrl, urlFileName, fetchBytes } from './dem_source.js';
+import { besideFile } from './cli_common.js';
 
 /**
  * @typedef {{ name: string, bytes: Uint8Array }} NamedBytes
- * @typedef {{ image: NamedBytes, worldFile: NamedBytes|null }} ImageFiles
+ * @typedef {{ image: NamedBytes, worldFile: NamedBytes|null, prj: NamedBytes|null, auxXml: NamedBytes|null }} ImageFiles
  */
 
 /**
@@ -26,15 +29,11 @@ export function readImageFiles(imagePath, worldFilePath = null) {
     return { name: basename(path), bytes: new Uint8Array(readFileSync(path)) };
   };
   const image = read(imagePath, 'image file');
-  let worldPath = worldFilePath;
-  if (worldPath === null) {
-    // The conventional names are lower case; a file written elsewhere may be X.JGW: match any case.
-    const folder = dirname(imagePath);
-    const present = new Map(readdirSync(folder).map((n) => [n.toLowerCase(), n]));
-    const found = worldFileNames(basename(imagePath)).map((n) => present.get(n)).find((n) => n !== undefined);
-    if (found !== undefined) worldPath = join(folder, found);
-  }
-  return { image, worldFile: worldPath === null ? null : read(worldPath, 'world file') };
+  const beside = besideFile(imagePath);
+  const worldPath = worldFilePath ?? beside(worldFileNames(basename(imagePath)));
+  const { prj, auxXml } = crsSidecarNames(basename(imagePath));
+  const optional = (path) => (path === null ? null : read(path, 'file'));
+  return { image, worldFile: worldPath === null ? null : read(worldPath, 'world file'), prj: optional(beside(prj)), auxXml: optional(beside(auxXml)) };
 }
 
 /**
@@ -49,7 +48,7 @@ export async function loadImageFiles(image, worldFile = null) {
     const bytes = await fetchBytes(url, { optional });
     return bytes && { name: urlFileName(url), bytes };
   };
-  const files = { image: await fetched(image), worldFile: null };
+  const files = { image: await fetched(image), worldFile: null, prj: null, auxXml: null };
   if (worldFile !== null) {
     files.worldFile = await fetched(worldFile);
   } else {

@@ -38,7 +38,9 @@ export const MESH_USAGE = `usage: hexlod mesh <heightfield>... (--max-error M | 
                         vertex gets texture coordinates from the image's place on the field
                         (as the page drapes it), and NAME.mtl beside NAME.obj names the image;
                         placed by its world file or GeoTIFF tags, in the terrain's CRS; an
-                        image without georeference is stretched over the field (needs --obj)
+                        image without georeference is stretched over the field (needs --obj);
+                        its .prj or GDAL .aux.xml beside it (IMAGE.prj, IMAGE.jpg.aux.xml) give
+                        its CRS when the image names none
   --world-file FILE     the image's world file (default: IMAGE.jgw, .jpgw, .wld ... beside it)
 ${FILE_USAGE}`;
 
@@ -276,6 +278,8 @@ export async function mesh(args) {
     image: image && {
       file: image.file,
       worldFile: image.worldFile,
+      prj: image.prj,
+      crs: image.location.georef?.crs.label ?? null,
       format: image.location.format,
       width: image.location.width,
       height: image.location.height,
@@ -329,11 +333,12 @@ export async function mesh(args) {
  * Refusals (another CRS, off the field, a broken image or world file) throw its ImageError.
  */
 async function placedImage(settings, terrain, field) {
-  const { image, worldFile } = readImageFiles(settings.image, settings.worldFile);
-  const location = await locateImageFile(image, worldFile, {
+  const { image, worldFile, prj, auxXml } = readImageFiles(settings.image, settings.worldFile);
+  const location = await locateImageFile(image, { worldFile, prj, auxXml }, {
     width: terrain.width, height: terrain.height, spacingX: terrain.spacingX, spacingY: terrain.spacingY, georef: field.georef ?? null });
   if (location.placement.how === 'stretched') console.error(`hexlod: warning: ${image.name}: ${location.placement.note}`);
-  return { file: image.name, worldFile: worldFile?.name ?? null, location,
+  for (const note of location.notes) console.error(`hexlod: warning: ${note}`);
+  return { file: image.name, worldFile: worldFile?.name ?? null, prj: prj?.name ?? null, location,
     mtl: materialPathOf(settings.obj), map: materialImagePath(settings.obj, settings.image) };
 }
 

@@ -1,5 +1,6 @@
 // The production build (dist/, ./build.sh site) served by a plain static file server under a
-// sub-path (/hexlod/), as a static host would: the default terrain opens and shows, a dropped
+// sub-path (/hexlod/), as a static host would: the default terrain opens and shows, its CRS
+// defined by the site's own EPSG files, a dropped
 // file and a ?src= file open framed, R resets the view; a satellite image drapes, dropped or by
 // ?image=; a COG by ?src= streams, its tiles decoded by the bundled workers; contours and a
 // measured path come from the address. Judged by pixels and geometry.
@@ -42,6 +43,12 @@ test('the built site under /hexlod/ opens the default terrain; a drop, R and ?sr
   assert.equal(state.status, 'ready', state.error);
   assert.equal(state.error, null);
   assert.deepEqual([state.terrain.name, state.terrain.width, state.terrain.height], ['globe_himalaya_2048.png', 2048, 2048]);
+  // The EPSG definitions are files of the site, one per code, fetched when a file names a code:
+  // the default terrain's EPSG:4326 came from crs/4326.json beside the page.
+  const crs = await page.evaluate(async () => ({ terrain: window.hexlod.layers.ground.field.georef.crs,
+    lv95: await (await fetch('crs/2056.json')).json() }));
+  assert.deepEqual([crs.terrain.name, crs.terrain.geographic, crs.terrain.proj4], ['WGS 84', true, '+proj=longlat +datum=WGS84 +no_defs']);
+  assert.deepEqual([crs.lv95.name, /\+towgs84=674\.374/.test(crs.lv95.proj4)], ['CH1903+ / LV95', true]);
   await page.waitForFunction(() => window.hexlod.triangles > 10000, null, { timeout: 120000 });
   await assertShown(page, 'default', 0.6);
 

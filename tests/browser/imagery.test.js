@@ -30,7 +30,7 @@ async function drapedView(query = '') {
   const draped = await page.evaluate(async (base) => {
     const get = async (name) => ({ name, blob: await (await fetch(base + name)).blob() });
     const d = window.hexlod.images.current
-      ?? await window.hexlod.images.drape(await get('bmng_himalaya_4arcmin.jpg'), await get('bmng_himalaya_4arcmin.jgw'));
+      ?? await window.hexlod.images.drape(await get('bmng_himalaya_4arcmin.jpg'), { worldFile: await get('bmng_himalaya_4arcmin.jgw'), prj: null, auxXml: null });
     return d && { width: d.width, height: d.height, coverage: d.placement.coverage };
   }, `${viewer.fixturesUrl}imagery/`);
   await lookStraightDown(page);

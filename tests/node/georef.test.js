@@ -5,7 +5,10 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { loadHeightfield, HeightfieldError } from '../../web/loaders/index.js';
-import { compareCrs, crsOfEpsg, crsToSample, parseEpsg, sampleToCrs, UNKNOWN_CRS } from '../../web/geo/georef.js';
+import { compareCrs, crsOfEpsg, crsToSample, parseEpsg, sampleToCrs, sameCrs, UNKNOWN_CRS } from '../../web/geo/georef.js';
+import { useNodeCrsDefinitions } from '../../lib/crs_definitions.js';
+
+useNodeCrsDefinitions(); // a loaded field's CRS gets its name and definition
 
 const ROOT = new URL('../../', import.meta.url);
 const read = (path) => new Uint8Array(readFileSync(new URL(path, ROOT)));
@@ -27,11 +30,13 @@ test('a GeoTIFF and an ESRI grid of the same DEM put its samples in the same pla
 
 test('GeoTIFF: projected and geographic CRSs from the GeoKeys, sample centres from the tie point', async () => {
   const canyon = (await load('tests/fixtures/formats/canyon_u16_tiled_deflate.tif')).georef;
-  assert.deepEqual(canyon.crs, { epsg: 3857, label: 'EPSG:3857', geographic: false });
+  assert.deepEqual({ ...canyon.crs, proj4: /\+proj=merc/.test(canyon.crs.proj4) },
+    { epsg: 3857, label: 'EPSG:3857', name: 'WGS 84 / Pseudo-Mercator', proj4: true, geographic: false });
   assert.equal(canyon.from, 'GeoTIFF');
   near(canyon.dx, 76.437, 1e-9, 'dx'); near(canyon.dy, -76.437, 1e-9, 'dy');
   const everest = (await load('tests/fixtures/formats/everest_i16_strips.tif')).georef;
   assert.equal(everest.crs.epsg, 4326);
+  assert.equal(everest.crs.geographic, true, 'from the definition, +proj=longlat');
   // Mount Everest (27.9881 N, 86.9250 E) lies inside this 200 x 200 crop of 30" cells.
   const [column, row] = crsToSample(everest, 86.925, 27.9881);
   assert.ok(column > 0 && column < 199 && row > 0 && row < 199, `Everest at sample ${column}, ${row}`);
@@ -91,4 +96,10 @@ test('CRSs compare as the same, different, or assumed when one is unknown', () =
   assert.equal(compareCrs(crsOfEpsg(4326), crsOfEpsg(4326)), 'same');
   assert.equal(compareCrs(crsOfEpsg(4326), crsOfEpsg(3857)), 'different');
   assert.equal(compareCrs(UNKNOWN_CRS, crsOfEpsg(3857)), 'assumed');
+  // Without a code, a CRS is its definition: one WKT is the same as itself, not as another or an unknown one.
+  const custom = (proj4) => ({ epsg: null, label: 'custom (x from the WKT)', name: 'x', proj4, geographic: false });
+  const a = custom('+proj=tmerc +lon_0=9 +ellps=bessel'), b = custom('+proj=tmerc +lon_0=10 +ellps=bessel');
+  assert.deepEqual([sameCrs(a, { ...a }), sameCrs(a, b), sameCrs(UNKNOWN_CRS, UNKNOWN_CRS), sameCrs(a, crsOfEpsg(31467))], [true, false, false, false]);
+  assert.deepEqual([compareCrs(a, { ...a }), compareCrs(a, b), compareCrs(a, UNKNOWN_CRS), compareCrs(a, crsOfEpsg(31467))],
+    ['same', 'different', 'assumed', 'different']);
 });

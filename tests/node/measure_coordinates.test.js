@@ -6,6 +6,10 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { loadHeightfield } from '../../web/loaders/index.js';
 import { geoCoordinates, formatCoordinates, crsToLocal, localLabel } from '../../web/geo/coordinates.js';
+import { crsOfEpsg, resolveCrs, UNKNOWN_CRS } from '../../web/geo/index.js';
+import { useNodeCrsDefinitions } from '../../lib/crs_definitions.js';
+
+useNodeCrsDefinitions(); // latitude and longitude need the CRSs' definitions
 
 const ROOT = new URL('../../', import.meta.url);
 const read = (path) => new Uint8Array(readFileSync(new URL(path, ROOT)));
@@ -65,16 +69,16 @@ test('a Web Mercator GeoTIFF\'s samples have GDAL\'s latitudes and longitudes', 
   assert.match(formatCoordinates(c), /^E -12 588 682 m N 4 330 272 m \(EPSG:3857\) · 36\.2152° N 113\.0861° W$/);
 });
 
-test('southern UTM, NAD83 and ETRS89 zones invert; an unknown CRS keeps its eastings only', () => {
-  const at = (epsg, geographic = false) => ({ crs: { epsg, label: epsg ? `EPSG:${epsg}` : 'unknown', geographic }, x0: 500000, y0: 0, dx: 1, dy: -1 });
+test('southern UTM, NAD83 and ETRS89 zones invert; an unknown CRS keeps its eastings only', async () => {
+  const at = async (epsg) => ({ crs: epsg ? await resolveCrs(crsOfEpsg(epsg)) : UNKNOWN_CRS, x0: 500000, y0: 0, dx: 1, dy: -1 });
   // The central meridian's point at the false easting: the equator (north) or 10 000 km south of the false northing.
-  const north = geoCoordinates(at(32633), 0, 0, 1, 1);
+  const north = geoCoordinates(await at(32633), 0, 0, 1, 1);
   near(north.lon, 15, DEG, 'zone 33 central meridian'), near(north.lat, 0, DEG, 'equator');
-  const south = geoCoordinates({ ...at(32733), y0: 10000000 }, 0, 0, 1, 1);
+  const south = geoCoordinates({ ...await at(32733), y0: 10000000 }, 0, 0, 1, 1);
   near(south.lon, 15, DEG, 'zone 33 south central meridian'), near(south.lat, 0, DEG, 'equator from the south');
-  near(geoCoordinates(at(26915), 0, 0, 1, 1).lon, -93, DEG, 'NAD83 zone 15');
-  near(geoCoordinates(at(25832), 0, 0, 1, 1).lon, 9, DEG, 'ETRS89 zone 32');
-  const unknown = geoCoordinates(at(null), 3, 4, 1, 1);
+  near(geoCoordinates(await at(26915), 0, 0, 1, 1).lon, -93, DEG, 'NAD83 zone 15');
+  near(geoCoordinates(await at(25832), 0, 0, 1, 1).lon, 9, DEG, 'ETRS89 zone 32');
+  const unknown = geoCoordinates(await at(null), 3, 4, 1, 1);
   assert.deepEqual(unknown, { easting: 500003, northing: -4, lat: null, lon: null, crsLabel: 'unknown', geographic: false });
   assert.equal(formatCoordinates(unknown), 'E 500 003 m N -4 m (unknown)');
   assert.equal(geoCoordinates(null, 1, 2, 1, 1), null);

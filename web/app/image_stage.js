@@ -9,6 +9,8 @@ import { ImageError } from '../imagery/image_error.js';
 import { describeImage } from '../imagery/describe_image.js';
 import { MAX_DRAPES } from './layers.js';
 
+const NO_SIDECARS = { worldFile: null, prj: null, auxXml: null };
+
 /**
  * @param {{ renderer: object, layers: import('./layers.js').Layers, showStatus: (message: string, isError?: boolean) => void,
  *   requestRender: () => void }} page
@@ -24,7 +26,7 @@ export function createImageStage({ renderer, layers, showStatus, requestRender }
     const { terrain, field } = layers.ground;
     const ground = { width: terrain.width, height: terrain.height, spacingX: terrain.spacingX, spacingY: terrain.spacingY, georef: field.georef ?? null };
     const textures = renderer.newImageTextures();
-    const opened = await openImage(image, sidecars.worldFile ?? null, ground, textures);
+    const opened = await openImage(image, sidecars, ground, textures);
     return { opened, textures };
   }
 
@@ -64,17 +66,16 @@ export function createImageStage({ renderer, layers, showStatus, requestRender }
     },
 
     /**
-     * Drapes an image file ({ name, blob }) with its world file (or null) over the layers of the
-     * terrain on screen.
+     * Drapes an image file ({ name, blob }) with its sidecars ({ worldFile, prj, auxXml }, each
+     * { name, blob } or null) over the layers of the terrain on screen.
      * @param {{ url?: string|null, throwRefusal?: boolean, opacity?: number, visible?: boolean }} [options]
      *   url: where it came from, when a link can name it; throwRefusal: a refusal is also thrown
      *   (a regression flight fails with it rather than fly without its image); opacity and
      *   visible: the layer's, from the start
      * @returns {Promise<object|null>} the image shown, or null when it was refused (the status line says why)
      */
-    async drape(image, worldFile = null, { url = null, throwRefusal = false, opacity = 1, visible = true } = {}) {
+    async drape(image, sidecars = NO_SIDECARS, { url = null, throwRefusal = false, opacity = 1, visible = true } = {}) {
       if (!layers.ground) return null;
-      const sidecars = { worldFile };
       try {
         const layer = fileLayer({ kind: 'image', url, opacity, files: { image, sidecars } }, await open(image, sidecars));
         stage.add(layer);

@@ -29,6 +29,8 @@ import { installMeasuring } from './measuring.js';
 import { createSettingChanges } from './setting_changes.js';
 import { openFirstTerrain } from './first_terrain.js';
 import { Layers } from './layers.js';
+import { setCrsSource } from '../geo/index.js';
+import { fetchCrsDefinition } from './crs_source.js';
 
 const params = new URLSearchParams(location.search);
 // ?flight=URL: the deterministic mode of regression tests (web/app/deterministic/mode.js, README).
@@ -54,6 +56,7 @@ async function main() {
   const gl = canvas.getContext('webgl2', { antialias: true });
   if (!gl) throw new Error('this browser has no WebGL2');
   const core = await createCore();
+  setCrsSource(fetchCrsDefinition); // EPSG definitions, fetched when a file names a code
   const urlState = parseUrlState(location.search);
   const settings = Object.assign(defaultSettings(), urlState.settings);
   if (det) Object.assign(settings, (await det.load(), det.settings)); // the flight's settings win
@@ -106,18 +109,18 @@ async function main() {
   // A new terrain takes the image away: it belonged to the old ground.
   const intake = createFileIntake({ core, state, settings, layers, defaultUrlTimeoutS: SETTINGS.urlTimeout.default,
     show: (loaded, from) => { images.removeFiles(); measure.clear(); stage.show(loaded, from); },
-    showStatus, setCellSize: (metres) => change('cellSize', metres), drape: (image, world, url) => images.drape(image, world, { url }) });
+    showStatus, setCellSize: (metres) => change('cellSize', metres), drape: (image, sidecars, options) => images.drape(image, sidecars, options) });
   if (window.hexlod === state) {
     installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting: change, screenshot, urlWriter,
       terrain: () => stage.current?.terrain, setLayout: (layout) => change('layout', layout), openUrl: (url) => intake.openUrl(url) });
   }
   // The flight drives the camera, and adds its image layers before its first frame.
-  const flightLayer = async (layer, image, world) => {
+  const flightLayer = async (layer, image, sidecars) => {
     const { kind, opacity, visible } = layer;
     if (kind === 'tiles') webTiles.add(layer.tiles, { opacity, visible, throwRefusal: true });
-    else await images.drape(image, world, { throwRefusal: true, opacity, visible });
+    else await images.drape(image, sidecars, { throwRefusal: true, opacity, visible });
   };
-  if (det) det.install(state, canvas, gl, requestRender, (layer, image, world) => flightLayer(layer, image, world));
+  if (det) det.install(state, canvas, gl, requestRender, flightLayer);
   else rig.attach(canvas);
   installKeys({ settings, setSetting: change, setCamera: (mode) => change('camera', mode), toggleHelp,
     closeHelp: () => { helpBox.hidden = true; }, toggleHud: () => hud.setCollapsed(!hud.collapsed),

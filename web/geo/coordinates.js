@@ -1,11 +1,9 @@
 // Real-world coordinates of a point of the field: the CRS coordinates its georeference gives
-// (web/geo/georef.js), and latitude and longitude too, directly for a geographic CRS and
-// through proj4 for the projected CRSs whose definition is a line we can write here: UTM on
-// WGS 84 (EPSG:326zz north, 327zz south), on NAD83 (269zz) and on ETRS89 (258zz), and Web
-// Mercator (3857). NAD83 and ETRS89 latitudes and longitudes are given in their own datum
-// (within about a metre of WGS 84); no datum shift is applied.
-import proj4 from 'proj4';
+// (web/geo/georef.js), and latitude and longitude too: a geographic CRS's own, and for a
+// projected CRS with a definition (crs_definitions.js: any EPSG code, or a .prj's WKT) latitude
+// and longitude on WGS 84 through proj4, with the definition's datum shift.
 import { sampleToCrs } from './georef.js';
+import { toLonLat } from './crs_transform.js';
 
 /** What the HUD says of a field without a georeference. */
 export const localLabel = 'local metres (no CRS)';
@@ -14,7 +12,7 @@ export const localLabel = 'local metres (no CRS)';
  * @typedef {object} GeoCoordinates
  * @property {number|null} easting CRS x in metres (projected CRSs), else null
  * @property {number|null} northing CRS y in metres (projected CRSs), else null
- * @property {number|null} lat degrees north (negative south), null when the CRS is not one we can invert
+ * @property {number|null} lat degrees north (negative south), null when the CRS has no definition
  * @property {number|null} lon degrees east (negative west)
  * @property {string} crsLabel 'EPSG:32645', 'unknown', ...
  * @property {boolean} geographic whether the CRS itself is latitude and longitude
@@ -33,7 +31,7 @@ export function geoCoordinates(georef, x, z, spacingX, spacingY) {
   const [cx, cy] = sampleToCrs(georef, x / spacingX, z / spacingY);
   const crsLabel = georef.crs.label;
   if (georef.crs.geographic) return { easting: null, northing: null, lat: cy, lon: cx, crsLabel, geographic: true };
-  const inverse = inverseOf(georef.crs.epsg);
+  const inverse = toLonLat(georef.crs);
   const [lon, lat] = inverse ? inverse(cx, cy) : [null, null];
   return { easting: cx, northing: cy, lat, lon, crsLabel, geographic: false };
 }
@@ -65,49 +63,4 @@ function grouped(metres) {
   const whole = Math.round(metres);
   const digits = String(Math.abs(whole)).replace(/\B(?=(\d{3})+(?!\d))/g, ' ');
   return whole < 0 ? `-${digits}` : digits;
-}
-
-// proj4 definitions by EPSG code, made on first use and kept.
-const inverses = new Map();
-
-/** (easting, northing) -> [lon, lat] for a CRS we can define, else null. */
-function inverseOf(epsg) {
-  if (!Number.isInteger(epsg)) return null;
-  if (!inverses.has(epsg)) {
-    const definition = definitionOf(epsg);
-    const converter = definition && proj4(definition, 'EPSG:4326');
-    inverses.set(epsg, converter ? (e, n) => converter.forward([e, n]) : null);
-  }
-  return inverses.get(epsg);
-}
-
-/** A proj4 definition for the CRSs above, else null. */
-export function definitionOf(epsg) {
-  const utm = (zone, rest) => `+proj=utm +zone=${zone} ${rest} +units=m +no_defs`;
-  if (epsg >= 32601 && epsg <= 32660) return utm(epsg - 32600, '+datum=WGS84');
-  if (epsg >= 32701 && epsg <= 32760) return utm(epsg - 32700, '+south +datum=WGS84');
-  if (epsg >= 26901 && epsg <= 26923) return utm(epsg - 26900, '+ellps=GRS80 +towgs84=0,0,0,0,0,0,0');
-  if (epsg >= 25828 && epsg <= 25838) return utm(epsg - 25800, '+ellps=GRS80 +towgs84=0,0,0,0,0,0,0');
-  if (epsg === 3857) return 'EPSG:3857';
-  return null;
-}
-
-/**
- * The map from one CRS's coordinates to another's, or null when either has no definition we
- * can write. Identity for one CRS.
- * @returns {((x: number, y: number) => [number, number])|null}
- */
-export function crsTransform(from, to) {
-  if (from.epsg !== null && from.epsg === to.epsg) return (x, y) => [x, y];
-  const a = from.proj4 ?? (from.epsg === 4326 ? 'EPSG:4326' : definitionOf(from.epsg));
-  const b = to.proj4 ?? (to.epsg === 4326 ? 'EPSG:4326' : definitionOf(to.epsg));
-  if (!a || !b) return null;
-  const converter = proj4(a, b);
-  return (x, y) => converter.forward([x, y]);
-}
-
-/** (x, y) in a CRS -> [lon, lat] in degrees, or null when the CRS has no definition we can write. */
-export function toLonLat(crs) {
-  if (crs.geographic) return (x, y) => [x, y];
-  return crsTransform(crs, { epsg: 4326, label: 'EPSG:4326', geographic: true });
 }

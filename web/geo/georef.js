@@ -10,8 +10,13 @@
 /**
  * @typedef {object} Crs
  * @property {number|null} epsg the EPSG code, or null when the file defines its own or says none
- * @property {string} label for people: "EPSG:32611", "EPSG:4326", "user-defined", "unknown"
- * @property {boolean} geographic coordinates are degrees of longitude and latitude
+ * @property {string} label for people: "EPSG:32611", "custom (NAME from the WKT)", "user-defined", "unknown"
+ * @property {string|null} name what the definitions or the file call it ("CH1903+ / LV95"), else null
+ * @property {string|null} proj4 a definition proj4 parses (a PROJ string or a WKT), or null when
+ *   none is known; an EPSG code's is filled in by resolveCrs (crs_definitions.js)
+ * @property {boolean} geographic coordinates are degrees of longitude and latitude: what the
+ *   definition says (+proj=longlat) once there is one, until then what the file said (a
+ *   GeoTIFF's model type, an SRTM tile)
  */
 
 /**
@@ -24,19 +29,17 @@
  * @property {string} from what placed it: 'GeoTIFF', 'tile name', 'ASCII header', 'sidecar', 'world file'
  */
 
-/** The CRS of an EPSG code (the geographic ones are the common datums' lat/lon codes). */
-export function crsOfEpsg(epsg) {
-  return { epsg, label: `EPSG:${epsg}`, geographic: isGeographicEpsg(epsg) };
+/**
+ * The CRS of an EPSG code, before its definition is looked up (resolveCrs).
+ * @param {number} epsg
+ * @param {boolean} [geographic] whether the file says its grid is in degrees (until the definition says)
+ */
+export function crsOfEpsg(epsg, geographic = false) {
+  return { epsg, label: `EPSG:${epsg}`, name: null, proj4: null, geographic };
 }
 
 /** A CRS nobody named: grids in it match only grids in the same file family's unknown CRS. */
-export const UNKNOWN_CRS = Object.freeze({ epsg: null, label: 'unknown', geographic: false });
-
-// Geographic 2D CRSs people's data uses: WGS 84, NAD83, NAD27, ETRS89, GDA94, GDA2020, JGD2000, WGS 72.
-const GEOGRAPHIC_EPSG = new Set([4326, 4269, 4267, 4258, 4283, 7844, 4612, 4322, 4979]);
-function isGeographicEpsg(epsg) {
-  return GEOGRAPHIC_EPSG.has(epsg);
-}
+export const UNKNOWN_CRS = Object.freeze({ epsg: null, label: 'unknown', name: null, proj4: null, geographic: false });
 
 /** "EPSG:4326 (anything)", "epsg:32611", "urn:ogc:def:crs:EPSG::3857" or 4326 -> its code, else null. */
 export function parseEpsg(value) {
@@ -71,11 +74,22 @@ export function crsToSample(georef, x, y) {
 }
 
 /**
- * How two CRSs relate: 'same' (one EPSG code), 'different' (two codes), or 'assumed' when one
- * is not known (a world file, an ASCII grid without its .prj): then, as GIS programs do, the
- * grid is taken to be in the other's CRS, and the page says so.
+ * Whether two CRSs are one: the same EPSG code, or, for CRSs without a code (a .prj's custom
+ * WKT), the same definition. A CRS that names nothing is the same as no other.
+ */
+export function sameCrs(a, b) {
+  if (a.epsg !== null || b.epsg !== null) return a.epsg === b.epsg;
+  return a.proj4 !== null && a.proj4 === b.proj4;
+}
+
+/**
+ * How two CRSs relate: 'same' (sameCrs), 'different' (both named, and not the same), or
+ * 'assumed' when one names nothing (a world file without its .prj, an ASCII grid without its
+ * .prj): then, as GIS programs do, the grid is taken to be in the other's CRS, and the page
+ * says so.
  */
 export function compareCrs(a, b) {
-  if (a.epsg === null || b.epsg === null) return 'assumed';
-  return a.epsg === b.epsg ? 'same' : 'different';
+  if (sameCrs(a, b)) return 'same';
+  const named = (crs) => crs.epsg !== null || crs.proj4 !== null;
+  return named(a) && named(b) ? 'different' : 'assumed';
 }

@@ -1,8 +1,16 @@
-// Geography and TIFF reading, the public face of web/geo/: coordinate reference systems and
-// georeferences, world files, real coordinates of samples, and the TIFF reader that height
-// fields, draped images and COG tiles share. Other folders import this module only;
-// the decoders behind the TIFF reader register themselves once (tiff_open.js).
+// Geography and TIFF reading, the public face of web/geo/: coordinate reference systems (their
+// EPSG definitions, WKT, transforms between them) and georeferences, world files and the
+// other sidecars, real coordinates of samples, and the TIFF reader that height fields, draped
+// images and COG tiles share. Other folders import this module only; the decoders behind the
+// TIFF reader register themselves once (tiff_open.js).
 export * from './georef.js';
+export * from './crs_definitions.js';
+export * from './crs_transform.js';
+export * from './crs_wkt.js';
+export * from './crs_error.js';
+export * from './aux_xml.js';
+export * from './crs_sidecars.js';
+export * from './sidecar_names.js';
 export * from './coordinates.js';
 export * from './world_file.js';
 export * from './ground_spacing.js';

@@ -1,8 +1,16 @@
 // The georeference of a GeoTIFF (the first image): its CRS from the GeoKeys, and the map from
 // sample centres to model coordinates from ModelTiepoint + ModelPixelScale, or from a
 // ModelTransformation without rotation. Shared by height fields and draped images.
+//
+// A CRS the GeoKeys call user-defined (32767) is rebuilt from the keys by libgeotiff, which we
+// do not have; what we read instead is what GDAL and ESRI leave in the citation keys: a WKT
+// ("ESRI PE String = PROJCS[...]"), or a name that says its EPSG code. Otherwise it stays
+// 'user-defined' under the citation's name, with no definition (GDAL then also writes the CRS
+// into the .aux.xml beside the file, which crs_sidecars.js reads).
 
-import { crsOfEpsg, makeGeoref, UNKNOWN_CRS } from './georef.js';
+import { crsOfEpsg, makeGeoref, parseEpsg, UNKNOWN_CRS } from './georef.js';
+import { crsFromWkt, looksLikeWkt } from './crs_wkt.js';
+import { CrsError } from './crs_error.js';
 
 const MODEL_PROJECTED = 1, MODEL_GEOGRAPHIC = 2; // GTModelTypeGeoKey
 const RASTER_PIXEL_IS_POINT = 2; // GTRasterTypeGeoKey: 1 (the default) is PixelIsArea
@@ -43,16 +51,38 @@ export function georefOfTiff(image) {
   } else {
     return null;
   }
-  return makeGeoref(crsOf(keys), x0, y0, dx, dy, 'GeoTIFF');
+  return makeGeoref(crsOfGeoKeys(keys), x0, y0, dx, dy, 'GeoTIFF');
 }
 
-/** The CRS the GeoKeys name. */
-function crsOf(keys) {
-  const code = keys.GTModelTypeGeoKey === MODEL_GEOGRAPHIC ? keys.GeographicTypeGeoKey
-    : keys.GTModelTypeGeoKey === MODEL_PROJECTED ? keys.ProjectedCSTypeGeoKey : undefined;
-  if (Number.isInteger(code) && code > 0 && code !== USER_DEFINED) {
-    return { ...crsOfEpsg(code), geographic: keys.GTModelTypeGeoKey === MODEL_GEOGRAPHIC };
+/** The CRS the GeoKeys name (not resolved yet: resolveCrs). */
+export function crsOfGeoKeys(keys) {
+  // The model type may itself be user-defined (32767, as GDAL writes ESRI's flavour): a
+  // projected CRS key then says what it is.
+  const geographic = keys.GTModelTypeGeoKey === MODEL_GEOGRAPHIC;
+  const code = geographic ? keys.GeographicTypeGeoKey
+    : keys.GTModelTypeGeoKey === MODEL_PROJECTED || keys.GTModelTypeGeoKey === USER_DEFINED ? keys.ProjectedCSTypeGeoKey : undefined;
+  if (Number.isInteger(code) && code > 0 && code !== USER_DEFINED) return crsOfEpsg(code, geographic);
+  if (code === USER_DEFINED) return userDefined(keys, geographic);
+  return { ...UNKNOWN_CRS, geographic };
+}
+
+/** A user-defined CRS from its citations: a WKT in one, an EPSG code in one, else its name alone. */
+function userDefined(keys, geographic) {
+  const citations = [keys.PCSCitationGeoKey, keys.GTCitationGeoKey, keys.GeogCitationGeoKey]
+    .filter((c) => typeof c === 'string').map((c) => c.replace(/\0+$/, '').trim()).filter((c) => c !== '');
+  for (const citation of citations) {
+    const wkt = citation.replace(/^ESRI PE String\s*=\s*/i, '');
+    if (!looksLikeWkt(wkt)) continue;
+    try {
+      return crsFromWkt(wkt, 'its GeoKeys citation');
+    } catch (error) {
+      if (!(error instanceof CrsError)) throw error; // a WKT proj4 cannot read: its name is still a name
+    }
   }
-  if (code === USER_DEFINED) return { epsg: null, label: 'user-defined', geographic: keys.GTModelTypeGeoKey === MODEL_GEOGRAPHIC };
-  return { ...UNKNOWN_CRS, geographic: keys.GTModelTypeGeoKey === MODEL_GEOGRAPHIC };
+  for (const citation of citations) {
+    const epsg = parseEpsg(citation);
+    if (epsg !== null) return crsOfEpsg(epsg, geographic);
+  }
+  const name = citations.find((c) => !looksLikeWkt(c.replace(/^ESRI PE String\s*=\s*/i, ''))) ?? null;
+  return { epsg: null, label: 'user-defined', name, proj4: null, geographic };
 }

@@ -8,6 +8,9 @@
 
 import { makeGeoref, UNKNOWN_CRS } from './georef.js';
 
+/** Past this a file is no world file (six numbers). */
+export const WORLD_FILE_BYTES = 4096;
+
 /** The names a world file of `imageName` may have, lower case: x.pgw for x.png, x.jpgw, x.wld. */
 export function worldFileNames(imageName) {
   return worldFileCandidates(imageName).map((n) => n.toLowerCase());
@@ -34,7 +37,7 @@ export function isWorldFileName(name) {
  * @returns {import('./georef.js').Georef}
  */
 export function parseWorldFile(bytes, fail) {
-  if (bytes.length > 4096) fail(`${bytes.length} bytes is not a world file (six numbers, one a line)`);
+  if (bytes.length > WORLD_FILE_BYTES) fail(`${bytes.length} bytes is not a world file (six numbers, one a line)`);
   const lines = new TextDecoder().decode(bytes).split(/\r?\n/).map((l) => l.trim()).filter((l) => l !== '');
   if (lines.length !== 6) fail(`a world file holds six numbers, one a line; this one has ${lines.length} lines`);
   const numbers = lines.map((line, i) => {

@@ -22,10 +22,10 @@ const BAND_PIXELS = 1 << 21;
  * @param {Uint8Array} bytes the file
  * @param {string} name for messages
  * @param {object} options
- * @param {(width: number, height: number, georef: import('../geo/georef.js').Georef|null) => void|false} options.begin
+ * @param {(width: number, height: number, georef: import('../geo/georef.js').Georef|null) => void|false|Promise<void|false>} options.begin
  *   called once, after the file has proven its size and before the first band (the caller
- *   checks that it fits and lies on the field, and reserves textures); returning false stops
- *   there, with no band decoded (a caller that needs only the size and georeference)
+ *   checks that it fits and lies on the field, and reserves textures), and awaited; returning
+ *   false stops there, with no band decoded (a caller that needs only the size and georeference)
  * @param {(y: number, rows: number, rgba: Uint8Array) => void | Promise<void>} options.onBand
  *   rows y..y+rows-1 as RGBA, width * rows * 4 bytes (the array is the caller's to keep or drop)
  * @param {(fraction: number) => Promise<void>} [options.pace] between slices of work
@@ -69,7 +69,7 @@ export async function readTiffImage(bytes, name, { begin, onBand, pace = async (
   const jpeg = decodeJpeg && compression === JPEG
     && ((photometric === 1 && samplesPerPixel === 1) || ((photometric === 2 || photometric === 6) && samplesPerPixel === 3))
     ? { bytes, width, height, layout, tables: (await tag('JPEGTables')) ?? null, rgb: photometric === 2 } : null;
-  if (begin(width, height, georef) === false) return { width, height, georef, kind, nodata };
+  if ((await begin(width, height, georef)) === false) return { width, height, georef, kind, nodata };
 
   const bandRows = Math.min(height, layout.blockHeight * Math.max(1, Math.round(BAND_PIXELS / width / layout.blockHeight)));
   for (let y = 0; y < height; y += bandRows) {

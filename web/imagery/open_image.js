@@ -1,6 +1,7 @@
-// Opening an image to drape, from its file (and world file) to textures on the GPU:
+// Opening an image to drape, from its file (and its sidecars) to textures on the GPU:
 //   header -> size and kind -> the tiling and whether it fits (before decoding) -> the
-//   georeference (GeoTIFF tags or world file) -> its place on the field (image_location.js, shared
+//   georeference (world file, .aux.xml or GeoTIFF tags) and CRS (the file's, .aux.xml or .prj)
+//   -> its place on the field (image_location.js, shared
 //   with the command line; refused when it misses it or is in another CRS) -> decode (the
 //   browser's, or the format's band reader: image_formats.js) into the textures.
 // Nothing of the image shown before is touched: the new one fills textures of its own, which
@@ -9,10 +10,11 @@
 
 import { readImageHeader, HEADER_BYTES } from './image_header.js';
 import { planImageTiling } from './image_tiling.js';
-import { worldFileGeoref, locateImage } from './image_location.js';
+import { readImageSidecars, imageGeoref, locateImage } from './image_location.js';
 import { imageFormat } from './image_formats.js';
 import { ImageError } from './image_error.js';
 import { browserJpegDecoder } from './browser_jpeg.js';
+import { CRS_SIDECAR_BYTES } from '../geo/index.js';
 
 /**
  * @typedef {object} DrapedImage
@@ -22,12 +24,14 @@ import { browserJpegDecoder } from './browser_jpeg.js';
  * @property {import('./placement.js').Placement} placement
  * @property {number|null} metresPerPixel across, on the ground (null when stretched over a field without spacing)
  * @property {number} gpuBytes
- * @property {string|null} note what the status line should say (stretched, CRS assumed)
+ * @property {string|null} note what the status line should say (stretched, CRS assumed, a sidecar not used)
  */
 
 /**
  * @param {{ name: string, blob: Blob }} image the image file
- * @param {{ name: string, blob: Blob }|null} worldFile
+ * @param {{ worldFile?: {name: string, blob: Blob}|null, prj?: {name: string, blob: Blob}|null,
+ *   auxXml?: {name: string, blob: Blob}|null }|null} sidecars the world file places it (over the
+ *   .aux.xml's geotransform and its own tags); the .aux.xml or the .prj give its CRS when it names none
  * @param {{ width: number, height: number, spacingX: number, spacingY: number, georef: object|null }} field
  * @param {object} gpu the textures (render/shading/image_textures.js): limits(), begin(tiling),
  *   uploadBitmap(bitmap), uploadBand(y, rows, rgba), finish(), abort()
@@ -37,12 +41,12 @@ import { browserJpegDecoder } from './browser_jpeg.js';
  * @returns {Promise<DrapedImage>}
  * @throws {ImageError}
  */
-export async function openImage(image, worldFile, field, gpu, options = {}) {
+export async function openImage(image, sidecars, field, gpu, options = {}) {
   const { name, blob } = image;
   if (blob.size === 0) throw new ImageError(name, 'empty file');
   const head = new Uint8Array(await blob.slice(0, HEADER_BYTES).arrayBuffer());
   const header = readImageHeader(head, name);
-  const worldGeoref = worldFile ? worldFileGeoref({ name: worldFile.name, bytes: new Uint8Array(await worldFile.blob.arrayBuffer()) }) : null;
+  const read = await readImageSidecars(await sidecarBytes(sidecars));
   const limits = { ...gpu.limits(), budgetBytes: options.budgetBytes, name };
 
   const { readBands } = imageFormat(header.format);
@@ -53,9 +57,9 @@ export async function openImage(image, worldFile, field, gpu, options = {}) {
       await readBands(bytes, name, {
         pace: options.pace,
         decodeJpeg: options.decodeJpeg === undefined ? browserJpegDecoder() : options.decodeJpeg,
-        begin: (width, height, georef) => {
+        begin: async (width, height, georef) => {
           tiling = planImageTiling(width, height, { ...limits, wholeDecode: false });
-          location = locateImage(field, { name, width, height }, worldGeoref, georef);
+          location = locateImage(field, { name, width, height }, await imageGeoref(read, georef, name));
           gpu.begin(tiling);
           begun = true;
         },
@@ -70,7 +74,7 @@ export async function openImage(image, worldFile, field, gpu, options = {}) {
   }
 
   const tiling = planImageTiling(header.width, header.height, { ...limits, wholeDecode: true });
-  const location = locateImage(field, { name, width: header.width, height: header.height }, worldGeoref);
+  const location = locateImage(field, { name, width: header.width, height: header.height }, await imageGeoref(read, null, name));
   let bitmap;
   try {
     bitmap = await (options.decodeBitmap ?? decodeBitmap)(blob);
@@ -97,6 +101,17 @@ function decodeBitmap(blob) {
   return createImageBitmap(blob, { imageOrientation: 'from-image', premultiplyAlpha: 'none', colorSpaceConversion: 'default' });
 }
 
-function described(name, { width, height, placement, metresPerPixel }, tiling) {
-  return { name, width, height, placement, metresPerPixel, gpuBytes: tiling.gpuBytes, note: placement.note };
+function described(name, { width, height, placement, metresPerPixel, notes }, tiling) {
+  const note = [placement.note, ...notes].filter(Boolean).join('; ') || null;
+  return { name, width, height, placement, metresPerPixel, gpuBytes: tiling.gpuBytes, note };
+}
+
+/**
+ * The sidecars' files as bytes ({ name, blob } -> { name, bytes }); a .prj or .aux.xml no
+ * further than a byte past what its reader takes, which then says it is too big.
+ */
+async function sidecarBytes(sidecars) {
+  const read = async (file, limit) => file && { name: file.name, bytes: new Uint8Array(await file.blob.slice(0, Math.min(file.blob.size, limit + 1)).arrayBuffer()) };
+  return { worldFile: await read(sidecars?.worldFile ?? null, Infinity), prj: await read(sidecars?.prj ?? null, CRS_SIDECAR_BYTES),
+    auxXml: await read(sidecars?.auxXml ?? null, CRS_SIDECAR_BYTES) };
 }

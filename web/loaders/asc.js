@@ -99,10 +99,11 @@ export async function decodeAsc(bytes, name, allocate, options = {}) {
     y0 >= -90 && y0 + height * dy <= 90;
   const spacing = geographic ? degreesToMetres(dx, dy, y0 + (height * dy) / 2) : { spacingX: dx, spacingY: dy };
   // The header places the south-west cell, by its corner or its centre; rows are written north first.
-  // An ASCII grid names no CRS (that is its .prj's job): degrees are taken as WGS 84, anything else is unknown.
+  // An ASCII grid names no CRS (that is its .prj's job, loaders/index.js): degrees are taken as
+  // WGS 84, anything else is unknown.
   const corner = header.xllcenter === undefined ? 0.5 : 0;
   const georef = 'xllcorner' in header || 'xllcenter' in header
-    ? makeGeoref(geographic ? crsOfEpsg(4326) : UNKNOWN_CRS, x0 + corner * dx, y0 + corner * dy + (height - 1) * dy, dx, -dy, 'ASCII header')
+    ? makeGeoref(geographic ? crsOfEpsg(4326, true) : UNKNOWN_CRS, x0 + corner * dx, y0 + corner * dy + (height - 1) * dy, dx, -dy, 'ASCII header')
     : null;
   return { width, height, sampleType: 'f32', samples: sink.samples, nodata, ...spacing, geographic, georef };
 }

@@ -41,7 +41,7 @@ export function probeHgt(bytes, name) {
   // Samples lie on whole arc-seconds, the first row on the tile's north edge, the first column on its west edge (WGS 84).
   const corner = tileCorner(name);
   const step = 1 / (side - 1); // degrees between samples
-  const georef = corner && makeGeoref(crsOfEpsg(4326), corner.lon, corner.lat + 1, step, -step, 'tile name');
+  const georef = corner && makeGeoref(crsOfEpsg(4326, true), corner.lon, corner.lat + 1, step, -step, 'tile name');
   return { width: side, height: side, sampleType: 'i16', georef };
 }
 

@@ -12,7 +12,8 @@ import { decodePgm, hasPgmSignature } from './pgm.js';
 import { decodeHgt, probeHgt } from './hgt.js';
 import { decodeAsc, hasAscHeader } from './asc.js';
 import { decodeGeoTiff, probeGeoTiff } from './geotiff.js';
-import { hasTiffSignature } from '../geo/index.js';
+import { hasTiffSignature, isAuxXmlName, readCrsSidecars, withSidecarCrs, resolveGeoref, sidecarBelongsTo,
+  degreesToMetres, metresPerUnit } from '../geo/index.js';
 import { loadMosaic } from './mosaic.js';
 import { parseSidecar, sidecarGeoref } from './sidecar.js';
 import { fillNodata } from './nodata.js';
@@ -20,14 +21,16 @@ import { SampleSink } from './pacing.js';
 
 export { HeightfieldError, SizeNeededError, DEFAULT_MAX_SAMPLES, decodePng, decodeF32, parseSidecar };
 
-/** File kinds by extension. */
+/** File kinds by extension (a .aux.xml is told by its whole ending). */
 const KIND_OF_EXTENSION = {
   png: 'png', f32: 'f32', json: 'json', r16: 'raw', raw: 'raw', pgm: 'pgm', hgt: 'hgt', asc: 'asc',
-  tif: 'geotiff', tiff: 'geotiff',
+  tif: 'geotiff', tiff: 'geotiff', prj: 'prj',
 };
+/** Kinds that are a height field's sidecars, not height fields. */
+const SIDECAR_KINDS = new Set(['json', 'prj', 'auxXml']);
 /** What the loaders accept, for messages and the file picker. */
 export const ACCEPTED = '.png, .tif/.tiff (GeoTIFF), .hgt (SRTM), .asc (ESRI ASCII), .pgm, .r16/.raw, or .f32 with its .json sidecar';
-export const ACCEPT_EXTENSIONS = Object.keys(KIND_OF_EXTENSION).map((e) => `.${e}`);
+export const ACCEPT_EXTENSIONS = [...Object.keys(KIND_OF_EXTENSION).map((e) => `.${e}`), '.xml'];
 
 /**
  * @typedef {object} Heightfield
@@ -51,6 +54,7 @@ export const ACCEPT_EXTENSIONS = Object.keys(KIND_OF_EXTENSION).map((e) => `.${e
  * @property {{ column: number, row: number, width: number, height: number }|null} cropped for a
  *   sparse GeoTIFF whose empty blocks surround its data: where the field starts in the file's
  *   raster, and the raster's declared size; null when the field is the whole raster
+ * @property {string[]} notes what the file's .prj or .aux.xml could not give, each naming its file
  * @property {string} source file name of the height field
  * @property {'png'|'f32'|'raw'|'pgm'|'hgt'|'asc'|'geotiff'|'mosaic'} format the tiles' kind for a
  *   mosaic of one kind, 'mosaic' for .hgt and GeoTIFF tiles together
@@ -60,8 +64,11 @@ export const ACCEPT_EXTENSIONS = Object.keys(KIND_OF_EXTENSION).map((e) => `.${e
  * Loads a height field from one or more files: one height field (.png, .tif/.tiff, .hgt,
  * .asc, .pgm, .r16/.raw, .f32), optionally with its .json sidecar (required for .f32), which
  * then supplies spacing and, for raw integer formats, the height range. Sidecars pair with a
- * height field by base name (x.png + x.json). Several .hgt or GeoTIFF tiles of one grid, with no
- * sidecar, make one mosaic (mosaic.js): its `source` names the first tile and how many more.
+ * height field by base name (x.png + x.json). Its .prj (x.prj) and GDAL .aux.xml (x.tif.aux.xml
+ * or x.aux.xml) give its CRS when the file names none, and the .aux.xml's geotransform places a
+ * file that cannot place itself; one that cannot be read, or belongs to another file, is a note.
+ * The CRS is resolved (web/geo/crs_definitions.js). Several .hgt or GeoTIFF tiles of one grid,
+ * with no sidecar, make one mosaic (mosaic.js): its `source` names the first tile and how many more.
  *
  * @param {Array<{ name: string, bytes: Uint8Array }>} files
  * @param {object} [options]
@@ -95,12 +102,14 @@ export async function loadHeightfield(files, options = {}) {
   for (const f of entries) if (f.bytes.length === 0) throw new HeightfieldError(f.name, 'empty file');
 
   const kinds = entries.map((f) => ({ ...f, kind: kindOf(f) }));
-  const fields = kinds.filter((f) => f.kind !== 'json');
+  const fields = kinds.filter((f) => !SIDECAR_KINDS.has(f.kind));
   const jsons = kinds.filter((f) => f.kind === 'json');
+  const crsFiles = kinds.filter((f) => f.kind === 'prj' || f.kind === 'auxXml');
   if (fields.length === 0) {
-    throw new HeightfieldError(jsons[0].name, 'a .json sidecar alone is not a height field; add the file it describes');
+    const what = jsons.length ? 'a .json sidecar' : crsFiles[0].kind === 'prj' ? 'a .prj' : 'a GDAL .aux.xml';
+    throw new HeightfieldError((jsons[0] ?? crsFiles[0]).name, `${what} alone is not a height field; add the file it describes`);
   }
-  if (fields.length > 1) return loadTiles(fields, jsons, allocate, maxSamples, options);
+  if (fields.length > 1) return loadTiles(fields, jsons, crsFiles, allocate, maxSamples, options);
   const main = fields[0];
   const base = baseNameOf(main.name);
   const stray = jsons.find((j) => baseNameOf(j.name) !== base);
@@ -133,29 +142,71 @@ export async function loadHeightfield(files, options = {}) {
     decoded.samples = sink.samples;
   }
 
-  // Spacing: the sidecar's, else the file's own, else 1 m (the user can change it).
+  // Where it lies: the .json sidecar's bounds, else the file's own georeference, else its
+  // .aux.xml's geotransform; in the file's CRS, else the .prj's or .aux.xml's.
+  const placed = await crsOfSidecars(main.name, crsFiles);
+  const { georef: withCrs, note } = withSidecarCrs(sidecarGeoref(sidecar, decoded.width, decoded.height) ?? decoded.georef ?? placed.georef,
+    placed.crs, main.name);
+  const georef = await resolveGeoref(withCrs);
+  const notes = note ? [...placed.notes, note] : placed.notes;
+
+  // Spacing: the sidecar's, else the file's own, else the .aux.xml's geotransform's, else 1 m
+  // (the user can change it).
   const sidecarSpacing = sidecar && sidecar.spacingX !== null;
   const fileSpacing = !sidecarSpacing && decoded.spacingX != null && decoded.spacingFromFile !== false;
-  const spacingFromFile = sidecarSpacing || fileSpacing;
+  // An ASCII grid's cell size is in its CRS's units, which only its .prj says (degrees, feet or
+  // metres): where that is not what its numbers suggested (asc.js), the CRS's units win.
+  const ascUnits = fileSpacing && main.kind === 'asc' && georef?.crs.proj4 &&
+    (georef.crs.geographic !== !!decoded.geographic || metresPerUnit(georef.crs) !== 1);
+  const auxPlaced = !sidecarSpacing && !fileSpacing && georef?.from === '.aux.xml';
+  const derived = ascUnits || auxPlaced ? gridSpacing(georef, decoded.height) : null;
+  const spacingFromFile = sidecarSpacing || fileSpacing || auxPlaced;
   return {
     width: decoded.width,
     height: decoded.height,
     sampleType: decoded.sampleType,
     samples: decoded.samples,
-    spacingX: sidecarSpacing ? sidecar.spacingX : decoded.spacingX ?? 1,
-    spacingY: sidecarSpacing ? sidecar.spacingY : decoded.spacingY ?? 1,
+    spacingX: sidecarSpacing ? sidecar.spacingX : derived?.spacingX ?? decoded.spacingX ?? 1,
+    spacingY: sidecarSpacing ? sidecar.spacingY : derived?.spacingY ?? decoded.spacingY ?? 1,
     spacingFromFile,
-    geographic: fileSpacing && !!decoded.geographic,
+    geographic: derived ? georef.crs.geographic : fileSpacing && !!decoded.geographic,
     heightScale: decoded.heightScale ?? 1,
     heightOffset: decoded.heightOffset ?? 0,
     nodata,
     missing,
     encoding: decoded.encoding ?? null,
     cropped: decoded.cropped ?? null,
-    georef: sidecarGeoref(sidecar, decoded.width, decoded.height) ?? decoded.georef ?? null,
+    georef: georef ?? null,
+    notes,
     source: main.name,
     format: main.kind,
   };
+}
+
+/**
+ * The CRS (and perhaps the place) a height field's .prj and .aux.xml give; the ones of another
+ * file, and a second of a kind, are notes.
+ */
+async function crsOfSidecars(fieldName, crsFiles) {
+  const notes = [];
+  const pick = (kind) => {
+    const mine = crsFiles.filter((f) => f.kind === kind && sidecarBelongsTo(f.name, fieldName));
+    for (const f of mine.slice(1)) notes.push(`${f.name}: a second ${kind === 'prj' ? '.prj' : '.aux.xml'} of ${fieldName}; not used`);
+    return mine[0] ?? null;
+  };
+  const prj = pick('prj'), auxXml = pick('auxXml');
+  for (const f of crsFiles) {
+    if (!sidecarBelongsTo(f.name, fieldName)) notes.push(`${f.name}: belongs to no height field here (${fieldName} is not its grid); not used`);
+  }
+  const read = await readCrsSidecars({ prj, auxXml });
+  return { ...read, notes: [...notes, ...read.notes] };
+}
+
+/** Metres between columns and rows of a grid whose steps are in its (resolved) CRS's units. */
+function gridSpacing(georef, height) {
+  if (georef.crs.geographic) return degreesToMetres(georef.dx, Math.abs(georef.dy), georef.y0 + (georef.dy * (height - 1)) / 2);
+  const unit = metresPerUnit(georef.crs);
+  return { spacingX: georef.dx * unit, spacingY: Math.abs(georef.dy) * unit };
 }
 
 /** Kinds whose tiles say where they lie, so that several make one mosaic (mosaic.js). */
@@ -164,8 +215,11 @@ const PROBES = {
   geotiff: (tile, maxSamples) => probeGeoTiff(tile.bytes, tile.name, { maxSamples }),
 };
 
-/** Several height fields at once: tiles of one mosaic, each placed by its own georeference. */
-function loadTiles(fields, jsons, allocate, maxSamples, options) {
+/**
+ * Several height fields at once: tiles of one mosaic, each placed by its own georeference (a
+ * .prj or .aux.xml beside a tile is a note: the tiles say where they lie). Its CRS is resolved.
+ */
+async function loadTiles(fields, jsons, crsFiles, allocate, maxSamples, options) {
   if (jsons.length) {
     throw new HeightfieldError(jsons[0].name, `a sidecar goes with one height field; the tiles of a mosaic (${fields.map((f) => f.name).join(', ')}) are placed by their own georeferences`);
   }
@@ -174,12 +228,14 @@ function loadTiles(fields, jsons, allocate, maxSamples, options) {
     throw new HeightfieldError(other.name, `several height fields make a mosaic only of .hgt (SRTM) and GeoTIFF tiles; open ${other.name} on its own`);
   }
   const progress = options.onProgress;
-  return loadMosaic(fields, {
+  const mosaic = await loadMosaic(fields, {
     probe: (tile) => PROBES[tile.kind](tile, maxSamples),
     decode: (tile, tileAllocate, onProgress) => DECODERS[tile.kind](tile.bytes, tile.name, tileAllocate,
       { maxSamples, onProgress, onCheckProgress: progress && ((fraction) => progress(fraction, 'checking')) }),
     allocate, reacquire: options.reacquire, onProgress: progress, maxSamples,
   });
+  const notes = crsFiles.map((f) => `${f.name}: the tiles of a mosaic are placed by their own georeferences; not used`);
+  return { ...mosaic, georef: await resolveGeoref(mosaic.georef), notes };
 }
 
 /** Decoders by kind: (bytes, name, allocate, options, sidecar) -> decoded field. */
@@ -205,12 +261,24 @@ function checkFileEntry(f, i) {
 
 /** The file's kind by extension, then by magic bytes; throws for anything else. */
 function kindOf({ name, bytes }) {
-  const kind = KIND_OF_EXTENSION[extensionOf(name)];
+  const kind = heightFieldKind({ name, head: bytes });
   if (kind) return kind;
-  if (hasPngSignature(bytes)) return 'png';
-  if (hasTiffSignature(bytes)) return 'geotiff';
-  if (hasPgmSignature(bytes)) return 'pgm';
-  if (hasAscHeader(bytes)) return 'asc';
   const what = describeContent(bytes);
   throw new HeightfieldError(name, `unsupported file type${what ? ` (looks like ${what})` : ''}; expected ${ACCEPTED}`);
+}
+
+/**
+ * What the loaders make of a file, from its name and first bytes: a height field's kind ('png',
+ * 'geotiff', ...), a sidecar's ('json', 'prj', 'auxXml'), or null for a file they do not take.
+ * @param {{ name: string, head: Uint8Array }} file
+ */
+export function heightFieldKind({ name, head }) {
+  if (isAuxXmlName(name)) return 'auxXml';
+  const kind = KIND_OF_EXTENSION[extensionOf(name)];
+  if (kind) return kind;
+  if (hasPngSignature(head)) return 'png';
+  if (hasTiffSignature(head)) return 'geotiff';
+  if (hasPgmSignature(head)) return 'pgm';
+  if (hasAscHeader(head)) return 'asc';
+  return null;
 }

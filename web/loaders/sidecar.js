@@ -73,7 +73,7 @@ export function parseSidecar(bytes, name) {
   const keyEpsg = parseEpsg(boundsKeys[0]?.replace(/^bounds_epsg/i, 'EPSG:') ?? null);
   if (epsg !== null && keyEpsg !== null && keyEpsg !== epsg) fail(`${boundsKeys[0]} is not in the crs (${json.crs})`);
   const code = epsg ?? keyEpsg ?? (boundsKeys[0]?.toLowerCase() === 'bounds_deg' ? 4326 : null);
-  const crs = code === null ? UNKNOWN_CRS : crsOfEpsg(code);
+  const crs = code === null ? UNKNOWN_CRS : crsOfEpsg(code, boundsKeys[0]?.toLowerCase() === 'bounds_deg');
   return { name, width, height, min, max, spacingX, spacingY, nodata, bounds, crs };
 }
 

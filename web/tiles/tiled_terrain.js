@@ -8,6 +8,7 @@ import { TileFetcher } from './tile_fetcher.js';
 import { TileError } from './tile_error.js';
 import { MAKE_COG } from './cog_source.js';
 import { guessSpacing } from '../loaders/terrain_source.js';
+import { resolveGeoref } from '../geo/index.js';
 
 const BYTES = { u8: 1, u16: 2, i16: 2, f32: 4 };
 const MB = 2 ** 20;
@@ -68,7 +69,7 @@ export async function openTiledTerrain(core, source, options = {}) {
 
     const field = {
       source: source.name, format: 'cog', width: source.width, height: source.height, sampleType,
-      nodata: source.nodata, heightScale: 1, heightOffset: 0, georef: source.georef, tiled: true,
+      nodata: source.nodata, heightScale: 1, heightOffset: 0, georef: await resolveGeoref(source.georef), tiled: true,
       spacingX: source.spacingX ?? 1, spacingY: source.spacingY ?? 1, spacingFromFile: source.spacingX != null,
       levels: levels.length, tileWidth: source.tileWidth, tileHeight: source.tileHeight, fileBytes: source.size,
     };

@@ -16,7 +16,7 @@ import { installDropTarget } from './drop_target.js';
  * @param {{ core: import('../core/core.js').HexlodCore, state: object, settings: object,
  *   layers: import('../app/layers.js').Layers, show: (loaded: object, source: string|null) => void,
  *   showStatus: (message: string, isError?: boolean) => void, setCellSize: (metres: number) => boolean,
- *   drape: (image: object, worldFile: object|null, url?: string) => Promise<object|null>,
+ *   drape: (image: object, sidecars: { worldFile, prj, auxXml }, options?: { url?: string, throwRefusal?: boolean }) => Promise<object|null>,
  *   defaultUrlTimeoutS: number }} page
  *   settings: the page's (read at each load); layers: what is shown (a drop replaces its terrain
  *   or adds an image layer over it); show: the loaded terrain and the URL it came from (null for
@@ -40,6 +40,6 @@ export function createFileIntake({ core, state, settings, layers, show, showStat
   const showSpacing = installSpacingField({ state, layers, showStatus, setCellSize });
   const opening = createTerrainOpening({ core, state, settings, show, showStatus, indicator, showSpacing, encoding });
   const urls = createUrlOpening({ loads, indicator, settings, opening, drape, defaultUrlTimeoutS });
-  installDropTarget(pickedFilesOpener({ loads, indicator, settings, layers, opening, drape, showStatus, encoding }));
+  installDropTarget(pickedFilesOpener({ loads, indicator, settings, layers, opening, drape, showStatus, encoding }), showStatus);
   return { ...urls, idle: () => loads.idle(), showSpacing };
 }

@@ -1,8 +1,10 @@
-// Files dropped or picked (File objects), as one load. Which file is what (web/imagery/drop_roles.js)
-// decides what the drop does to the layer list: a height field (with its sidecar), or the tiles
-// of a mosaic (web/loaders/mosaic.js), replaces the terrain; an image (with its world file) adds
-// the image layer over the terrain, the new one or the one on screen. A colour PNG opened alone
-// is a height field when its first row reads as heights, else an image.
+// Files dropped or picked (File objects; a dropped folder comes as its files), as one load. Which
+// file is what (web/imagery/drop_roles.js) decides what the drop does to the layer list: a
+// height field (with its sidecars), or the tiles of a mosaic (web/loaders/mosaic.js), replaces
+// the terrain; each image (with its world file, .prj and .aux.xml) is draped over the terrain,
+// the new one or the one on screen, in the order they came. Files that are neither are skipped,
+// and the status line names them. A colour PNG opened alone is a height field when its first
+// row reads as heights, else an image.
 import { dropRoles } from '../imagery/drop_roles.js';
 import { ImageError } from '../imagery/image_error.js';
 import { detectPngEncoding, hasPngSignature } from '../loaders/png.js';
@@ -16,8 +18,10 @@ const MB = 2 ** 20;
 /**
  * @param {{ loads: import('./load_sequence.js').LoadSequence, indicator: object, settings: object,
  *   layers: import('../app/layers.js').Layers, opening: ReturnType<import('./terrain_opening.js').createTerrainOpening>,
- *   drape: (image: {name: string, blob: Blob}, worldFile: object|null) => Promise<object|null>,
- *   showStatus: (message: string) => void, encoding: () => string }} page
+ *   drape: (image: {name: string, blob: Blob}, sidecars: object, options?: object) => Promise<object|null>,
+ *   showStatus: (message: string, isError?: boolean) => void, encoding: () => string }} page
+ *   drape: an image and its sidecars ({ worldFile, prj, auxXml }, each { name, blob } or null)
+ *   onto the terrain on screen (app/image_stage.js); with { throwRefusal: true } a refusal is thrown
  * @returns {(list: FileList|File[]) => Promise<string>} opens them; resolves to 'shown', 'failed' or 'cancelled'
  */
 export function pickedFilesOpener({ loads, indicator, settings, layers, opening, drape, showStatus, encoding }) {
@@ -51,29 +55,54 @@ export function pickedFilesOpener({ loads, indicator, settings, layers, opening,
         if (!(error instanceof ImageError)) throw error;
         return failed(error.message);
       }
-      const image = roles.image === null ? null : { name: picked[roles.image].name, blob: picked[roles.image] };
+      const file = (i) => (i === null ? null : { name: picked[i].name, blob: picked[i] });
+      const images = roles.images.map(({ image, sidecars }) => ({ image: file(image),
+        sidecars: { worldFile: file(sidecars.worldFile), prj: file(sidecars.prj), auxXml: file(sidecars.auxXml) } }));
+      const skipped = roles.skipped.length ? `skipped ${roles.skipped.map(({ file: i, why }) => `${picked[i].name} (${why})`).join(', ')}` : null;
       if (roles.field.length === 0 && !layers.ground) {
-        return failed(`${image?.name ?? names}: an image is draped over a terrain, and none is shown; open a height field with it or first`);
+        return failed(`${images.map((i) => i.image.name).join(', ') || names}: an image is draped over a terrain, and none is shown; open a height field with it or first`);
       }
       // A lone COG streams from the File (read by slices, never whole); any other height field loads whole.
-      if (picked.length === 1 && roles.field.length === 1 && image === null
-        && await shouldOpenTiled(picked[0], heads[0].head, settings.tileCacheMB * MB)) {
+      const lone = roles.field.length === 1 && images.length === 0;
+      if (lone && await shouldOpenTiled(picked[roles.field[0]], heads[roles.field[0]].head, settings.tileCacheMB * MB)) {
         if (signal.aborted) return cancelled(signal, names);
+        const name = picked[roles.field[0]].name;
         try {
-          return await openTiles(picked[0], names, signal, null);
+          const outcome = await openTiles(picked[roles.field[0]], name, signal, null);
+          if (outcome === 'shown' && skipped) showStatus(skipped);
+          return outcome;
         } catch (error) {
-          return signal.aborted ? cancelled(signal, names) : failed(`${names}: cannot stream it (${error.message})`);
+          return signal.aborted ? cancelled(signal, names) : failed(`${name}: cannot stream it (${error.message})`);
         }
       }
-      const world = roles.worldFile === null ? null : { name: picked[roles.worldFile].name, blob: picked[roles.worldFile] };
       if (roles.field.length > 0) {
         const files = await Promise.all(roles.field.map(async (i) => ({ name: picked[i].name, bytes: read.get(i) ?? new Uint8Array(await picked[i].arrayBuffer()) })));
         if (signal.aborted) return cancelled(signal, names);
         const outcome = await decode(files, {}, signal, null, false);
         if (outcome !== 'shown') return outcome;
       }
-      if (!image || signal.aborted) return 'shown';
-      return (await drape(image, world)) ? 'shown' : 'failed';
+      // Each image in turn, in drop order; then one status line for the whole drop: refusals,
+      // notes, and what was skipped.
+      const refused = [], draped = [], notes = roles.field.length > 0 ? [...(layers.ground?.field.notes ?? [])] : [];
+      for (const { image, sidecars } of images) {
+        if (signal.aborted) break;
+        try {
+          const opened = await drape(image, sidecars, { throwRefusal: true });
+          draped.push(image.name);
+          if (opened?.note) notes.push(`${image.name}: ${opened.note}`);
+        } catch (error) {
+          if (!(error instanceof ImageError)) throw error;
+          refused.push(error.message);
+        }
+      }
+      // A lone refusal is in the status line already, as the image stage says it.
+      const said = [...refused, ...notes, skipped].filter(Boolean);
+      if (said.length > 1 || (said.length === 1 && refused.length === 0)) {
+        const kept = layers.images.at(-1)?.image?.name;
+        const stays = refused.length && kept && !draped.includes(kept) ? ` (${kept} stays)` : '';
+        showStatus(`${said.join(' · ')}${stays}`, refused.length > 0);
+      }
+      return refused.length ? 'failed' : 'shown';
     });
   };
 }

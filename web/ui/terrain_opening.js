@@ -41,7 +41,7 @@ export function createTerrainOpening({ core, state, settings, show, showStatus, 
     show(loaded, source);
     if (!quiet) {
       state.error = null;
-      showStatus('');
+      showStatus(loaded.field.notes?.join(' · ') ?? ''); // what its .prj or .aux.xml could not give
     }
     return 'shown';
   }

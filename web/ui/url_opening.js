@@ -30,7 +30,7 @@ const fetchFailure = (name, url, error) =>
 /**
  * @param {{ loads: import('./load_sequence.js').LoadSequence, indicator: object, settings: object,
  *   opening: ReturnType<import('./terrain_opening.js').createTerrainOpening>,
- *   drape: (image: {name: string, blob: Blob}, worldFile: object|null, url?: string) => Promise<object|null>,
+ *   drape: (image: {name: string, blob: Blob}, sidecars: { worldFile, prj, auxXml }, options?: { url?: string }) => Promise<object|null>,
  *   defaultUrlTimeoutS: number }} page
  *   settings: the page's (urlTimeout in seconds and urlMaxMB, read at each load); drape: onto
  *   the terrain on screen, null when refused; defaultUrlTimeoutS: the time limit of the page's
@@ -140,7 +140,7 @@ export function createUrlOpening({ loads, indicator, settings, opening, drape, d
           }
         }
         if (signal.aborted) return cancelled(signal, name);
-        return (await drape({ name, blob: new Blob([bytes]) }, world, url)) ? 'shown' : 'failed';
+        return (await drape({ name, blob: new Blob([bytes]) }, { worldFile: world, prj: null, auxXml: null }, { url })) ? 'shown' : 'failed';
       });
     },
 

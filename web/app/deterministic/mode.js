@@ -139,7 +139,7 @@ export class DeterministicMode {
   /** Fixes the canvas's size and puts the API on window.hexlod.flight. */
   install(state, canvas, gl, requestRender, addLayer) {
     this.gl = gl;
-    this.addLayer = addLayer; // (layer, image, worldFile) => the image stage's, which throws a refusal
+    this.addLayer = addLayer; // (layer, image, sidecars) => the image stage's, which throws a refusal
     this.requestRender = requestRender;
     canvas.style.width = `${this.flight.viewport[0]}px`;
     canvas.style.height = `${this.flight.viewport[1]}px`;
@@ -205,7 +205,7 @@ export class DeterministicMode {
         if (world) break;
       }
     }
-    await this.addLayer(layer, image, world);
+    await this.addLayer(layer, image, { worldFile: world, prj: null, auxXml: null });
   }
 
   /** The page could not start (its message), e.g. the terrain did not load. */
