@@ -14,7 +14,8 @@
 import { parseArgs } from 'node:util';
 import { readFileSync } from 'node:fs';
 import { placeImage } from '../web/imagery/placement.js';
-import { crsOfEpsg, makeGeoref, parseEpsg } from '../web/geo/index.js';
+import { crsOfEpsg, makeGeoref, parseEpsg, resolveGeoref } from '../web/geo/index.js';
+import { useNodeCrsDefinitions } from '../lib/crs_definitions.js';
 import { startViewer, openPage, pageReady, dropFiles, terrainShown } from '../lib/page_harness.js';
 import { drawBlock } from '../lib/page_frames.js';
 
@@ -27,7 +28,9 @@ const median = (v) => [...v].sort((a, b) => a - b)[v.length >> 1];
 const ms = (v) => `${v < 10 ? v.toFixed(1) : Math.round(v).toLocaleString('en')} ms`;
 const fixtures = new URL('../tests/fixtures/', import.meta.url);
 const expected = JSON.parse(readFileSync(new URL('reprojection/expected.json', fixtures), 'utf8'));
-const grid = (g) => makeGeoref(crsOfEpsg(parseEpsg(g.crs)), g.x0, g.y0, g.dx, g.dy, 'GeoTIFF');
+useNodeCrsDefinitions();
+const grid = (g) => resolveGeoref(makeGeoref(crsOfEpsg(parseEpsg(g.crs)), g.x0, g.y0, g.dx, g.dy, 'GeoTIFF'));
+const utm11 = (x0, y0, step) => resolveGeoref(makeGeoref(crsOfEpsg(32611), x0, y0, step, -step, 'GeoTIFF'));
 const file = (path) => ({ name: path.split('/').pop(), bytes: new Uint8Array(readFileSync(new URL(path, fixtures))) });
 
 // 1. Placing, in Node.
@@ -44,17 +47,17 @@ function timePlacement(label, field, image) {
   console.log(`| ${label} | ${ms(median(times))} | ${nodesX} × ${nodesY} | ${maxError.toFixed(3)} px |`);
 }
 console.log('| placing (median of 5) | time | control grid nodes | its largest error |\n| --- | --- | --- | --- |');
-const dem = { width: expected.dem.width, height: expected.dem.height, georef: grid(expected.dem) };
+const dem = { width: expected.dem.width, height: expected.dem.height, georef: await grid(expected.dem) };
 for (const [code, source] of Object.entries(expected.images)) {
   timePlacement(`UTM DEM ${dem.width}², Blue Marble ${source.width} × ${source.height} in EPSG:${code}`, dem,
-    { name: source.file, width: source.width, height: source.height, georef: grid(source) });
+    { name: source.file, width: source.width, height: source.height, georef: await grid(source) });
 }
-const lidar = { width: 4096, height: 4096, georef: makeGeoref(crsOfEpsg(32611), 500000.5, 4000000 - 0.5, 1, -1, 'GeoTIFF') };
+const lidar = { width: 4096, height: 4096, georef: await utm11(500000.5, 4000000 - 0.5, 1) };
 // An orthophoto of 0.25 m over it in EPSG:4326 (about 0.0000025° at 36° N).
 timePlacement('4096² field of 1 m in UTM 11N, 16384² orthophoto in EPSG:4326', lidar,
-  { name: 'ortho.tif', width: 16384, height: 16384, georef: makeGeoref(crsOfEpsg(4326), -117.0 - 0.0000014, 36.14 + 0.0000011, 0.0000028, -0.00000225, 'GeoTIFF') });
+  { name: 'ortho.tif', width: 16384, height: 16384, georef: await resolveGeoref(makeGeoref(crsOfEpsg(4326), -117.0 - 0.0000014, 36.14 + 0.0000011, 0.0000028, -0.00000225, 'GeoTIFF')) });
 timePlacement('the same field, an image in its own CRS', lidar,
-  { name: 'same.tif', width: 16384, height: 16384, georef: makeGeoref(crsOfEpsg(32611), 500000.125, 4000000 - 0.125, 0.25, -0.25, 'GeoTIFF') });
+  { name: 'same.tif', width: 16384, height: 16384, georef: await utm11(500000.125, 4000000 - 0.125, 0.25) });
 
 const viewer = await startViewer();
 try {

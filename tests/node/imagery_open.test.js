@@ -7,6 +7,11 @@ import { readFileSync } from 'node:fs';
 import { openImage } from '../../web/imagery/open_image.js';
 import { ImageError } from '../../web/imagery/image_error.js';
 import { crsOfEpsg, makeGeoref } from '../../web/geo/georef.js';
+import { resolveCrs } from '../../web/geo/index.js';
+import { useNodeCrsDefinitions } from '../../lib/crs_definitions.js';
+
+useNodeCrsDefinitions(); // the terrains' CRSs as the loaders give them: with their definitions
+const crs = (code, geographic) => resolveCrs(crsOfEpsg(code, geographic));
 
 const DIR = new URL('../fixtures/imagery/', import.meta.url);
 const file = (name) => ({ name, blob: new Blob([readFileSync(new URL(name, DIR))]) });
@@ -27,8 +32,8 @@ function fakeGpu(maxTextureSize = 4096) {
 }
 
 // A 10 m field in UTM 18N over the Haiti image's west half, and the Himalaya (EPSG:4326).
-const haitiField = { width: 150, height: 200, spacingX: 10, spacingY: 10, georef: makeGeoref(crsOfEpsg(32618), 792995, 2050377, 10, -10, 'GeoTIFF') };
-const himalaya = { width: 2048, height: 2048, spacingX: 806.9, spacingY: 926, georef: makeGeoref(crsOfEpsg(4326, true), 72.9375, 37.9125, 1 / 120, -1 / 120, 'sidecar') };
+const haitiField = { width: 150, height: 200, spacingX: 10, spacingY: 10, georef: makeGeoref(await crs(32618), 792995, 2050377, 10, -10, 'GeoTIFF') };
+const himalaya = { width: 2048, height: 2048, spacingX: 806.9, spacingY: 926, georef: makeGeoref(await crs(4326, true), 72.9375, 37.9125, 1 / 120, -1 / 120, 'sidecar') };
 const sidecars = (worldFile, more = {}) => ({ worldFile, prj: null, auxXml: null, ...more });
 
 test('a GeoTIFF image on a field in its CRS: bands to the GPU, then its description', async () => {

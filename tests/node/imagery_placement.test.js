@@ -6,6 +6,10 @@ import { parseWorldFile, worldFileNames, isWorldFileName } from '../../web/geo/w
 import { placeImage } from '../../web/imagery/placement.js';
 import { ImageError } from '../../web/imagery/image_error.js';
 import { crsOfEpsg, makeGeoref, UNKNOWN_CRS } from '../../web/geo/georef.js';
+import { resolveCrs } from '../../web/geo/index.js';
+import { useNodeCrsDefinitions } from '../../lib/crs_definitions.js';
+
+useNodeCrsDefinitions(); // CRSs as the loaders give them: with their definitions
 
 const text = (s) => new TextEncoder().encode(s);
 // A world file's problems as the image reader reports them (image_location.js).
@@ -14,7 +18,7 @@ const near = (a, b, what, eps = 1e-9) => assert.ok(Math.abs(a - b) <= eps, `${wh
 const uv = (p, column, row) => p.uvAt(column, row);
 
 // A field of 101 x 51 samples 10 m apart in UTM 11N, north-west sample centre at (500000, 4000000).
-const UTM = crsOfEpsg(32611);
+const UTM = await resolveCrs(crsOfEpsg(32611));
 const field = { width: 101, height: 51, georef: makeGeoref(UTM, 500000, 4000000, 10, -10, 'GeoTIFF') };
 
 test('world files: six numbers, north-up, named after their image', () => {
@@ -62,12 +66,12 @@ test('a finer image placed by a world file over the west half covers half the fi
   assert.ok(uv(p, 60, 20)[0] > 1);
 });
 
-test('bad placements are refused with a message naming the image', () => {
-  const wgs = { name: 'wgs.tif', width: 100, height: 100, georef: makeGeoref(crsOfEpsg(4326), -117, 36, 0.001, -0.001, 'GeoTIFF') };
+test('bad placements are refused with a message naming the image', async () => {
+  const wgs = { name: 'wgs.tif', width: 100, height: 100, georef: makeGeoref(await resolveCrs(crsOfEpsg(4326)), -117, 36, 0.001, -0.001, 'GeoTIFF') };
   assert.throws(() => placeImage(field, wgs), (e) => e instanceof ImageError &&
     /^wgs\.tif: it lies outside the terrain \(the image spans x -117\.0005\.\.-116\.9005, y 35\.9005\.\.36\.0005, the terrain x 499995\.\.501005/.test(e.message),
   'another CRS is reprojected: this one lies elsewhere');
-  const custom = { name: 'lcc.tif', width: 100, height: 100, georef: makeGeoref(crsOfEpsg(999999), 0, 0, 1, -1, 'GeoTIFF') };
+  const custom = { name: 'lcc.tif', width: 100, height: 100, georef: makeGeoref(await resolveCrs(crsOfEpsg(999999)), 0, 0, 1, -1, 'GeoTIFF') };
   assert.throws(() => placeImage(field, custom), (e) => e instanceof ImageError &&
     /^lcc\.tif: it is in EPSG:999999 and the terrain in EPSG:32611, and EPSG:999999 has no definition to reproject with/.test(e.message));
   const away = { name: 'away.png', width: 100, height: 100, georef: makeGeoref(UNKNOWN_CRS, 900000, 4000000, 1, -1, 'world file') };

@@ -9,17 +9,20 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { gunzipSync } from 'node:zlib';
 import { placeImage, WARP_TOLERANCE_PX } from '../../web/imagery/placement.js';
-import { crsOfEpsg, makeGeoref, parseEpsg, interpolate } from '../../web/geo/index.js';
+import { crsOfEpsg, makeGeoref, parseEpsg, interpolate, resolveGeoref } from '../../web/geo/index.js';
+import { useNodeCrsDefinitions } from '../../lib/crs_definitions.js';
+
+useNodeCrsDefinitions(); // the grids' CRSs as the loaders give them: with their EPSG definitions
 
 const dir = new URL('../fixtures/reprojection/', import.meta.url);
 const expected = JSON.parse(readFileSync(new URL('expected.json', dir), 'utf8'));
-const grid = (g) => makeGeoref(crsOfEpsg(parseEpsg(g.crs)), g.x0, g.y0, g.dx, g.dy, 'GeoTIFF');
+const grid = (g) => resolveGeoref(makeGeoref(crsOfEpsg(parseEpsg(g.crs)), g.x0, g.y0, g.dx, g.dy, 'GeoTIFF'));
 const dem = expected.dem;
-const field = { width: dem.width, height: dem.height, georef: grid(dem) };
+const field = { width: dem.width, height: dem.height, georef: await grid(dem) };
 
 for (const [code, source] of Object.entries(expected.images)) {
-  test(`a UTM DEM's image in EPSG:${code} lands within one texel of where gdalwarp puts it`, () => {
-    const image = { name: source.file, width: source.width, height: source.height, georef: grid(source) };
+  test(`a UTM DEM's image in EPSG:${code} lands within one texel of where gdalwarp puts it`, async () => {
+    const image = { name: source.file, width: source.width, height: source.height, georef: await grid(source) };
     const placement = placeImage(field, image);
     assert.equal(placement.how, 'reprojected');
     assert.match(placement.note, new RegExp(`reprojected from EPSG:${code} to EPSG:32645`));
@@ -55,9 +58,9 @@ for (const [code, source] of Object.entries(expected.images)) {
   });
 }
 
-test('an image off the terrain is refused, given in its own CRS; one in an unnamed CRS is taken to be in the terrain\'s', () => {
-  const off = { name: 'off.tif', width: 10, height: 10, georef: makeGeoref(crsOfEpsg(4326), 10, 50, 0.1, -0.1, 'GeoTIFF') };
+test('an image off the terrain is refused, given in its own CRS; one in an unnamed CRS is taken to be in the terrain\'s', async () => {
+  const off = { name: 'off.tif', width: 10, height: 10, georef: await resolveGeoref(makeGeoref(crsOfEpsg(4326), 10, 50, 0.1, -0.1, 'GeoTIFF')) };
   assert.throws(() => placeImage(field, off), /^ImageError: off\.tif: it lies outside the terrain \(the image spans x 9\.95\.\.10\.95/);
-  const custom = { name: 'c.tif', width: 10, height: 10, georef: makeGeoref({ epsg: null, label: 'user-defined', geographic: false }, 300000, 3000000, 1000, -1000, 'GeoTIFF') };
+  const custom = { name: 'c.tif', width: 10, height: 10, georef: makeGeoref({ epsg: null, label: 'user-defined', name: null, proj4: null, geographic: false }, 300000, 3000000, 1000, -1000, 'GeoTIFF') };
   assert.deepEqual(placeImage(field, custom).how, 'georeferenced', 'a CRS nobody named is taken to be the terrain\'s, as GIS programs do');
 });

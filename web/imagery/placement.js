@@ -8,7 +8,7 @@
 // is within a quarter of an image pixel of the exact map. Without georeferences on both sides,
 // the image is stretched over the field: its outer pixel edges on the field's outer samples.
 
-import { compareCrs, crsTransform, crsOfEpsg, sampleToCrs, crsToSample, makeWarpGrid } from '../geo/index.js';
+import { compareCrs, crsTransform, sampleToCrs, crsToSample, makeWarpGrid } from '../geo/index.js';
 import { ImageError } from './image_error.js';
 
 /** The interpolation error a reprojected image may have, in its pixels. */
@@ -86,7 +86,7 @@ function placement(field, image, toImage, how, note, affine) {
 
 /** Which of the terrain's CRS (a) and the image's (b) lacks a definition, for the message. */
 function crsDefinitionMissing(a, b) {
-  return crsTransform(a, crsOfEpsg(4326)) ? b.label : a.label;
+  return b.proj4 ? a.label : b.label;
 }
 
 /**
