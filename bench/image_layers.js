@@ -17,7 +17,7 @@ import { placeImage } from '../web/imagery/placement.js';
 import { crsOfEpsg, makeGeoref, parseEpsg, resolveGeoref } from '../web/geo/index.js';
 import { useNodeCrsDefinitions } from '../lib/crs_definitions.js';
 import { startViewer, openPage, pageReady, dropFiles, terrainShown } from '../lib/page_harness.js';
-import { drawBlock } from '../lib/page_frames.js';
+import { drawBlock, obliqueTimedPage } from '../lib/page_frames.js';
 
 const { values } = parseArgs({ options: { viewport: { type: 'string' }, runs: { type: 'string' }, frames: { type: 'string' } } });
 const [width, height] = (values.viewport ?? '640x360').split('x').map(Number);
@@ -82,19 +82,7 @@ try {
   await page.close();
 
   // 3. Frame time with 0, 1 and 3 layers.
-  const bench = await openPage(viewer.browser, `${viewer.url}?test=1&timing=1&budget=40`, { width, height });
-  const p = bench.page;
-  await p.addStyleTag({ content: '#hud,#side,#drop-hint,#status{display:none !important}' });
-  await pageReady(p);
-  await p.evaluate(() => {
-    const { camera, rig } = window.hexlod;
-    camera.target[0] = rig.world.extentX / 2;
-    camera.target[2] = rig.world.extentZ / 2;
-    camera.distance = 0.6 * rig.world.extentX;
-    camera.yaw = 0.5;
-    camera.pitch = 0.45;
-  });
-  await p.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; }, null, { timeout: 600000, polling: 500 });
+  const { page: p, view } = await obliqueTimedPage(viewer, '', { width, height });
   await dropFiles(p, [file('imagery/bmng_himalaya_4arcmin.jpg'), file('imagery/bmng_himalaya_4arcmin.jgw')]);
   await p.waitForFunction(() => window.hexlod.imageLayers.length === 1, null, { timeout: 120000 });
   for (const name of ['bmng_himalaya_3857.tif', 'bmng_himalaya_4326.tif']) {
@@ -114,8 +102,7 @@ try {
       blocks[count].push(median(block.map((f) => f.cpuMs)));
     }
   }
-  const triangles = await p.evaluate(() => window.hexlod.triangles);
-  console.log(`\nframe time, ${width} × ${height}, oblique view over the default terrain (${triangles.toLocaleString('en')} triangles), ` +
+  console.log(`\nframe time, ${view}, ` +
     `${RUNS} blocks of ${FRAMES} frames each way (median of each block, in order):`);
   console.log('| image layers | whole frame, GPU included | each block | ratio to none |\n| --- | --- | --- | --- |');
   const none = median(blocks[0]);

@@ -17,8 +17,8 @@
 // drawing (?timing=1), so frame times include SwiftShader's rasterisation.
 // Usage: node bench/imagery.js [--viewport 640x360] [--runs 3] [--frames 20] [--size 8192]
 import { parseArgs } from 'node:util';
-import { startViewer, openPage, pageReady } from '../lib/page_harness.js';
-import { drawBlock } from '../lib/page_frames.js';
+import { startViewer } from '../lib/page_harness.js';
+import { drawBlock, obliqueTimedPage } from '../lib/page_frames.js';
 
 const { values } = parseArgs({ options: { viewport: { type: 'string' }, runs: { type: 'string' }, frames: { type: 'string' },
   size: { type: 'string' } } });
@@ -120,33 +120,10 @@ function timedDrop(page, name) {
   }), name);
 }
 
-/**
- * The page on the default terrain with its overlays hidden (they are not what is measured), at a
- * fixed oblique view over the middle of the terrain, converged, so that no refinement competes
- * with what is timed. Returns the page, its problems and a description of the view.
- */
-async function readyPage(viewer, query) {
-  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1&timing=1&budget=40${query}`, { width, height });
-  await page.addStyleTag({ content: '#hud,#side,#drop-hint,#status{display:none !important}' });
-  await pageReady(page);
-  const distanceKm = await page.evaluate(() => {
-    const { camera, rig } = window.hexlod;
-    camera.target[0] = rig.world.extentX / 2;
-    camera.target[2] = rig.world.extentZ / 2;
-    camera.distance = 0.6 * rig.world.extentX;
-    camera.yaw = 0.5;
-    camera.pitch = 0.45;
-    return camera.distance / 1000;
-  });
-  await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; }, null, { timeout: 600000, polling: 500 });
-  const triangles = await page.evaluate(() => window.hexlod.triangles);
-  return { page, problems, view: `${width} × ${height}, oblique view from ${distanceKm.toFixed(0)} km (pitch 0.45 rad), converged: ${triangles.toLocaleString('en')} triangles` };
-}
-
 const viewer = await startViewer();
 try {
   // 1 and 3: the real MAX_TEXTURE_SIZE.
-  const { page, problems, view } = await readyPage(viewer, '');
+  const { page, problems, view } = await obliqueTimedPage(viewer, '', { width, height });
   const made = Date.now();
   const { bytes, maxTextureSize } = await prepare(page);
   console.log(`JPEG ${SIZE} × ${SIZE}, quality 0.85: ${(bytes / 2 ** 20).toFixed(1)} MB (${(8 * bytes / SIZE ** 2).toFixed(2)} bits a pixel), ` +
@@ -186,7 +163,7 @@ try {
   console.log(`  MAX_TEXTURE_SIZE ${maxTextureSize}: ${(image.gpuBytes / 2 ** 20).toFixed(1)} MiB, ${(image.gpuBytes / (image.width * image.height)).toFixed(3)} B a pixel`);
   if (problems.length) throw new Error(problems.join('\n'));
   await page.close();
-  const tiled = await readyPage(viewer, '&imagetile=2048');
+  const tiled = await obliqueTimedPage(viewer, '&imagetile=2048', { width, height });
   await prepare(tiled.page);
   const drop = await timedDrop(tiled.page, NAME);
   const t = drop.image;

@@ -1,7 +1,7 @@
 // What the page benchmarks share: a page opened bare (no HUD, panel or hints over the view) and
 // converged, and one frame drawn after a setting changed, with the frame's figures (the
 // frame log of web/app/frame_pipeline.js: cpuMs, drawMs, lodMs, streamMs).
-import { openPage } from './page_harness.js';
+import { openPage, pageReady } from './page_harness.js';
 
 /** Opens `url` with nothing over the terrain and waits until the mesh converged. */
 export async function openConvergedView(browser, url, viewport) {
@@ -46,4 +46,28 @@ export function drawBlock(page, n) {
     };
     next();
   }), n);
+}
+
+/**
+ * The page on the default terrain with `query`, its overlays hidden (they are not what is
+ * measured), waiting for the GPU after each frame (?timing=1), at a fixed oblique view over the
+ * middle of the terrain, converged, so that no refinement competes with what is timed.
+ * Returns the page, its problems and a description of the view.
+ */
+export async function obliqueTimedPage(viewer, query, { width, height }) {
+  const { page, problems } = await openPage(viewer.browser, `${viewer.url}?test=1&timing=1&budget=40${query}`, { width, height });
+  await page.addStyleTag({ content: '#hud,#side,#drop-hint,#status{display:none !important}' });
+  await pageReady(page);
+  const distanceKm = await page.evaluate(() => {
+    const { camera, rig } = window.hexlod;
+    camera.target[0] = rig.world.extentX / 2;
+    camera.target[2] = rig.world.extentZ / 2;
+    camera.distance = 0.6 * rig.world.extentX;
+    camera.yaw = 0.5;
+    camera.pitch = 0.45;
+    return camera.distance / 1000;
+  });
+  await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.converged; }, null, { timeout: 600000, polling: 500 });
+  const triangles = await page.evaluate(() => window.hexlod.triangles);
+  return { page, problems, view: `${width} × ${height}, oblique view from ${distanceKm.toFixed(0)} km (pitch 0.45 rad), converged: ${triangles.toLocaleString('en')} triangles` };
 }
