@@ -119,7 +119,7 @@ test('a UTM DEM with images in EPSG:4326 and 3857: reprojected where GDAL puts t
   }
   const five = await page.evaluate(() => ({ layers: window.hexlod.imageLayers, status: document.getElementById('status').textContent }));
   assert.deepEqual(five.layers.map((l) => l.visible), [true, true, true, true, false]);
-  assert.match(five.status, /bmng_himalaya_3857\.tif: added hidden; at most 4 image layers show at once/);
+  assert.match(five.status, /bmng_himalaya_3857\.tif: reprojected from EPSG:3857 to EPSG:32645; added hidden; at most 4 image layers show at once/);
   await panelClick(page, five.layers[4].id, 'visible');
   assert.match(await page.evaluate(() => document.getElementById('status').textContent), /at most 4 image layers show at once; hide one first/);
   assert.equal(await page.evaluate(() => window.hexlod.imageLayers[4].visible), false);

@@ -10,6 +10,7 @@ import { describeImage } from '../imagery/describe_image.js';
 import { MAX_DRAPES } from './layers.js';
 
 const NO_SIDECARS = { worldFile: null, prj: null, auxXml: null };
+const ADDED_HIDDEN = `added hidden; at most ${MAX_DRAPES} image layers show at once (hide one to show it)`;
 
 /**
  * @param {{ renderer: object, layers: import('./layers.js').Layers, showStatus: (message: string, isError?: boolean) => void,
@@ -60,7 +61,7 @@ export function createImageStage({ renderer, layers, showStatus, requestRender }
       layer.visible = visibleCount() < MAX_DRAPES;
       if (layer.drape) layer.drape.opacity = layer.opacity;
       layers.images.push(layer);
-      if (!layer.visible) showStatus(`${layer.name}: added hidden; at most ${MAX_DRAPES} image layers show at once (hide one to show it)`);
+      if (!layer.visible) showStatus(`${layer.name}: ${ADDED_HIDDEN}`);
       changed();
       return layer;
     },
@@ -72,7 +73,8 @@ export function createImageStage({ renderer, layers, showStatus, requestRender }
      *   url: where it came from, when a link can name it; throwRefusal: a refusal is also thrown
      *   (a regression flight fails with it rather than fly without its image); opacity and
      *   visible: the layer's, from the start
-     * @returns {Promise<object|null>} the image shown, or null when it was refused (the status line says why)
+     * @returns {Promise<object|null>} the image shown (its note telling also when it was added
+     *   hidden), or null when it was refused (the status line says why)
      */
     async drape(image, sidecars = NO_SIDECARS, { url = null, throwRefusal = false, opacity = 1, visible = true } = {}) {
       if (!layers.ground) return null;
@@ -80,8 +82,9 @@ export function createImageStage({ renderer, layers, showStatus, requestRender }
         const layer = fileLayer({ kind: 'image', url, opacity, files: { image, sidecars } }, await open(image, sidecars));
         stage.add(layer);
         if (!visible) stage.setVisible(layer.id, false);
-        if (layer.visible) showStatus(layer.image.note ? `${image.name}: ${layer.image.note}` : '');
-        return layer.image;
+        const note = [layer.image.note, visible && !layer.visible ? ADDED_HIDDEN : null].filter(Boolean).join('; ') || null;
+        showStatus(note ? `${image.name}: ${note}` : '');
+        return note === layer.image.note ? layer.image : { ...layer.image, note }; // a drop's status line says it too
       } catch (error) {
         if (!(error instanceof ImageError)) throw error;
         const top = topImage();
