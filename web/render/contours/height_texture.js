@@ -7,7 +7,7 @@
 // cell are always in one tile. Made only while contours are on; larger than MAX_TEXELS, it keeps
 // every stride-th sample (and says so).
 
-export const TEXTURE_UNIT_CONTOUR_HEIGHTS = 5; // after the field's (0-2) and the image's (3-4)
+export const TEXTURE_UNIT_CONTOUR_HEIGHTS = 5; // after the field's (0-2) and the image layers' control grids (3)
 /**
  * Texels at most: 8193², 2^26 and one more row and column, so that the paper's 16385² field
  * keeps every 2nd sample (128 MB at 16 bits, 256 MB for a float field); past that a stride.
