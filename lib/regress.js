@@ -31,7 +31,8 @@ export const REGRESS_USAGE = `usage: hexlod regress <heightfield> <flight.json> 
   under the flight's tolerance. A height field is a file or an http(s) URL. A flight without
   "dem" uses the height field beside it with the same name (NAME.png, .tif, ...). A flight's
   "image" (and "worldFile", else the image's world file beside it) is draped before the first
-  frame, or its "layers" ([{"image", "worldFile", "opacity", "visible"}, ...], bottom first);
+  frame, or its "layers" ([{"image", "worldFile", "opacity", "visible"} or {"tiles", ...}, ...],
+  bottom first; a frame waits for its web map tiles);
   like "dem", paths relative to the flight or URLs. A refused image fails the flight.
   Exit code: 0 all passed, 1 a flight regressed, 2 bad input or usage (a flight file, a height
   field, no reference), 3 the browser or the machine failed; the highest that applies.
