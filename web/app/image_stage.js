@@ -42,6 +42,7 @@ export function createImageStage({ renderer, layers, showStatus, requestRender }
     layer.name = opened.name;
     layer.description = describeImage(opened);
     layer.drape = { kind: 'image', warp: opened.placement.warp, opacity: layer.opacity, textures };
+    layer.dispose = () => textures.remove();
     return layer;
   }
 
@@ -100,7 +101,6 @@ export function createImageStage({ renderer, layers, showStatus, requestRender }
       const layer = byId(id);
       if (!layer) return;
       layers.images.splice(layers.images.indexOf(layer), 1);
-      if (layer.kind === 'image') layer.drape.textures.remove();
       layer.dispose?.();
       changed();
     },

@@ -8,6 +8,9 @@ export const MAX_DRAPES = 4;
 export const TEXTURE_UNIT_DRAPE_WARPS = 3;
 const TEXTURE_UNIT_PAGES = [7, 8, 9, 10];
 const TEXTURE_UNIT_TABLES = [11, 12, 13, 14];
+// The unit the image layers' textures are bound to while they are filled (image_textures.js,
+// web_tile_textures.js): one no program samples from, so an upload never disturbs what a draw bound.
+export const TEXTURE_UNIT_UPLOAD = 15;
 const KIND = { image: 1, tiles: 2 };
 const PAGES_UNIFORMS = ['uDrapePages0', 'uDrapePages1', 'uDrapePages2', 'uDrapePages3'];
 const TABLE_UNIFORMS = ['uDrapeTable0', 'uDrapeTable1', 'uDrapeTable2', 'uDrapeTable3'];

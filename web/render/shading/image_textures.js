@@ -5,15 +5,15 @@
 // Filled from an ImageBitmap (PNG, JPEG, WebP: the browser decodes, one upload a tile) or from
 // bands of rows (GeoTIFF: each band goes to the tiles it touches, and into the overview, a row
 // at a time). Each image layer has textures of its own: a failed opening (abort()) leaves
-// every layer on screen as it was.
+// every layer on screen as it was, and after a lost context the page opens the image again
+// into new ones.
 // The imageTile setting (?imagetile=N) forces tiles of at most N texels (tests of the tiling on any GPU).
 import { tileSource, arrayLayers } from '../../imagery/image_tiling.js';
 import { OverviewRows } from '../../imagery/overview_rows.js';
+import { TEXTURE_UNIT_UPLOAD } from './drape_layers.js';
 
 const MAX_ANISOTROPY = 8;
-// The unit textures are bound to while they are filled: one no program samples from, so that
-// an upload never disturbs what a draw has bound.
-export const TEXTURE_UNIT_UPLOAD = 15;
+
 
 export class ImageTextures {
   /**
@@ -133,13 +133,6 @@ export class ImageTextures {
   /** The textures go. */
   remove() {
     if (this.pages) this.gl.deleteTexture(this.pages);
-    this.pages = null;
-    this.ready = false;
-    this.overviewRows = null;
-  }
-
-  /** The context was lost: the textures died with it (the page drapes the image again). */
-  forgetGl() {
     this.pages = null;
     this.ready = false;
     this.overviewRows = null;

@@ -26,12 +26,13 @@
 // there go last; an evicted tile's entries fall back to its finest loaded ancestor, and the
 // entries of its loaded descendants stay theirs.
 import { tileKey } from '../../webtiles/tile_key.js';
+import { TEXTURE_UNIT_UPLOAD } from './drape_layers.js';
+import { setFiltering } from './image_textures.js';
 
 /** GPU memory the pages may take, mipmaps included (a constructor option). */
 export const DEFAULT_MEMORY_BYTES = 64 * 1024 * 1024;
 export const DEFAULT_TILE_SIZE = 256;
 const MIN_CAPACITY = 16;
-const MAX_ANISOTROPY = 8;
 // Pin levels of a page: evicted in this order, NEEDED never.
 const FREE = 0, STANDS_IN = 1, NEEDED = 2;
 
@@ -213,15 +214,7 @@ export class WebTileTextures {
     this.pages = gl.createTexture();
     this.withUnit(gl.TEXTURE_2D_ARRAY, this.pages, () => {
       gl.texStorage3D(gl.TEXTURE_2D_ARRAY, this.levels, gl.RGBA8, size, size, this.capacity);
-      gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.LINEAR_MIPMAP_LINEAR);
-      gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
-      gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
-      gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
-      const anisotropic = gl.getExtension('EXT_texture_filter_anisotropic');
-      if (anisotropic) {
-        const most = gl.getParameter(anisotropic.MAX_TEXTURE_MAX_ANISOTROPY_EXT);
-        gl.texParameterf(gl.TEXTURE_2D_ARRAY, anisotropic.TEXTURE_MAX_ANISOTROPY_EXT, Math.min(MAX_ANISOTROPY, most));
-      }
+      setFiltering(gl, gl.TEXTURE_2D_ARRAY); // as an image layer's pages
     });
     this.readBuffer = gl.createFramebuffer();
     this.drawBuffer = gl.createFramebuffer();
@@ -364,13 +357,12 @@ export class WebTileTextures {
     if (this.blitMips === false) gl.generateMipmap(gl.TEXTURE_2D_ARRAY);
   }
 
-  /** Runs `work` with `texture` bound on the active unit, and binds back what was there. */
+  /** Runs `work` with `texture` bound on the upload unit, which no draw samples from. */
   withUnit(target, texture, work) {
     const gl = this.gl;
-    const before = gl.getParameter(target === gl.TEXTURE_2D ? gl.TEXTURE_BINDING_2D : gl.TEXTURE_BINDING_2D_ARRAY);
+    gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_UPLOAD);
     gl.bindTexture(target, texture);
     work();
-    gl.bindTexture(target, before);
   }
 
   count() {
