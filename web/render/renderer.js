@@ -24,6 +24,7 @@ import contoursGlsl from '../../shaders/contours.glsl?raw';
 import { mat4 } from 'gl-matrix';
 import { STREAM_VERTEX_BYTES, STREAM_NORMAL_BYTES } from '../core/core.js';
 import { MeasureOverlay } from './measure_overlay.js';
+import { GroundLines } from './ground_lines.js';
 import { resolveIncludes } from './shading/includes.js';
 import { Atmosphere, BETA_RAYLEIGH, BETA_MIE, SCALE_HEIGHTS, MIE_G, SUN_IRRADIANCE, EXPOSURE } from './shading/atmosphere.js';
 import { FieldTextures, TEXTURE_UNIT_GRADIENTS, TEXTURE_UNIT_SUN, TEXTURE_UNIT_OCCLUSION } from './shading/field_textures.js';
@@ -178,9 +179,13 @@ export class TerrainRenderer {
     this.levelOffsets = new Int32Array(64); // the level view's offsets, grown when needed
     this.levelOffsetCount = 0;
     this.outlineCount = 0;
+    // Lines on the ground (ground_lines.js), shared by the measured line and the overlays: one
+    // object for the page's life, its GL objects made again after a lost context.
+    if (this.groundLines) this.groundLines.createGlObjects();
+    else this.groundLines = new GroundLines(gl);
     // The measured line on the ground (measure_overlay.js): its data outlives a lost context.
     if (this.measureOverlay) this.measureOverlay.createGlObjects();
-    else this.measureOverlay = new MeasureOverlay(gl);
+    else this.measureOverlay = new MeasureOverlay(this.groundLines);
   }
 
   makeVao(indexBuffer) {

@@ -4,6 +4,7 @@
 // kept upright, dropped where they would overlap a label already placed or where the ground
 // between the eye and the point hides it (the core's bilinear heights along the sight line).
 // A frame allocates nothing: every per-frame array is made once (or when the viewport grows).
+import { inSight } from '../sight_line.js';
 import { labelGlyphs, CELL_W, CELL_H, ADVANCE } from './glyph_atlas.js';
 
 /** Points kept at most (each is tested every frame while on screen). */
@@ -12,8 +13,6 @@ const MAX_ANCHORS = 4096;
 const MAX_LABELS = 96, MAX_GLYPHS = 8;
 /** Label height in CSS pixels. */
 export const LABEL_PX = 13;
-/** Steps of the sight-line test from the eye to a label. */
-const SIGHT_STEPS = 24;
 const GRID = 8; // pixels per cell of the occupancy grid
 
 export class LabelPlacer {
@@ -129,7 +128,7 @@ export class LabelPlacer {
       const j0 = Math.max(0, Math.floor((sy - ey) / GRID) - 1), j1 = Math.min(gh - 1, Math.floor((sy + ey) / GRID) + 1);
       let free = true;
       for (let j = j0; j <= j1 && free; ++j) for (let i = i0; i <= i1; ++i) if (occupied[j * gw + i]) { free = false; break; }
-      if (!free || !this.inSight(eye, x, y, z, verticalScale, terrain)) continue;
+      if (!free || !inSight(eye, x, y, z, verticalScale, terrain)) continue;
       for (let j = j0; j <= j1; ++j) for (let i = i0; i <= i1; ++i) occupied[j * gw + i] = 1;
       for (let g = 0; g < n; ++g) {
         const offset = (g - (n - 1) / 2) * advance, q = glyphs * 5;
@@ -145,18 +144,6 @@ export class LabelPlacer {
     this.instanceCount = glyphs;
     this.labelsShown = labels;
     return glyphs;
-  }
-
-  /** Whether the ground between the eye and a point (drawn metres) stays below the sight line. */
-  inSight(eye, x, y, z, verticalScale, terrain) {
-    const dx = x - eye[0], dy = y - eye[1], dz = z - eye[2];
-    const slack = 0.002 * Math.hypot(dx, dy, dz); // the mesh is not the field; the label sits on a slope
-    for (let s = 1; s < SIGHT_STEPS; ++s) {
-      const t = s / SIGHT_STEPS * 0.97;
-      const ground = terrain.heightAt(eye[0] + dx * t, eye[2] + dz * t) * verticalScale;
-      if (ground > eye[1] + dy * t + slack) return false;
-    }
-    return true;
   }
 }
 
