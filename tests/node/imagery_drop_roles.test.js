@@ -25,20 +25,20 @@ const NO_SIDECARS = { worldFile: null, prj: null, auxXml: null };
 
 test('a DEM and its image, in either order, with or without the world file', () => {
   const dem = ['dem.tif', head('tests/fixtures/formats/everest_i16_strips.tif')];
-  assert.deepEqual(roles([dem, ['ortho.jpg', JPEG]]), { field: [0], images: [{ image: 1, sidecars: NO_SIDECARS }], skipped: [] });
+  assert.deepEqual(roles([dem, ['ortho.jpg', JPEG]]), { field: [0], images: [{ image: 1, sidecars: NO_SIDECARS }], overlays: [], skipped: [] });
   assert.deepEqual(roles([['ortho.jpg', JPEG], ['ortho.jgw', text('1\n0\n0\n-1\n0\n0\n')], dem]),
-    { field: [2], images: [{ image: 0, sidecars: { ...NO_SIDECARS, worldFile: 1 } }], skipped: [] });
+    { field: [2], images: [{ image: 0, sidecars: { ...NO_SIDECARS, worldFile: 1 } }], overlays: [], skipped: [] });
   // A grey 16-bit PNG with its sidecar and a colour PNG: the colour one is the image.
   assert.deepEqual(roles([['h.png', png(16, 0)], ['h.json', text('{}')], ['photo.png', png(8, 2)]]),
-    { field: [0, 1], images: [{ image: 2, sidecars: NO_SIDECARS }], skipped: [] });
+    { field: [0, 1], images: [{ image: 2, sidecars: NO_SIDECARS }], overlays: [], skipped: [] });
   // Two 8-bit grey files: the first is the field, the second the image.
-  assert.deepEqual(roles([['dem8.png', png(8, 0)], ['scan.png', png(8, 0)]]), { field: [0], images: [{ image: 1, sidecars: NO_SIDECARS }], skipped: [] });
+  assert.deepEqual(roles([['dem8.png', png(8, 0)], ['scan.png', png(8, 0)]]), { field: [0], images: [{ image: 1, sidecars: NO_SIDECARS }], overlays: [], skipped: [] });
 });
 
 test('a colour PNG alone: heights when it says so or its colours read as heights, else an image', () => {
-  assert.deepEqual(roles([['tile.png', png(8, 2)]], { colourPngIsHeight: () => true }), { field: [0], images: [], skipped: [] });
-  assert.deepEqual(roles([['photo.png', png(8, 6)]], { colourPngIsHeight: () => false }), { field: [], images: [{ image: 0, sidecars: NO_SIDECARS }], skipped: [] });
-  assert.deepEqual(roles([['x_terrarium.png', png(8, 2)]], { colourPngIsHeight: () => false }), { field: [0], images: [], skipped: [] }, 'the name says heights');
+  assert.deepEqual(roles([['tile.png', png(8, 2)]], { colourPngIsHeight: () => true }), { field: [0], images: [], overlays: [], skipped: [] });
+  assert.deepEqual(roles([['photo.png', png(8, 6)]], { colourPngIsHeight: () => false }), { field: [], images: [{ image: 0, sidecars: NO_SIDECARS }], overlays: [], skipped: [] });
+  assert.deepEqual(roles([['x_terrarium.png', png(8, 2)]], { colourPngIsHeight: () => false }), { field: [0], images: [], overlays: [], skipped: [] }, 'the name says heights');
   assert.deepEqual(imagesOf(roles([['tile.png', png(8, 2)], ['tile.pgw', text('1\n0\n0\n-1\n0\n0\n')]], { colourPngIsHeight: () => true })),
     [[0, 1, null, null]], 'a world file makes it an image');
   assert.deepEqual(imagesOf(roles([['tile.png', png(8, 2)]], { pngAsImage: 'image', colourPngIsHeight: () => true })), [[0, null, null, null]], 'the menu forces it');
@@ -46,7 +46,7 @@ test('a colour PNG alone: heights when it says so or its colours read as heights
 });
 
 test('an image alone goes onto the open terrain; a colour GeoTIFF is an image, a grey one a field', () => {
-  assert.deepEqual(roles([['ortho.webp', text('RIFF\0\0\0\0WEBPVP8 ')]]), { field: [], images: [{ image: 0, sidecars: NO_SIDECARS }], skipped: [] });
+  assert.deepEqual(roles([['ortho.webp', text('RIFF\0\0\0\0WEBPVP8 ')]]), { field: [], images: [{ image: 0, sidecars: NO_SIDECARS }], overlays: [], skipped: [] });
   assert.deepEqual(roles([['dem.tif', head('tests/fixtures/formats/canyon_u16_tiled_deflate.tif')]]).field, [0]);
 });
 
@@ -80,14 +80,14 @@ test('a GIS drop: the DEM with its .prj and .aux.xml, the image with its world f
 
 test('a world file or a .prj of another file is skipped; only a drop with nothing to open is refused, by name', () => {
   const dem = ['dem.tif', head('tests/fixtures/formats/everest_i16_strips.tif')];
-  assert.deepEqual(roles([dem, ['o.jgw', text('1')]]), { field: [0], images: [], skipped: [{ file: 1, why: 'a world file of no image here' }] });
+  assert.deepEqual(roles([dem, ['o.jgw', text('1')]]), { field: [0], images: [], overlays: [], skipped: [{ file: 1, why: 'a world file of no image here' }] });
   assert.deepEqual(roles([['a.jpg', JPEG], ['b.jgw', text('1')]]).skipped,
     [{ file: 1, why: 'a world file of no image here: a.jpg\'s is named a.jgw or a.jpgw or a.wld' }]);
   assert.throws(() => roles([['o.jgw', text('1')]]), (e) => e instanceof ImageError && /^o\.jgw: a world file alone places nothing/.test(e.message));
   assert.throws(() => roles([['x.prj', text('PROJCS[]')], ['x.tif.ovr', text('II*\0')]]),
     (e) => e instanceof ImageError && /^x\.prj: a \.prj of no height field or image here: nothing here to open/.test(e.message));
   // Files no loader takes, alone: the loaders are asked, and say what they take.
-  assert.deepEqual(roles([['README', text('hello')], ['x.md5', text('0')]]), { field: [0], images: [], skipped: [{ file: 1, why: 'checksum' }] });
+  assert.deepEqual(roles([['README', text('hello')], ['x.md5', text('0')]]), { field: [0], images: [], overlays: [], skipped: [{ file: 1, why: 'checksum' }] });
 });
 
 test('the image format table: each row knows its own first bytes and no other row\'s, and the picker and messages follow it', () => {

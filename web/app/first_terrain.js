@@ -14,11 +14,12 @@ const DEFAULT_TERRAIN = [
 /**
  * @param {{ urlState: object, intake: object, stage: object, rig: object, measure: object, det: object|null,
  *   state: object, statusBox: HTMLElement, openingStatus: string, showStatus: Function, showContourNote: () => void,
- *   syncPanel: () => void, addTiles: (text: string) => Promise<object[]> }} parts addTiles: web map tile layers (?tiles=: a template, or a WMTS service)
+ *   syncPanel: () => void, addTiles: (text: string) => Promise<object[]>, addOverlayUrl: (url: string) => Promise<object|null> }} parts
+ *   addTiles: web map tile layers (?tiles=: a template, or a WMTS service); addOverlayUrl: an overlay (?overlay=)
  * @throws {Error} when the default terrain does not load, or a flight's terrain is not the one shown
  */
 export async function openFirstTerrain({ urlState, intake, stage, rig, measure, det, state, statusBox, openingStatus,
-  showStatus, showContourNote, syncPanel, addTiles }) {
+  showStatus, showContourNote, syncPanel, addTiles, addOverlayUrl }) {
   const src = urlState.src;
   const outcome = src ? await intake.openUrl(src) : null;
   if (det && src && outcome !== 'shown') throw new Error(state.error ?? `${src}: loading cancelled`); // a flight is meaningless over another terrain
@@ -35,6 +36,7 @@ export async function openFirstTerrain({ urlState, intake, stage, rig, measure, 
     if (kind === 'image') await intake.openImageUrl(url);
     else await addTiles(url);
   }
+  for (const url of det ? [] : urlState.overlays) await addOverlayUrl(url);
   if (urlState.camera && !det) {
     applyCameraState(rig, urlState.camera);
     if (rig.mode === 'walk') rig.active.settle();

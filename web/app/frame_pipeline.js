@@ -111,7 +111,7 @@ export class FramePipeline {
     state.frames += 1;
     if (det) det.endFrame();
     if (moving) this.request();
-    if (shown && !det) this.urlWriter.write(this.settings, camera, this.layers.source, this.layers.layerUrls);
+    if (shown && !det) this.urlWriter.write(this.settings, camera, this.layers.source, this.layers.layerUrls, this.layers.overlayUrls);
   }
 
   // The core's part of a frame for the terrain `current` and its upload (the frame figures go to the HUD and state).

@@ -21,14 +21,16 @@ export class Layers {
     this.images = [];
     /**
      * Overlays drawn over the terrain, bottom first: [{ description: its HUD line, draw(gl,
-     * camera, width, height, verticalScale), createGlObjects(gl) }]; the renderer draws them
-     * each frame (render/renderer.js draw).
+     * camera, width, height, verticalScale), createGlObjects(gl), fill (its polygons' drape, or
+     * null), url }]; the renderer draws them each frame (render/renderer.js draw).
      */
     this.overlays = [];
-    /** The visible image layers' drapes, bottom first, at most MAX_DRAPES: made again at each change, read each frame. */
+    /** The visible image layers' drapes, then the overlays' polygon fills, bottom first, at most MAX_DRAPES: made again at each change, read each frame. */
     this.drapes = [];
     /** The image layers that came from an address, bottom first, as the address bar names them: [{ kind, url }]. */
     this.layerUrls = [];
+    /** The overlays that came from an address, bottom first (the address bar's overlay=). */
+    this.overlayUrls = [];
     this.listeners = [];
   }
 
@@ -39,10 +41,16 @@ export class Layers {
 
   /** Tells the listeners `part` changed: 'terrain' (a new one, or its scale), 'images' or 'overlays'. */
   changed(part) {
+    if (part === 'images' || part === 'overlays') {
+      // The overlays' polygon fills lie on the ground over the images.
+      const fills = this.overlays.filter((layer) => layer.visible && layer.fill).map((layer) => layer.fill);
+      this.drapes = [...this.images.filter((layer) => layer.visible && layer.drape).slice(0, MAX_DRAPES).map((layer) => layer.drape), ...fills]
+        .slice(0, MAX_DRAPES);
+    }
     if (part === 'images') {
-      this.drapes = this.images.filter((layer) => layer.visible && layer.drape).slice(0, MAX_DRAPES).map((layer) => layer.drape);
       this.layerUrls = this.images.filter((layer) => layer.url).map((layer) => ({ kind: layer.kind, url: layer.url }));
     }
+    if (part === 'overlays') this.overlayUrls = this.overlays.filter((layer) => layer.url).map((layer) => layer.url);
     for (const listener of this.listeners) listener(this, part);
   }
 

@@ -7,6 +7,10 @@ import { createFileIntake } from '../ui/file_intake.js';
 import { TerrainRenderer } from '../render/renderer.js';
 import { createImageStage, imageFigures, layerFigures } from './image_stage.js';
 import { createWebTileStage } from './web_tile_stage.js';
+import { createOverlayStage } from './overlay_stage.js';
+import { createOverlayTracks } from './overlay_tracks.js';
+import { installOverlayPointer } from './overlay_pointer.js';
+import { createOverlayPanel } from '../ui/overlay_panel.js';
 import { createLayerPanel } from '../ui/layer_panel.js';
 import { createAttribution } from '../ui/attribution.js';
 import { CameraRig } from '../cameras/rig.js';
@@ -101,7 +105,12 @@ async function main() {
       'reset view (R)': resetView, 'measure (M)': () => measure.toggle(), 'help (H)': toggleHelp },
   });
   const webTiles = createWebTileStage({ gl, layers, images, showStatus, requestRender, deterministic: det !== null });
-  layers.onChange((shown, part) => { if (part === 'terrain') webTiles.terrainChanged(); });
+  const overlays = createOverlayStage({ renderer, layers, showStatus, requestRender });
+  layers.onChange((shown, part) => {
+    if (part === 'terrain') webTiles.terrainChanged();
+    if (part === 'terrain') overlays.terrainChanged();
+  });
+  Object.defineProperty(state, 'overlays', { value: overlays, enumerable: false }); // for tests: add, restyle, remove
   const layerPanel = createLayerPanel(panel.folder(IMAGE_FOLDER), images, { addTiles: (text) => webTiles.addFrom(text) });
   syncView();
   document.getElementById('help-close').onclick = toggleHelp;
@@ -109,7 +118,8 @@ async function main() {
   // A new terrain takes the image away: it belonged to the old ground.
   const intake = createFileIntake({ core, state, settings, layers, defaultUrlTimeoutS: SETTINGS.urlTimeout.default,
     show: (loaded, from) => { images.removeFiles(); measure.clear(); stage.show(loaded, from); },
-    showStatus, setCellSize: (metres) => change('cellSize', metres), drape: (image, sidecars, options) => images.drape(image, sidecars, options) });
+    showStatus, setCellSize: (metres) => change('cellSize', metres), drape: (image, sidecars, options) => images.drape(image, sidecars, options),
+    addOverlay: (file, options) => overlays.add(file, options) });
   if (window.hexlod === state) {
     installTestApi(state, { gl, core, rig, settings, view, requestRender, setSetting: change, screenshot, urlWriter,
       terrain: () => stage.current?.terrain, setLayout: (layout) => change('layout', layout), openUrl: (url) => intake.openUrl(url) });
@@ -131,9 +141,24 @@ async function main() {
   installPointerReadout(canvas, { rig, settings, terrain: () => stage.current,
     onCursor: (pick) => { state.cursor = pick; hud.setCursor(pick); },
     onOrbit: () => { syncPanel(); requestRender(); }, measuring: () => measure.active });
+  // Overlays: their legend in the panel, the feature under the pointer, a track's profile and a flight along it.
+  const overlayFolder = panel.folder('Overlays');
+  const tracks = createOverlayTracks({ measure, rig, settings, folder: overlayFolder, showStatus, requestRender, syncPanel });
+  const overlayPanel = createOverlayPanel(overlayFolder, overlays, { profile: (layer) => tracks.profileOf(layer), flyAlong: (layer) => tracks.flyAlong(layer) });
+  layers.onChange((shown, part) => {
+    if (part !== 'overlays') return;
+    overlayPanel.show(shown);
+    tracks.overlaysChanged(shown.overlays);
+  });
+  overlayPanel.show(layers);
+  const overlayPointer = installOverlayPointer(canvas, { rig, settings, terrain: () => stage.current, layers,
+    tip: document.getElementById('overlay-tip'), measuring: () => measure.active,
+    showTrack: (layer, feature, path) => tracks.showProfile(layer, feature, path) });
+  measure.lineAt = (x, y) => overlayPointer.lineAt(x, y);
+  Object.defineProperty(state, 'tracks', { value: tracks, enumerable: false }); // for tests: profile, fly along
   recoverLostContext(canvas, { pipeline, renderer, stage, images, layers, state, showStatus, requestRender });
   await openFirstTerrain({ urlState, intake, stage, rig, measure, det, state, statusBox, openingStatus: OPENING_STATUS,
-    showStatus, showContourNote, syncPanel, addTiles: (text) => webTiles.addFrom(text) });
+    showStatus, showContourNote, syncPanel, addTiles: (text) => webTiles.addFrom(text), addOverlayUrl: (url) => overlays.addUrl(url) });
   requestRender();
   state.status = 'ready';
 }

@@ -4,6 +4,7 @@
 //   src=URL                    the data source, when it came from a URL
 //   image=URL, tiles=TEMPLATE  the image layers draped on it that came from an address, bottom
 //                              first (each repeatable, in any order: the order is the layers')
+//   overlay=URL                GPX, KML, KMZ or GeoJSON overlays from an address, bottom first (repeatable)
 //   measure=p:x,z;x,z;...      the measured path (a: for an area), metres (web/ui/measure_tool.js)
 //   timeout, maxmb, layout     only when not the defaults
 // Other parameters (timing, flight, test) are kept as they are. Every value is checked: a bad one
@@ -19,12 +20,14 @@ const LIMIT = 1e9; // metres: past this a position is not a place on any terrain
 /**
  * Reads the view from a query string.
  * @returns {{settings: object, camera: object|null, src: string|null,
- *   layers: Array<{kind: 'image'|'tiles', url: string}>, measure: {kind: string, points: number[][]}|null, errors: string[]}}
+ *   layers: Array<{kind: 'image'|'tiles', url: string}>, overlays: string[], measure: {kind: string, points: number[][]}|null,
+ *   errors: string[]}}
  */
 export function parseUrlState(search) {
   const params = new URLSearchParams(search);
   const layers = [...params].filter(([key, value]) => LAYER_KEYS[key] && value !== '').map(([key, url]) => ({ kind: LAYER_KEYS[key], url }));
-  const result = { settings: {}, camera: null, src: params.get('src'), layers, measure: null, errors: [] };
+  const overlays = params.getAll('overlay').filter((url) => url !== '');
+  const result = { settings: {}, camera: null, src: params.get('src'), layers, overlays, measure: null, errors: [] };
   if (params.has('measure')) {
     const measure = parseMeasureParam(params.get('measure'));
     if (measure instanceof Error) result.errors.push(measure.message);
@@ -100,6 +103,7 @@ export class UrlWriter {
     this.camera = null;
     this.src = null;
     this.layerUrls = [];
+    this.overlayUrls = [];
     this.measure = null; // the measured line's `measure` value, set by the measuring tool when it changes
     this.flushLater = () => this.flush();
   }
@@ -107,12 +111,14 @@ export class UrlWriter {
   /**
    * @param {object} settings @param {object} camera the active camera @param {string|null} src the data's URL
    * @param {Array<{kind: 'image'|'tiles', url: string}>} [layerUrls] the image layers that came from an address, bottom first
+   * @param {string[]} [overlayUrls] the overlays that came from an address, bottom first
    */
-  write(settings, camera, src, layerUrls = []) {
+  write(settings, camera, src, layerUrls = [], overlayUrls = []) {
     this.settings = settings;
     this.camera = camera;
     this.src = src;
     this.layerUrls = layerUrls;
+    this.overlayUrls = overlayUrls;
     this.pending = true;
     if (this.timer === null) this.timer = setTimeout(this.flushLater, WRITE_EVERY_MS);
   }
@@ -121,7 +127,7 @@ export class UrlWriter {
     clearTimeout(this.timer);
     this.timer = null;
     if (!this.pending) return;
-    const { settings, camera, src, layerUrls } = this;
+    const { settings, camera, src, layerUrls, overlayUrls } = this;
     this.pending = false;
     const params = new URLSearchParams(location.search);
     for (const [key, name] of URL_KEYS) {
@@ -132,6 +138,8 @@ export class UrlWriter {
     if (src) params.set('src', src); else params.delete('src');
     for (const key of Object.keys(LAYER_KEYS)) params.delete(key);
     for (const { kind, url } of layerUrls) params.append(kind, url);
+    params.delete('overlay');
+    for (const url of overlayUrls) params.append('overlay', url);
     params.delete('measure');
     // The measured line goes last and as it is (digits and , ; : need no escaping): readable.
     const measure = this.measure ? `&measure=${this.measure}` : '';

@@ -37,6 +37,8 @@ export class CameraRig {
       this.move.up += m[2];
     };
     this.setWorld(emptyWorld());
+    this.follow = null;      // a track being followed (track_follow.js), or null
+    this.verticalScale = 1;  // the exaggeration, for a followed track's heights
   }
 
   get mode() { return this.active.mode; }
@@ -97,8 +99,12 @@ export class CameraRig {
     this.onChange();
   }
 
-  /** Moves the fly or walk camera for the held keys; true while something is held. */
+  /** Moves the fly or walk camera along a followed track or for the held keys; true while it moves. */
   step(seconds) {
+    if (this.follow && this.active.mode !== 'orbit') {
+      this.follow.step(Math.min(seconds, 0.1), this.active, this.verticalScale);
+      if (this.follow.playing) return true;
+    }
     if (this.held.size === 0 || this.active.mode === 'orbit') return false;
     this.move.forward = this.move.right = this.move.up = 0;
     this.held.forEach(this.addMove);

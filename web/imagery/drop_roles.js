@@ -10,6 +10,8 @@
 //   - sidecars go with the file they are named after: a world file with its image
 //     (world_file.js), a .prj or GDAL .aux.xml with its image or height field
 //     (geo/sidecar_names.js), a .json with its height field (the loaders pair those);
+//   - GPX, KML, KMZ and GeoJSON files are overlays (overlays/overlay_kind.js), drawn over the
+//     terrain the drop shows or the one on screen;
 //   - a sidecar of no file in the drop, metadata (.ovr, .xml, .md5, ...), and any file the
 //     loaders do not take are skipped, each with the reason: they never stop the drop. Only when
 //     nothing is left to open does the drop fail (an unknown file alone goes to the loaders,
@@ -22,6 +24,7 @@ import { hasTiffSignature, readDirectory, isWorldFileName, worldFileNames, isPrj
   metadataKind } from '../geo/index.js';
 import { encodingFromName } from '../loaders/terrain_rgb.js';
 import { ImageError } from './image_error.js';
+import { overlayKind } from '../overlays/overlay_kind.js';
 import { IMAGE_FORMATS, alwaysImageFormat } from './image_formats.js';
 
 /** What the file picker offers beside the height fields: images and their sidecars. */
@@ -35,6 +38,7 @@ const HEIGHT_EXTENSIONS = ['png', 'tif', 'tiff', 'hgt', 'asc', 'pgm', 'f32', 'js
  * @property {number[]} field the height field's files (or a mosaic's tiles), with its .json, .prj and .aux.xml
  * @property {Array<{ image: number, sidecars: { worldFile: number|null, prj: number|null, auxXml: number|null } }>} images
  *   in the order they came
+ * @property {number[]} overlays GPX, KML, KMZ and GeoJSON files, in the order they came
  * @property {Array<{ file: number, why: string }>} skipped files that are not opened, and why
  */
 
@@ -70,7 +74,7 @@ export function dropRoles(files, options = {}) {
   });
 
   const indices = (kind) => kinds.flatMap((k, i) => (k === kind ? [i] : []));
-  const imageIndices = indices('image'), heights = indices('height');
+  const imageIndices = indices('image'), heights = indices('height'), overlays = indices('overlay');
   const skipped = [];
   const owned = new Set();
   const ownerOf = (sidecar, owners) => {
@@ -111,21 +115,21 @@ export function dropRoles(files, options = {}) {
     }
   });
 
-  if (heights.length === 0 && images.length === 0) {
+  if (heights.length === 0 && images.length === 0 && overlays.length === 0) {
     // Files the loaders do not take, alone: the loaders say what they take. Only sidecars or
     // metadata: there is nothing to open.
     const others = skipped.filter((s) => kinds[s.file] === 'other' || kinds[s.file] === 'json').map((s) => s.file);
-    if (others.length) return { field: others, images: [], skipped: skipped.filter((s) => !others.includes(s.file)) };
+    if (others.length) return { field: others, images: [], overlays: [], skipped: skipped.filter((s) => !others.includes(s.file)) };
     const first = skipped[0];
     if (!first) throw new ImageError('', 'no files given');
     throw new ImageError(files[first.file].name, kinds[first.file] === 'world' ? 'a world file alone places nothing; open it with its image'
       : `${first.why}: nothing here to open; open it with the height field or image it belongs to`);
   }
-  return { field, images, skipped };
+  return { field, images, overlays, skipped };
 }
 
 /**
- * 'world' | 'prj' | 'auxXml' | 'json' | 'metadata' | 'image' (surely) | 'colourPng' | 'grey' (8-bit
+ * 'world' | 'prj' | 'auxXml' | 'json' | 'overlay' | 'metadata' | 'image' (surely) | 'colourPng' | 'grey' (8-bit
  * single channel) | 'height' (the loaders' to judge) | 'other' (no file the loaders or the
  * drape take).
  */
@@ -135,6 +139,7 @@ function kindOf({ name, head }) {
   if (isPrjName(name)) return 'prj';
   if (isAuxXmlName(name)) return 'auxXml';
   if (metadataKind(name)) return 'metadata'; // before the first bytes: an .ovr is a TIFF
+  if (overlayKind(name, head)) return 'overlay'; // before the loaders: a GeoJSON may be named .json
   if (alwaysImageFormat(extension, head)) return 'image';
   if (hasPngSignature(head) && head.length >= 26) {
     const bitDepth = head[24], colourType = head[25];

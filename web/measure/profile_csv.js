@@ -3,7 +3,9 @@
 // line and a row per sample. Columns: distance_m, x_m, z_m (local metres: x east, z south of the
 // first sample), then the CRS coordinates when the field has a georeference (easting_m,
 // northing_m, plus lon, lat where coordinates.js can invert the projection; lon, lat for a
-// geographic CRS), and height_m.
+// geographic CRS), and height_m. A track's profile (track_profile.js) adds what its file
+// recorded: gps_elevation_m, time (ISO 8601) and vertex (the track's vertex at a vertex's row,
+// empty between), and its recorded climb, duration and speeds in the summary.
 import { geoCoordinates } from '../geo/index.js';
 
 /**
@@ -31,6 +33,8 @@ export function profileCsv(profile, georef = null, spacingX = profile.spacingX, 
     crsColumns = (c) => [metres(c.easting), metres(c.northing)];
   }
   columns.push('height_m');
+  const track = samples.vertex !== undefined;
+  if (track) columns.push('gps_elevation_m', 'time', 'vertex');
   const lines = [
     `# length_m ${metres(summary.length)}`,
     `# length3d_m ${metres(summary.length3d)}`,
@@ -43,6 +47,12 @@ export function profileCsv(profile, georef = null, spacingX = profile.spacingX, 
     `# samples ${n}`,
     `# crs ${georef ? georef.crs.label : 'none (local metres)'}`,
   ];
+  if (track) {
+    lines.push(`# gps_gain_m ${metres(summary.gpsGain)}`, `# gps_loss_m ${metres(summary.gpsLoss)}`);
+    if (summary.duration !== null) lines.push(`# duration_s ${summary.duration.toFixed(1)}`);
+    if (summary.averageSpeed !== null) lines.push(`# mean_speed_m_s ${summary.averageSpeed.toFixed(3)}`);
+    if (summary.movingSpeed !== null) lines.push(`# moving_speed_m_s ${summary.movingSpeed.toFixed(3)}`);
+  }
   if (profile.clipped) lines.push(`# clipped ${profile.clipped}`);
   if (profile.note) lines.push(`# note ${profile.note}`);
   lines.push(columns.join(','));
@@ -50,6 +60,10 @@ export function profileCsv(profile, georef = null, spacingX = profile.spacingX, 
     const row = [metres(samples.distance[k]), metres(samples.x[k]), metres(samples.z[k])];
     if (georef) row.push(...crsColumns(at(k)));
     row.push(metres(samples.height[k]));
+    if (track) {
+      const t = samples.time[k];
+      row.push(metres(samples.gpsElevation[k]), Number.isFinite(t) ? new Date(t).toISOString() : '', samples.vertex[k] >= 0 ? String(samples.vertex[k]) : '');
+    }
     lines.push(row.join(','));
   }
   return lines.join('\n') + '\n';

@@ -2,6 +2,7 @@
 // or chosen with the Open button's file picker. Both hand the files to one opener as one load.
 import { ACCEPT_EXTENSIONS, ACCEPTED } from '../loaders/index.js';
 import { IMAGE_EXTENSIONS } from '../imagery/drop_roles.js';
+import { OVERLAY_EXTENSIONS } from '../overlays/overlay_kind.js';
 import { DRAPED_FORMATS } from '../imagery/image_formats.js';
 import { droppedFiles, MAX_DROPPED_FILES } from './dropped_files.js';
 
@@ -26,7 +27,7 @@ export function installDropTarget(openPicked, showStatus) {
     }
     if (files.length) await openPicked(files);
   });
-  picker.accept = [...ACCEPT_EXTENSIONS, ...IMAGE_EXTENSIONS].join(',');
+  picker.accept = [...ACCEPT_EXTENSIONS, ...IMAGE_EXTENSIONS, ...OVERLAY_EXTENSIONS].join(',');
   button.title = `Open a height field (${ACCEPTED}), images to drape on it (${DRAPED_FORMATS}, with their world files), or both; ` +
     'a .prj or GDAL .aux.xml gives the CRS of the file it is named after';
   button.onclick = () => picker.click();

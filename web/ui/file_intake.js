@@ -22,12 +22,13 @@ import { installDropTarget } from './drop_target.js';
  *   or adds an image layer over it); show: the loaded terrain and the URL it came from (null for
  *   a file); setCellSize: the panel's cell size setting, false when refused; drape: an image
  *   ({ name, blob }) onto the terrain on screen (app/image_stage.js), null when refused;
+ *   addOverlay: a GPX, KML, KMZ or GeoJSON file ({ name, bytes }) over it (app/overlay_stage.js);
  *   defaultUrlTimeoutS: the time limit of the page's own files
  * @returns {{ openUrl, openImageUrl, openLinks, idle: () => Promise<void>, showSpacing: (terrain: object, assumed?: boolean) => void }}
  *   openUrl, openImageUrl and openLinks resolve to 'shown', 'failed' (the status line says why) or
  *   'cancelled' (by the Cancel button, or by a file opened meanwhile)
  */
-export function createFileIntake({ core, state, settings, layers, show, showStatus, setCellSize, drape, defaultUrlTimeoutS }) {
+export function createFileIntake({ core, state, settings, layers, show, showStatus, setCellSize, drape, addOverlay, defaultUrlTimeoutS }) {
   const $ = (id) => document.getElementById(id);
   const encodingSelect = $('png-encoding'), encoding = () => encodingSelect.value;
   state.loading = false;
@@ -40,6 +41,6 @@ export function createFileIntake({ core, state, settings, layers, show, showStat
   const showSpacing = installSpacingField({ state, layers, showStatus, setCellSize });
   const opening = createTerrainOpening({ core, state, settings, show, showStatus, indicator, showSpacing, encoding });
   const urls = createUrlOpening({ loads, indicator, settings, opening, drape, defaultUrlTimeoutS });
-  installDropTarget(pickedFilesOpener({ loads, indicator, settings, layers, opening, drape, showStatus, encoding }), showStatus);
+  installDropTarget(pickedFilesOpener({ loads, indicator, settings, layers, opening, drape, addOverlay, showStatus, encoding }), showStatus);
   return { ...urls, idle: () => loads.idle(), showSpacing };
 }

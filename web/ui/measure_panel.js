@@ -10,6 +10,7 @@ import { geoCoordinates, formatCoordinates } from '../geo/index.js';
 const HINT = {
   path: 'Click points on the ground · double click or Enter ends · Backspace undoes · Esc clears',
   area: 'Click the corners · double click or Enter closes · Backspace undoes · Esc clears',
+  track: 'A track of an overlay · click another line for its profile, or the ground for a path of your own · Esc clears',
 };
 const $ = (id) => document.getElementById(id);
 
@@ -22,6 +23,25 @@ export function formatAreaUnits(squareMetres) {
 }
 
 const heightText = (m) => `${Math.round(m).toLocaleString('en')} m`;
+
+/** '1 h 05 min', '12 min 30 s', '45 s'. */
+export function formatDuration(seconds) {
+  const s = Math.round(seconds), h = Math.floor(s / 3600), m = Math.floor((s % 3600) / 60), r = s % 60;
+  if (h > 0) return `${h} h ${String(m).padStart(2, '0')} min`;
+  return m > 0 ? `${m} min ${String(r).padStart(2, '0')} s` : `${r} s`;
+}
+
+const speedText = (metresPerSecond) => `${(metresPerSecond * 3.6).toFixed(1)} km/h`;
+
+/** A track's own figures: what its file recorded (elevations, times). */
+function trackRows(s) {
+  const rows = [];
+  if (Number.isFinite(s.gpsGain)) rows.push(['recorded gain', heightText(s.gpsGain)], ['recorded loss', heightText(s.gpsLoss)]);
+  if (s.duration !== null && s.duration !== undefined) rows.push(['time', formatDuration(s.duration)]);
+  if (s.averageSpeed !== null && s.averageSpeed !== undefined) rows.push(['mean speed', speedText(s.averageSpeed)]);
+  if (s.movingSpeed !== null && s.movingSpeed !== undefined) rows.push(['moving speed', speedText(s.movingSpeed)]);
+  return rows;
+}
 const degrees = (d) => `${d.toFixed(1)}°`;
 
 export class MeasurePanel {
@@ -59,10 +79,10 @@ export class MeasurePanel {
     this.root.hidden = !result.active;
     if (!result.active) return;
     const area = result.kind === 'area';
-    $('measure-title').textContent = area ? 'Area' : 'Profile';
+    $('measure-title').textContent = area ? 'Area' : result.track ? `Track: ${result.track}` : 'Profile';
     $('measure-path').setAttribute('aria-pressed', String(!area));
     $('measure-area').setAttribute('aria-pressed', String(area));
-    $('measure-hint').textContent = result.finished ? (area ? 'Area closed · click to start another' : 'Path finished · click to start another') : HINT[result.kind];
+    $('measure-hint').textContent = result.track ? HINT.track : result.finished ? (area ? 'Area closed · click to start another' : 'Path finished · click to start another') : HINT[result.kind];
     const notes = [result.error, result.profile?.clipped && `Clipped: ${result.profile.clipped}.`, result.area?.note, result.profile?.note].filter(Boolean);
     $('measure-note').textContent = notes.join(' ');
     $('measure-note').hidden = notes.length === 0;
@@ -80,7 +100,7 @@ export class MeasurePanel {
     $('measure-csv').disabled = $('measure-png').disabled = !canExport;
     $('measure-undo').disabled = result.points.length === 0;
     $('measure-done').disabled = result.finished || result.points.length < (area ? 3 : 2);
-    $('measure-clear').disabled = result.points.length === 0;
+    $('measure-clear').disabled = result.points.length === 0 && !result.track;
     this.chart.show(result.profile);
   }
 
@@ -93,9 +113,10 @@ export class MeasurePanel {
         ['perimeter', formatLength(a.perimeter)], ['perimeter 3D', formatLength(a.perimeter3d)]);
     }
     if (s) {
-      if (result.kind === 'path') rows.push(['length', formatLength(s.length)], ['3D length', formatLength(s.length3d)]);
+      if (result.kind !== 'area') rows.push(['length', formatLength(s.length)], ['3D length', formatLength(s.length3d)]);
       rows.push(['gain', heightText(s.gain)], ['loss', heightText(s.loss)], ['min', heightText(s.min)], ['max', heightText(s.max)],
         ['mean slope', degrees(s.meanSlope)], ['steepest', degrees(s.steepestSlope)]);
+      if (result.track) rows.push(...trackRows(s));
     }
     if (!rows.length) rows.push(['points', String(result.points.length)]);
     return rows;
@@ -114,7 +135,9 @@ export class MeasurePanel {
     // Where it is: real coordinates when the field has them, else local metres.
     const place = this.result.georef ? formatCoordinates(geoCoordinates(this.result.georef, x[index], z[index], spacingX, spacingY))
       : `x ${formatLength(x[index])}, z ${formatLength(z[index])}`;
-    $('measure-hover').textContent = `at ${formatLength(distance[index])}: height ${heightText(height[index])} · ${place}`;
+    const recorded = p.samples.gpsElevation?.[index];
+    const own = Number.isFinite(recorded) ? ` (recorded ${heightText(recorded)})` : '';
+    $('measure-hover').textContent = `at ${formatLength(distance[index])}: height ${heightText(height[index])}${own} · ${place}`;
     this.actions.onHover([x[index], height[index], z[index]]);
   }
 
@@ -122,7 +145,8 @@ export class MeasurePanel {
     const p = this.result?.profile;
     if (!p) return;
     const text = profileCsv(p, this.result.georef);
-    this.actions.download(new Blob([text], { type: 'text/csv' }), `${this.actions.name()}-${this.result.kind === 'area' ? 'outline' : 'profile'}.csv`);
+    const what = this.result.kind === 'area' ? 'outline' : this.result.track ? `${this.result.track.replace(/\.[^.]*$/, '')}-profile` : 'profile';
+    this.actions.download(new Blob([text], { type: 'text/csv' }), `${this.actions.name()}-${what}.csv`);
   }
 
   exportPng() {

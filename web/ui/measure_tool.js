@@ -61,6 +61,8 @@ export class MeasureTool {
     this.finished = false;
     this.result = null;
     this.lastClick = null; // {x, y, time} of the last press that added a point
+    this.track = null;     // an overlay's track shown instead of clicked points: { name, profile }
+    this.lineAt = null;    // (clientX, clientY) => whether an overlay's line there took the click (app/overlay_pointer.js)
   }
 
   /** Turns the mode on or off; off clears the line. */
@@ -75,6 +77,7 @@ export class MeasureTool {
 
   /** 'path' or 'area': the same points, measured the other way. */
   setKind(kind) {
+    this.track = null;
     this.kind = kind === 'area' ? 'area' : 'path';
     this.update();
   }
@@ -83,6 +86,7 @@ export class MeasureTool {
   add(x, z) {
     const loaded = this.terrain();
     if (!loaded) return false;
+    if (this.track) this.clear(); // a click after a track's profile starts a path of one's own
     if (this.finished) { this.points = []; this.finished = false; }
     this.points.push([x, z]);
     this.update();
@@ -101,6 +105,8 @@ export class MeasureTool {
   }
 
   clear() {
+    if (this.track) this.kind = 'path';
+    this.track = null;
     this.points = [];
     this.finished = false;
     this.overlay.setHover(null);
@@ -124,6 +130,20 @@ export class MeasureTool {
     return this.result;
   }
 
+  /**
+   * An overlay's track in the panel (app/overlay_tracks.js): its profile (measure/track_profile.js),
+   * drawn over the track like a measured path; the tool is on, and a click starts a path of one's own.
+   * @param {{name: string, profile: object}} track
+   */
+  showTrack(track) {
+    this.active = true;
+    this.kind = 'track';
+    this.track = track;
+    this.points = [];
+    this.finished = true;
+    this.update();
+  }
+
   /** The terrain's heights changed (a tiled terrain's tiles came): what is measured is measured again. */
   heightsChanged() {
     if (this.active && this.points.length >= 2) this.update();
@@ -143,8 +163,11 @@ export class MeasureTool {
   update() {
     const sampler = this.sampler();
     const result = { active: this.active, kind: this.kind, points: this.points, finished: this.finished,
-      profile: null, area: null, error: null, georef: sampler?.georef ?? null };
-    if (sampler && this.active) {
+      profile: null, area: null, error: null, georef: sampler?.georef ?? null, track: this.track?.name ?? null };
+    if (this.track && sampler && this.active) {
+      result.profile = this.track.profile;
+      this.overlay.setLine(result.profile.samples, []);
+    } else if (sampler && this.active) {
       const line = this.kind === 'area' && this.points.length >= 3 ? [...this.points, this.points[0]] : this.points;
       try {
         if (line.length >= 2) result.profile = computeProfile(line, sampler);
@@ -159,7 +182,7 @@ export class MeasureTool {
     }
     this.result = result;
     this.onResult(result);
-    const enough = this.points.length >= (this.kind === 'area' ? 3 : 2);
+    const enough = this.points.length >= (this.kind === 'area' ? 3 : 2) && !this.track;
     this.onParam(this.active && enough && sampler ? measureParam(this.kind, this.points, sampler.spacing) : null);
     this.requestRender();
   }
@@ -184,6 +207,8 @@ export class MeasureTool {
       this.finish();
       return;
     }
+    // Between lines of one's own, a click on an overlay's line shows that line's profile.
+    if ((this.points.length === 0 || this.finished || this.track) && this.lineAt?.(clientX, clientY)) return;
     const point = this.pick(clientX - rect.left, clientY - rect.top);
     if (point) this.add(point.x, point.z); // off the terrain: nothing
   }

@@ -2,11 +2,13 @@
 // file is what (web/imagery/drop_roles.js) decides what the drop does to the layer list: a
 // height field (with its sidecars), or the tiles of a mosaic (web/loaders/mosaic.js), replaces
 // the terrain; each image (with its world file, .prj and .aux.xml) is draped over the terrain,
-// the new one or the one on screen, in the order they came. Files that are neither are skipped,
+// the new one or the one on screen, in the order they came; GPX, KML, KMZ and GeoJSON overlays
+// are drawn over it (or wait for a terrain when none is shown). Files that are neither are skipped,
 // and the status line names them. A colour PNG opened alone is a height field when its first
 // row reads as heights, else an image.
 import { dropRoles } from '../imagery/drop_roles.js';
 import { ImageError } from '../imagery/image_error.js';
+import { OverlayError } from '../overlays/overlay_error.js';
 import { detectPngEncoding, hasPngSignature } from '../loaders/png.js';
 import { shouldOpenTiled } from './tiled_open.js';
 
@@ -21,10 +23,11 @@ const MB = 2 ** 20;
  *   drape: (image: {name: string, blob: Blob}, sidecars: object, options?: object) => Promise<object|null>,
  *   showStatus: (message: string, isError?: boolean) => void, encoding: () => string }} page
  *   drape: an image and its sidecars ({ worldFile, prj, auxXml }, each { name, blob } or null)
- *   onto the terrain on screen (app/image_stage.js); with { throwRefusal: true } a refusal is thrown
+ *   onto the terrain on screen (app/image_stage.js); with { throwRefusal: true } a refusal is thrown;
+ *   addOverlay: a { name, bytes } overlay file over the terrain (app/overlay_stage.js), likewise
  * @returns {(list: FileList|File[]) => Promise<string>} opens them; resolves to 'shown', 'failed' or 'cancelled'
  */
-export function pickedFilesOpener({ loads, indicator, settings, layers, opening, drape, showStatus, encoding }) {
+export function pickedFilesOpener({ loads, indicator, settings, layers, opening, drape, addOverlay, showStatus, encoding }) {
   const { decode, openTiles, failed, cancelled } = opening;
 
   /** The drop's files as { name, head } (the first bytes) and, for a colour PNG alone, whether it holds heights. */
@@ -59,11 +62,11 @@ export function pickedFilesOpener({ loads, indicator, settings, layers, opening,
       const images = roles.images.map(({ image, sidecars }) => ({ image: file(image),
         sidecars: { worldFile: file(sidecars.worldFile), prj: file(sidecars.prj), auxXml: file(sidecars.auxXml) } }));
       const skipped = roles.skipped.length ? `skipped ${roles.skipped.map(({ file: i, why }) => `${picked[i].name} (${why})`).join(', ')}` : null;
-      if (roles.field.length === 0 && !layers.ground) {
+      if (roles.field.length === 0 && images.length > 0 && !layers.ground) {
         return failed(`${images.map((i) => i.image.name).join(', ') || names}: an image is draped over a terrain, and none is shown; open a height field with it or first`);
       }
       // A lone COG streams from the File (read by slices, never whole); any other height field loads whole.
-      const lone = roles.field.length === 1 && images.length === 0;
+      const lone = roles.field.length === 1 && images.length === 0 && roles.overlays.length === 0;
       if (lone && await shouldOpenTiled(picked[roles.field[0]], heads[roles.field[0]].head, settings.tileCacheMB * MB)) {
         if (signal.aborted) return cancelled(signal, names);
         const name = picked[roles.field[0]].name;
@@ -95,9 +98,24 @@ export function pickedFilesOpener({ loads, indicator, settings, layers, opening,
           refused.push(error.message);
         }
       }
+      // Each overlay in turn, over the terrain now on screen.
+      const added = [];
+      for (const i of roles.overlays) {
+        if (signal.aborted) break;
+        try {
+          const bytes = read.get(i) ?? new Uint8Array(await picked[i].arrayBuffer());
+          await addOverlay({ name: picked[i].name, bytes }, { throwRefusal: true });
+          added.push(picked[i].name);
+        } catch (error) {
+          if (!(error instanceof OverlayError)) throw error;
+          refused.push(error.message);
+        }
+      }
       // A lone refusal is in the status line already, as the image stage says it.
       const said = [...refused, ...notes, skipped].filter(Boolean);
-      if (said.length > 1 || (said.length === 1 && refused.length === 0)) {
+      // An overlay's own report (what it drew, what lies off the terrain) stands when it is all there is to say.
+      const overlayOnly = added.length > 0 && refused.length === 0 && images.length === 0 && !skipped;
+      if (!overlayOnly && (said.length > 1 || (said.length === 1 && refused.length === 0))) {
         const kept = layers.images.at(-1)?.image?.name;
         const stays = refused.length && kept && !draped.includes(kept) ? ` (${kept} stays)` : '';
         showStatus(`${said.join(' · ')}${stays}`, refused.length > 0);

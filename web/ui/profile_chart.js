@@ -1,10 +1,11 @@
 // The height profile as a chart on a 2D canvas: height against distance along the line, with
 // axes in metres or kilometres, the area under the curve shaded, breaks where the line left the
 // field, and a cursor that follows the pointer (the page marks the same point on the terrain).
+// A track's profile also carries the elevations its file recorded (GPS): a second curve.
 
 const FONT = '11px system-ui, sans-serif';
 const COLORS = { axis: '#9aa6b8', grid: 'rgba(232, 238, 246, 0.12)', text: '#d8e0ea', line: '#ffd22e',
-  fill: 'rgba(255, 210, 46, 0.18)', cursor: '#33d9ff', background: '#141a24' };
+  fill: 'rgba(255, 210, 46, 0.18)', cursor: '#33d9ff', background: '#141a24', recorded: '#ff5fa8' };
 const MARGIN = { left: 30, right: 10, top: 8, bottom: 22 };
 
 /** Round tick steps (1, 2, 2.5, 5 times a power of ten) giving about `count` ticks over [lo, hi]. */
@@ -82,10 +83,11 @@ export class ProfileChart {
     this.frame = null;
     const p = this.profile;
     if (!p) return;
-    const { distance, height, runStart } = p.samples;
+    const { distance, height, runStart } = p.samples, recorded = p.samples.gpsElevation ?? null;
     const n = distance.length;
     let low = Infinity, high = -Infinity;
     for (let k = 0; k < n; k++) if (Number.isFinite(height[k])) low = Math.min(low, height[k]), high = Math.max(high, height[k]);
+    for (let k = 0; recorded && k < n; k++) if (Number.isFinite(recorded[k])) low = Math.min(low, recorded[k]), high = Math.max(high, recorded[k]);
     if (!(high >= low)) return;
     // The height axis runs from a tick below the lowest point to one above the highest.
     const pad = Math.max((high - low) * 0.05, 1);
@@ -153,6 +155,7 @@ export class ProfileChart {
       g.stroke();
       g.lineWidth = 1;
     }
+    if (recorded) this.drawRecorded(g, recorded, distance, runStart, sx, sy, right, top);
     // The hovered sample.
     if (this.hover !== null && Number.isFinite(height[this.hover])) {
       const x = sx(distance[this.hover]), y = sy(height[this.hover]);
@@ -161,5 +164,28 @@ export class ProfileChart {
       g.fillStyle = COLORS.cursor;
       g.beginPath(); g.arc(x, y, 3.5, 0, 2 * Math.PI); g.fill();
     }
+  }
+
+  /** The file's own elevations along a track, where it has them, and the two curves' names. */
+  drawRecorded(g, recorded, distance, runStart, sx, sy, right, top) {
+    g.beginPath();
+    let drawing = false;
+    for (let k = 0; k < distance.length; k++) {
+      if (!Number.isFinite(recorded[k]) || runStart[k] === 1) drawing = false;
+      if (!Number.isFinite(recorded[k])) continue;
+      if (drawing) g.lineTo(sx(distance[k]), sy(recorded[k]));
+      else g.moveTo(sx(distance[k]), sy(recorded[k]));
+      drawing = true;
+    }
+    g.strokeStyle = COLORS.recorded;
+    g.lineWidth = 1.4;
+    g.stroke();
+    g.lineWidth = 1;
+    g.textAlign = 'right';
+    g.textBaseline = 'top';
+    g.fillStyle = COLORS.recorded;
+    g.fillText('recorded', right - 4, top + 2);
+    g.fillStyle = COLORS.line;
+    g.fillText('terrain', right - 4 - g.measureText('recorded ').width - 4, top + 2);
   }
 }
