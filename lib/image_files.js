@@ -59,3 +59,17 @@ export async function loadImageFiles(image, worldFile = null) {
   }
   return files;
 }
+
+/**
+ * Reads one file whole from a path or an http(s) URL, as { name, bytes } (a flight's overlay or track).
+ * @param {string} path
+ * @param {string} what the file's role, for the message
+ * @returns {Promise<NamedBytes>}
+ * @throws {Error} one line naming the file
+ */
+export async function readNamedFile(path, what) {
+  if (isUrl(path)) return { name: urlFileName(path), bytes: await fetchBytes(path) };
+  if (!existsSync(path)) throw new Error(`${path}: no such ${what} file`);
+  if (!statSync(path).isFile()) throw new Error(`${path}: not a file`);
+  return { name: basename(path), bytes: new Uint8Array(readFileSync(path)) };
+}

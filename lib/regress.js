@@ -16,7 +16,10 @@ import { compareStats, statsMatch, describeStats, statsLines, flightRecordOf, fl
   briefImage, readPng, writePng } from './regress_compare.js';
 import { flightLine, summaryText, htmlReport, junitXml, jsonReport } from './regress_report.js';
 import { loadTerrain } from '../web/loaders/terrain_source.js';
-import { replayFlight } from '../web/app/deterministic/flight.js';
+import { replayFlight, withKeyframes } from '../web/app/deterministic/flight.js';
+import { flightTrackKeyframes } from '../web/app/deterministic/track_keyframes.js';
+import { useNodeCrsDefinitions } from './crs_definitions.js';
+import { readNamedFile } from './image_files.js';
 import { DEFAULT_TOLERANCE, toleranceFor } from '../web/app/deterministic/tolerance.js';
 
 export const EXIT = { pass: 0, regression: 1, input: 2, environment: 3 };
@@ -136,9 +139,22 @@ async function replayInNode(job, dem) {
     const message = error.needsSize ? `${error.message} (give the size in a NAME.json sidecar: width, height)` : error.message;
     throw new InputError(`${job.source}: the height field does not load: ${message.replace(/^[^:]*: /, '')}`);
   }
-  const record = replayFlight(loaded.terrain, job.flight);
-  loaded.terrain.destroy();
-  return record.toArray();
+  try {
+    // A flight along a track: its keyframes from the track on this terrain, as the page makes them.
+    if (job.flight.track) {
+      useNodeCrsDefinitions();
+      let keyframes;
+      try {
+        keyframes = await flightTrackKeyframes(job.flight.track, await readNamedFile(job.track, 'track'), loaded.terrain, loaded.field.georef ?? null);
+      } catch (error) {
+        throw new InputError(`${shown(job.track)}: ${error.message}`);
+      }
+      job.flight = withKeyframes(job.flight, keyframes);
+    }
+    return replayFlight(loaded.terrain, job.flight).toArray();
+  } finally {
+    loaded.terrain.destroy();
+  }
 }
 
 const frameFile = (frame) => `frame-${String(frame).padStart(4, '0')}.png`;
@@ -295,6 +311,9 @@ async function flyJob(job, index, context) {
   try {
     dem = await context.dems.get(job.source);
     const nodeStats = await replayInNode(job, dem);
+    const overlayFiles = [];
+    for (const path of job.overlays) overlayFiles.push(await readNamedFile(path, 'overlay').catch((error) => { throw new InputError(error.message); }));
+    const trackFile = job.track ? await readNamedFile(job.track, 'track') : null;
     const layerFiles = [];
     for (const layer of job.layers) {
       layerFiles.push(layer.kind !== 'image' ? null : await loadImageFiles(layer.image, layer.worldFile).catch((error) => {
@@ -305,7 +324,8 @@ async function flyJob(job, index, context) {
     if (!context.nodeOnly) {
       const session = await context.browser();
       try {
-        const page = await context.browserModule.flyInPage(session, { id: index, demFiles: dem.files, layerFiles, flightPath: job.flightPath, flight: job.flight });
+        const page = await context.browserModule.flyInPage(session, { id: index, demFiles: dem.files, layerFiles, overlayFiles, trackFile,
+          flightPath: job.flightPath, flight: job.flight });
         Object.assign(flown, { stats: page.stats, images: page.images, pageProblems: page.problems, nodeDiff: compareStats(nodeStats, page.stats) });
       } catch (error) {
         if (error instanceof EnvironmentError) throw error;

@@ -103,11 +103,12 @@ export async function startBrowser({ chromium: chromiumPath = process.env.CHROMI
  * Flies one flight in a new page: captures the pixels of `captures` and the figures of every frame.
  * A browser that dies on the way throws EnvironmentError; a page that fails throws Error.
  * @param {{id: string|number, demFiles: {name: string, bytes: Uint8Array}[], flightPath: string, flight: object,
- *   layerFiles?: Array<import('./image_files.js').ImageFiles|null>}} job layerFiles: each image layer's files
- *   (null for a layer of another kind), in the flight's order
+ *   layerFiles?: Array<import('./image_files.js').ImageFiles|null>, overlayFiles?: Array<{name: string, bytes: Uint8Array}>,
+ *   trackFile?: {name: string, bytes: Uint8Array}|null}} job layerFiles: each image layer's files (null for a
+ *   layer of another kind), in the flight's order; overlayFiles: its overlays'; trackFile: its track's
  * @returns {Promise<{stats: object[], images: Map<number, {width, height, rgb: Uint8Array}>, problems: string[]}>}
  */
-export async function flyInPage(session, { id, demFiles, layerFiles = [], flightPath, flight, timeoutMs = 300000 }) {
+export async function flyInPage(session, { id, demFiles, layerFiles = [], overlayFiles = [], trackFile = null, flightPath, flight, timeoutMs = 300000 }) {
   if (!session.browser.isConnected()) throw new EnvironmentError('the browser closed during the run');
   const dem = session.files.add(id, 'dem', demFiles);
   const flightUrl = session.files.addPath(id, 'flight', flightPath);
@@ -118,6 +119,9 @@ export async function flyInPage(session, { id, demFiles, layerFiles = [], flight
     imageQuery += `&image${k}=${encodeURIComponent(session.files.add(id, `image${k}`, [files.image]))}`;
     if (files.worldFile) imageQuery += `&world${k}=${encodeURIComponent(session.files.add(id, `world${k}`, [files.worldFile]))}`;
   });
+  // Its overlays and its track likewise.
+  overlayFiles.forEach((file, k) => { imageQuery += `&overlay${k}=${encodeURIComponent(session.files.add(id, `overlay${k}`, [file]))}`; });
+  if (trackFile) imageQuery += `&track=${encodeURIComponent(session.files.add(id, 'track', [trackFile]))}`;
   const [w, h] = flight.viewport;
   const page = await session.browser.newPage({ viewport: { width: w, height: h }, deviceScaleFactor: flight.dpr });
   const problems = [];

@@ -72,13 +72,15 @@ const layerList = (layers) => (layers?.length ? layers.map((l) => `${l.image ?? 
  * figures and pixels (not its tolerance, which only judges them).
  */
 export function flightRecordOf(flight, dem) {
-  const { fps, frames, viewport, dpr, settings, captures, keyframes, layers } = flight;
+  const { fps, frames, viewport, dpr, settings, captures, keyframes, layers, overlays = [], track = null } = flight;
   // The layers only when there are some, and one plain image as "image" and "worldFile":
   // references of flights without layers, or with one image, stay as they were.
   const [first] = layers;
   const oneImage = layers.length === 1 && first.kind === 'image' && first.opacity === 1 && first.visible;
   const draped = oneImage ? { image: first.image, worldFile: first.worldFile } : layers.length > 0 ? { layers } : {};
-  return { spec: { fps, frames, viewport, dpr, settings, captures, keyframes, ...draped }, dem: { name: dem.name, bytes: dem.size, sha256: dem.sha256 } };
+  // A track and overlays only when there are some, likewise.
+  const drawn = { ...(overlays.length > 0 && { overlays }), ...(track && { track }) };
+  return { spec: { fps, frames, viewport, dpr, settings, captures, keyframes, ...draped, ...drawn }, dem: { name: dem.name, bytes: dem.size, sha256: dem.sha256 } };
 }
 
 /**

@@ -38,7 +38,7 @@ function demOf(flightPath, flight) {
 
 /** A job for one flight file; a problem with it becomes the job's error, not an exception. */
 function jobFor(flightPath, demSource) {
-  const job = { name: flightName(flightPath), flightPath: resolve(flightPath), source: null, layers: [], flight: null, error: null };
+  const job = { name: flightName(flightPath), flightPath: resolve(flightPath), source: null, layers: [], overlays: [], track: null, flight: null, error: null };
   try {
     job.flight = readFlight(flightPath);
     job.source = demSource ?? demOf(flightPath, job.flight);
@@ -50,6 +50,12 @@ function jobFor(flightPath, demSource) {
       for (const [what, path] of [['image', layer.image], ['world file', layer.worldFile]]) {
         if (path !== null && !isUrl(path) && !existsSync(path)) throw new Error(`${flightPath}: its ${what} ${path}: no such file`);
       }
+    }
+    // Its overlays and its track, likewise.
+    job.overlays = job.flight.overlays.map(beside);
+    job.track = job.flight.track ? beside(job.flight.track.file) : null;
+    for (const [what, path] of [...job.overlays.map((p) => ['overlay', p]), ...(job.track ? [['track', job.track]] : [])]) {
+      if (!isUrl(path) && !existsSync(path)) throw new Error(`${flightPath}: its ${what} ${path}: no such file`);
     }
   } catch (error) {
     job.error = String(error.message).split('\n')[0];

@@ -29,13 +29,19 @@ def pixel(lon, lat):
     x, y, _ = to_utm.TransformPoint(lon, lat)
     return x, y, (x - gt[0]) / gt[1] - 0.5, (y - gt[3]) / gt[5] - 0.5
 
+NODATA = band.GetNoDataValue()
+
 def dem_height(lon, lat):
-    """Bilinear between the four samples around the point."""
+    """Bilinear between the four samples around the point, over the valid ones (the DEM has voids)."""
     _, _, c, r = pixel(lon, lat)
     i, j = int(math.floor(c)), int(math.floor(r))
     fu, fv = c - i, r - j
-    h = heights
-    return (h[j, i] * (1 - fu) + h[j, i + 1] * fu) * (1 - fv) + (h[j + 1, i] * (1 - fu) + h[j + 1, i + 1] * fu) * fv
+    total = weight = 0.0
+    for dj, di, w in ((0, 0, (1 - fu) * (1 - fv)), (0, 1, fu * (1 - fv)), (1, 0, (1 - fu) * fv), (1, 1, fu * fv)):
+        h = heights[j + dj, i + di]
+        if h != NODATA and h > -1000:
+            total += h * w; weight += w
+    return total / weight if weight > 0 else float('nan')
 
 # The Everest Base Camp trek: Lukla, Namche Bazaar, Tengboche, Dingboche, Lobuche, Gorak Shep, the base camp.
 TREK = [(86.7314, 27.6866), (86.7200, 27.7400), (86.7138, 27.8043), (86.7642, 27.8361), (86.8306, 27.8923),
@@ -62,15 +68,17 @@ def densify(points, count):
 track = densify(TREK, 400)
 start = 1748761200  # 2025-06-01T07:00:00Z
 def iso(t): return __import__('datetime').datetime.utcfromtimestamp(t).strftime('%Y-%m-%dT%H:%M:%SZ')
-trkpts, expected_vertices, t = [], [], start
+trkpts, expected_vertices, t, last_ele = [], [], start, 0.0
 for k, (lon, lat) in enumerate(track):
-    ele = dem_height(lon, lat) + random.uniform(-6, 6)
+    ground = dem_height(lon, lat)
+    ele = (ground if ground == ground else last_ele) + random.uniform(-6, 6)
+    last_ele = ele
     if k: t += 90 + (600 if k == 200 else 0)  # a long stop at Dingboche's tea house
     trkpts.append(f'      <trkpt lat="{lat:.7f}" lon="{lon:.7f}"><ele>{ele:.1f}</ele><time>{iso(t)}</time></trkpt>')
     if k % 40 == 0 or k == len(track) - 1:
         x, y, c, r = pixel(lon, lat)
         expected_vertices.append({'vertex': k, 'lon': round(lon, 7), 'lat': round(lat, 7), 'easting': x, 'northing': y,
-                                  'column': c, 'row': r, 'dem_height': dem_height(lon, lat)})
+                                  'column': c, 'row': r, 'dem_height': dem_height(lon, lat) if dem_height(lon, lat) == dem_height(lon, lat) else None})
 wpts = '\n'.join(f'  <wpt lat="{lat}" lon="{lon}"><ele>{dem_height(lon, lat):.0f}</ele><name>{name}</name></wpt>' for name, lon, lat in PLACES)
 rte = '\n'.join(f'    <rtept lat="{lat}" lon="{lon}"/>' for lon, lat in [(86.8286, 27.9800), (86.8286, 27.9958)])
 gpx11 = f'''<?xml version="1.0" encoding="UTF-8"?>

@@ -130,7 +130,7 @@ async function main() {
     if (kind === 'tiles') webTiles.add(layer.tiles, { opacity, visible, throwRefusal: true });
     else await images.drape(image, sidecars, { throwRefusal: true, opacity, visible });
   };
-  if (det) det.install(state, canvas, gl, requestRender, flightLayer);
+  if (det) det.install(state, canvas, gl, requestRender, flightLayer, (url) => overlays.addUrl(url, { throwRefusal: true }));
   else rig.attach(canvas);
   installKeys({ settings, setSetting: change, setCamera: (mode) => change('camera', mode), toggleHelp,
     closeHelp: () => { helpBox.hidden = true; }, toggleHud: () => hud.setCollapsed(!hud.collapsed),

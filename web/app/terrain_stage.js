@@ -39,7 +39,7 @@ export class TerrainStage {
     // and R frames it again with them as they are then.
     this.frameDefault();
     this.syncPanel();
-    this.det?.setTerrain(terrain);
+    this.det?.setTerrain(terrain, field);
     this.requestRender();
   }
 

@@ -1,12 +1,18 @@
 // The profile along a track of an overlay (GPX, KML, GeoJSON): the terrain's heights at full
 // resolution along it, every vertex of the track a sample (measure/profile.js), and beside them
 // what the file recorded: its elevations (GPS) and times, linear by distance between vertices
-// and exact at them; with its climb by those elevations, its duration, its mean speed and its
-// speed while moving.
+// and exact at them; with its climb by those elevations (past a hysteresis against the GPS's
+// noise), its duration, its mean speed and its speed while moving.
 import { computeProfile } from './profile.js';
 
 /** Slower than this between two fixes is a stop, left out of the moving speed (metres a second). */
 export const STOP_SPEED = 0.5;
+/**
+ * Metres a recorded elevation must move from the last one counted before it counts as climb:
+ * a GPS's elevations wander by metres from fix to fix, and summing every wobble would report
+ * many times the real climb.
+ */
+export const CLIMB_HYSTERESIS = 5;
 
 /**
  * @param {{x: ArrayLike<number>, z: ArrayLike<number>}} placed the track in local metres (overlays/place_overlay.js)
@@ -52,7 +58,7 @@ function lerp(a, b, s) {
 
 /** Climb by the recorded elevations, and time and speeds, over the vertices on the field. */
 function recordedSummary({ distance, height, gpsElevation, time, vertex, runStart }, length3d) {
-  let gpsGain = 0, gpsLoss = 0, hasElevation = false, first = NaN, last = NaN;
+  let gpsGain = 0, gpsLoss = 0, hasElevation = false, first = NaN, last = NaN, counted = NaN;
   let movingMetres = 0, movingSeconds = 0, previous = -1;
   for (let i = 0; i < vertex.length; i++) {
     if (vertex[i] < 0) continue;
@@ -60,12 +66,16 @@ function recordedSummary({ distance, height, gpsElevation, time, vertex, runStar
       if (!Number.isFinite(first)) first = time[i];
       last = time[i];
     }
-    if (previous >= 0 && runStart[i] !== 1) {
-      const rise = gpsElevation[i] - gpsElevation[previous];
-      if (Number.isFinite(rise)) {
-        hasElevation = true;
+    if (Number.isFinite(gpsElevation[i])) {
+      hasElevation = true;
+      const rise = gpsElevation[i] - counted;
+      if (!Number.isFinite(counted) || runStart[i] === 1) counted = gpsElevation[i];
+      else if (Math.abs(rise) >= CLIMB_HYSTERESIS) {
         if (rise > 0) gpsGain += rise; else gpsLoss -= rise;
+        counted = gpsElevation[i];
       }
+    }
+    if (previous >= 0 && runStart[i] !== 1) {
       const seconds = (time[i] - time[previous]) / 1000;
       const dh = Number.isFinite(height[i] - height[previous]) ? height[i] - height[previous] : 0;
       const metres = Math.sqrt((distance[i] - distance[previous]) ** 2 + dh * dh);

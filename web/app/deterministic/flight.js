@@ -18,6 +18,11 @@
 //                   "contours": true, "contourInterval": 50 },      contour lines; the interval in metres or "auto"
 //     "captures": [0, 30, 59],                     frames to screenshot
 //     "keyframes": [ { "time": 0, "position": [x, y, z], "target": [x, y, z], "fov": 50 }, ... ],
+//     "track": "route.gpx",                         instead of "keyframes": fly along a track of a GPX, KML,
+//       or { "file": "route.gpx", "height": 300,    KMZ or GeoJSON file (relative to this file): metres above
+//            "speed": 50, "lookAhead": 600,         the ground, metres a second ("times": the track's own),
+//            "line": 1 },                           metres ahead it looks, which line (track_keyframes.js)
+//     "overlays": ["places.kml", ...],              optional: vector overlays drawn over the terrain
 //     "tolerance": { "threshold": 0.004, "maxDiffPixelRatio": 0.002, ... }  optional: see tolerance.js
 //   }
 // Positions are metres of the height field: x east from the first column, z south from the first
@@ -63,15 +68,18 @@ const SETTING_KINDS = {
  * Checks a parsed flight file and fills its defaults.
  * @param {unknown} json the parsed file
  * @param {string} name the file's name, for messages
- * @returns {{dem: string|null, layers: object[], fps: number, frames: number, viewport: number[], dpr: number,
- *   settings: object, captures: number[], keyframes: {time: number, position: number[], target: number[], fov: number}[],
- *   tolerance: {flight: object, captures: Record<number, object>}}}
+ * @returns {{dem: string|null, layers: object[], overlays: string[], fps: number, frames: number, viewport: number[], dpr: number,
+ *   settings: object, captures: number[], keyframes: {time: number, position: number[], target: number[], fov: number}[]|null,
+ *   track: {file: string, height: number, speed: number|null, lookAhead: number, line: number}|null,
+ *   tolerance: {flight: object, captures: Record<number, object>}}} a flight with a track has no keyframes
+ *   (nor frames, captures, tolerance) until withKeyframes gives it those made from the track
  * @throws FlightError naming the key that is wrong
  */
 export function parseFlight(json, name = 'flight') {
   const fail = (key, why) => { throw new FlightError(`${name}: ${key} ${why}`); };
   if (json === null || typeof json !== 'object' || Array.isArray(json)) fail('the file', 'must hold a JSON object');
-  const known = ['dem', 'image', 'worldFile', 'layers', 'fps', 'viewport', 'dpr', 'settings', 'captures', 'keyframes', 'tolerance', 'description'];
+  const known = ['dem', 'image', 'worldFile', 'layers', 'overlays', 'fps', 'viewport', 'dpr', 'settings', 'captures', 'keyframes', 'track',
+    'tolerance', 'description'];
   for (const key of Object.keys(json)) if (!known.includes(key)) fail(`"${key}"`, `is not a flight key (${known.join(', ')})`);
   const number = (key, value, { min = -Infinity, max = Infinity, integer = false } = {}) => {
     if (typeof value !== 'number' || !Number.isFinite(value) || (integer && !Number.isInteger(value)) || value < min || value > max) {
@@ -122,8 +130,38 @@ export function parseFlight(json, name = 'flight') {
       }
     }
   }
+  const overlays = parseOverlays(json.overlays, fail);
+  const base = { dem: json.dem ?? null, layers, overlays, fps, viewport, dpr, settings };
+  if (json.track !== undefined) {
+    if (json.keyframes !== undefined) fail('"track"', 'comes instead of "keyframes": a flight takes one or the other');
+    // The keyframes come from the track on the terrain (withKeyframes, once both are read).
+    return { ...base, track: parseTrack(json.track, fail, number), keyframes: null, frames: 0, captures: [], tolerance: null,
+      pending: { captures: json.captures, tolerance: json.tolerance, name } };
+  }
   if (!Array.isArray(json.keyframes) || json.keyframes.length === 0) fail('"keyframes"', 'must be a non-empty array');
-  const keyframes = json.keyframes.map((k, i) => {
+  return withKeyframes({ ...base, track: null, pending: { captures: json.captures, tolerance: json.tolerance, name } }, json.keyframes);
+}
+
+/**
+ * A flight with its keyframes: checked, and the frames, captures and tolerances that follow
+ * from them. For a flight file's own keyframes, and for those made from its track.
+ * @throws FlightError naming the key that is wrong
+ */
+export function withKeyframes(flight, keyframesJson) {
+  const { name, captures: capturesJson, tolerance: toleranceJson } = flight.pending;
+  const fps = flight.fps;
+  const fail = (key, why) => { throw new FlightError(`${name}: ${key} ${why}`); };
+  const number = (key, value, { min = -Infinity, max = Infinity, integer = false } = {}) => {
+    if (typeof value !== 'number' || !Number.isFinite(value) || (integer && !Number.isInteger(value)) || value < min || value > max) {
+      fail(key, `must be ${integer ? 'an integer' : 'a number'} from ${min} to ${max}, got ${JSON.stringify(value)}`);
+    }
+    return value;
+  };
+  const point = (key, value) => {
+    if (!Array.isArray(value) || value.length !== 3) fail(key, `must be three numbers [x, y, z] in metres, got ${JSON.stringify(value)}`);
+    return value.map((v, k) => number(`${key}[${k}]`, v, { min: -LIMIT, max: LIMIT }));
+  };
+  const keyframes = keyframesJson.map((k, i) => {
     const key = `"keyframes"[${i}]`;
     if (k === null || typeof k !== 'object' || Array.isArray(k)) fail(key, 'must be an object {time, position, target, fov?}');
     for (const field of Object.keys(k)) if (!['time', 'position', 'target', 'fov'].includes(field)) fail(`${key}.${field}`, 'is not a keyframe key (time, position, target, fov)');
@@ -143,13 +181,39 @@ export function parseFlight(json, name = 'flight') {
   }
   const frames = Math.floor(keyframes[keyframes.length - 1].time * fps + 1e-9) + 1;
   let captures = [0, Math.floor((frames - 1) / 2), frames - 1].filter((f, i, a) => a.indexOf(f) === i);
-  if (json.captures !== undefined) {
-    if (!Array.isArray(json.captures)) fail('"captures"', 'must be an array of frame numbers');
-    captures = json.captures.map((c, i) => number(`"captures"[${i}]`, c, { min: 0, max: frames - 1, integer: true }));
+  if (capturesJson !== undefined) {
+    if (!Array.isArray(capturesJson)) fail('"captures"', 'must be an array of frame numbers');
+    captures = capturesJson.map((c, i) => number(`"captures"[${i}]`, c, { min: 0, max: frames - 1, integer: true }));
     captures = [...new Set(captures)].sort((a, b) => a - b);
   }
-  const tolerance = parseTolerance(json.tolerance, captures, fail);
-  return { dem: json.dem ?? null, layers, fps, frames, viewport, dpr, settings, captures, keyframes, tolerance };
+  const tolerance = parseTolerance(toleranceJson, captures, fail);
+  return { ...flight, frames, captures, keyframes, tolerance };
+}
+
+/** A flight's "track": a file, or { file, height, speed, lookAhead, line }. */
+function parseTrack(track, fail, number) {
+  const spec = typeof track === 'string' ? { file: track } : track;
+  if (spec === null || typeof spec !== 'object' || Array.isArray(spec)) fail('"track"', 'must be a file path or { "file": path, "height", "speed", "lookAhead", "line" }');
+  for (const field of Object.keys(spec)) if (!['file', 'height', 'speed', 'lookAhead', 'line'].includes(field)) fail(`"track".${field}`, 'is not a track key (file, height, speed, lookAhead, line)');
+  if (typeof spec.file !== 'string' || spec.file === '') fail('"track".file', 'must be a file path or an http(s) URL');
+  const speed = spec.speed === undefined ? 50 : spec.speed === 'times' ? null : number('"track".speed', spec.speed, { min: 0.1, max: 10000 });
+  return {
+    file: spec.file,
+    height: spec.height === undefined ? 300 : number('"track".height', spec.height, { min: 0, max: 100000 }),
+    speed,
+    lookAhead: spec.lookAhead === undefined ? 600 : number('"track".lookAhead', spec.lookAhead, { min: 1, max: 1e6 }),
+    line: spec.line === undefined ? 1 : number('"track".line', spec.line, { min: 1, max: 1e6, integer: true }),
+  };
+}
+
+/** A flight's "overlays": file paths or URLs of GPX, KML, KMZ or GeoJSON files. */
+function parseOverlays(overlays, fail) {
+  if (overlays === undefined) return [];
+  if (!Array.isArray(overlays)) fail('"overlays"', 'must be an array of file paths or URLs');
+  return overlays.map((o, i) => {
+    if (typeof o !== 'string' || o === '') fail(`"overlays"[${i}]`, 'must be a file path or an http(s) URL');
+    return o;
+  });
 }
 
 /** A flight's "layers": [{ kind: 'image', image, worldFile, opacity, visible } | { kind: 'tiles', tiles, opacity, visible }]. */

@@ -13,9 +13,12 @@
 // imageK=URL and worldK=URL pick the image of layer K (from 0) and its world file (image= and
 // world= for the first; with an image given, the world file is the one given or none; without,
 // the flight's, relative to the flight file, else one of the image's conventional world file
-// names beside it).
+// names beside it). A flight's track (track=URL, else its "track" file relative to the flight
+// file) gives its keyframes once the terrain is shown; its overlays (overlayK=URL, else relative
+// to the flight file) are drawn over the image layers.
 import { mat4, vec3 } from 'gl-matrix';
-import { parseFlight, flightSettings, FlightCamera, FlightRecord } from './flight.js';
+import { parseFlight, flightSettings, withKeyframes, FlightCamera, FlightRecord } from './flight.js';
+import { flightTrackKeyframes } from './track_keyframes.js';
 import { worldFileNames } from '../../geo/index.js';
 
 /** The camera the renderer draws with: posed from FlightCamera every frame (tests pose one the same way). */
@@ -131,15 +134,18 @@ export class DeterministicMode {
     if (this.layers.length === 0 && this.params.has('image')) {
       this.layers = [{ kind: 'image', url: this.params.get('image'), world: this.params.get('world'), findWorld: false, opacity: 1, visible: true }];
     }
+    this.overlays = flight.overlays.map((file, k) => given('overlay', k) ?? new URL(file, here).href);
+    this.trackUrl = flight.track ? this.params.get('track') ?? new URL(flight.track.file, here).href : null;
     this.width = Math.round(flight.viewport[0] * flight.dpr);
     this.height = Math.round(flight.viewport[1] * flight.dpr);
     return flight;
   }
 
   /** Fixes the canvas's size and puts the API on window.hexlod.flight. */
-  install(state, canvas, gl, requestRender, addLayer) {
+  install(state, canvas, gl, requestRender, addLayer, addOverlay) {
     this.gl = gl;
     this.addLayer = addLayer; // (layer, image, sidecars) => the image stage's, which throws a refusal
+    this.addOverlay = addOverlay; // (url) => the overlay stage's, which throws a refusal
     this.requestRender = requestRender;
     canvas.style.width = `${this.flight.viewport[0]}px`;
     canvas.style.height = `${this.flight.viewport[1]}px`;
@@ -164,15 +170,33 @@ export class DeterministicMode {
     };
   }
 
-  /** The terrain on screen is ready: the flight starts from its first frame. */
-  setTerrain(terrain) {
-    this.flightCamera = new FlightCamera(this.flight, terrain, this.width, this.height);
-    this.record = new FlightRecord(this.flight.frames);
-    const { frames, fps, captures } = this.flight;
-    this.addLayers().then(() => {
+  /** The terrain on screen is ready: the flight starts from its first frame (its track's keyframes made first). */
+  setTerrain(terrain, field) {
+    this.trackKeyframes(terrain, field).then(() => {
+      this.flightCamera = new FlightCamera(this.flight, terrain, this.width, this.height);
+      this.record = new FlightRecord(this.flight.frames);
+      return this.addLayers();
+    }).then(() => {
+      const { frames, fps, captures } = this.flight;
       this.resolveReady({ frames, fps, captures, width: this.width, height: this.height });
       this.requestRender();
     }, (error) => this.fail(error.message));
+  }
+
+  /** A flight along a track: its keyframes from the track file on this terrain. */
+  async trackKeyframes(terrain, field) {
+    if (!this.flight.track) return;
+    const url = this.trackUrl, name = decodeURIComponent(new URL(url, location.href).pathname.split('/').pop() || url);
+    let bytes;
+    try {
+      const response = await fetch(url);
+      if (!response.ok) throw new Error(`HTTP ${response.status}`);
+      bytes = new Uint8Array(await response.arrayBuffer());
+    } catch (error) {
+      throw new Error(`${name}: cannot read the flight's track (${error.message})`);
+    }
+    const keyframes = await flightTrackKeyframes(this.flight.track, { name, bytes }, terrain, field.georef ?? null);
+    this.flight = withKeyframes(this.flight, keyframes);
   }
 
   /** Adds the flight's layers, bottom first, fetching each image (and world file); throws a refusal's message. */
@@ -181,6 +205,7 @@ export class DeterministicMode {
       if (layer.kind === 'image') await this.drapeImage(layer);
       else await this.addLayer(layer, null, null);
     }
+    for (const url of this.overlays) await this.addOverlay(url);
   }
 
   /** Fetches an image layer's image (and world file) and drapes it. */
