@@ -103,7 +103,7 @@ test('mistakes in the command line exit 2 with one clear line; a missing file ex
     const r = run('profile', ...args);
     assert.equal(r.status, 2, `${args}: ${r.stderr}`);
     assert.match(r.stderr, message, args.join(' '));
-    assert.match(r.stderr, /^hexlod: [^\n]*; usage: hexlod profile <heightfield> --line/);
+    assert.match(r.stderr, /^hexlod: [^\n]*; usage: hexlod profile <heightfield> \(--line /);
     assert.equal(r.stderr.trim().split('\n').length, 1, `one line: ${r.stderr}`);
     assert.equal(r.stdout, '');
   }

@@ -125,8 +125,8 @@ test('the mosaic is allocated once, after every tile is probed and before any is
 
 test('dropped together, tiles are one height field: dropRoles and loadTerrain', async () => {
   const head = (f) => ({ name: f.name, head: f.bytes.subarray(0, 65536) });
-  assert.deepEqual(dropRoles(SHARED.map(tif).map(head)), { field: [0, 1, 2, 3], images: [], skipped: [] });
-  assert.deepEqual(dropRoles(Object.values(hgt.tiles).map(head)), { field: [0, 1, 2, 3], images: [], skipped: [] });
+  assert.deepEqual(dropRoles(SHARED.map(tif).map(head)), { field: [0, 1, 2, 3], images: [], overlays: [], skipped: [] });
+  assert.deepEqual(dropRoles(Object.values(hgt.tiles).map(head)), { field: [0, 1, 2, 3], images: [], overlays: [], skipped: [] });
   const core = await createNodeCore();
   const loaded = await loadTerrain(core, SHARED.map(tif));
   try {

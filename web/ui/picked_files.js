@@ -100,6 +100,7 @@ export function pickedFilesOpener({ loads, indicator, settings, layers, opening,
       }
       // Each overlay in turn, over the terrain now on screen.
       const added = [];
+      let overlayRefused = false;
       for (const i of roles.overlays) {
         if (signal.aborted) break;
         try {
@@ -109,13 +110,14 @@ export function pickedFilesOpener({ loads, indicator, settings, layers, opening,
         } catch (error) {
           if (!(error instanceof OverlayError)) throw error;
           refused.push(error.message);
+          overlayRefused = true; // said by nobody yet
         }
       }
       // A lone refusal is in the status line already, as the image stage says it.
       const said = [...refused, ...notes, skipped].filter(Boolean);
       // An overlay's own report (what it drew, what lies off the terrain) stands when it is all there is to say.
       const overlayOnly = added.length > 0 && refused.length === 0 && images.length === 0 && !skipped;
-      if (!overlayOnly && (said.length > 1 || (said.length === 1 && refused.length === 0))) {
+      if (!overlayOnly && (said.length > 1 || (said.length === 1 && refused.length === 0) || overlayRefused)) {
         const kept = layers.images.at(-1)?.image?.name;
         const stays = refused.length && kept && !draped.includes(kept) ? ` (${kept} stays)` : '';
         showStatus(`${said.join(' · ')}${stays}`, refused.length > 0);

@@ -60,7 +60,7 @@ export function overlayGeometry(placed, sampler, { altitude = 'file', curtain = 
         return;
       }
       const closed = feature.kind === 'polygon';
-      const kept = simplifyForDrawing(path.x, path.z, tolerance);
+      const kept = simplifyForDrawing(path.x, path.z, tolerance, aloft ? source.z : null);
       drawnVertices += kept.length;
       const x = Float64Array.from(kept, (k) => path.x[k]), z = Float64Array.from(kept, (k) => path.z[k]);
       const ele = source.z ? Float64Array.from(kept, (k) => source.z[k]) : null;
