@@ -196,7 +196,7 @@ function parseTrack(track, fail, number) {
   if (spec === null || typeof spec !== 'object' || Array.isArray(spec)) fail('"track"', 'must be a file path or { "file": path, "height", "speed", "lookAhead", "line" }');
   for (const field of Object.keys(spec)) if (!['file', 'height', 'speed', 'lookAhead', 'line'].includes(field)) fail(`"track".${field}`, 'is not a track key (file, height, speed, lookAhead, line)');
   if (typeof spec.file !== 'string' || spec.file === '') fail('"track".file', 'must be a file path or an http(s) URL');
-  const speed = spec.speed === undefined ? 50 : spec.speed === 'times' ? null : number('"track".speed', spec.speed, { min: 0.1, max: 10000 });
+  const speed = spec.speed === undefined ? 50 : spec.speed === 'times' ? null : number('"track".speed', spec.speed, { min: 0.1, max: 1e6 });
   return {
     file: spec.file,
     height: spec.height === undefined ? 300 : number('"track".height', spec.height, { min: 0, max: 100000 }),
