@@ -162,3 +162,42 @@ test('the built site draws contour lines and a measured path from the address, a
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('the built site draws a GPX dropped on the default terrain and a KMZ from ?overlay=, on the ground, in their colours', async () => {
+  const files = await startRangeServer(`${FIXTURES}overlays`);
+  try {
+    const kmz = `${files.url}/everest_places.kmz`;
+    const { page, problems } = await openPage(site.browser, `${site.url}?${QUICK}&overlay=${encodeURIComponent(kmz)}`, { width: 640, height: 400 }, FULL_RESOLUTION);
+    await pageReady(page);
+    await page.waitForFunction(() => window.hexlod.layers.overlays.length === 1, null, { timeout: 60000 });
+    await dropFiles(page, [{ ...read('overlays/everest_trek.gpx'), name: 'everest_trek.gpx' }]);
+    await page.waitForFunction(() => window.hexlod.layers.overlays.length === 2, null, { timeout: 60000 });
+    assert.deepEqual(await page.evaluate(() => window.hexlod.layers.overlays.map((l) => [l.name, l.overlay.format, l.color])),
+      [['everest_places.kmz', 'KMZ', '#ff3d8b'], ['everest_trek.gpx', 'GPX', '#2fd4ff']]);
+    await page.addStyleTag({ content: '#hud,#side,#drop-hint,#status,#bottom-bar{display:none !important}' });
+    // Straight down on the trek, 80 km up.
+    await page.evaluate(() => {
+      const h = window.hexlod, s = h.layers.overlays[1].geometry.segments, orbit = h.rig.cameras.orbit;
+      h.setSetting('camera', 'orbit');
+      orbit.target.set([s[0], 0, s[2]]);
+      Object.assign(orbit, { yaw: 0, pitch: 1.55, distance: 80000 });
+      h.requestRender();
+    });
+    await converged(page);
+    for (let i = 0; i < 3; i++) await nextFrame(page);
+    const png = decode(await page.screenshot({ path: `${outDir}/built-overlays.png` }));
+    const count = (rgb) => {
+      let n = 0;
+      for (let k = 0; k < png.data.length; k += png.channels) {
+        if (Math.abs(png.data[k] - rgb[0]) < 40 && Math.abs(png.data[k + 1] - rgb[1]) < 40 && Math.abs(png.data[k + 2] - rgb[2]) < 40) n++;
+      }
+      return n;
+    };
+    assert.ok(count([47, 212, 255]) > 300, `the trek in cyan: ${count([47, 212, 255])} pixels`);
+    assert.ok(count([255, 61, 139]) > 100, `the places in pink: ${count([255, 61, 139])} pixels`);
+    assert.deepEqual(problems, []);
+    await page.close();
+  } finally {
+    await files.close();
+  }
+});
