@@ -11,21 +11,16 @@
 //      the ratios are the figures. The layers: the Blue Marble by its world file (the terrain's
 //      CRS), the same in Web Mercator (reprojected), and the same as a GeoTIFF in EPSG:4326.
 // Usage: node bench/image_layers.js [--viewport 640x360] [--runs 3] [--frames 20]
-import { parseArgs } from 'node:util';
 import { readFileSync } from 'node:fs';
 import { placeImage } from '../web/imagery/placement.js';
 import { crsOfEpsg, makeGeoref, parseEpsg, resolveGeoref } from '../web/geo/index.js';
 import { useNodeCrsDefinitions } from '../lib/crs_definitions.js';
 import { startViewer, openPage, pageReady, dropFiles, terrainShown } from '../lib/page_harness.js';
-import { drawBlock, obliqueTimedPage } from '../lib/page_frames.js';
+import { drawBlock, obliqueTimedPage, pageBenchOptions, median, formatMs } from '../lib/page_frames.js';
 
-const { values } = parseArgs({ options: { viewport: { type: 'string' }, runs: { type: 'string' }, frames: { type: 'string' } } });
-const [width, height] = (values.viewport ?? '640x360').split('x').map(Number);
-const RUNS = Number(values.runs ?? 3);
-const FRAMES = Number(values.frames ?? 20);
+const { width, height, runs: RUNS, frames: FRAMES } = pageBenchOptions();
 const SETTLE_FRAMES = 2;
-const median = (v) => [...v].sort((a, b) => a - b)[v.length >> 1];
-const ms = (v) => `${v < 10 ? v.toFixed(1) : Math.round(v).toLocaleString('en')} ms`;
+const ms = formatMs;
 const fixtures = new URL('../tests/fixtures/', import.meta.url);
 const expected = JSON.parse(readFileSync(new URL('reprojection/expected.json', fixtures), 'utf8'));
 useNodeCrsDefinitions();

@@ -10,7 +10,6 @@
 //   4. memory per point: the page's JS heap after a garbage collection, with and without the
 //      track, and the GPU buffers its drawing holds, each divided by the file's points.
 // Usage: node bench/overlays.js [--viewport 640x360] [--runs 3] [--frames 20]
-import { parseArgs } from 'node:util';
 import { readFileSync } from 'node:fs';
 import { readOverlay } from '../web/overlays/read_overlay.js';
 import { placeOverlay } from '../web/overlays/place_overlay.js';
@@ -20,15 +19,11 @@ import { crsOfEpsg, makeGeoref, resolveGeoref } from '../web/geo/index.js';
 import { useNodeCrsDefinitions } from '../lib/crs_definitions.js';
 import { lissajousGpx } from '../lib/track_files.js';
 import { startViewer, openPage, pageReady, dropFiles } from '../lib/page_harness.js';
-import { drawBlock, obliqueTimedPage } from '../lib/page_frames.js';
+import { drawBlock, obliqueTimedPage, pageBenchOptions, median, formatMs } from '../lib/page_frames.js';
 
-const { values } = parseArgs({ options: { viewport: { type: 'string' }, runs: { type: 'string' }, frames: { type: 'string' } } });
-const [width, height] = (values.viewport ?? '640x360').split('x').map(Number);
-const RUNS = Number(values.runs ?? 3);
-const FRAMES = Number(values.frames ?? 20);
+const { width, height, runs: RUNS, frames: FRAMES } = pageBenchOptions();
 const SETTLE_FRAMES = 2;
-const median = (v) => [...v].sort((a, b) => a - b)[v.length >> 1];
-const ms = (v) => `${v < 10 ? v.toFixed(1) : Math.round(v).toLocaleString('en')} ms`;
+const ms = formatMs;
 useNodeCrsDefinitions();
 
 // The default terrain: 2048² samples of 30" in EPSG:4326 (public/terrain/globe_himalaya_2048.json).

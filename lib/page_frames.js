@@ -1,6 +1,7 @@
 // What the page benchmarks share: a page opened bare (no HUD, panel or hints over the view) and
 // converged, and one frame drawn after a setting changed, with the frame's figures (the
 // frame log of web/app/frame_pipeline.js: cpuMs, drawMs, lodMs, streamMs).
+import { parseArgs } from 'node:util';
 import { openPage, pageReady } from './page_harness.js';
 
 /** Opens `url` with nothing over the terrain and waits until the mesh converged. */
@@ -71,3 +72,16 @@ export async function obliqueTimedPage(viewer, query, { width, height }) {
   const triangles = await page.evaluate(() => window.hexlod.triangles);
   return { page, problems, view: `${width} × ${height}, oblique view from ${distanceKm.toFixed(0)} km (pitch 0.45 rad), converged: ${triangles.toLocaleString('en')} triangles` };
 }
+
+/** The page benchmarks' options: --viewport WxH (default 640x360), --runs N (3), --frames N (20). */
+export function pageBenchOptions() {
+  const { values } = parseArgs({ options: { viewport: { type: 'string' }, runs: { type: 'string' }, frames: { type: 'string' } } });
+  const [width, height] = (values.viewport ?? '640x360').split('x').map(Number);
+  return { width, height, runs: Number(values.runs ?? 3), frames: Number(values.frames ?? 20) };
+}
+
+/** The median of a list of numbers (the upper one of an even count). */
+export const median = (v) => [...v].sort((a, b) => a - b)[v.length >> 1];
+
+/** Milliseconds as a benchmark prints them: one decimal below 10. */
+export const formatMs = (v) => `${v < 10 ? v.toFixed(1) : Math.round(v).toLocaleString('en')} ms`;

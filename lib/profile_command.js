@@ -111,14 +111,19 @@ export async function profile(args) {
     lines.push(`from      ${formatCoordinates(geoCoordinates(georef, x[0], z[0], spacingX, spacingY))}`);
     lines.push(`to        ${formatCoordinates(geoCoordinates(georef, x[n - 1], z[n - 1], spacingX, spacingY))}`);
   }
+  finish(lines, result, settings.csv, georef, spacingX, spacingY);
+  terrain.destroy();
+}
+
+/** The lines every profile ends with (what was clipped, notes, the CSV written), printed. */
+function finish(lines, result, csv, georef, spacingX, spacingY) {
   if (result.clipped) lines.push(`clipped   ${result.clipped}`);
   if (result.note) lines.push(`note      ${result.note}`);
-  if (settings.csv) {
-    writeFileSync(settings.csv, profileCsv(result, georef, spacingX, spacingY));
-    lines.push(`csv       ${settings.csv} (${n} rows)`);
+  if (csv) {
+    writeFileSync(csv, profileCsv(result, georef, spacingX, spacingY));
+    lines.push(`csv       ${csv} (${result.samples.distance.length} rows)`);
   }
   console.log(lines.join('\n'));
-  terrain.destroy();
 }
 
 /** Reads and places the track file's lines; throws UsageError with the overlay's message. */
@@ -170,11 +175,5 @@ function trackProfile(settings, { terrain, field, spacingX, spacingY, georef }, 
       (s.movingSpeed !== null ? `, moving ${(s.movingSpeed * 3.6).toFixed(2)} km/h` : ''));
   }
   out.push(`samples   ${n} (${vertices} vertices of the track on the field), every ${formatLength(result.step)} at most between them`);
-  if (result.clipped) out.push(`clipped   ${result.clipped}`);
-  if (result.note) out.push(`note      ${result.note}`);
-  if (settings.csv) {
-    writeFileSync(settings.csv, profileCsv(result, georef, spacingX, spacingY));
-    out.push(`csv       ${settings.csv} (${n} rows)`);
-  }
-  console.log(out.join('\n'));
+  finish(out, result, settings.csv, georef, spacingX, spacingY);
 }

@@ -1,5 +1,5 @@
 // The page's frame path makes no garbage once warm, flown with the keys in three phases (fly,
-// walk with contour lines and labels, fly with colour by level and outlines), with V8's sampling
+// walk with contour lines and labels, fly with colour by level and outlines), over overlays, with V8's sampling
 // heap profiler on through the DevTools protocol at a sampling interval so small that an object
 // of 16 bytes or more is sampled with a probability above 0.98.
 //
@@ -55,9 +55,12 @@ let viewer, page, cdp, boxedSize;
 before(async () => {
   boxedSize = await boxedNumberSize();
   viewer = await startViewer({ pixelRatio: 0.5 });
-  // With a measured line, so its overlay is drawn in every frame profiled.
-  ({ page } = await openPage(viewer.browser, `${viewer.url}?${MEASURED}`, { width: 240, height: 180 }));
+  // With a measured line, and a GPX track and a KML of places (lines, a line aloft, a filled
+  // polygon, markers and their names), so that all of them are drawn in every frame profiled.
+  const overlays = ['everest_trek.gpx', 'everest_places.kml'].map((f) => `&overlay=${encodeURIComponent(`${viewer.fixturesUrl}overlays/${f}`)}`).join('');
+  ({ page } = await openPage(viewer.browser, `${viewer.url}?${MEASURED}${overlays}`, { width: 240, height: 180 }));
   await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 180000 });
+  await page.waitForFunction(() => window.hexlod.layers.overlays.length === 2, null, { timeout: 60000 });
   assert.equal(await page.evaluate(() => window.hexlod.status), 'ready');
   cdp = await page.context().newCDPSession(page);
   await cdp.send('HeapProfiler.enable');

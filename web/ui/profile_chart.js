@@ -133,12 +133,28 @@ export class ProfileChart {
     // Axes.
     g.strokeStyle = COLORS.axis;
     g.beginPath(); g.moveTo(left + 0.5, top); g.lineTo(left + 0.5, bottom + 0.5); g.lineTo(right, bottom + 0.5); g.stroke();
-    // Filled area and curve, one run at a time (a run ends where the line left the field).
-    const runs = [];
+    // Filled area and curve, one run at a time (a run ends where the line left the field); a
+    // long profile (a track of half a million points) is drawn from each pixel column's first,
+    // lowest, highest and last samples, which is all a column can show.
+    const runs = [], columnOf = (k) => Math.floor(sx(distance[k]));
+    let column = NaN, first = -1, lowest = -1, highest = -1, last = -1;
+    const flush = () => {
+      if (first < 0) return;
+      const run = runs[runs.length - 1];
+      for (const k of [...new Set([first, lowest, highest, last])].sort((a, b) => a - b)) run.push(k);
+      first = -1;
+    };
     for (let k = 0; k < n; k++) {
-      if (k === 0 || runStart[k] === 1 || !Number.isFinite(height[k])) runs.push([]);
-      if (Number.isFinite(height[k])) runs[runs.length - 1].push(k);
+      const breaks = k === 0 || runStart[k] === 1 || !Number.isFinite(height[k]);
+      if (breaks || columnOf(k) !== column) flush();
+      if (breaks) runs.push([]);
+      if (!Number.isFinite(height[k])) continue;
+      if (first < 0) { first = lowest = highest = k; column = columnOf(k); }
+      if (height[k] < height[lowest]) lowest = k;
+      if (height[k] > height[highest]) highest = k;
+      last = k;
     }
+    flush();
     for (const run of runs) {
       if (run.length === 0) continue;
       g.beginPath();
@@ -155,7 +171,7 @@ export class ProfileChart {
       g.stroke();
       g.lineWidth = 1;
     }
-    if (recorded) this.drawRecorded(g, recorded, distance, runStart, sx, sy, right, top);
+    if (recorded) this.drawRecorded(g, recorded, runs, distance, sx, sy, right, top);
     // The hovered sample.
     if (this.hover !== null && Number.isFinite(height[this.hover])) {
       const x = sx(distance[this.hover]), y = sy(height[this.hover]);
@@ -166,16 +182,17 @@ export class ProfileChart {
     }
   }
 
-  /** The file's own elevations along a track, where it has them, and the two curves' names. */
-  drawRecorded(g, recorded, distance, runStart, sx, sy, right, top) {
+  /** The file's own elevations along a track, where it has them (at the samples drawn), and the two curves' names. */
+  drawRecorded(g, recorded, runs, distance, sx, sy, right, top) {
     g.beginPath();
-    let drawing = false;
-    for (let k = 0; k < distance.length; k++) {
-      if (!Number.isFinite(recorded[k]) || runStart[k] === 1) drawing = false;
-      if (!Number.isFinite(recorded[k])) continue;
-      if (drawing) g.lineTo(sx(distance[k]), sy(recorded[k]));
-      else g.moveTo(sx(distance[k]), sy(recorded[k]));
-      drawing = true;
+    for (const run of runs) {
+      let drawing = false;
+      for (const k of run) {
+        if (!Number.isFinite(recorded[k])) { drawing = false; continue; }
+        if (drawing) g.lineTo(sx(distance[k]), sy(recorded[k]));
+        else g.moveTo(sx(distance[k]), sy(recorded[k]));
+        drawing = true;
+      }
     }
     g.strokeStyle = COLORS.recorded;
     g.lineWidth = 1.4;

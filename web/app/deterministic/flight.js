@@ -81,16 +81,7 @@ export function parseFlight(json, name = 'flight') {
   const known = ['dem', 'image', 'worldFile', 'layers', 'overlays', 'fps', 'viewport', 'dpr', 'settings', 'captures', 'keyframes', 'track',
     'tolerance', 'description'];
   for (const key of Object.keys(json)) if (!known.includes(key)) fail(`"${key}"`, `is not a flight key (${known.join(', ')})`);
-  const number = (key, value, { min = -Infinity, max = Infinity, integer = false } = {}) => {
-    if (typeof value !== 'number' || !Number.isFinite(value) || (integer && !Number.isInteger(value)) || value < min || value > max) {
-      fail(key, `must be ${integer ? 'an integer' : 'a number'} from ${min} to ${max}, got ${JSON.stringify(value)}`);
-    }
-    return value;
-  };
-  const point = (key, value) => {
-    if (!Array.isArray(value) || value.length !== 3) fail(key, `must be three numbers [x, y, z] in metres, got ${JSON.stringify(value)}`);
-    return value.map((v, k) => number(`${key}[${k}]`, v, { min: -LIMIT, max: LIMIT }));
-  };
+  const { number } = checkers(fail);
   for (const key of ['dem', 'image', 'worldFile']) {
     if (json[key] !== undefined && (typeof json[key] !== 'string' || json[key] === '')) fail(`"${key}"`, 'must be a file path or an http(s) URL');
   }
@@ -151,16 +142,7 @@ export function withKeyframes(flight, keyframesJson) {
   const { name, captures: capturesJson, tolerance: toleranceJson } = flight.pending;
   const fps = flight.fps;
   const fail = (key, why) => { throw new FlightError(`${name}: ${key} ${why}`); };
-  const number = (key, value, { min = -Infinity, max = Infinity, integer = false } = {}) => {
-    if (typeof value !== 'number' || !Number.isFinite(value) || (integer && !Number.isInteger(value)) || value < min || value > max) {
-      fail(key, `must be ${integer ? 'an integer' : 'a number'} from ${min} to ${max}, got ${JSON.stringify(value)}`);
-    }
-    return value;
-  };
-  const point = (key, value) => {
-    if (!Array.isArray(value) || value.length !== 3) fail(key, `must be three numbers [x, y, z] in metres, got ${JSON.stringify(value)}`);
-    return value.map((v, k) => number(`${key}[${k}]`, v, { min: -LIMIT, max: LIMIT }));
-  };
+  const { number, point } = checkers(fail);
   const keyframes = keyframesJson.map((k, i) => {
     const key = `"keyframes"[${i}]`;
     if (k === null || typeof k !== 'object' || Array.isArray(k)) fail(key, 'must be an object {time, position, target, fov?}');
@@ -188,6 +170,21 @@ export function withKeyframes(flight, keyframesJson) {
   }
   const tolerance = parseTolerance(toleranceJson, captures, fail);
   return { ...flight, frames, captures, keyframes, tolerance };
+}
+
+/** The checks of a flight's numbers and points; `fail(key, why)` throws. */
+function checkers(fail) {
+  const number = (key, value, { min = -Infinity, max = Infinity, integer = false } = {}) => {
+    if (typeof value !== 'number' || !Number.isFinite(value) || (integer && !Number.isInteger(value)) || value < min || value > max) {
+      fail(key, `must be ${integer ? 'an integer' : 'a number'} from ${min} to ${max}, got ${JSON.stringify(value)}`);
+    }
+    return value;
+  };
+  const point = (key, value) => {
+    if (!Array.isArray(value) || value.length !== 3) fail(key, `must be three numbers [x, y, z] in metres, got ${JSON.stringify(value)}`);
+    return value.map((v, k) => number(`${key}[${k}]`, v, { min: -LIMIT, max: LIMIT }));
+  };
+  return { number, point };
 }
 
 /** A flight's "track": a file, or { file, height, speed, lookAhead, line }. */

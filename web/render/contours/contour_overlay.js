@@ -10,7 +10,7 @@ import labelVertex from '../../../shaders/contour_label.vert?raw';
 import labelFragment from '../../../shaders/contour_label.frag?raw';
 import { contourLevels } from '../../measure/contour_levels.js';
 import { ContourHeights, heightTexturePlan, MAX_TEXELS, TEXTURE_UNIT_CONTOUR_HEIGHTS } from './height_texture.js';
-import { makeGlyphAtlas, GLYPHS, CELL_W, CELL_H } from './glyph_atlas.js';
+import { makeGlyphAtlas, drawTextQuads, GLYPHS, CELL_W, CELL_H } from './glyph_atlas.js';
 import { LabelPlacer, LABEL_PX } from './labels.js';
 import { linkProgram, uniformLocations } from '../gl_program.js';
 
@@ -140,14 +140,7 @@ export class ContourOverlay {
     gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_GLYPHS);
     gl.bindTexture(gl.TEXTURE_2D, this.atlas);
     gl.uniform1i(u.uAtlas, TEXTURE_UNIT_GLYPHS);
-    gl.disable(gl.DEPTH_TEST);
-    gl.disable(gl.CULL_FACE);
-    gl.enable(gl.BLEND);
-    gl.blendFunc(gl.ONE, gl.ONE_MINUS_SRC_ALPHA); // the atlas is premultiplied
-    gl.drawArraysInstanced(gl.TRIANGLE_STRIP, 0, 4, glyphs);
-    gl.disable(gl.BLEND);
-    gl.enable(gl.DEPTH_TEST);
-    gl.bindVertexArray(null);
+    drawTextQuads(gl, glyphs);
   }
 
   makeLabelGl() {

@@ -17,14 +17,8 @@ export function labelGlyphs(height) {
 
 /** @param {WebGL2RenderingContext} gl @param {number} unit the texture unit it is bound on */
 export function makeGlyphAtlas(gl, unit) {
-  const width = CELL_W * GLYPHS.length, height = CELL_H;
-  const canvas = typeof OffscreenCanvas === 'function' ? new OffscreenCanvas(width, height)
-    : Object.assign(document.createElement('canvas'), { width, height });
-  const g = canvas.getContext('2d');
-  g.font = `bold ${Math.round(CELL_H * 0.7)}px sans-serif`;
+  const g = textCanvas(CELL_W * GLYPHS.length, CELL_H, Math.round(CELL_H * 0.7));
   g.textAlign = 'center';
-  g.textBaseline = 'middle';
-  g.lineJoin = 'round';
   for (let k = 0; k < GLYPHS.length; ++k) {
     const x = (k + 0.5) * CELL_W, y = CELL_H * 0.54;
     g.strokeStyle = 'rgba(255, 250, 235, 0.9)';
@@ -33,6 +27,22 @@ export function makeGlyphAtlas(gl, unit) {
     g.fillStyle = 'rgb(60, 32, 10)';
     g.fillText(GLYPHS[k], x, y);
   }
+  return textTexture(gl, unit, g.canvas);
+}
+
+/** A 2D canvas's context for text: bold sans-serif of `fontPx`, centred on its line, round joins for halos. */
+export function textCanvas(width, height, fontPx) {
+  const canvas = typeof OffscreenCanvas === 'function' ? new OffscreenCanvas(width, height)
+    : Object.assign(document.createElement('canvas'), { width, height });
+  const g = canvas.getContext('2d');
+  g.font = `bold ${fontPx}px sans-serif`;
+  g.textBaseline = 'middle';
+  g.lineJoin = 'round';
+  return g;
+}
+
+/** A canvas of text as a texture on `unit`: premultiplied (halos blend right), mipmapped, clamped. */
+export function textTexture(gl, unit, canvas) {
   const texture = gl.createTexture();
   gl.activeTexture(gl.TEXTURE0 + unit);
   gl.bindTexture(gl.TEXTURE_2D, texture);
@@ -45,4 +55,20 @@ export function makeGlyphAtlas(gl, unit) {
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
   return texture;
+}
+
+/**
+ * Draws `count` instanced screen-space quads (a triangle strip each) of the program and VAO in
+ * use, over everything (no depth test), blending a premultiplied atlas, then puts back the
+ * state the terrain's drawing expects.
+ */
+export function drawTextQuads(gl, count) {
+  gl.disable(gl.DEPTH_TEST);
+  gl.disable(gl.CULL_FACE);
+  gl.enable(gl.BLEND);
+  gl.blendFunc(gl.ONE, gl.ONE_MINUS_SRC_ALPHA);
+  gl.drawArraysInstanced(gl.TRIANGLE_STRIP, 0, 4, count);
+  gl.disable(gl.BLEND);
+  gl.enable(gl.DEPTH_TEST);
+  gl.bindVertexArray(null);
 }

@@ -6,6 +6,7 @@
 import { linkProgram, uniformLocations } from '../gl_program.js';
 import { inSight } from '../sight_line.js';
 import { TEXTURE_UNIT_GLYPHS } from '../contours/contour_overlay.js';
+import { textCanvas, textTexture, drawTextQuads } from '../contours/glyph_atlas.js';
 
 /** Names drawn at most (the first ones of the file); a cell of the atlas each. */
 export const MAX_MARKER_LABELS = 256;
@@ -83,13 +84,7 @@ export class MarkerLabels {
 
   /** The names, dark on a light halo, one a cell; each one's width as a share of its cell. */
   drawAtlas() {
-    const gl = this.gl, width = CELL_W * COLUMNS, height = CELL_H * this.rows;
-    const canvas = typeof OffscreenCanvas === 'function' ? new OffscreenCanvas(width, height)
-      : Object.assign(document.createElement('canvas'), { width, height });
-    const g = canvas.getContext('2d');
-    g.font = `bold ${Math.round(CELL_H * 0.6)}px sans-serif`;
-    g.textBaseline = 'middle';
-    g.lineJoin = 'round';
+    const gl = this.gl, g = textCanvas(CELL_W * COLUMNS, CELL_H * this.rows, Math.round(CELL_H * 0.6));
     this.texts.forEach((text, k) => {
       const x = (k % COLUMNS) * CELL_W + 8, y = Math.floor(k / COLUMNS) * CELL_H + CELL_H * 0.54;
       g.strokeStyle = 'rgba(255, 255, 255, 0.92)';
@@ -99,18 +94,7 @@ export class MarkerLabels {
       g.fillText(text, x, y, CELL_W - 16);
       this.widths[k] = Math.min(CELL_W, g.measureText(text).width + 16) / CELL_W;
     });
-    const texture = gl.createTexture();
-    gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_GLYPHS);
-    gl.bindTexture(gl.TEXTURE_2D, texture);
-    gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, true);
-    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA, gl.RGBA, gl.UNSIGNED_BYTE, canvas);
-    gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, false);
-    gl.generateMipmap(gl.TEXTURE_2D);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR_MIPMAP_LINEAR);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
-    return texture;
+    return textTexture(gl, TEXTURE_UNIT_GLYPHS, g.canvas);
   }
 
   /**
@@ -161,13 +145,7 @@ export class MarkerLabels {
     gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNIT_GLYPHS);
     gl.bindTexture(gl.TEXTURE_2D, this.atlas);
     gl.uniform1i(u.uAtlas, TEXTURE_UNIT_GLYPHS);
-    gl.disable(gl.DEPTH_TEST);
-    gl.enable(gl.BLEND);
-    gl.blendFunc(gl.ONE, gl.ONE_MINUS_SRC_ALPHA); // the atlas is premultiplied
-    gl.drawArraysInstanced(gl.TRIANGLE_STRIP, 0, 4, count);
-    gl.disable(gl.BLEND);
-    gl.enable(gl.DEPTH_TEST);
-    gl.bindVertexArray(null);
+    drawTextQuads(gl, count);
   }
 
   overlaps(i0, i1, j0, j1, gw) {
