@@ -89,6 +89,10 @@ test('every fault is refused with a message that says what is wrong', async () =
   const text = (s) => new TextEncoder().encode(s);
   await refused('x.gpx', /^malformed XML at line 2, column \d+: Expected closing tag 'a'/, text('<gpx>\n<a></gpx>'));
   await refused('x.geojson', /not GeoJSON/, text('[1, 2]'));
+  await refused('x.gpx', /^track 1, segment 1: <trkpt> 2 has lon="east", not a number$/,
+    text('<gpx><trk><trkseg><trkpt lat="1" lon="2"/><trkpt lat="1" lon="east"/></trkseg></trk></gpx>'));
+  await refused('x.kml', /^placemark 1 \("P"\): coordinate 2 "86\.95,north" is not longitude,latitude\[,altitude\] numbers$/,
+    text('<kml><Placemark><name>P</name><LineString><coordinates>86.9,27.9 86.95,north</coordinates></LineString></Placemark></kml>'));
   await refused('x.geojson', /legacy "crs" member names EPSG:999999, which has no definition/,
     text('{"type":"Feature","crs":{"type":"name","properties":{"name":"EPSG:999999"}},"properties":{},"geometry":{"type":"Point","coordinates":[1,2]}}'));
   await refused('x.geojson', /position 2 is not a pair of numbers/, text('{"type":"LineString","coordinates":[[1,2],["a",3]]}'));
@@ -124,6 +128,14 @@ test('a track entirely off the terrain is counted, not refused; a terrain withou
   const geojson = placeOverlay(await read('everest_features.geojson'), georef, DEM);
   assert.equal(geojson.offTerrain, 0);
   assert.throws(() => placeOverlay(alps.overlay, null, DEM), (e) => e instanceof OverlayError && /has no georeference/.test(e.message));
+});
+
+test('a GPX point without a time keeps the others\' times on their own points', async () => {
+  const o = await readOverlay('t.gpx', new TextEncoder().encode('<gpx><trk><trkseg><trkpt lat="1" lon="2"/>' +
+    '<trkpt lat="1.1" lon="2"><time>2020-01-01T00:01:00Z</time></trkpt><trkpt lat="1.2" lon="2"><time>2020-01-01T00:02:00Z</time></trkpt></trkseg></trk></gpx>'));
+  const { t } = o.features[0].paths[0];
+  assert.ok(Number.isNaN(t[0]));
+  assert.deepEqual([t[1], t[2]], [Date.UTC(2020, 0, 1, 0, 1), Date.UTC(2020, 0, 1, 0, 2)]);
 });
 
 test('files are told apart from height fields by name and first bytes', () => {

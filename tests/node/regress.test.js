@@ -15,7 +15,9 @@ import { fileURLToPath } from 'node:url';
 import { createNodeCore } from '../../lib/node_core.js';
 import { readInputs } from '../../lib/cli_common.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
-import { parseFlight, flightSettings, FlightCamera, FlightError, replayFlight } from '../../web/app/deterministic/flight.js';
+import { parseFlight, flightSettings, FlightCamera, FlightError, replayFlight, withKeyframes } from '../../web/app/deterministic/flight.js';
+import { flightTrackKeyframes } from '../../web/app/deterministic/track_keyframes.js';
+import { useNodeCrsDefinitions } from '../../lib/crs_definitions.js';
 import { DEFAULT_TOLERANCE, toleranceFor } from '../../web/app/deterministic/tolerance.js';
 import { compareImages, describeImage, flightChanges, flightRecordOf } from '../../lib/regress_compare.js';
 import { readDem } from '../../lib/dem_source.js';
@@ -148,8 +150,12 @@ test('a replay in Node gives the same mesh hashes every time, and the ones the p
     const flight = parseFlight(JSON.parse(readFileSync(join(flights, name), 'utf8')), name);
     const runs = [];
     for (let run = 0; run < 2; run++) {
-      const { terrain } = await loadTerrain(core, readInputs(join(flights, flight.dem)), { encoding: 'auto', guessSpacing: true });
-      runs.push(replayFlight(terrain, flight).toArray());
+      useNodeCrsDefinitions();
+      const { terrain, field } = await loadTerrain(core, readInputs(join(flights, flight.dem)), { encoding: 'auto', guessSpacing: true });
+      // A flight along a track: its keyframes from the track on the terrain, as hexlod regress makes them.
+      const track = flight.track && { name: flight.track.file.split('/').pop(), bytes: new Uint8Array(readFileSync(join(flights, flight.track.file))) };
+      const flown = track ? withKeyframes(flight, await flightTrackKeyframes(flight.track, track, terrain, field.georef)) : flight;
+      runs.push(replayFlight(terrain, flown).toArray());
       terrain.destroy();
     }
     assert.deepEqual(runs[0], runs[1], name);
@@ -280,8 +286,8 @@ test('hexlod regress --node-only passes on the stored references; a changed hash
   const out = mkdtempSync(join(tmpdir(), 'hexlod-regress-'));
   const ok = await hexlod(['regress', flights, '--node-only', '--out', out]);
   assert.equal(ok.code, 0, ok.stdout + ok.stderr);
-  assert.match(ok.stdout, /^hexlod regress: 7 flights: 7 passed \(Node only: figures, no pixels\)$/m);
-  assert.match(ok.stdout, /^\[1\/7\] grandcanyon_tau1: ok: 21 frames, figures only \(\d+\.\d s\)$/m);
+  assert.match(ok.stdout, /^hexlod regress: 8 flights: 8 passed \(Node only: figures, no pixels\)$/m);
+  assert.match(ok.stdout, /^\[2\/8\] grandcanyon_tau1: ok: 21 frames, figures only \(\d+\.\d s\)$/m);
   rmSync(out, { recursive: true, force: true });
 
   const dir = scratch();

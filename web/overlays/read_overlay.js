@@ -1,20 +1,24 @@
 // Reads a GPX (1.0, 1.1), KML, KMZ or GeoJSON file into an overlay: its features (geojson_
-// features.js) and the CRS their coordinates are in. GPX and KML go through @tmcw/togeojson (the
+// features.js) and the CRS their coordinates are in. KML goes through @tmcw/togeojson (the
 // well-kept converter of Mapbox's former toGeoJSON), over the browser's XML parser or xmldom in
-// Node (parse_xml.js); KMZ is unzipped with fflate; GeoJSON is JSON.parse. KML's altitudeMode,
-// which togeojson leaves out, is read from each Placemark.
+// Node (parse_xml.js); KMZ is unzipped with fflate; GeoJSON is JSON.parse. GPX is read from its
+// DOM directly (gpx_features.js): togeojson keeps only the times a track has, which shifts them
+// onto the wrong points when one point has none, and drops a point it cannot read. KML's
+// altitudeMode, which togeojson leaves out, is read from each Placemark, and its coordinates
+// are checked there, as togeojson would drop a broken tuple silently.
 //
 // Every way a file can be wrong gets an OverlayError that says how: empty, malformed XML or
 // JSON, a KMZ without KML, no features, coordinates that are not longitude and latitude, an
 // unknown legacy "crs" member. GeoJSON is WGS 84 (RFC 7946); a legacy "crs" member (the 2008
 // specification's) is honoured, and the overlay's notes say so.
-import { gpx, kml } from '@tmcw/togeojson';
+import { kml } from '@tmcw/togeojson';
 import { unzipSync } from 'fflate';
 import { crsOfEpsg, parseEpsg, resolveCrs } from '../geo/index.js';
 import { OverlayError } from './overlay_error.js';
 import { overlayKind } from './overlay_kind.js';
 import { parseXml } from './parse_xml.js';
 import { featuresOf } from './geojson_features.js';
+import { gpxFeatures } from './gpx_features.js';
 
 const FORMAT = { gpx: 'GPX', kml: 'KML', kmz: 'KMZ', geojson: 'GeoJSON' };
 const CRS84 = /CRS84$|OGC:1\.3:CRS84/i;
@@ -40,7 +44,7 @@ export async function readOverlay(name, bytes) {
   if (!kind) throw new OverlayError('not an overlay: GPX, KML, KMZ and GeoJSON files are (.gpx, .kml, .kmz, .geojson, or a .json holding GeoJSON)');
   if (bytes.length === 0) throw new OverlayError('the file is empty');
   const notes = [];
-  let geojson, altitudes = null, crs = crsOfEpsg(4326, true);
+  let geojson = null, altitudes = null, features = null, crs = crsOfEpsg(4326, true);
   if (kind === 'geojson') {
     geojson = parseJson(textOf(bytes));
     const legacy = legacyCrs(geojson);
@@ -54,14 +58,14 @@ export async function readOverlay(name, bytes) {
     const root = doc.documentElement?.localName ?? doc.documentElement?.nodeName;
     const expected = kind === 'gpx' ? 'gpx' : 'kml';
     if (root !== expected) throw new OverlayError(`not a ${FORMAT[expected]} document: its root element is <${root}>, not <${expected}>`);
-    if (kind === 'gpx') geojson = gpx(doc);
+    if (kind === 'gpx') features = gpxFeatures(doc);
     else {
       geojson = kml(doc);
       altitudes = placemarkAltitudes(doc, geojson.features.length, notes);
     }
   }
-  const features = featuresOf(geojson, {
-    source: (p) => (p._gpxType === 'trk' ? 'track' : p._gpxType === 'rte' ? 'route' : kind === 'gpx' ? 'waypoint' : kind === 'geojson' ? 'feature' : 'placemark'),
+  features ??= featuresOf(geojson, {
+    source: () => (kind === 'geojson' ? 'feature' : 'placemark'),
     altitudeOf: (k) => altitudes?.[k] ?? 'clamp',
   });
   if (features.length === 0) throw new OverlayError(`no features with a geometry in this ${FORMAT[kind]} file`);
@@ -110,9 +114,10 @@ function kmlOfKmz(bytes) {
   return textOf(files[kmlName]);
 }
 
-/** Each Placemark's altitudeMode, in the order togeojson gives their features. */
+/** Each Placemark's altitudeMode, in the order togeojson gives their features; its coordinates checked. */
 function placemarkAltitudes(doc, featureCount, notes) {
   const placemarks = Array.from(doc.getElementsByTagName('Placemark'));
+  placemarks.forEach(checkCoordinates);
   const modes = placemarks.map((placemark) => {
     const element = placemark.getElementsByTagName('altitudeMode')[0] ?? placemark.getElementsByTagName('gx:altitudeMode')[0];
     return element?.textContent.trim() ?? 'clampToGround';
@@ -120,6 +125,20 @@ function placemarkAltitudes(doc, featureCount, notes) {
   if (modes.includes('relativeToGround')) notes.push('relativeToGround is drawn on the ground');
   if (placemarks.length !== featureCount) return null; // cannot pair them: every one on the ground
   return modes.map((mode) => (mode === 'absolute' ? 'absolute' : 'clamp'));
+}
+
+/** Every tuple of a Placemark's <coordinates> must be 2 or 3 numbers: togeojson would drop it silently. */
+function checkCoordinates(placemark, index) {
+  for (const element of Array.from(placemark.getElementsByTagName('coordinates'))) {
+    const tuples = element.textContent.trim().split(/\s+/).filter((s) => s !== '');
+    for (let k = 0; k < tuples.length; k++) {
+      const parts = tuples[k].split(',');
+      if (parts.length < 2 || parts.length > 3 || parts.some((p) => p.trim() === '' || !Number.isFinite(Number(p)))) {
+        const name = placemark.getElementsByTagName('name')[0]?.textContent.trim();
+        throw new OverlayError(`placemark ${index + 1}${name ? ` ("${name}")` : ''}: coordinate ${k + 1} "${tuples[k].slice(0, 60)}" is not longitude,latitude[,altitude] numbers`);
+      }
+    }
+  }
 }
 
 /** A legacy "crs" member's CRS, or null (none, or CRS84, which is WGS 84). */

@@ -106,7 +106,8 @@ export class DrapeLayers {
   /** Puts each visible layer's control grid in its layer of the grid texture, when it changed. */
   uploadWarps(drapes, count) {
     const gl = this.gl;
-    let [capacityX, capacityY] = this.warpCapacity;
+    // By index: destructuring an array makes an iterator, garbage in every frame.
+    const capacityX = this.warpCapacity[0], capacityY = this.warpCapacity[1];
     let needX = capacityX, needY = capacityY;
     for (let slot = 0; slot < count; slot++) {
       needX = Math.max(needX, drapes[slot].warp.nodesX);
