@@ -142,7 +142,7 @@ async function main() {
     onCursor: (pick) => { state.cursor = pick; hud.setCursor(pick); },
     onOrbit: () => { syncPanel(); requestRender(); }, measuring: () => measure.active });
   // Overlays: their legend in the panel, the feature under the pointer, a track's profile and a flight along it.
-  const overlayFolder = panel.folder('Overlays');
+  const overlayFolder = panel.folder(`${IMAGE_FOLDER}/overlays (GPX, KML, GeoJSON)`); // inside the layers' folder: the panel stays short
   const tracks = createOverlayTracks({ measure, rig, settings, folder: overlayFolder, showStatus, requestRender, syncPanel });
   const overlayPanel = createOverlayPanel(overlayFolder, overlays, { profile: (layer) => tracks.profileOf(layer), flyAlong: (layer) => tracks.flyAlong(layer) });
   layers.onChange((shown, part) => {

@@ -32,7 +32,7 @@ export function installOverlayPointer(canvas, { rig, settings, terrain, layers, 
     if (!point) return null;
     const p = camera.position, distance = Math.hypot(point.x - p[0], point.height * settings.exaggeration - p[1], point.z - p[2]);
     const metresPerPixel = (2 * Math.tan(camera.fovY / 2) * distance) / Math.max(1, rect.height);
-    const found = nearestFeature(layers.overlays, point.x, point.z, REACH_PX * metresPerPixel);
+    const found = nearestFeature(layers.overlays, point.x, point.z, REACH_PX * metresPerPixel); // other kinds have no geometry
     return found ? { ...found, layer: layers.overlays[found.overlay] } : null;
   }
 

@@ -38,6 +38,8 @@ export function describeContents(features) {
 export function createOverlayStage({ renderer, layers, showStatus, requestRender }) {
   let nextId = 1;
   const terrainHeights = () => layers.ground?.terrain ?? null;
+  // The layer list may hold overlays of other kinds (anything with draw()): this stage's are its files.
+  const files = () => layers.overlays.filter((layer) => layer.kind === 'overlay');
 
   function changed() {
     layers.changed('overlays');
@@ -88,8 +90,8 @@ export function createOverlayStage({ renderer, layers, showStatus, requestRender
   }
 
   const stage = {
-    /** The overlays, bottom first (the layer list's). */
-    get list() { return layers.overlays; },
+    /** The overlay files, bottom first. */
+    get list() { return files(); },
 
     /**
      * Reads a file and puts it on top of the overlays. A refusal says why in the status line (or
@@ -175,9 +177,9 @@ export function createOverlayStage({ renderer, layers, showStatus, requestRender
 
     /** A new terrain is on screen: every overlay is placed on it again (or waits, unplaced, on a terrain without a georeference). */
     terrainChanged() {
-      if (layers.overlays.length === 0) return;
+      if (files().length === 0) return;
       const refused = [];
-      for (const layer of layers.overlays) {
+      for (const layer of files()) {
         try {
           place(layer);
         } catch (error) {
@@ -195,7 +197,7 @@ export function createOverlayStage({ renderer, layers, showStatus, requestRender
 
     /** Features drawn nowhere: off the terrain, summed over the visible overlays (the status line's count). */
     get offTerrain() {
-      return layers.overlays.reduce((n, layer) => n + (layer.visible && layer.placed ? layer.placed.offTerrain : 0), 0);
+      return files().reduce((n, layer) => n + (layer.visible && layer.placed ? layer.placed.offTerrain : 0), 0);
     },
   };
   return stage;

@@ -19,8 +19,9 @@ export function createOverlayPanel(folder, stage, { profile, flyAlong }) {
     /** Lists the overlays of `layers` (the page's layer list). */
     show(layers) {
       for (const row of rows) row.destroy();
-      empty.show(layers.overlays.length === 0);
-      rows = [...layers.overlays].reverse().map((layer) => {
+      const files = layers.overlays.filter((layer) => layer.kind === 'overlay'); // not other kinds drawn over the terrain
+      empty.show(files.length === 0);
+      rows = [...files].reverse().map((layer) => {
         const row = folder.addFolder(`overlay: ${layer.name}`);
         const model = { visible: layer.visible, color: layer.color, width: layer.halfWidth * 2,
           altitude: layer.altitude, curtain: layer.curtain };
