@@ -23,11 +23,7 @@ import { besideFile } from './cli_common.js';
  * @throws {Error} one line naming a file that is missing
  */
 export function readImageFiles(imagePath, worldFilePath = null) {
-  const read = (path, what) => {
-    if (!existsSync(path)) throw new Error(`${path}: no such ${what}`);
-    if (!statSync(path).isFile()) throw new Error(`${path}: not a file`);
-    return { name: basename(path), bytes: new Uint8Array(readFileSync(path)) };
-  };
+  const read = readLocalFile;
   const image = read(imagePath, 'image file');
   const beside = besideFile(imagePath);
   const worldPath = worldFilePath ?? beside(worldFileNames(basename(imagePath)));
@@ -68,8 +64,12 @@ export async function loadImageFiles(image, worldFile = null) {
  * @throws {Error} one line naming the file
  */
 export async function readNamedFile(path, what) {
-  if (isUrl(path)) return { name: urlFileName(path), bytes: await fetchBytes(path) };
-  if (!existsSync(path)) throw new Error(`${path}: no such ${what} file`);
+  return isUrl(path) ? { name: urlFileName(path), bytes: await fetchBytes(path) } : readLocalFile(path, `${what} file`);
+}
+
+/** One file from disk as { name, bytes }; throws one line naming it when it is missing or a folder. */
+function readLocalFile(path, what) {
+  if (!existsSync(path)) throw new Error(`${path}: no such ${what}`);
   if (!statSync(path).isFile()) throw new Error(`${path}: not a file`);
   return { name: basename(path), bytes: new Uint8Array(readFileSync(path)) };
 }

@@ -1,16 +1,17 @@
 // hexlod profile: the height profile along a polyline over a height field, with the page's
 // loaders, WASM core and measuring library (web/measure/): prints the summary and writes the
 // samples as CSV.
-import { readFileSync, writeFileSync } from 'node:fs';
-import { basename } from 'node:path';
+import { writeFileSync } from 'node:fs';
 import { UsageError, parseOptions, parseNumber, loadForCommand, FILE_OPTIONS, FILE_USAGE, parseFileOptions } from './cli_common.js';
 import { fieldSampler } from '../web/measure/field_sampler.js';
 import { computeProfile } from '../web/measure/profile.js';
 import { computeTrackProfile } from '../web/measure/track_profile.js';
 import { readOverlay } from '../web/overlays/read_overlay.js';
 import { placeOverlay } from '../web/overlays/place_overlay.js';
+import { trackLines } from '../web/overlays/track_lines.js';
 import { OverlayError } from '../web/overlays/overlay_error.js';
 import { useNodeCrsDefinitions } from './crs_definitions.js';
+import { readNamedFile } from './image_files.js';
 import { profileCsv } from '../web/measure/profile_csv.js';
 import { geoCoordinates, formatCoordinates, crsToLocal } from '../web/geo/coordinates.js';
 import { formatLength } from '../web/measure/units.js';
@@ -129,17 +130,16 @@ function finish(lines, result, csv, georef, spacingX, spacingY) {
 /** Reads and places the track file's lines; throws UsageError with the overlay's message. */
 async function readTrack(file, georef, terrain) {
   useNodeCrsDefinitions();
-  let bytes;
+  let named;
   try {
-    bytes = new Uint8Array(readFileSync(file));
+    named = await readNamedFile(file, 'track');
   } catch (error) {
-    throw new UsageError(`--track ${file}: cannot read it (${error.code ?? error.message})`);
+    throw new UsageError(`--track ${error.message}`); // names the file
   }
   try {
-    const overlay = await readOverlay(basename(file), bytes);
+    const overlay = await readOverlay(named.name, named.bytes);
     const placed = placeOverlay(overlay, georef, { columns: terrain.width, rows: terrain.height, spacingX: terrain.spacingX, spacingY: terrain.spacingY });
-    const lines = placed.features.flatMap((placedFeature) => (placedFeature.feature.kind !== 'line' ? []
-      : placedFeature.paths.map((path, p) => ({ feature: placedFeature.feature, placed: path, source: placedFeature.feature.paths[p], onTerrain: placedFeature.onTerrain }))));
+    const lines = trackLines(placed);
     if (lines.length === 0) throw new OverlayError('it has no line (a track, route or LineString) to profile');
     return { overlay, lines };
   } catch (error) {

@@ -129,8 +129,11 @@ class DemCache {
   }
 }
 
-/** Replays a flight in Node as the page does (auto PNG colours, a spacing guessed when none). */
-async function replayInNode(job, dem) {
+/**
+ * Replays a flight in Node as the page does (auto PNG colours, a spacing guessed when none);
+ * `trackFile` ({ name, bytes }): the flight's track, whose keyframes it makes first, or null.
+ */
+async function replayInNode(job, dem, trackFile) {
   const core = await createNodeCore();
   let loaded;
   try {
@@ -145,7 +148,7 @@ async function replayInNode(job, dem) {
       useNodeCrsDefinitions();
       let keyframes;
       try {
-        keyframes = await flightTrackKeyframes(job.flight.track, await readNamedFile(job.track, 'track'), loaded.terrain, loaded.field.georef ?? null);
+        keyframes = await flightTrackKeyframes(job.flight.track, trackFile, loaded.terrain, loaded.field.georef ?? null);
       } catch (error) {
         throw new InputError(`${shown(job.track)}: ${error.message}`);
       }
@@ -310,10 +313,11 @@ async function flyJob(job, index, context) {
   let dem;
   try {
     dem = await context.dems.get(job.source);
-    const nodeStats = await replayInNode(job, dem);
+    // The track is read once: Node makes its keyframes from it and the page gets the same bytes.
+    const trackFile = job.track ? await readNamedFile(job.track, 'track').catch((error) => { throw new InputError(error.message); }) : null;
+    const nodeStats = await replayInNode(job, dem, trackFile);
     const overlayFiles = [];
     for (const path of job.overlays) overlayFiles.push(await readNamedFile(path, 'overlay').catch((error) => { throw new InputError(error.message); }));
-    const trackFile = job.track ? await readNamedFile(job.track, 'track') : null;
     const layerFiles = [];
     for (const layer of job.layers) {
       layerFiles.push(layer.kind !== 'image' ? null : await loadImageFiles(layer.image, layer.worldFile).catch((error) => {

@@ -107,8 +107,9 @@ async function main() {
   const webTiles = createWebTileStage({ gl, layers, images, showStatus, requestRender, deterministic: det !== null });
   const overlays = createOverlayStage({ renderer, layers, showStatus, requestRender });
   layers.onChange((shown, part) => {
-    if (part === 'terrain') webTiles.terrainChanged();
-    if (part === 'terrain') overlays.terrainChanged();
+    if (part !== 'terrain') return;
+    webTiles.terrainChanged();
+    overlays.terrainChanged();
   });
   Object.defineProperty(state, 'overlays', { value: overlays, enumerable: false }); // for tests: add, restyle, remove
   const layerPanel = createLayerPanel(panel.folder(IMAGE_FOLDER), images, { addTiles: (text) => webTiles.addFrom(text) });

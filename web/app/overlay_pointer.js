@@ -16,11 +16,9 @@ const MAX_PROPERTIES = 10;
  * @param {{ rig: object, settings: object, terrain: () => object|null, layers: import('./layers.js').Layers,
  *   tip: HTMLElement, measuring: () => boolean, showTrack: (layer: object, feature: number, path: number) => void }} page
  *   measuring: whether the measuring tool takes clicks (it asks lineAt itself then)
- * @returns {{ lineAt(clientX: number, clientY: number): boolean, hovered: () => object|null }}
+ * @returns {{ lineAt(clientX: number, clientY: number): boolean }}
  */
 export function installOverlayPointer(canvas, { rig, settings, terrain, layers, tip, measuring, showTrack }) {
-  let hovered = null;
-
   /** The feature under client (x, y), or null. */
   function featureAt(clientX, clientY) {
     const loaded = terrain();
@@ -37,7 +35,6 @@ export function installOverlayPointer(canvas, { rig, settings, terrain, layers, 
   }
 
   function showTip(found, clientX, clientY) {
-    hovered = found;
     if (!found) {
       tip.hidden = true;
       return;
@@ -76,5 +73,5 @@ export function installOverlayPointer(canvas, { rig, settings, terrain, layers, 
     press = null;
     if (click && !measuring()) lineAt(e.clientX, e.clientY);
   });
-  return { lineAt, hovered: () => hovered };
+  return { lineAt };
 }

@@ -12,6 +12,7 @@ import { fieldSampler } from '../measure/field_sampler.js';
 import { overlayGeometry } from '../render/overlays/overlay_geometry.js';
 import { OverlayDrawing } from '../render/overlays/overlay_drawing.js';
 import { polygonFillDrape } from '../render/overlays/polygon_fill.js';
+import { fetchFile } from './fetched_file.js';
 
 /** Colours given to overlays in turn: bright, apart from each other and from the measured line's yellow. */
 export const OVERLAY_COLORS = ['#ff3d8b', '#2fd4ff', '#7cff4f', '#ff8a1f', '#b68cff', '#ffffff'];
@@ -59,9 +60,14 @@ export function createOverlayStage({ renderer, layers, showStatus, requestRender
     const sampler = fieldSampler(terrain, field.georef ?? null);
     layer.placed = placed;
     layer.sampler = sampler;
-    layer.geometry = overlayGeometry(placed, sampler, { altitude: layer.altitude, curtain: layer.curtain });
-    layer.drawing.setGeometry(layer.geometry);
+    build(layer);
     fill(layer);
+  }
+
+  /** What is drawn of a placed overlay, as its altitude and curtain say. */
+  function build(layer) {
+    layer.geometry = overlayGeometry(layer.placed, layer.sampler, { altitude: layer.altitude, curtain: layer.curtain });
+    layer.drawing.setGeometry(layer.geometry);
   }
 
   /** The polygons' fill, draped on the ground (made again for a new colour or terrain). */
@@ -132,19 +138,16 @@ export function createOverlayStage({ renderer, layers, showStatus, requestRender
 
     /** Fetches an overlay from an address and adds it (the address bar's overlay=). */
     async addUrl(url, options = {}) {
-      const name = decodeURIComponent(new URL(url, location.href).pathname.split('/').pop() || url);
-      let bytes;
+      let file;
       try {
-        const response = await fetch(url);
-        if (!response.ok) throw new Error(`HTTP ${response.status} ${response.statusText}`.trim());
-        bytes = new Uint8Array(await response.arrayBuffer());
+        file = await fetchFile(url);
       } catch (error) {
         const message = `overlay ${url}: cannot fetch it (${error.message})`;
         if (options.throwRefusal) throw new OverlayError(message);
         showStatus(message, true);
         return null;
       }
-      return stage.add({ name, bytes }, { ...options, url });
+      return stage.add(file, { ...options, url });
     },
 
     remove(layer) {
@@ -168,10 +171,7 @@ export function createOverlayStage({ renderer, layers, showStatus, requestRender
     /** How lines are drawn: 'file' (as the file says), 'clamp' or 'absolute', and the curtain under lines aloft. */
     setAltitude(layer, { altitude = layer.altitude, curtain = layer.curtain } = {}) {
       Object.assign(layer, { altitude, curtain });
-      if (layer.placed) {
-        layer.geometry = overlayGeometry(layer.placed, layer.sampler, { altitude, curtain });
-        layer.drawing.setGeometry(layer.geometry);
-      }
+      if (layer.placed) build(layer);
       changed();
     },
 
@@ -204,4 +204,4 @@ export function createOverlayStage({ renderer, layers, showStatus, requestRender
 }
 
 const EMPTY_GEOMETRY = Object.freeze({ segments: new Float32Array(0), curtain: new Float32Array(0), markers: new Float32Array(0),
-  markerNames: [], markerFeature: new Int32Array(0), picks: [], drawnVertices: 0, fileVertices: 0 });
+  markerNames: [], picks: [], drawnVertices: 0, fileVertices: 0 });

@@ -10,7 +10,7 @@ import { TrackFollow } from '../cameras/track_follow.js';
 const KMH = 1 / 3.6;
 
 /** The longest path of an overlay's first line feature: [feature, path], or null. */
-export function mainTrack(overlay) {
+function mainTrack(overlay) {
   const feature = overlay.features.findIndex((f) => f.kind === 'line');
   if (feature < 0) return null;
   const paths = overlay.features[feature].paths;
@@ -25,8 +25,8 @@ export function mainTrack(overlay) {
  *   folder: the panel's overlay folder, where the flight's controls appear while one flies
  */
 export function createOverlayTracks({ measure, rig, settings, folder, showStatus, requestRender, syncPanel }) {
-  const flight = { speedKmh: 120, byTimes: false, timeScale: 10, height: 300, lookAhead: 1500, paused: false, progress: 0 };
-  let controls = null, current = null; // current: { layer, feature, path, keyframes speed }
+  const flight = { speedKmh: 120, byTimes: false, timeScale: 10, height: 300, lookAhead: 1500, paused: false };
+  let controls = null, current = null; // current: the track flown, { layer, feature, path }
 
   function pathsOf(layer, feature, path) {
     if (!layer.placed) throw new Error(`${layer.name} is not on this terrain`);
@@ -41,7 +41,6 @@ export function createOverlayTracks({ measure, rig, settings, folder, showStatus
     const keyframes = trackKeyframes(placed, source, (x, z) => layer.sampler.heightAt(x, z),
       { height: flight.height, lookAhead: flight.lookAhead, speed: byTimes ? null : flight.speedKmh * KMH,
         extentX: layer.sampler.extentX, extentZ: layer.sampler.extentZ });
-    if (keyframes.length < 2) throw new Error('the track is too short to fly along');
     rig.verticalScale = settings.exaggeration;
     const was = rig.follow;
     rig.follow = new TrackFollow(keyframes, byTimes ? flight.timeScale : 1);
@@ -117,8 +116,6 @@ export function createOverlayTracks({ measure, rig, settings, folder, showStatus
     overlaysChanged(overlays) {
       if (current && !overlays.includes(current.layer)) tracks.stop();
     },
-
-    get flying() { return rig.follow !== null; },
   };
   return tracks;
 }

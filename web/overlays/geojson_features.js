@@ -1,6 +1,6 @@
-// GeoJSON features (RFC 7946, and what @tmcw/togeojson makes of GPX and KML) as the overlays'
-// features: points, lines and polygons with their coordinates in typed arrays (x, y and the
-// altitude z where a position has one; the times of a GPX track), their name and properties.
+// GeoJSON features (RFC 7946, and what @tmcw/togeojson makes of KML) as the overlays' features:
+// points, lines and polygons with their coordinates in typed arrays (x, y and the altitude z
+// where a position has one; the times of a KML track), their name and properties.
 // A GeometryCollection (KML's MultiGeometry) becomes one feature per kind of geometry in it.
 import { OverlayError } from './overlay_error.js';
 
@@ -27,22 +27,23 @@ const KIND = { Point: 'point', MultiPoint: 'point', LineString: 'line', MultiLin
 
 /**
  * @param {object} geojson a FeatureCollection, a Feature or a bare geometry
- * @param {{source?: (properties: object) => string, altitudeOf?: (index: number) => 'clamp'|'absolute'}} [options]
- *   altitudeOf: the altitude mode of the index-th feature (KML's altitudeMode)
+ * @param {{source?: string, altitudeOf?: (index: number) => 'clamp'|'absolute'}} [options]
+ *   source: what the features are ('feature', 'placemark'); altitudeOf: the altitude mode of the
+ *   index-th feature (KML's altitudeMode)
  * @returns {Feature[]}
  * @throws {OverlayError}
  */
-export function featuresOf(geojson, { source = () => 'feature', altitudeOf = () => 'clamp' } = {}) {
+export function featuresOf(geojson, { source = 'feature', altitudeOf = () => 'clamp' } = {}) {
   const list = geojson.type === 'FeatureCollection' ? geojson.features
     : geojson.type === 'Feature' ? [geojson] : [{ type: 'Feature', properties: {}, geometry: geojson }];
   if (!Array.isArray(list)) throw new OverlayError('"features" of the FeatureCollection is not an array');
   const out = [];
   list.forEach((feature, index) => {
     if (!feature || feature.type !== 'Feature') throw new OverlayError(`feature ${index + 1} is not a GeoJSON Feature (its "type" is ${JSON.stringify(feature?.type)})`);
-    const { coordinateProperties, _gpxType, ...rest } = feature.properties ?? {};
+    const { coordinateProperties, ...rest } = feature.properties ?? {};
     const properties = plain(rest);
     const name = typeof properties.name === 'string' && properties.name.trim() ? properties.name.trim() : null;
-    const base = { name, properties, altitude: altitudeOf(index), source: source(feature.properties ?? {}) };
+    const base = { name, properties, altitude: altitudeOf(index), source };
     for (const geometry of flatten(feature.geometry, index)) {
       const kind = KIND[geometry.type];
       const times = coordinateProperties?.times ?? null;
@@ -87,7 +88,7 @@ function pathsOf(geometry, times, index) {
     case 'MultiPoint': return { paths: [path(c, null, where)], polygons: null };
     case 'LineString': return { paths: [path(c, Array.isArray(times?.[0]) ? times[0] : times, where)], polygons: null };
     case 'MultiLineString': {
-      // togeojson gives a GPX track's times per segment, and none for a segment without: they
+      // togeojson gives a KML multi-track's times per track, and none for a track without: they
       // are trusted only where their number matches.
       const aligned = Array.isArray(times) && times.length === c.length;
       return { paths: c.map((line, k) => path(line, aligned ? times[k] : null, where)), polygons: null };

@@ -65,7 +65,7 @@ export async function readOverlay(name, bytes) {
     }
   }
   features ??= featuresOf(geojson, {
-    source: () => (kind === 'geojson' ? 'feature' : 'placemark'),
+    source: kind === 'geojson' ? 'feature' : 'placemark',
     altitudeOf: (k) => altitudes?.[k] ?? 'clamp',
   });
   if (features.length === 0) throw new OverlayError(`no features with a geometry in this ${FORMAT[kind]} file`);

@@ -20,6 +20,7 @@ import { mat4, vec3 } from 'gl-matrix';
 import { parseFlight, flightSettings, withKeyframes, FlightCamera, FlightRecord } from './flight.js';
 import { flightTrackKeyframes } from './track_keyframes.js';
 import { worldFileNames } from '../../geo/index.js';
+import { fileNameOf, fetchFile } from '../fetched_file.js';
 
 /** The camera the renderer draws with: posed from FlightCamera every frame (tests pose one the same way). */
 export class ScriptedCamera {
@@ -98,7 +99,7 @@ export class DeterministicMode {
   /** Fetches and checks the flight file; applies the URL's overrides. */
   async load() {
     const url = this.params.get('flight');
-    const name = decodeURIComponent(new URL(url, location.href).pathname.split('/').pop() || url);
+    const name = fileNameOf(url);
     let json;
     try {
       const response = await fetch(url);
@@ -186,16 +187,13 @@ export class DeterministicMode {
   /** A flight along a track: its keyframes from the track file on this terrain. */
   async trackKeyframes(terrain, field) {
     if (!this.flight.track) return;
-    const url = this.trackUrl, name = decodeURIComponent(new URL(url, location.href).pathname.split('/').pop() || url);
-    let bytes;
+    let file;
     try {
-      const response = await fetch(url);
-      if (!response.ok) throw new Error(`HTTP ${response.status}`);
-      bytes = new Uint8Array(await response.arrayBuffer());
+      file = await fetchFile(this.trackUrl);
     } catch (error) {
-      throw new Error(`${name}: cannot read the flight's track (${error.message})`);
+      throw new Error(`${fileNameOf(this.trackUrl)}: cannot read the flight's track (${error.message})`);
     }
-    const keyframes = await flightTrackKeyframes(this.flight.track, { name, bytes }, terrain, field.georef ?? null);
+    const keyframes = await flightTrackKeyframes(this.flight.track, file, terrain, field.georef ?? null);
     this.flight = withKeyframes(this.flight, keyframes);
   }
 
@@ -211,7 +209,7 @@ export class DeterministicMode {
   /** Fetches an image layer's image (and world file) and drapes it. */
   async drapeImage(layer) {
     const named = async (url, optional = false) => {
-      const name = decodeURIComponent(new URL(url, location.href).pathname.split('/').pop() || url);
+      const name = fileNameOf(url);
       let response;
       try {
         response = await fetch(url);

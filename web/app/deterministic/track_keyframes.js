@@ -5,6 +5,7 @@
 import { readOverlay } from '../../overlays/read_overlay.js';
 import { placeOverlay } from '../../overlays/place_overlay.js';
 import { trackKeyframes } from '../../overlays/track_flight.js';
+import { trackLines } from '../../overlays/track_lines.js';
 
 /**
  * @param {{file: string, height: number, speed: number|null, lookAhead: number, line: number}} track the flight's
@@ -17,7 +18,7 @@ import { trackKeyframes } from '../../overlays/track_flight.js';
 export async function flightTrackKeyframes(track, file, terrain, georef) {
   const overlay = await readOverlay(file.name, file.bytes);
   const placed = placeOverlay(overlay, georef, { columns: terrain.width, rows: terrain.height, spacingX: terrain.spacingX, spacingY: terrain.spacingY });
-  const lines = placed.features.flatMap((f) => (f.feature.kind !== 'line' ? [] : f.paths.map((path, p) => ({ placed: path, source: f.feature.paths[p], onTerrain: f.onTerrain }))));
+  const lines = trackLines(placed);
   if (lines.length === 0) throw new Error(`${file.name}: no line (track, route or LineString) to fly along`);
   if (track.line > lines.length) throw new Error(`${file.name}: "track".line ${track.line}, but it has ${lines.length} line${lines.length === 1 ? '' : 's'}`);
   const line = lines[track.line - 1];

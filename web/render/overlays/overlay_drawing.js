@@ -71,11 +71,6 @@ export class OverlayDrawing {
     Object.assign(this.style, style);
   }
 
-  /** Names drawn in the last frame. */
-  get labelsShown() {
-    return this.labels?.shown ?? 0;
-  }
-
   draw(gl, camera, width, height, verticalScale) {
     const g = this.geometry, style = this.style;
     if (!g || !style.visible) return;

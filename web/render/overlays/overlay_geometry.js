@@ -23,7 +23,6 @@ const SIMPLIFY_SHARE = 0.25;
  * @property {Float32Array} curtain triangles (xyz each vertex) from lines aloft down to the ground
  * @property {Float32Array} markers xyz of each point drawn
  * @property {string[]} markerNames the name of each marker ('' for none)
- * @property {Int32Array} markerFeature the feature of each marker
  * @property {Array<{feature: number, path: number, kind: string, x: Float64Array, z: Float64Array, closed: boolean}>} picks
  *   the drawn paths in local metres (simplified), for hover and click
  * @property {number} drawnVertices vertices of the files' paths kept for drawing
@@ -39,7 +38,7 @@ const SIMPLIFY_SHARE = 0.25;
  */
 export function overlayGeometry(placed, sampler, { altitude = 'file', curtain = false } = {}) {
   const tolerance = sampler.spacing * SIMPLIFY_SHARE;
-  const lines = [], markers = [], markerNames = [], markerFeature = [], picks = [];
+  const lines = [], markers = [], markerNames = [], picks = [];
   let fileVertices = 0, drawnVertices = 0, length = 0;
   placed.features.forEach(({ feature, paths }, index) => {
     const aloft = (altitude === 'file' ? feature.altitude : altitude) === 'absolute';
@@ -53,7 +52,6 @@ export function overlayGeometry(placed, sampler, { altitude = 'file', curtain = 
           const own = source.z?.[k];
           markers.push(path.x[k], aloft && Number.isFinite(own) ? own : ground, path.z[k]);
           markerNames.push(feature.name ?? '');
-          markerFeature.push(index);
           drawnVertices++;
         }
         picks.push({ feature: index, path: p, kind: 'point', x: path.x, z: path.z, closed: false });
@@ -83,7 +81,7 @@ export function overlayGeometry(placed, sampler, { altitude = 'file', curtain = 
     }
   }
   return { segments: concat(segmentParts), curtain: concat(curtainParts), markers: new Float32Array(markers), markerNames,
-    markerFeature: Int32Array.from(markerFeature), picks, drawnVertices, fileVertices };
+    picks, drawnVertices, fileVertices };
 }
 
 /** The line's samples on the field at the full-resolution heights, or null when none of it is on the field. */
