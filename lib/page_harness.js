@@ -6,6 +6,7 @@ import { startStaticSite } from './static_site.js';
 import { decode } from 'fast-png';
 import { mkdirSync } from 'node:fs';
 import { freePort, launchChromium } from './chromium.js';
+import { crsFilesPlugin } from './crs_files_plugin.js';
 import { fileURLToPath } from 'node:url';
 
 export const projectDir = fileURLToPath(new URL('..', import.meta.url));
@@ -16,11 +17,17 @@ export const outDir = `${projectDir}tests/out`;
  * a page asks: no file watching and no hot reload (`hmr: true` turns both on), so an edit
  * elsewhere in the work tree never reloads a page in the middle of a test.
  */
-async function startDevServer({ hmr = false } = {}) {
+async function startDevServer({ hmr = false, examples = false } = {}) {
   const server = await createServer({
-    configFile: `${projectDir}vite.config.js`,
-    root: `${projectDir}public`,
-    server: { port: await freePort(), strictPort: true, host: '127.0.0.1', ...(hmr ? {} : { hmr: false, watch: null }) },
+    // The examples are a user's pages: Vite's defaults, without the viewer page's Content-Security-Policy.
+    configFile: examples ? false : `${projectDir}vite.config.js`,
+    ...(examples ? { plugins: [crsFilesPlugin()], worker: { format: 'es' } } : {}),
+    root: `${projectDir}${examples ? 'examples' : 'public'}`,
+    // The examples import the package by its name, as in a user's project: here, its source.
+    resolve: examples ? { alias: [{ find: /^hexlod\/element$/, replacement: `${projectDir}web/api/element.js` },
+      { find: /^hexlod$/, replacement: `${projectDir}web/api/index.js` }] } : {},
+    server: { port: await freePort(), strictPort: true, host: '127.0.0.1', ...(hmr ? {} : { hmr: false, watch: null }),
+      ...(examples ? { fs: { allow: [projectDir] } } : {}) },
     // Its own dependency cache: another Vite server on this checkout's node_modules (the
     // viewer, a benchmark) re-optimising the shared one mid-test breaks lazy imports.
     cacheDir: `${outDir}/vite-cache`,
@@ -35,14 +42,15 @@ async function startDevServer({ hmr = false } = {}) {
  * Starts the page and the browser; returns { url, fixturesUrl, browser, close() }.
  * `site: 'dev'` (default) is the Vite dev server; `site: 'built'` serves the production build in
  * dist/ (./build.sh site) from a plain static file server under the sub-path /hexlod/, as a
- * static host would, with the test fixtures under /fixtures/. `hmr`: the dev server watches
+ * static host would, with the test fixtures under /fixtures/; `site: 'examples'` the pages of
+ * examples/ on the dev server, `hexlod` imported from the source as from the package. `hmr`: the dev server watches
  * files and its client keeps a hot-reload connection, as for a developer. `chromiumArgs`: more
  * command-line flags for the browser. `pixelRatio`: the device pixels per CSS pixel of the pages
  * opened in it (0.5 for a test that judges what is drawn, not its fine detail: a quarter of the
  * pixels to draw on the CPU).
  */
 export async function startViewer({ site = 'dev', hmr = false, chromiumArgs = [], pixelRatio = 1 } = {}) {
-  const server = site === 'built' ? await startStaticSite() : await startDevServer({ hmr });
+  const server = site === 'built' ? await startStaticSite() : await startDevServer({ hmr, examples: site === 'examples' });
   const browser = await launchChromium(undefined, chromiumArgs);
   // Pages open at `pixelRatio` device pixels per CSS pixel unless they ask otherwise: at 0.5 the
   // page lays out as on the screen it emulates while SwiftShader draws a quarter of the pixels.

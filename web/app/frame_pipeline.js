@@ -19,10 +19,11 @@ export class FramePipeline {
    *   renderer draws), hud, state (the published figures), det (the deterministic mode or null),
    *   urlWriter, layers (layers.js: the terrain drawn, { terrain, field, loadMs, world, tiles,
    *   streamVersion, blendsEnd }, and the sources the address bar names), onHeightsChanged() (a
-   *   tiled terrain's heights changed: tiles went in)
+   *   tiled terrain's heights changed: tiles went in), onFrame() (a frame was drawn)
    */
-  constructor({ gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, layers, onHeightsChanged }) {
-    Object.assign(this, { gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, layers, onHeightsChanged });
+  constructor({ gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, layers, onHeightsChanged, onFrame = null }) {
+    Object.assign(this, { gl, canvas, renderer, rig, settings, view, hud, state, det, urlWriter, layers, onHeightsChanged, onFrame });
+    this.stopped = false; // the viewer was disposed: no frame is asked for again
     this.contextLost = false;
     this.frameRequested = false;
     this.lastFrameTime = 0;
@@ -51,6 +52,11 @@ export class FramePipeline {
     this.requestLater = () => this.request(); // the frame again a little later: a flight's frame waiting for its tiles
   }
 
+  /** No frame is drawn any more: the viewer is disposed. */
+  stop() {
+    this.stopped = true;
+  }
+
   /** While the graphics context is lost, frames draw nothing (web/app/context_loss.js). */
   setContextLost(lost) {
     this.contextLost = lost;
@@ -58,7 +64,7 @@ export class FramePipeline {
 
   /** Asks for a frame (at most one is pending). */
   request() {
-    if (this.frameRequested) return;
+    if (this.frameRequested || this.stopped) return;
     this.frameRequested = true;
     requestAnimationFrame(this.render);
   }
@@ -66,7 +72,7 @@ export class FramePipeline {
   /** One frame at `now` (ms, from requestAnimationFrame). */
   render(now) {
     this.frameRequested = false;
-    if (this.contextLost) return;
+    if (this.contextLost || this.stopped) return;
     const { det, canvas, rig, state } = this;
     if (det && !det.beginFrame()) return; // deterministic: only the frames asked for
     const frameStart = performance.now();
@@ -110,6 +116,7 @@ export class FramePipeline {
     }
     state.frames += 1;
     if (det) det.endFrame();
+    if (this.onFrame && shown) this.onFrame(); // frames of a terrain, not the sky before the first one
     if (moving) this.request();
     if (shown && !det) this.urlWriter.write(this.settings, camera, this.layers.source, this.layers.layerUrls, this.layers.overlayUrls);
   }

@@ -5,11 +5,12 @@ import { CAMERA_MODES, isTyping } from '../cameras/rig.js';
 const TOGGLES = { l: 'colorByLevel', o: 'wireframe', f: 'freeze' };
 
 /**
+ * @param {import('./viewer_dom.js').ViewerDom} dom  where keys are taken
  * @param {object} actions  setSetting(key, value), setCamera(mode), toggleHelp(), closeHelp(),
  *   toggleHud(), screenshot(), resetView(), and settings (read for the toggles)
  */
-export function installKeys({ settings, setSetting, setCamera, toggleHelp, closeHelp, toggleHud, screenshot, resetView }) {
-  window.addEventListener('keydown', (e) => {
+export function installKeys(dom, { settings, setSetting, setCamera, toggleHelp, closeHelp, toggleHud, screenshot, resetView }) {
+  dom.on(dom.keyTarget, 'keydown', (e) => {
     if (isTyping(e) || e.ctrlKey || e.metaKey || e.altKey) return;
     const key = e.key.toLowerCase();
     if (TOGGLES[key]) setSetting(TOGGLES[key], !settings[TOGGLES[key]]);

@@ -10,17 +10,17 @@ import { download } from './screenshot.js';
  *   urlWriter, requestRender(), state (window.hexlod in test mode)
  * @returns {MeasureTool}
  */
-export function installMeasuring({ canvas, rig, settings, stage, renderer, urlWriter, requestRender, state }) {
+export function installMeasuring({ dom, canvas, rig, settings, stage, renderer, urlWriter, requestRender, state }) {
   const overlay = renderer.measureOverlay;
   let tool = null;
-  const button = document.getElementById('measure-button'); // in the file bar: on, off
+  const button = dom.byId('measure-button'); // in the file bar: on, off
   const panel = new MeasurePanel({
     setKind: (kind) => tool.setKind(kind), undo: () => tool.undo(), finish: () => tool.finish(), clear: () => tool.clear(),
     setActive: (on) => tool.setActive(on), download,
     onHover: (point) => { overlay.setHover(point); requestRender(); },
     name: () => `hexlod-${(stage.current?.field.source ?? 'view').replace(/\.[^.]*$/, '')}`,
-  });
-  tool = new MeasureTool({ canvas, rig, settings, overlay, requestRender,
+  }, dom);
+  tool = new MeasureTool({ dom, canvas, rig, settings, overlay, requestRender,
     terrain: () => stage.current,
     onResult: (result) => {
       panel.show(result);

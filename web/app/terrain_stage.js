@@ -43,6 +43,13 @@ export class TerrainStage {
     this.requestRender();
   }
 
+  /** Frees the terrain shown (its tile requests stop first): the viewer is disposed. */
+  close() {
+    this.current?.tiles?.close();
+    this.current?.terrain.destroy();
+    this.layers.terrain = null;
+  }
+
   /** A new mesh of the settings' embedding, with every core setting in one call; all uploaded anew. */
   rebuildMesh(terrain) {
     terrain.resetMesh(this.settings.embedding);
@@ -69,7 +76,7 @@ export class TerrainStage {
     const { canvas, rig } = this, orbit = rig.cameras.orbit;
     const width = Math.max(canvas.clientWidth, 1), height = Math.max(canvas.clientHeight, 1);
     // The file bar along the top and the HUD along the bottom: the terrain opens between them.
-    const bar = document.getElementById('intake').getBoundingClientRect(), hudBox = document.getElementById('hud').getBoundingClientRect();
+    const bar = this.dom.byId('intake').getBoundingClientRect(), hudBox = this.dom.byId('hud').getBoundingClientRect();
     const covered = {
       top: bar.height > 0 ? Math.min(bar.bottom / height, 0.3) : 0,
       bottom: hudBox.height > 0 ? Math.min((height - hudBox.top) / height, 0.3) : 0,

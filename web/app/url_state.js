@@ -96,7 +96,9 @@ export function applyCameraState(rig, state) {
  * write() runs every frame: it only notes what to write (no object, no closure per call).
  */
 export class UrlWriter {
-  constructor() {
+  /** @param {{ addressBar?: boolean }} [options] addressBar: false for a viewer in someone else's page, whose address is theirs */
+  constructor({ addressBar = true } = {}) {
+    this.addressBar = addressBar;
     this.timer = null;
     this.pending = false;
     this.settings = null;
@@ -114,6 +116,7 @@ export class UrlWriter {
    * @param {string[]} [overlayUrls] the overlays that came from an address, bottom first
    */
   write(settings, camera, src, layerUrls = [], overlayUrls = []) {
+    if (!this.addressBar) return;
     this.settings = settings;
     this.camera = camera;
     this.src = src;

@@ -5,6 +5,7 @@ import { OrbitCamera } from './orbit.js';
 import { FlyCamera } from './fly.js';
 import { WalkCamera } from './walk.js';
 import { attachTouchControls } from './touch.js';
+import { CameraFlight } from './camera_flight.js';
 import { vec3 } from 'gl-matrix';
 import { clearanceOf, emptyWorld } from './clip_planes.js';
 
@@ -38,6 +39,7 @@ export class CameraRig {
     };
     this.setWorld(emptyWorld());
     this.follow = null;      // a track being followed (track_follow.js), or null
+    this.flight = null;      // the orbit camera's flight to a view asked by the JS API (camera_flight.js), or null
     this.verticalScale = 1;  // the exaggeration, for a followed track's heights
   }
 
@@ -99,8 +101,32 @@ export class CameraRig {
     this.onChange();
   }
 
+  /**
+   * Flies the orbit camera to look at `to.target` from `to.position` in `seconds` (0: at once).
+   * @returns {Promise<boolean>} whether it arrived (false: stopped by another flight, a drag or the keys)
+   */
+  flyTo(to, seconds) {
+    this.flight?.stop();
+    if (this.active.mode !== 'orbit') this.setMode('orbit');
+    this.flight = new CameraFlight(this.cameras.orbit, to, seconds);
+    const { finished } = this.flight;
+    if (seconds === 0) this.step(0);
+    this.changed();
+    return finished;
+  }
+
+  /** Ends a flight where it is: the person took the camera. */
+  stopFlight() {
+    this.flight?.stop();
+    this.flight = null;
+  }
+
   /** Moves the fly or walk camera along a followed track or for the held keys; true while it moves. */
   step(seconds) {
+    if (this.flight) {
+      if (!this.flight.step(Math.min(seconds, 0.1))) this.flight = null;
+      return true; // this frame moved the camera
+    }
     if (this.follow && this.active.mode !== 'orbit') {
       this.follow.step(Math.min(seconds, 0.1), this.active, this.verticalScale);
       if (this.follow.playing) return true;
@@ -112,12 +138,13 @@ export class CameraRig {
     return true;
   }
 
-  /** Mouse, wheel, keys and touch on `element` (keys on the window). */
-  attach(element) {
+  /** Mouse, wheel and touch on `element`, keys where the viewer takes them (viewer_dom.js). */
+  attach(element, dom) {
     let drag = null;
     element.addEventListener('pointerdown', (e) => {
       if (e.pointerType === 'touch') return;
       drag = { x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey };
+      this.stopFlight();
       try { element.setPointerCapture(e.pointerId); } catch { /* a synthetic or finished pointer */ }
     });
     element.addEventListener('pointermove', (e) => {
@@ -139,18 +166,19 @@ export class CameraRig {
       else this.active.move(0.05 * Math.sign(-e.deltaY), { forward: 1, right: 0, up: 0 }, e.shiftKey);
       this.changed();
     }, { passive: false });
-    window.addEventListener('keydown', (e) => {
+    dom.on(dom.keyTarget, 'keydown', (e) => {
       this.fast = e.shiftKey;
       if (!MOVE_KEYS[e.code] || isTyping(e)) return;
       e.preventDefault();
       this.held.add(e.code);
       this.changed();
     });
-    window.addEventListener('keyup', (e) => {
+    dom.on(dom.keyTarget, 'keyup', (e) => {
       this.fast = e.shiftKey;
       this.held.delete(e.code);
     });
-    window.addEventListener('blur', () => this.held.clear());
+    dom.on(window, 'blur', () => this.held.clear());
+    if (!dom.page) dom.on(dom.keyTarget, 'focusout', () => this.held.clear()); // keys released elsewhere never reach it
     attachTouchControls(element, this);
   }
 }

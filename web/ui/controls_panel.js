@@ -14,14 +14,15 @@ const OPEN_FOLDERS = new Set(['Level of detail']);
  * @param {Record<string, object>} table the settings table: each setting's panel place, choices and range
  * @param {{camera: {mode: string}, onChange: (key: string, value: any) => void,
  *   actions: Record<string, () => void>, folderActions?: Record<string, Record<string, () => void>>}} hooks
- *   actions: buttons, label -> function; folderActions: buttons in a settings folder, path -> label -> function
+ *   actions: buttons, label -> function; folderActions: buttons in a settings folder, path -> label -> function;
+ *   small: the viewer is phone-sized (the panel starts folded); injectStyles: lil-gui adds its own stylesheet
  * @returns {{gui: GUI, refresh: () => void, setCellSizeRange: (metres: number) => void,
  *   enableAction: (label: string, enabled: boolean) => void, folder: (path: string) => GUI}}
  */
-export function createControlsPanel(container, settings, table, { camera, onChange, actions, folderActions = {} }) {
-  // Its stylesheet is imported by public/style.css: the Content-Security-Policy refuses the
-  // <style> element lil-gui would inject.
-  const gui = new GUI({ container, title: 'Controls', injectStyles: false });
+export function createControlsPanel(container, settings, table, { camera, onChange, actions, folderActions = {}, small = false, injectStyles = false }) {
+  // On the page its stylesheet is imported by public/style.css: the Content-Security-Policy
+  // refuses the <style> element lil-gui would inject. In someone else's page lil-gui adds it.
+  const gui = new GUI({ container, title: 'Controls', injectStyles });
   gui.add(camera, 'mode', CAMERA_MODES).name('camera (1 2 3)').onChange((value) => onChange('camera', value));
 
   const folders = new Map(); // 'Level of detail/budgets and culling' -> its lil-gui folder
@@ -62,7 +63,7 @@ export function createControlsPanel(container, settings, table, { camera, onChan
   for (const [label, action] of Object.entries(actions)) tools.add({ [label]: action }, label);
 
   // Small screens: start folded, the view matters more than the panel.
-  if (window.matchMedia('(max-width: 800px), (max-height: 500px)').matches) gui.close();
+  if (small) gui.close();
 
   return {
     gui,

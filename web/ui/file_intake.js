@@ -24,12 +24,12 @@ import { installDropTarget } from './drop_target.js';
  *   ({ name, blob }) onto the terrain on screen (app/image_stage.js), null when refused;
  *   addOverlay: a GPX, KML, KMZ or GeoJSON file ({ name, bytes }) over it (app/overlay_stage.js);
  *   defaultUrlTimeoutS: the time limit of the page's own files
- * @returns {{ openUrl, openImageUrl, openLinks, idle: () => Promise<void>, showSpacing: (terrain: object, assumed?: boolean) => void }}
- *   openUrl, openImageUrl and openLinks resolve to 'shown', 'failed' (the status line says why) or
+ * @returns {{ openUrl, openImageUrl, openLinks, openFiles, idle: () => Promise<void>, showSpacing: (terrain: object, assumed?: boolean) => void }}
+ *   openUrl, openImageUrl, openLinks and openFiles (files as if dropped together) resolve to 'shown', 'failed' (the status line says why) or
  *   'cancelled' (by the Cancel button, or by a file opened meanwhile)
  */
-export function createFileIntake({ core, state, settings, layers, show, showStatus, setCellSize, drape, addOverlay, defaultUrlTimeoutS }) {
-  const $ = (id) => document.getElementById(id);
+export function createFileIntake({ dom, drops = true, core, state, settings, layers, show, showStatus, setCellSize, drape, addOverlay, defaultUrlTimeoutS }) {
+  const $ = (id) => dom.byId(id);
   const encodingSelect = $('png-encoding'), encoding = () => encodingSelect.value;
   state.loading = false;
   const indicator = createLoadIndicator({ progress: $('load-progress'), cancelButton: $('load-cancel'), state, showStatus });
@@ -38,9 +38,10 @@ export function createFileIntake({ core, state, settings, layers, show, showStat
     if (!busy) indicator.hide();
   });
   $('load-cancel').onclick = () => loads.cancel();
-  const showSpacing = installSpacingField({ state, layers, showStatus, setCellSize });
-  const opening = createTerrainOpening({ core, state, settings, show, showStatus, indicator, showSpacing, encoding });
+  const showSpacing = installSpacingField({ dom, state, layers, showStatus, setCellSize });
+  const opening = createTerrainOpening({ dom, core, state, settings, show, showStatus, indicator, showSpacing, encoding });
   const urls = createUrlOpening({ loads, indicator, settings, opening, drape, defaultUrlTimeoutS });
-  installDropTarget(pickedFilesOpener({ loads, indicator, settings, layers, opening, drape, addOverlay, showStatus, encoding }), showStatus);
-  return { ...urls, idle: () => loads.idle(), showSpacing };
+  const openFiles = pickedFilesOpener({ loads, indicator, settings, layers, opening, drape, addOverlay, showStatus, encoding });
+  installDropTarget(dom, openFiles, showStatus, drops);
+  return { ...urls, openFiles, idle: () => loads.idle(), showSpacing };
 }

@@ -12,7 +12,6 @@ const HINT = {
   area: 'Click the corners · double click or Enter closes · Backspace undoes · Esc clears',
   track: 'A track of an overlay · click another line for its profile, or the ground for a path of your own · Esc clears',
 };
-const $ = (id) => document.getElementById(id);
 
 /** '850 m²', '12.4 ha', '3.52 km²': hectares between a hectare and a square kilometre. */
 export function formatAreaUnits(squareMetres) {
@@ -48,9 +47,12 @@ export class MeasurePanel {
   /**
    * @param {{setKind(kind): void, undo(): void, finish(): void, clear(): void, setActive(on): void,
    *   onHover(point: number[]|null): void, download(blob: Blob, name: string): void, name: () => string}} actions
+   * @param {import('../app/viewer_dom.js').ViewerDom} dom  the viewer's elements
    */
-  constructor(actions) {
+  constructor(actions, dom) {
     this.actions = actions;
+    this.$ = (id) => dom.byId(id);
+    const $ = this.$;
     this.root = $('measure');
     this.result = null;
     this.chart = new ProfileChart($('profile-chart'), { onHover: (index) => this.hovered(index) });
@@ -63,13 +65,13 @@ export class MeasurePanel {
     $('measure-fold').onclick = () => this.setFolded(!this.root.classList.contains('folded'));
     $('measure-csv').onclick = () => this.exportCsv();
     $('measure-png').onclick = () => this.exportPng();
-    window.addEventListener('resize', () => { if (!this.root.hidden) this.chart.draw(); });
+    dom.onResize(() => { if (!this.root.hidden) this.chart.draw(); });
   }
 
   setFolded(folded) {
     this.root.classList.toggle('folded', folded);
-    $('measure-fold').textContent = folded ? '▸' : '▾';
-    $('measure-fold').setAttribute('aria-expanded', String(!folded));
+    this.$('measure-fold').textContent = folded ? '▸' : '▾';
+    this.$('measure-fold').setAttribute('aria-expanded', String(!folded));
     if (!folded) this.chart.draw();
   }
 
@@ -79,28 +81,28 @@ export class MeasurePanel {
     this.root.hidden = !result.active;
     if (!result.active) return;
     const area = result.kind === 'area';
-    $('measure-title').textContent = area ? 'Area' : result.track ? `Track: ${result.track}` : 'Profile';
-    $('measure-path').setAttribute('aria-pressed', String(!area));
-    $('measure-area').setAttribute('aria-pressed', String(area));
-    $('measure-hint').textContent = result.track ? HINT.track : result.finished ? (area ? 'Area closed · click to start another' : 'Path finished · click to start another') : HINT[result.kind];
+    this.$('measure-title').textContent = area ? 'Area' : result.track ? `Track: ${result.track}` : 'Profile';
+    this.$('measure-path').setAttribute('aria-pressed', String(!area));
+    this.$('measure-area').setAttribute('aria-pressed', String(area));
+    this.$('measure-hint').textContent = result.track ? HINT.track : result.finished ? (area ? 'Area closed · click to start another' : 'Path finished · click to start another') : HINT[result.kind];
     const notes = [result.error, result.profile?.clipped && `Clipped: ${result.profile.clipped}.`, result.area?.note, result.profile?.note].filter(Boolean);
-    $('measure-note').textContent = notes.join(' ');
-    $('measure-note').hidden = notes.length === 0;
+    this.$('measure-note').textContent = notes.join(' ');
+    this.$('measure-note').hidden = notes.length === 0;
     // Each figure a <div> of its label over its value (a <dl> may group them so).
-    $('measure-summary').replaceChildren(...this.summaryRows(result).map(([label, value]) => {
+    this.$('measure-summary').replaceChildren(...this.summaryRows(result).map(([label, value]) => {
       const item = document.createElement('div'), dt = document.createElement('dt'), dd = document.createElement('dd');
       dt.textContent = label;
       dd.textContent = value;
       item.append(dt, dd);
       return item;
     }));
-    $('measure-hover').textContent = '';
+    this.$('measure-hover').textContent = '';
     this.root.classList.toggle('empty', result.profile === null);
     const canExport = result.profile !== null;
-    $('measure-csv').disabled = $('measure-png').disabled = !canExport;
-    $('measure-undo').disabled = result.points.length === 0;
-    $('measure-done').disabled = result.finished || result.points.length < (area ? 3 : 2);
-    $('measure-clear').disabled = result.points.length === 0 && !result.track;
+    this.$('measure-csv').disabled = this.$('measure-png').disabled = !canExport;
+    this.$('measure-undo').disabled = result.points.length === 0;
+    this.$('measure-done').disabled = result.finished || result.points.length < (area ? 3 : 2);
+    this.$('measure-clear').disabled = result.points.length === 0 && !result.track;
     this.chart.show(result.profile);
   }
 
@@ -126,7 +128,7 @@ export class MeasurePanel {
   hovered(index) {
     const p = this.result?.profile;
     if (index === null || !p || !Number.isFinite(p.samples.height[index])) {
-      $('measure-hover').textContent = '';
+      this.$('measure-hover').textContent = '';
       this.actions.onHover(null);
       return;
     }
@@ -137,7 +139,7 @@ export class MeasurePanel {
       : `x ${formatLength(x[index])}, z ${formatLength(z[index])}`;
     const recorded = p.samples.gpsElevation?.[index];
     const own = Number.isFinite(recorded) ? ` (recorded ${heightText(recorded)})` : '';
-    $('measure-hover').textContent = `at ${formatLength(distance[index])}: height ${heightText(height[index])}${own} · ${place}`;
+    this.$('measure-hover').textContent = `at ${formatLength(distance[index])}: height ${heightText(height[index])}${own} · ${place}`;
     this.actions.onHover([x[index], height[index], z[index]]);
   }
 
@@ -151,6 +153,6 @@ export class MeasurePanel {
 
   exportPng() {
     if (!this.result?.profile) return;
-    $('profile-chart').toBlob((blob) => blob && this.actions.download(blob, `${this.actions.name()}-profile.png`), 'image/png');
+    this.$('profile-chart').toBlob((blob) => blob && this.actions.download(blob, `${this.actions.name()}-profile.png`), 'image/png');
   }
 }

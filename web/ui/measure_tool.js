@@ -239,7 +239,7 @@ export class MeasureTool {
     };
     canvas.addEventListener('pointerup', (e) => release(e, false));
     canvas.addEventListener('pointercancel', (e) => release(e, true));
-    window.addEventListener('keydown', (e) => {
+    this.dom.on(this.dom.keyTarget, 'keydown', (e) => {
       if (isTyping(e) || e.ctrlKey || e.metaKey || e.altKey) return;
       const key = e.key.toLowerCase();
       if (key === 'm') this.toggle();

@@ -4,8 +4,8 @@
  * Asks the size of `name`, a RAW file of `samples` 16-bit samples.
  * @returns {Promise<{width: number, height: number}|null>} null when cancelled (or the load is)
  */
-export function askRawSize(name, samples, signal) {
-  const $ = (id) => document.getElementById(id);
+export function askRawSize(dom, name, samples, signal) {
+  const $ = (id) => dom.byId(id);
   const dialog = $('raw-dialog'), form = $('raw-form'), width = $('raw-width'), height = $('raw-height');
   $('raw-name').textContent = `${name} holds ${samples.toLocaleString('en')} 16-bit samples.`;
   width.value = '';

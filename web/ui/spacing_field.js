@@ -13,8 +13,8 @@ const formatMetres = (metres) => String(Number(metres.toPrecision(6)));
  * @returns {(terrain: object, assumed?: boolean) => void} shows a terrain's spacing; `assumed`:
  *   a guess (the file said nothing), outlined until the user sets one here or in the panel
  */
-export function installSpacingField({ state, layers, showStatus, setCellSize }) {
-  const $ = (id) => document.getElementById(id);
+export function installSpacingField({ dom, state, layers, showStatus, setCellSize }) {
+  const $ = (id) => dom.byId(id);
   const input = $('spacing-input'), form = $('spacing-form'), ratio = $('spacing-ratio');
 
   function showSpacing(terrain, assumed = false) {

@@ -16,7 +16,7 @@ const MB = 2 ** 20;
  * @returns each resolves to a load's outcome: 'shown', 'failed' (the status line says why) or
  *   'cancelled'
  */
-export function createTerrainOpening({ core, state, settings, show, showStatus, indicator, showSpacing, encoding }) {
+export function createTerrainOpening({ dom, core, state, settings, show, showStatus, indicator, showSpacing, encoding }) {
   /** A load that was aborted: says so when the user cancelled it (a newer load speaks for itself). */
   function cancelled(signal, name) {
     if (signal.reason?.byUser) showStatus(`${name}: loading cancelled`);
@@ -62,7 +62,7 @@ export function createTerrainOpening({ core, state, settings, show, showStatus, 
       if (signal.aborted) return cancelled(signal, names);
       if (error.needsSize && !options.width) {
         indicator.hide();
-        const size = await askRawSize(error.file, error.samples, signal);
+        const size = await askRawSize(dom, error.file, error.samples, signal);
         if (signal.aborted) return cancelled(signal, names);
         if (size) {
           indicator.start(true);

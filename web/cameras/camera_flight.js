@@ -1,0 +1,53 @@
+// A camera flight for the JS API's camera.flyTo(): the orbit camera moves its eye and target
+// from where they are to where they are asked, eased in and out over a time. With
+// prefers-reduced-motion, or no time, it jumps there at once. The rig steps it each frame.
+import { vec3 } from 'gl-matrix';
+
+/** 0..1 eased in and out (smoothstep). */
+const ease = (t) => t * t * (3 - 2 * t);
+
+export class CameraFlight {
+  /**
+   * @param {import('./orbit.js').OrbitCamera} orbit  the camera that flies
+   * @param {{ position: number[], target: number[] }} to  metres in the world (x east, y up, z south)
+   * @param {number} seconds
+   */
+  constructor(orbit, to, seconds) {
+    orbit.update(orbit.aspect ?? 1);
+    this.orbit = orbit;
+    this.fromEye = vec3.clone(orbit.position);
+    this.fromTarget = vec3.clone(orbit.target);
+    this.toEye = vec3.clone(to.position);
+    this.toTarget = vec3.clone(to.target);
+    this.seconds = seconds;
+    this.elapsed = 0;
+    this.eye = vec3.create();
+    this.target = vec3.create();
+    this.done = null; // resolves the flyTo() promise
+    this.finished = new Promise((resolve) => { this.done = resolve; });
+    this.playing = true;
+  }
+
+  /** Moves the camera `seconds` further; false once it has arrived (and resolves its promise). */
+  step(seconds) {
+    this.elapsed = Math.min(this.seconds, this.elapsed + seconds);
+    const t = this.seconds > 0 ? ease(this.elapsed / this.seconds) : 1;
+    vec3.lerp(this.eye, this.fromEye, this.toEye, t);
+    vec3.lerp(this.target, this.fromTarget, this.toTarget, t);
+    this.orbit.lookAround(this.target[0], this.target[1], this.target[2], this.eye);
+    if (t >= 1) this.stop(true);
+    return this.playing;
+  }
+
+  /** Ends the flight where it is; its promise resolves to whether it arrived. */
+  stop(arrived = false) {
+    if (!this.playing) return;
+    this.playing = false;
+    this.done(arrived);
+  }
+}
+
+/** Whether the person asked their system for less motion. */
+export function prefersReducedMotion() {
+  return typeof matchMedia === 'function' && matchMedia('(prefers-reduced-motion: reduce)').matches;
+}
