@@ -13,6 +13,7 @@ export const CAMERA_MODES = ['orbit', 'fly', 'walk'];
 // A camera more than this many eye heights above the ground hands the walk the ground it looked
 // at, not the ground straight below it.
 const WALK_FROM_ABOVE = 100;
+const ORBIT_KEY_TURN = 200; // the orbit camera's drag pixels per second of a held key (1 rad/s)
 
 // Held keys and what they do: [forward, right, up].
 const MOVE_KEYS = {
@@ -131,11 +132,27 @@ export class CameraRig {
       this.follow.step(Math.min(seconds, 0.1), this.active, this.verticalScale);
       if (this.follow.playing) return true;
     }
-    if (this.held.size === 0 || this.active.mode === 'orbit') return false;
+    if (this.held.size === 0) return false;
     this.move.forward = this.move.right = this.move.up = 0;
     this.held.forEach(this.addMove);
-    this.active.move(Math.min(seconds, 0.1), this.move, this.fast);
+    const dt = Math.min(seconds, 0.1);
+    if (this.active.mode === 'orbit') this.orbitByKeys(dt);
+    else this.active.move(dt, this.move, this.fast);
     return true;
+  }
+
+  /**
+   * The orbit camera by the keys, for those who use no pointer: left and right turn around the
+   * target, up and down come closer and go back, Q and E lower and raise the view; with shift,
+   * left, right, up and down move the target over the ground.
+   */
+  orbitByKeys(dt) {
+    const orbit = this.active, { forward, right, up } = this.move;
+    if (this.fast) orbit.drag(-right * dt * 400, -forward * dt * 400, true);
+    else {
+      orbit.drag(right * dt * ORBIT_KEY_TURN, -up * dt * ORBIT_KEY_TURN * 0.6, false);
+      orbit.zoom(Math.exp(-forward * dt * 1.2));
+    }
   }
 
   /** Mouse, wheel and touch on `element`, keys where the viewer takes them (viewer_dom.js). */

@@ -8,8 +8,8 @@ import { formatLength } from '../measure/units.js';
 import { geoCoordinates, formatCoordinates } from '../geo/index.js';
 
 const HINT = {
-  path: 'Click points on the ground · double click or Enter ends · Backspace undoes · Esc clears',
-  area: 'Click the corners · double click or Enter closes · Backspace undoes · Esc clears',
+  path: 'Click points on the ground (or Space: the view\'s centre) · double click or Enter ends · Backspace undoes · Esc clears',
+  area: 'Click the corners (or Space: the view\'s centre) · double click or Enter closes · Backspace undoes · Esc clears',
   track: 'A track of an overlay · click another line for its profile, or the ground for a path of your own · Esc clears',
 };
 

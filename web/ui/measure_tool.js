@@ -195,6 +195,14 @@ export class MeasureTool {
     return pickGround(this.rig.active, px, py, rect.width, rect.height, loaded.terrain, loaded.world, this.settings.exaggeration);
   }
 
+  /** A point where the view's centre meets the ground (Space): measuring without a pointer, moving with the keys. */
+  addAtCentre() {
+    const rect = this.canvas.getBoundingClientRect();
+    if (this.finished || this.track) this.clear();
+    const point = this.pick(rect.width / 2, rect.height / 2);
+    if (point) this.add(point.x, point.z);
+  }
+
   /** A click or tap at client (x, y) that did not drag. */
   clickAt(clientX, clientY, time) {
     const rect = this.canvas.getBoundingClientRect();
@@ -244,6 +252,7 @@ export class MeasureTool {
       const key = e.key.toLowerCase();
       if (key === 'm') this.toggle();
       else if (!this.active) return;
+      else if (key === ' ') { e.preventDefault(); this.addAtCentre(); } // the keyboard's click: the ground at the view's centre
       else if (key === 'enter') this.finish();
       else if (key === 'backspace') { e.preventDefault(); this.undo(); }
       else if (key === 'escape') this.clear();
