@@ -7,7 +7,7 @@ import { fileURLToPath } from 'node:url';
 import { createCore } from '../web/core/core.js';
 
 export const wasmPath = fileURLToPath(new URL('../build/wasm-diag/hexlod_core.wasm', import.meta.url));
-const factoryPath = new URL('../build/wasm-diag/hexlod_core.mjs', import.meta.url);
+export const factoryPath = new URL('../build/wasm-diag/hexlod_core.mjs', import.meta.url);
 
 /** Instantiates the WASM core (diagnostics build) in Node. Throws a clear error when it was not built. */
 export async function createNodeCore() {
