@@ -12,7 +12,7 @@ export const factoryPath = new URL('../build/wasm-diag/hexlod_core.mjs', import.
 /** Instantiates the WASM core (diagnostics build) in Node. Throws a clear error when it was not built. */
 export async function createNodeCore() {
   if (!existsSync(wasmPath) || !existsSync(fileURLToPath(factoryPath))) {
-    throw new Error(`the WebAssembly core is not built (${wasmPath} is missing): run ./build.sh`);
+    throw new Error(`the WebAssembly core is not built (${wasmPath} is missing): run ./build.sh wasm in a checkout, or reinstall the hexlod package`);
   }
   const { default: factory } = await import(factoryPath.href);
   return createCore({ wasmBinary: readFileSync(wasmPath), factory });
