@@ -23,10 +23,9 @@ import { fileURLToPath } from 'node:url';
 import { EnvironmentError, freePort, launchChromium } from './chromium.js';
 import { startFileServer } from './static_site.js';
 import { crsFilesMiddleware } from './crs_files_plugin.js';
+import { inCheckout } from './node_core.js';
 
 export const projectDir = fileURLToPath(new URL('..', import.meta.url));
-/** A checkout holds the core's source; an installed package holds its build only. */
-export const inCheckout = () => existsSync(join(projectDir, 'src/api/hexlod.h'));
 
 /** Files the middleware may serve: /__regress/<id>/<kind>/<name> -> their bytes. */
 class FileTable {
