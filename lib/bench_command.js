@@ -11,6 +11,7 @@ import {
   FILE_OPTIONS, FILE_USAGE, parseFileOptions,
   extentOf, cameraFor, quantile, round,
 } from './cli_common.js';
+import { inCheckout } from './node_core.js';
 import { decodeFans } from './mesh_export.js';
 import { STREAM_VERTEX_BYTES, STREAM_VERTEX_WORDS } from '../web/core/core.js';
 import { gridMeshError, padToPowerOfTwoPlusOne } from './rtin_error.js';
@@ -143,7 +144,7 @@ function martiniTrianglesOverField({ vertices, triangles }, width, height) {
 async function martiniFigures(heights, width, height, target) {
   // A development dependency: an installation without it (npm ci --omit=dev) skips the comparison.
   const Martini = await import('@mapbox/martini').then((m) => m.default, () => null);
-  if (!Martini) return { missing: '@mapbox/martini is not installed (npm install --include=dev)' };
+  if (!Martini) return { missing: `@mapbox/martini is not installed (${inCheckout() ? 'npm install --include=dev' : 'npm install @mapbox/martini'})` };
   let start = performance.now();
   const padded = padToPowerOfTwoPlusOne(heights, width, height);
   const padMs = performance.now() - start;
@@ -232,7 +233,7 @@ function nativeStyleCamera(eye, target, settings) {
  */
 function nativeComparison(heights, terrain, path, settings) {
   if (settings.embedding !== 'exact') return { missing: 'hexlod_bench --flight refines the exact embedding only' };
-  if (!existsSync(NATIVE_BENCH)) return { missing: `${NATIVE_BENCH} is not built (./build.sh native)` };
+  if (!existsSync(NATIVE_BENCH)) return { missing: inCheckout() ? `${NATIVE_BENCH} is not built (./build.sh native)` : 'the package has no native build (a checkout builds one: ./build.sh native)' };
   const dir = mkdtempSync(join(tmpdir(), 'hexlod-bench-'));
   let output;
   try {

@@ -54,7 +54,8 @@ export const REGRESS_USAGE = `usage: hexlod regress <heightfield> <flight.json> 
   --mask X,Y,W,H[;X,Y,W,H...]  rectangles (CSS pixels) left out of every capture's comparison
   --strict          any changed pixel (outside the masks) fails
   --node-only       only the Node replay and its figures (no browser, no pixels)
-  --chromium PATH   the browser (default: $CHROMIUM_PATH or /usr/bin/chromium)`;
+  --chromium PATH   the browser (default: $CHROMIUM_PATH, else /usr/bin/chromium, else the newest
+                    of Playwright's in $PLAYWRIGHT_BROWSERS_PATH or ~/.cache/ms-playwright)`;
 
 const OPTIONS = { refs: 'string', out: 'string', update: 'boolean', threshold: 'string', 'max-diff-pixels': 'string',
   'max-diff-pixel-ratio': 'string', mask: 'string', strict: 'boolean', 'node-only': 'boolean', chromium: 'string',

@@ -1,23 +1,31 @@
-// The page for `hexlod regress`: Vite's dev server started from node_modules, and Debian's
-// Chromium through playwright-core, the same way the browser tests run the page.
+// The page for `hexlod regress`, and headless Chromium (lib/chromium.js) through playwright-core,
+// the same way the browser tests run the page. Which page depends on where hexlod runs:
 //
-// Why Vite and not a static server of our own: the page is plain ES modules, but it imports
-// bare npm specifiers (gl-matrix, lil-gui, fflate, geotiff and geotiff's own dependencies) and
-// its shaders as `?raw` text modules; serving the source ourselves would mean re-implementing
-// both resolutions and keeping them in step with every import someone adds, and serving a
-// `vite build` output would test a build that may be older than the source. Vite is already in
-// the lockfile (`./hexlod.sh view` serves with it), and run programmatically it starts in about
-// a second. The height fields and flights are served by a small middleware from wherever they
-// are on disk, under /__regress/.
+// - In a checkout (src/ is there): Vite's dev server over the source, started from node_modules.
+//   The page is plain ES modules, but it imports bare npm specifiers (gl-matrix, lil-gui, fflate,
+//   geotiff and geotiff's own dependencies) and its shaders as `?raw` text modules; serving the
+//   source ourselves would mean re-implementing both resolutions and keeping them in step with
+//   every import someone adds, and serving a `vite build` output would test a build that may be
+//   older than the source. Run programmatically, Vite starts in about a second.
+// - In an installed package (no src/, no Vite: a development dependency): the built site, dist/,
+//   which `npm pack` builds from the same source as the package's WebAssembly (prepack), served
+//   by a plain static server. The EPSG files the page may fetch (crs/CODE.json) are answered from
+//   the epsg-index and proj4-list packages, as the dev server answers them, so the package does
+//   not carry the 34 MB of dist/crs/.
+//
+// The height fields and flights are served by a small middleware from wherever they are on
+// disk, under /__regress/, by either server.
 import { existsSync, readFileSync } from 'node:fs';
 import { basename, dirname, extname, join } from 'node:path';
 import { createHash } from 'node:crypto';
 import { tmpdir } from 'node:os';
 import { fileURLToPath } from 'node:url';
-import { DEFAULT_CHROMIUM, EnvironmentError, freePort, launchChromium } from './chromium.js';
+import { EnvironmentError, freePort, launchChromium } from './chromium.js';
+import { startFileServer } from './static_site.js';
+import { crsFilesMiddleware } from './crs_files_plugin.js';
+import { inCheckout } from './node_core.js';
 
 export const projectDir = fileURLToPath(new URL('..', import.meta.url));
-export { DEFAULT_CHROMIUM };
 
 /** Files the middleware may serve: /__regress/<id>/<kind>/<name> -> their bytes. */
 class FileTable {
@@ -62,13 +70,42 @@ class FileTable {
 }
 
 /**
- * Starts the dev server and Chromium. Throws one-line errors for a missing Chromium.
- * @returns {Promise<{files: FileTable, url: string, browser: object, close: () => Promise<void>}>}
+ * Starts the page's server (see the top of this file) and Chromium (`chromium`: the program, else
+ * lib/chromium.js finds one). Throws one-line EnvironmentErrors for a missing Chromium or server.
+ * @param {{ chromium?: string, site?: 'source'|'built' }} [options] site: which page to serve
+ *   (default: the source in a checkout, the built site in an installed package)
+ * @returns {Promise<{files: FileTable, url: string, site: string, browser: object, close: () => Promise<void>}>}
  */
-export async function startBrowser({ chromium: chromiumPath = process.env.CHROMIUM_PATH || DEFAULT_CHROMIUM } = {}) {
+export async function startBrowser({ chromium: chromiumPath, site = inCheckout() ? 'source' : 'built' } = {}) {
   const browser = await launchChromium(chromiumPath); // first: a missing Chromium is the likelier mistake
-  const { createServer } = await import('vite');
   const files = new FileTable();
+  let server;
+  try {
+    server = site === 'source' ? await startDevServer(files) : await startBuiltSite(files);
+  } catch (error) {
+    await browser.close();
+    throw error instanceof EnvironmentError ? error : new EnvironmentError(`the page's server did not start: ${String(error.message).split('\n')[0]}`);
+  }
+  return {
+    files,
+    url: server.url,
+    site,
+    browser,
+    async close() {
+      await browser.close().catch(() => {});
+      await server.close();
+    },
+  };
+}
+
+/** Vite's dev server over the source, with the /__regress/ files. */
+async function startDevServer(files) {
+  let createServer;
+  try {
+    ({ createServer } = await import('vite'));
+  } catch {
+    throw new EnvironmentError('in a checkout hexlod regress serves the page from source with Vite, a development dependency, which is not installed: run npm ci');
+  }
   let server;
   try {
     server = await createServer({
@@ -84,19 +121,22 @@ export async function startBrowser({ chromium: chromiumPath = process.env.CHROMI
     });
     await server.listen();
   } catch (error) {
-    await browser.close();
     throw new EnvironmentError(`the page's dev server (Vite) did not start: ${String(error.message).split('\n')[0]}`);
   }
-  const { port } = server.httpServer.address();
-  return {
-    files,
-    url: `http://127.0.0.1:${port}/`,
-    browser,
-    async close() {
-      await browser.close().catch(() => {});
-      await server.close();
-    },
-  };
+  return { url: `http://127.0.0.1:${server.httpServer.address().port}/`, close: () => server.close() };
+}
+
+/** The built site, dist/, with the /__regress/ files and crs/CODE.json from the packages. */
+async function startBuiltSite(files) {
+  const dist = join(projectDir, 'dist/');
+  if (!existsSync(join(dist, 'index.html'))) {
+    throw new EnvironmentError(inCheckout()
+      ? `${dist} has no built site: run ./build.sh site`
+      : `this hexlod package has no built page (${dist}index.html): reinstall it (npm install hexlod)`);
+  }
+  const { origin, close } = await startFileServer({ mounts: [['/', dist]],
+    handlers: [['/__regress', files.middleware()], ['/', crsFilesMiddleware()]] });
+  return { url: `${origin}/`, close };
 }
 
 /**

@@ -2,7 +2,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { mkdtempSync, mkdirSync, writeFileSync, readFileSync, copyFileSync, symlinkSync } from 'node:fs';
+import { mkdtempSync, mkdirSync, writeFileSync, readFileSync, copyFileSync, symlinkSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -79,16 +79,24 @@ test('before a build the command says what to run, with exit code 2 and no stack
   // The launcher in a clone that has not been set up: no npm packages, no WebAssembly core.
   const clone = mkdtempSync(join(tmpdir(), 'hexlod-unbuilt-'));
   mkdirSync(join(clone, 'bin'));
+  mkdirSync(join(clone, 'src/api'), { recursive: true });
   copyFileSync(cli, join(clone, 'bin/hexlod.js'));
+  copyFileSync(new URL('../../src/api/hexlod.h', import.meta.url), join(clone, 'src/api/hexlod.h'));
   const bare = spawnSync(process.execPath, [join(clone, 'bin/hexlod.js'), '--help'], { encoding: 'utf8', timeout: 60000 });
   assert.equal(bare.status, 2);
   assert.equal(bare.stdout, '');
   assert.equal(bare.stderr.trim(), 'hexlod: the npm packages and the WebAssembly core (build/wasm, build/wasm-diag) are missing: ' +
-    'run scripts/setup.sh && ./build.sh');
+    'run scripts/setup.sh && ./build.sh wasm');
   // Set up (the packages are there) but not built.
   symlinkSync(fileURLToPath(new URL('../../node_modules', import.meta.url)), join(clone, 'node_modules'));
   const unbuilt = spawnSync(process.execPath, [join(clone, 'bin/hexlod.js'), 'info', fixture('volcano_maungawhau.png')],
     { encoding: 'utf8', timeout: 60000 });
   assert.equal(unbuilt.status, 2);
-  assert.equal(unbuilt.stderr.trim(), 'hexlod: the WebAssembly core (build/wasm, build/wasm-diag) is missing: run ./build.sh');
+  assert.equal(unbuilt.stderr.trim(), 'hexlod: the WebAssembly core (build/wasm, build/wasm-diag) is missing: run ./build.sh wasm');
+  // An installed package (no src/) ships the core: one without it is a broken install, which no build fixes.
+  rmSync(join(clone, 'src'), { recursive: true });
+  const installed = spawnSync(process.execPath, [join(clone, 'bin/hexlod.js'), 'info', fixture('volcano_maungawhau.png')],
+    { encoding: 'utf8', timeout: 60000 });
+  assert.equal(installed.status, 2);
+  assert.equal(installed.stderr.trim(), `hexlod: the WebAssembly core (build/wasm, build/wasm-diag) is missing: this hexlod package in ${clone}/ is incomplete: reinstall it (npm install hexlod)`);
 });

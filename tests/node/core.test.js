@@ -3,8 +3,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { createNodeCore } from '../../lib/node_core.js';
-import { createCore, FRAME } from '../../web/core/core.js';
+import { createNodeCore, wasmPath, factoryPath } from '../../lib/node_core.js';
+import { createCore, ABI_VERSION, CoreError, FRAME } from '../../web/core/core.js';
 import { loadTerrain } from '../../web/loaders/terrain_source.js';
 
 const fixtures = new URL('../fixtures/', import.meta.url);
@@ -21,6 +21,22 @@ test('the WASM core reports the ABI version of src/api/hexlod.h', () => {
   const declared = Number(/#define HEXLOD_ABI_VERSION (\d+)/.exec(header)?.[1]);
   assert.ok(declared >= 14, `HEXLOD_ABI_VERSION ${declared} in the header`);
   assert.equal(core.abiVersion, declared);
+  assert.equal(ABI_VERSION, declared, 'web/core/core.js ABI_VERSION is the header\'s');
+});
+
+test('a core of another ABI version, or one without the version function, is refused with a clear error', async () => {
+  // The real diagnostics build, with what it reports about its ABI changed after instantiation.
+  const { default: realFactory } = await import(factoryPath.href);
+  const wasmBinary = readFileSync(wasmPath);
+  const patched = (change) => async (settings) => { const module = await realFactory(settings); change(module); return module; };
+  await assert.rejects(createCore({ wasmBinary, factory: patched((m) => { m._hexlod_abi_version = () => ABI_VERSION - 1; }) }),
+    (error) => error instanceof CoreError && error.message === `the WebAssembly core has ABI version ${ABI_VERSION - 1}, but web/core/core.js needs ABI version ${ABI_VERSION}: rebuild the core (./build.sh wasm) or install a matching hexlod`);
+  await assert.rejects(createCore({ wasmBinary, factory: patched((m) => { m._hexlod_abi_version = () => ABI_VERSION + 1; }) }),
+    new RegExp(`has ABI version ${ABI_VERSION + 1}, but web/core/core.js needs ABI version ${ABI_VERSION}`));
+  await assert.rejects(createCore({ wasmBinary, factory: patched((m) => { delete m._hexlod_abi_version; }) }),
+    /the WebAssembly core exports no hexlod_abi_version, but web\/core\/core.js needs ABI version 14/);
+  // The same factory unchanged is accepted: the refusals above come from the version alone.
+  assert.equal((await createCore({ wasmBinary, factory: patched(() => {}) })).abiVersion, ABI_VERSION);
 });
 
 for (const base of BASES) {

@@ -508,7 +508,7 @@ test('exit codes: 2 for usage and bad input, 3 when the browser cannot run, each
       [['regress', volcano, flightPath, '--jobs', '0'], 2, /--jobs must be at least 1/],
       [['regress', volcano, flightPath, '--mask', '1,2,3'], 2, /--mask must be X,Y,W,H/],
       [['regress', join(dir, 'nothing')], 2, /nothing: no such file or folder/],
-      [['regress', volcano, flightPath, '--update', '--chromium', join(dir, 'no-chromium')], 3, /no Chromium at .*no-chromium: install Debian's/],
+      [['regress', volcano, flightPath, '--update', '--chromium', join(dir, 'no-chromium')], 3, /^hexlod: no Chromium at .*no-chromium \(--chromium\): name the Chromium program, or install one with apt-get install chromium \(Debian\) or npx playwright-core install chromium$/m],
       [['regress', volcano, flightPath, '--update', '--chromium', '/bin/false'], 3, /Chromium at \/bin\/false did not start: the program exited at once/],
     ];
     for (const [args, exit, message] of cases) {

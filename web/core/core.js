@@ -38,6 +38,13 @@ export const FRAME = { all: 0, camera: 1, lod: 2, stream: 4, query: 8, hash: 16,
 export class CoreError extends Error {}
 
 /**
+ * HEXLOD_ABI_VERSION of src/api/hexlod.h that this module was written for. A core of another
+ * version (a stale build/, or a package whose .wasm and .js come from different builds) is
+ * refused when it is instantiated, before any call whose arguments may have changed meaning.
+ */
+export const ABI_VERSION = 14;
+
+/**
  * Instantiates the core.
  * @param {{ wasmBinary?: Uint8Array, wasmUrl?: string, factory?: Function }} [options]
  *   wasmBinary in Node; in the browser the .wasm is fetched from wasmUrl (default: the product
@@ -60,7 +67,11 @@ export async function createCore(options = {}) {
 export class HexlodCore {
   constructor(module) {
     this.module = module;
-    this.abiVersion = module._hexlod_abi_version();
+    this.abiVersion = typeof module._hexlod_abi_version === 'function' ? module._hexlod_abi_version() : null;
+    if (this.abiVersion !== ABI_VERSION) {
+      const found = this.abiVersion === null ? 'exports no hexlod_abi_version' : `has ABI version ${this.abiVersion}`;
+      throw new CoreError(`the WebAssembly core ${found}, but web/core/core.js needs ABI version ${ABI_VERSION}: rebuild the core (./build.sh wasm) or install a matching hexlod`);
+    }
     this.layout = parseLayout(module.UTF8ToString(module._hexlod_struct_layout()));
     this.scratch = scratchLayout(this.layout);
   }
