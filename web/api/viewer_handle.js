@@ -200,6 +200,7 @@ export class ViewerHandle {
     stage.close();
     gl.getExtension('WEBGL_lose_context')?.loseContext(); // the GPU's memory now, not when the canvas is collected
     this.root.remove();
+    this.root = null; // a handle kept by the page must not keep the elements, whose listeners reach the core
     for (const set of this.listeners.values()) set.clear();
   }
 }
