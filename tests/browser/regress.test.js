@@ -206,10 +206,11 @@ test('the window API and URL parameters: ready, frame(n) in order, pixels, ops= 
   }
 });
 
-/** A copy of what the page and the command need, with node_modules linked, to try a change to the page on. */
+/** A copy of what the page and the command need, with node_modules linked, to try a change to the page on.
+ * src/api marks it a checkout, so regress serves the changed source rather than looking for a built page. */
 function projectCopy() {
   const dir = mkdtempSync(join(tmpdir(), 'hexlod-copy-'));
-  for (const part of ['bin', 'lib', 'web', 'shaders', 'public', 'build/wasm', 'build/wasm-diag', 'vite.config.js', 'package.json']) {
+  for (const part of ['bin', 'lib', 'web', 'shaders', 'public', 'src/api', 'build/wasm', 'build/wasm-diag', 'vite.config.js', 'package.json']) {
     cpSync(join(root, part), join(dir, part), { recursive: true });
   }
   symlinkSync(join(root, 'node_modules'), join(dir, 'node_modules'));
