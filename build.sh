@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # build.sh: the one build entry point of hexlod.
-#   ./build.sh          everything (./hexlod.sh test, npm run build): native, wasm, site, wasm-tests
+#   ./build.sh          everything (./hexlod.sh test, npm run build): native, wasm, site, library, wasm-tests
 #   ./build.sh native   only the native part (CMake + Ninja, into build/native): core, GoogleTest
 #                       suite, benchmark
 #   ./build.sh page     only the page's WebAssembly module, build/wasm: all that ./hexlod.sh view
@@ -10,6 +10,7 @@
 #                       which Node (bin/, tests/node, benchmarks) loads
 #   ./build.sh wasm-tests  the GoogleTest suite built to WebAssembly, run under Node (build/wasm-tests)
 #   ./build.sh site     the static production site in dist/ (needs the WebAssembly module)
+#   ./build.sh library  the package's browser library in library/ (import 'hexlod'; needs the module)
 # A WebAssembly module is rebuilt only when its sources, flags or Emscripten changed (a content
 # stamp in its folder); GoogleTest for WebAssembly likewise, and Ninja rebuilds what changed.
 set -euo pipefail
@@ -101,12 +102,19 @@ build_site() {
   echo "built the static site in dist/ ($(du -sh dist | cut -f1)): copy the folder to any static file server"
 }
 
+build_library() {
+  # The package's browser library (vite.library.config.js): needs the page's WebAssembly module.
+  npx vite build --config vite.library.config.js --logLevel error
+  echo "built the browser library in library/ ($(du -sh library | cut -f1)): what import 'hexlod' loads"
+}
+
 case "$target" in
   native) build_native ;;
   page) build_page ;;
   wasm) build_wasm ;;
   site) build_site ;;
+  library) build_library ;;
   wasm-tests) scripts/build_wasm_tests.sh ;;
-  all) build_native; build_wasm; build_site; scripts/build_wasm_tests.sh ;;
-  *) echo "usage: ./build.sh [native|page|wasm|site|wasm-tests|all]" >&2; exit 2 ;;
+  all) build_native; build_wasm; build_site; build_library; scripts/build_wasm_tests.sh ;;
+  *) echo "usage: ./build.sh [native|page|wasm|site|library|wasm-tests|all]" >&2; exit 2 ;;
 esac

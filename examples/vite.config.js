@@ -1,9 +1,8 @@
-// Vite for a page that uses hexlod: its modules are served as they are, through Vite's own
-// pipeline (they import shaders as text and locate the WebAssembly core and their worker beside
-// themselves), and only its CommonJS dependencies are pre-bundled.
+// Vite for a page that uses hexlod: the package is served as it is, not pre-bundled again (its
+// modules are already bundled, and find the WebAssembly core, their worker and the default
+// terrain beside themselves through import.meta.url, which pre-bundling would move).
 import { defineConfig } from 'vite';
 
 export default defineConfig({
-  optimizeDeps: { exclude: ['hexlod'], include: ['hexlod > proj4', 'hexlod > proj4-list', 'hexlod > epsg-index'] },
-  worker: { format: 'es' },
+  optimizeDeps: { exclude: ['hexlod'] },
 });

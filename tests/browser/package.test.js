@@ -48,13 +48,16 @@ test('the tarball holds the two WebAssembly cores, the page, the modules and the
   const { files, size, unpackedSize } = installed.pack;
   for (const file of ['build/wasm/hexlod_core.mjs', 'build/wasm/hexlod_core.wasm', 'build/wasm-diag/hexlod_core.mjs',
     'build/wasm-diag/hexlod_core.wasm', 'bin/hexlod.js', 'lib/cli.js', 'web/core/core.js', 'shaders/terrain.frag',
-    'public/style.css', 'public/terrain/globe_himalaya_2048.png', 'dist/index.html', 'CHANGELOG.md', 'README.md', 'package.json']) {
+    'library/hexlod.js', 'library/element.js', 'dist/index.html', 'CHANGELOG.md', 'README.md', 'package.json']) {
     assert.ok(files.includes(file), `${file} is in the package`);
   }
   const unwanted = files.filter((f) => /^(tests|scripts|src|bench|docs|examples|build\/native|build\/wasm-tests|dist\/crs|lib\/fuzz)\//.test(f) ||
     /\.(cpp|h|hpp|cc)$/.test(f) || /fixtures|build\.stamp|\/include\//.test(f) || f.startsWith('dist/assets/globe_himalaya'));
   assert.deepEqual(unwanted, []);
   assert.ok(files.some((f) => /^dist\/assets\/hexlod_core-.*\.wasm$/.test(f)), 'the built page carries its core');
+  for (const asset of [/hexlod_core-.*\.wasm$/, /globe_himalaya_2048-.*\.png$/, /tile_worker-.*\.js$/, /viewer-.*\.css$/]) {
+    assert.ok(files.some((f) => f.startsWith('library/assets/') && asset.test(f)), `the browser library carries ${asset}`);
+  }
   assert.ok(size <= MAX_PACKED, `packed ${size} bytes > ${MAX_PACKED}`);
   assert.ok(unpackedSize <= MAX_UNPACKED, `unpacked ${unpackedSize} bytes > ${MAX_UNPACKED}`);
   assert.ok(files.length <= MAX_FILES, `${files.length} files > ${MAX_FILES}`);
