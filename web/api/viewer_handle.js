@@ -49,7 +49,9 @@ export class ViewerHandle {
 
   /** Tells the listeners; one that throws does not stop the others or the viewer. */
   emit(type, detail) {
-    for (const handler of this.listeners.get(type)) {
+    const handlers = this.listeners.get(type);
+    if (handlers.size === 0) return; // the page's frame path: no iterator made when nobody listens
+    for (const handler of handlers) {
       try {
         handler(type === 'frame' ? this.frameFigures(detail) : type === 'loaded' ? { terrain: this.terrain } : detail);
       } catch (error) {
