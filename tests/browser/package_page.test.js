@@ -45,11 +45,32 @@ after(async () => {
   await files?.close();
 });
 
-test('a Vite page with <hexlod-viewer> from the installed package draws and reports its terrain; dispose() frees its memory', async () => {
+/** A page that records its errors and failed responses in `problems`. */
+async function trackedPage() {
   const page = await browser.newPage({ viewport: { width: 800, height: 500 }, deviceScaleFactor: 0.5 });
   const problems = [];
   page.on('pageerror', (error) => problems.push(error.message));
   page.on('response', (response) => { if (response.status() >= 400) problems.push(`${response.status()} ${response.url()}`); });
+  return { page, problems };
+}
+
+/** Waits for the page's viewer to report its terrain; on time-out, says what the page met. */
+async function terrainShown(page, problems) {
+  await page.waitForFunction(() => window.viewer?.terrain, null, { timeout: 180000 })
+    .catch((error) => { throw new Error(`${error.message}; the page met: ${problems.join('; ') || 'nothing'}`); });
+  return page.evaluate(() => window.viewer.terrain);
+}
+
+/** After a few frames the view shows relief, and the panel shows, styled. */
+async function assertDrawsRelief(page) {
+  await page.evaluate(() => new Promise((resolve) => { const off = window.viewer.on('frame', (f) => { if (f.frames > 3) { off(); resolve(); } }); }));
+  const stats = pixelStats(await page.locator('#view').screenshot());
+  assert.ok(stats.colours > 200 && stats.luminanceStd > 10 && stats.skyFraction < 0.5, `it draws relief: ${JSON.stringify(stats)}`);
+  assert.equal(await page.locator('#panel .lil-title').first().isVisible(), true, 'the panel shows, styled');
+}
+
+test('a Vite page with <hexlod-viewer> from the installed package draws and reports its terrain; dispose() frees its memory', async () => {
+  const { page, problems } = await trackedPage();
   await page.addInitScript(() => {
     window.wasmMemories = { made: 0, collected: 0 };
     const registry = new FinalizationRegistry(() => { window.wasmMemories.collected += 1; });
@@ -63,15 +84,10 @@ test('a Vite page with <hexlod-viewer> from the installed package draws and repo
     }
   });
   await page.goto(`${url}element.html`);
-  await page.waitForFunction(() => window.viewer?.terrain, null, { timeout: 180000 })
-    .catch((error) => { throw new Error(`${error.message}; the page met: ${problems.join('; ') || 'nothing'}`); });
-  const terrain = await page.evaluate(() => window.viewer.terrain);
+  const terrain = await terrainShown(page, problems);
   assert.equal(terrain.name, 'globe_himalaya_2048.png');
   assert.deepEqual([terrain.width, terrain.height, terrain.crs], [2048, 2048, 'EPSG:4326']);
-  await page.evaluate(() => new Promise((resolve) => { const off = window.viewer.on('frame', (f) => { if (f.frames > 3) { off(); resolve(); } }); }));
-  const stats = pixelStats(await page.locator('#view').screenshot());
-  assert.ok(stats.colours > 200 && stats.luminanceStd > 10 && stats.skyFraction < 0.5, `it draws relief: ${JSON.stringify(stats)}`);
-  assert.equal(await page.locator('#panel .lil-title').first().isVisible(), true, 'the panel shows, styled');
+  await assertDrawsRelief(page);
   await page.evaluate(() => { window.viewer = null; document.getElementById('terrain').remove(); }); // removing the element disposes its viewer
   const cdp = await page.context().newCDPSession(page);
   let counts;
@@ -88,17 +104,10 @@ test('a Vite page with <hexlod-viewer> from the installed package draws and repo
 });
 
 test('a plain page with an import map and no bundler loads the installed package from a static server and draws', async () => {
-  const page = await browser.newPage({ viewport: { width: 800, height: 500 }, deviceScaleFactor: 0.5 });
-  const problems = [];
-  page.on('pageerror', (error) => problems.push(error.message));
-  page.on('response', (response) => { if (response.status() >= 400) problems.push(`${response.status()} ${response.url()}`); });
+  const { page, problems } = await trackedPage();
   await page.goto(`${files.origin}/import-map.html`);
-  await page.waitForFunction(() => window.viewer?.terrain, null, { timeout: 180000 });
-  assert.equal(await page.evaluate(() => window.viewer.terrain.name), 'globe_himalaya_2048.png');
-  await page.evaluate(() => new Promise((resolve) => { const off = window.viewer.on('frame', (f) => { if (f.frames > 3) { off(); resolve(); } }); }));
-  const stats = pixelStats(await page.locator('#view').screenshot());
-  assert.ok(stats.colours > 200 && stats.luminanceStd > 10 && stats.skyFraction < 0.5, `it draws relief: ${JSON.stringify(stats)}`);
-  assert.equal(await page.locator('#panel .lil-title').first().isVisible(), true, 'the panel shows, styled');
+  assert.equal((await terrainShown(page, problems)).name, 'globe_himalaya_2048.png');
+  await assertDrawsRelief(page);
   const loaded = await page.evaluate(() => performance.getEntriesByType('resource').map((e) => e.name));
   assert.ok(loaded.every((name) => !name.includes('/node_modules/') || name.includes('/node_modules/hexlod/library/')),
     'everything comes from the package\'s library, no other package');
