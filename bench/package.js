@@ -12,19 +12,13 @@
 import { mkdtempSync, rmSync } from 'node:fs';
 import { cpus, loadavg, tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { UsageError, parseOptions, parseNumber, quantile } from '../lib/cli_common.js';
-import { scriptOptions } from '../lib/script_options.js';
+import { quantile } from '../lib/cli_common.js';
+import { countOption } from '../lib/script_options.js';
 import { INSTALL_FLAGS, folderSize, installTarball, packProject } from '../lib/packed_install.js';
 
 const USAGE = 'usage: node bench/package.js [--installs N]\n  N installs of the packed tarball into empty folders (default 5)';
-const { options, exitCode } = scriptOptions('bench/package.js', USAGE, (args) => {
-  const { values, positionals } = parseOptions(args, { installs: 'string' });
-  if (values.help) return null;
-  if (positionals.length) throw new UsageError(`unexpected argument ${positionals[0]}`);
-  const installs = values.installs === undefined ? 5 : parseNumber('installs', values.installs, { integer: true, min: 1 });
-  return { installs };
-});
-if (!options) process.exit(exitCode);
+const { count: installs, exitCode } = countOption('bench/package.js', USAGE, 'installs', 5);
+if (installs === null) process.exit(exitCode);
 
 const mb = (bytes) => `${(bytes / 1e6).toFixed(2)} MB`;
 const work = mkdtempSync(join(tmpdir(), 'hexlod-bench-package-'));
@@ -33,7 +27,7 @@ try {
   console.log(`package   ${pack.tarball.split('/').pop()}: ${mb(pack.size)} packed, ${mb(pack.unpackedSize)} unpacked, ${pack.files.length} files`);
   const times = [];
   let installed = null;
-  for (let k = 0; k < options.installs; k++) {
+  for (let k = 0; k < installs; k++) {
     const dir = join(work, `install-${k}`);
     times.push(await installTarball(pack.tarball, dir));
     installed ??= folderSize(join(dir, 'node_modules'));
