@@ -1,12 +1,14 @@
 // Accessibility (WCAG 2.1 AA): axe-core finds no serious or critical violation in the page's
 // states (opening, every panel folder open, measuring, help, an error); the HUD, status line,
 // drop hint and attribution keep AA contrast over any ground; and a person with a keyboard alone
-// opens a file, changes τ in the panel, turns the camera and measures a path, seeing the focus
-// at each step.
+// opens a file, changes τ in the panel, turns the camera and measures a path, and hides,
+// reorders and removes image layers in the layers list, seeing the focus at each step.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { startViewer, openPage, pageReady, projectDir } from '../../lib/page_harness.js';
+import { decode } from 'fast-png';
+import { startViewer, openPage, pageReady, projectDir, dropFiles, terrainShown, drawFrames, converged } from '../../lib/page_harness.js';
+import { lookStraightDown } from '../../lib/draped_points.js';
 
 let viewer;
 before(async () => { viewer = await startViewer({ pixelRatio: 0.5 }); });
@@ -91,7 +93,7 @@ const focused = (page) => page.evaluate(() => {
   const e = document.activeElement;
   const style = getComputedStyle(e);
   const label = e.getAttribute('aria-label') ?? e.closest('.lil-controller')?.querySelector('.lil-name')?.textContent ?? e.textContent;
-  return { tag: e.tagName, label: (label ?? '').trim().slice(0, 40),
+  return { tag: e.tagName, label: (label ?? '').trim().slice(0, 40), layer: e.closest('[data-layer-id]')?.dataset.layerId ?? null,
     ring: (style.outlineStyle !== 'none' && parseFloat(style.outlineWidth) > 0) || style.boxShadow !== 'none' };
 });
 
@@ -148,6 +150,70 @@ test('keyboard alone: open a file, set τ in the panel, turn the camera, measure
   assert.match(await page.locator('#measure-summary').textContent(), /\d+ m/);
   await page.keyboard.press('Escape');
   assert.equal(await page.evaluate(() => window.hexlod.measure.points.length), 0);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+/** Mean absolute difference of two screenshots' colours, 0–255, left of the panel and clear of the HUD and status lines. */
+function meanDifference(a, b) {
+  let sum = 0, n = 0;
+  for (let y = Math.round(a.height * 0.15); y < a.height * 0.8; ++y) {
+    for (let x = Math.round(a.width * 0.05); x < a.width * 0.7; ++x) {
+      const i = (y * a.width + x) * a.channels;
+      for (let c = 0; c < 3; ++c) sum += Math.abs(a.data[i + c] - b.data[i + c]);
+      n += 3;
+    }
+  }
+  return sum / n;
+}
+
+test('keyboard alone in the layers list: hide and show a layer, move it up, remove it; the focus stays on the layer it acted on', async () => {
+  const { page, problems } = await openPage(viewer.browser, viewer.url, { width: 1100, height: 720 });
+  await pageReady(page);
+  const fixture = (name) => ({ name, bytes: new Uint8Array(readFileSync(`${projectDir}tests/fixtures/reprojection/${name}`)) });
+  await dropFiles(page, [fixture('himalaya_utm45_2500m.tif')]);
+  await terrainShown(page, 'himalaya_utm45_2500m.tif');
+  await lookStraightDown(page, 9e5);
+  const shot = async () => { await converged(page); await drawFrames(page, 3); return decode(await page.screenshot()); };
+  const bare = await shot();
+  for (const [k, name] of ['bmng_himalaya_4326.tif', 'bmng_himalaya_3857.tif'].entries()) {
+    await dropFiles(page, [fixture(name)]);
+    await page.waitForFunction((n) => window.hexlod.imageLayers.length === n, k + 1, { timeout: 60000 });
+  }
+  const layers = () => page.evaluate(() => window.hexlod.imageLayers.map((l) => ({ id: String(l.id), visible: l.visible })));
+  const [bottom, top] = (await layers()).map((l) => l.id);
+  assert.ok(meanDifference(await shot(), bare) > 20, 'the images cover the ground');
+  await page.evaluate(() => document.activeElement.blur());
+
+  // The layers' folder opened by its title, then the top layer's visibility, with Space.
+  await tabTo(page, (f) => f.label.startsWith('Image layers'));
+  if (await page.evaluate(() => document.activeElement.getAttribute('aria-expanded')) === 'false') await page.keyboard.press('Enter');
+  const checkbox = (layer) => (f) => f.tag === 'INPUT' && f.label === 'visible' && f.layer === layer;
+  await tabTo(page, checkbox(top));
+  await page.keyboard.press('Space');
+  assert.deepEqual(await layers(), [{ id: bottom, visible: true }, { id: top, visible: false }]);
+  const after = await focused(page);
+  assert.ok(checkbox(top)(after) && after.ring, `the focus stays on the hidden layer's checkbox (${JSON.stringify(after)})`);
+  await tabTo(page, checkbox(bottom));
+  await page.keyboard.press('Space');
+  assert.ok(meanDifference(await shot(), bare) < 2, 'both hidden: the bare ground');
+  await page.keyboard.press('Space');
+  assert.ok(meanDifference(await shot(), bare) > 20, 'the bottom layer shown again');
+
+  // The bottom layer moved up with Enter: it lies on top, and the focus is still on its button.
+  await tabTo(page, (f) => f.label === 'move up' && f.layer === bottom);
+  await page.keyboard.press('Enter');
+  assert.deepEqual((await layers()).map((l) => l.id), [top, bottom]);
+  const moved = await focused(page);
+  assert.ok(moved.label === 'move up' && moved.layer === bottom && moved.ring, `the focus follows the moved layer (${JSON.stringify(moved)})`);
+
+  // Removed with Enter: one layer left, and the focus on the row now in its place.
+  await tabTo(page, (f) => f.label === 'remove layer' && f.layer === bottom);
+  await page.keyboard.press('Enter');
+  assert.deepEqual(await layers(), [{ id: top, visible: false }]);
+  const left = await focused(page);
+  assert.ok(left.layer === top && left.ring, `the focus moves to the remaining layer's row (${JSON.stringify(left)})`);
+  assert.ok(meanDifference(await shot(), bare) < 2, 'the remaining layer is hidden: the bare ground');
   assert.deepEqual(problems, []);
   await page.close();
 });

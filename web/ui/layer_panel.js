@@ -23,6 +23,7 @@ export function createLayerPanel(folder, stage, { addTiles } = {}) {
   return {
     /** Lists the layers of `layers` (the page's layer list). */
     show(layers) {
+      const focus = focusInRows(rows);
       for (const row of rows) row.destroy();
       rows = [...layers.images].reverse().map((layer) => {
         const row = folder.addFolder(`${layer.kind === 'tiles' ? 'tiles' : 'image'}: ${layer.name}`);
@@ -40,6 +41,31 @@ export function createLayerPanel(folder, stage, { addTiles } = {}) {
         row.domElement.dataset.layerId = String(layer.id);
         return row;
       });
+      if (focus) restoreFocus(rows, focus, folder);
     },
   };
+}
+
+const FOCUSABLE = 'input, button, select, [tabindex="0"]';
+
+/** Where the keyboard's focus is among the rows, if it is: the layer's id, the row's place and the control's place in it. */
+function focusInRows(rows) {
+  const active = document.activeElement;
+  const place = rows.findIndex((row) => row.domElement.contains(active));
+  if (place < 0) return null;
+  const row = rows[place].domElement;
+  return { layerId: row.dataset.layerId, place, control: [...row.querySelectorAll(FOCUSABLE)].indexOf(active) };
+}
+
+/**
+ * The rows are made anew on every change, so a person who moved, hid or removed a layer with the
+ * keyboard would find the focus thrown back to the page's start: it goes back to the same control
+ * of the same layer, or, when that layer is gone, to the row now in its place, or the folder.
+ */
+function restoreFocus(rows, focus, folder) {
+  const same = rows.find((row) => row.domElement.dataset.layerId === focus.layerId);
+  const row = same ?? rows[Math.min(focus.place, rows.length - 1)];
+  const controls = row ? [...row.domElement.querySelectorAll(FOCUSABLE)] : [];
+  const target = same ? controls[focus.control] : controls[0];
+  (target ?? folder.domElement.querySelector(FOCUSABLE))?.focus();
 }
