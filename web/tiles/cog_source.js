@@ -1,6 +1,6 @@
 // A Cloud-Optimized GeoTIFF opened to be read tile by tile: from a URL by HTTP Range requests, or from a
 // Blob or dropped File by slice, reading only the header and the image directories at open,
-// then one tile at a time. The levels are the full-resolution image and its overviews (GDAL's
+// then one tile at a time, its entries of the tile tables read with it (tile_tables.js). The levels are the full-resolution image and its overviews (GDAL's
 // reduced-resolution images in the same file), each tiled alike.
 //
 // The geotiff library parses the directories (header_source.js feeds it); the tiles are read
@@ -14,8 +14,8 @@ import { SAMPLE_ARRAYS } from '../loaders/common.js';
 import { TileError, checkAborted } from './tile_error.js';
 import { urlReader, blobReader } from './range_reader.js';
 import { headerSource } from './header_source.js';
+import { readTileTables } from './tile_tables.js';
 
-const TILE_OFFSETS = 324, TILE_BYTE_COUNTS = 325;
 const REDUCED_IMAGE = 1, MASK_IMAGE = 4; // NewSubfileType bits
 export const MAKE_COG = 'gdal_translate -of COG in.tif out.tif';
 
@@ -60,6 +60,8 @@ export async function openCog(input, options = {}) {
   const tiff = await guard('bad TIFF structure', () => openTiffSource(source, signal));
   const count = await guard('bad TIFF image directories', () => tiff.getImageCount());
 
+  // Where each directory's tile tables lie; their entries are read as tiles are wanted (tile_tables.js).
+  const tables = await guard('bad TIFF image directories', () => readTileTables(source, count, failInStructure, signal));
   const levels = [], layouts = [];
   let full = null;
   for (let index = 0; index < count; index++) {
@@ -73,11 +75,10 @@ export async function openCog(input, options = {}) {
       throw new TileError('not-cog', `${name} is not a Cloud-Optimized GeoTIFF: image ${index} is stored in strips, ` +
         `so any view needs whole rows of the file; convert it with: ${MAKE_COG}`);
     }
-    // The block checks of a whole-file load read the tile offsets from our own directory
-    // parser; here the library's (already read with the directory) stand in for it.
-    const [offsets, counts] = await guard('bad TIFF tile offsets', () =>
-      Promise.all([dir.loadValue('TileOffsets'), dir.loadValue('TileByteCounts')]));
-    const tags = { [TILE_OFFSETS]: offsets && Array.from(offsets), [TILE_BYTE_COUNTS]: counts && Array.from(counts) };
+    // The block checks of a whole-file load read the tile tables whole; here only their lengths
+    // are checked at open, and each entry when its tile is read.
+    const table = tables[index];
+    const tags = { 324: table?.offsets, 325: table?.counts };
     const layout = await guard('bad TIFF layout', () => blockLayout(image, { values: (tag) => tags[tag] }, { width, height }, fail));
     if (!full) {
       const [format, bits] = await guard('bad TIFF sample type', async () =>
@@ -174,8 +175,14 @@ export class CogSource {
       throw new RangeError(`tile (${tx}, ${ty}) is outside level ${level}'s ${info.tilesAcross} x ${info.tilesDown} tiles`);
     }
     const layout = this._layouts[level];
-    const i = ty * info.tilesAcross + tx, offset = layout.offsets[i], count = layout.counts[i];
+    const i = ty * info.tilesAcross + tx;
     const where = `${this.name}: tile (${tx}, ${ty}) of level ${level}`;
+    const [offset, count] = await Promise.all([layout.offsets.get(i), layout.counts.get(i)]);
+    checkAborted(signal, where);
+    if (Number.isNaN(offset) || Number.isNaN(count)) {
+      throw new TileError('truncated', `${where}: the file ends inside its tile tables (${this._reader.size ?? '?'} bytes): it is truncated`,
+        { size: this._reader.size });
+    }
     const samples = new SAMPLE_ARRAYS[this.sampleType](info.tileWidth * info.tileHeight);
     if (count === 0) return samples.fill(this.nodata ?? 0); // a sparse file's empty tile (GDAL SPARSE_OK)
 
