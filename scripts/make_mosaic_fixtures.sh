@@ -35,5 +35,9 @@ cut coarse_ne.tif 128 0 129 97 -outsize 65 49 -r nearest
 cut nad83_ne.tif 128 0 129 97 -a_srs EPSG:4269
 west=$(echo "-84.41375 + 128.5 / 1200" | bc -l); east=$(echo "$west + 129 / 1200" | bc -l)
 cut offgrid_ne.tif 128 0 129 97 -a_ullr "$west" 36.73291666666667 "$east" "$(echo "36.73291666666667 - 97 / 1200" | bc -l)"
+# The north tiles again, their heights stated as raw x 0.5 + 10 m (GDAL's scale and offset; the
+# same raw samples): a mosaic of them keeps the scale, and one beside an unscaled tile is refused.
+cut scaled_nw.tif 0 0 129 97 -a_scale 0.5 -a_offset 10
+cut scaled_ne.tif 128 0 129 97 -a_scale 0.5 -a_offset 10
 rm -f "$out"/*.aux.xml
 ls -l "$out"

@@ -103,6 +103,17 @@ test('mismatched spacing, CRS or grid: a message naming both files and what diff
     /: shared_nw\.json: a sidecar goes with one height field/);
 });
 
+test('tiles with GDAL\'s scale and offset keep them; a tile whose raw values mean other metres is refused by name', async () => {
+  const field = await loadHeightfield([tif('scaled_ne.tif'), tif('scaled_nw.tif')]);
+  assert.deepEqual([field.width, field.height, field.heightScale, field.heightOffset], [257, 97, 0.5, 10]);
+  assert.deepEqual(differences(field.samples, source.samples.subarray(0, 257 * 97)), [], 'the raw samples, as the source\'s top rows');
+  await assert.rejects(loadHeightfield([tif('shared_nw.tif'), tif('scaled_ne.tif')]), (e) => {
+    assert.ok(e instanceof HeightfieldError);
+    assert.match(e.message, /scaled_ne\.tif stores heights as raw x 0\.5 \+ 10 m, shared_nw\.tif as raw x 1 \+ 0 m: a mosaic needs one scale and offset/);
+    return true;
+  });
+});
+
 test('a mosaic past the sample cap is refused before anything is allocated', async () => {
   let allocated = 0;
   await assert.rejects(loadHeightfield(SHARED.map(tif), { maxSamples: 257 * 193 - 1, allocate: () => { allocated++; } }),

@@ -57,3 +57,23 @@ export function spacingOf(image, middleRow) {
   const unit = LINEAR_UNITS_M[keys?.ProjLinearUnitsGeoKey] ?? 1;
   return { spacingX: rx * unit, spacingY: ry * unit, geographic: false };
 }
+
+/**
+ * The heights' scale and offset GDAL keeps in its metadata tag (42112) for band 1
+ * (`gdal_translate -a_scale S -a_offset O`, or a DEM stored as decimetres in Int16): metres =
+ * raw x scale + offset. Its STATISTICS_* items are of the raw values.
+ * @param {Record<string, unknown>|null} items the band's metadata items (geotiff's getGDALMetadata(0))
+ * @returns {{ heightScale: number, heightOffset: number }} 1 and 0 when the file states neither
+ */
+export function heightScaling(items, fail) {
+  const read = (name, fallback) => {
+    const text = items?.[name];
+    if (text === undefined || text === null) return fallback;
+    const value = typeof text === 'string' && text.trim() !== '' ? Number(text) : NaN;
+    if (!Number.isFinite(value)) fail(`bad TIFF: the GDAL metadata's ${name} is not a number (${shown(text)})`);
+    return value;
+  };
+  const heightScale = read('SCALE', 1), heightOffset = read('OFFSET', 0);
+  if (heightScale === 0) fail('bad TIFF: the GDAL metadata\'s SCALE is 0, which would make every height the same');
+  return { heightScale, heightOffset };
+}

@@ -12,20 +12,22 @@
 
 import { HeightfieldError, DEFAULT_MAX_SAMPLES, checkSize } from './common.js';
 import { hasTiffSignature, parseNodata, sampleTypeOf, spacingOf, readDirectory, libraryGuard, fileBuffer, openTiffBuffer, blockLayout,
-  checkBlocks, dataExtent, readBlocks, georefOfTiff, shiftGeoref } from '../geo/index.js';
+  checkBlocks, dataExtent, readBlocks, georefOfTiff, shiftGeoref, heightScaling } from '../geo/index.js';
 import { SampleSink, pacer } from './pacing.js';
 
 
 
 /**
  * @returns {Promise<{ width, height, sampleType, samples, nodata: number|null, spacingX: number|null,
- *   spacingY: number|null, geographic: boolean }>} spacing in metres, null when the file has no
- *   geotransform
+ *   spacingY: number|null, geographic: boolean, heightScale: number, heightOffset: number }>}
+ *   spacing in metres, null when the file has no geotransform; metres = raw x heightScale +
+ *   heightOffset (GDAL's scale and offset, tiff_fields.js heightScaling)
  */
 export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   const { fail, guard, image, directory, width, height, format, bits, sampleType } = await openGeoTiff(bytes, name, options);
   const dir = image.fileDirectory;
   const nodata = parseNodata(await guard('bad TIFF no-data tag (42113)', () => dir.loadValue('GDAL_NODATA')), fail);
+  const scaling = heightScaling(await guard('bad TIFF metadata tag (42112)', () => image.getGDALMetadata(0)), fail);
 
   // Every strip or tile must hold what its geometry needs before memory is reserved.
   const layout = await guard('bad TIFF layout', () => blockLayout(image, directory, { width, height }, fail));
@@ -38,7 +40,7 @@ export async function decodeGeoTiff(bytes, name, allocate, options = {}) {
   if (sampleType === 'f32') rejectInfinities(sink.samples, extent.width, fail);
   const cropped = extent.cropped ? { column: extent.x, row: extent.y, width, height } : null;
   const georef = shiftGeoref(georefOfTiff(image), extent.x, extent.y);
-  return { width: extent.width, height: extent.height, sampleType, samples: sink.samples, nodata, cropped, georef, ...geo };
+  return { width: extent.width, height: extent.height, sampleType, samples: sink.samples, nodata, cropped, georef, ...scaling, ...geo };
 }
 
 /**

@@ -104,11 +104,19 @@ export async function loadMosaic(tiles, io) {
     reacquire: io.reacquire, onProgress: progress && ((fraction) => progress(fraction, 'decoding')) });
   const valid = new Uint8Array(Math.ceil((width * height) / 8)); // one bit a cell: a tile gave it a height
   let spacing = null; // a projected grid's metres: the decoders know its units
+  let scaling = null; // [scale, offset] of the tiles' raw values
   for (let i = 0; i < probed.length; i++) {
     const tile = probed[i];
     const decoded = await io.decode(tile, defaultAllocate, progress && ((fraction) => progress((i + fraction / 2) / probed.length, 'decoding')));
     if (io.reacquire) sink.samples = io.reacquire();
     spacing ??= decoded;
+    // The samples are copied raw, so every tile must turn raw values into metres alike (GDAL's scale and offset).
+    const scale = [decoded.heightScale ?? 1, decoded.heightOffset ?? 0];
+    scaling ??= scale;
+    if (scale[0] !== scaling[0] || scale[1] !== scaling[1]) {
+      throw new HeightfieldError(label, `${tile.name} stores heights as raw x ${scale[0]} + ${scale[1]} m, ${probed[0].name} as raw x ` +
+        `${scaling[0]} + ${scaling[1]} m: a mosaic needs one scale and offset (gdal_translate -unscale -ot Float32 makes metres)`);
+    }
     await copyTile(decoded, tile, first.georef, left, top, sink, valid, width, (fraction) => (i + 0.5 + fraction / 2) / probed.length);
   }
 
@@ -130,7 +138,7 @@ export async function loadMosaic(tiles, io) {
   return {
     width, height, sampleType, samples: sink.samples,
     ...metres, spacingFromFile: true, geographic: g.crs.geographic,
-    heightScale: 1, heightOffset: 0,
+    heightScale: scaling[0], heightOffset: scaling[1],
     nodata: probed.map((t) => t.nodata).find((v) => v != null) ?? null,
     missing, encoding: null, cropped: null, georef,
     source: label,

@@ -8,7 +8,7 @@
 // file (web/geo/tiff_blocks.js, tiff_decoders.js), so a tile read this way equals the same
 // window of the file loaded whole.
 
-import { hasTiffSignature, parseNodata, sampleTypeOf, spacingOf, blockLayout, measurer, georefOfTiff, libraryGuard, openTiffSource,
+import { hasTiffSignature, parseNodata, heightScaling, sampleTypeOf, spacingOf, blockLayout, measurer, georefOfTiff, libraryGuard, openTiffSource,
   TYPED_ARRAYS, GETTERS, LITTLE_ENDIAN_HOST } from '../geo/index.js';
 import { SAMPLE_ARRAYS } from '../loaders/common.js';
 import { TileError, checkAborted } from './tile_error.js';
@@ -98,6 +98,8 @@ export async function openCog(input, options = {}) {
   }
   // Coarsest last, whatever order the file keeps them in.
   const order = levels.map((_, i) => i).sort((a, b) => levels[b].width - levels[a].width);
+  const metadata = await guard('bad TIFF metadata tag (42112)', () => full.image.getGDALMetadata(0));
+  full.scaling = heightScaling(metadata, fail);
   full.statistics = await statisticsOf(full.image);
   return new CogSource(name, reader, full, order.map((i) => levels[i]), order.map((i) => layouts[i]));
 }
@@ -133,6 +135,9 @@ export class CogSource {
     this.georef = georefOfTiff(full.image);
     /** {min, max} raw sample range of the whole file from GDAL's statistics, or null */
     this.statistics = full.statistics;
+    /** metres = raw x heightScale + heightOffset (GDAL's scale and offset; 1 and 0 without) */
+    this.heightScale = full.scaling.heightScale;
+    this.heightOffset = full.scaling.heightOffset;
     /** metres between columns and rows, or nulls without a geotransform (see web/loaders/geotiff.js) */
     const spacing = spacingOf(full.image, full.height / 2);
     this.spacingX = spacing.spacingX;

@@ -66,7 +66,7 @@ export function infoOf(cog) {
     name: cog.name, width: cog.width, height: cog.height, sampleType: cog.sampleType, nodata: cog.nodata,
     georef: cog.georef, spacingX: cog.spacingX, spacingY: cog.spacingY, tileWidth: cog.tileWidth,
     tileHeight: cog.tileHeight, levels: cog.levels, hasOverviews: cog.hasOverviews, size: cog.size,
-    statistics: cog.statistics,
+    statistics: cog.statistics, heightScale: cog.heightScale, heightOffset: cog.heightOffset,
     stats: { ...cog.stats },
   };
 }

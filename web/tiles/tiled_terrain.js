@@ -69,7 +69,7 @@ export async function openTiledTerrain(core, source, options = {}) {
 
     const field = {
       source: source.name, format: 'cog', width: source.width, height: source.height, sampleType,
-      nodata: source.nodata, heightScale: 1, heightOffset: 0, georef: await resolveGeoref(source.georef), tiled: true,
+      nodata: source.nodata, heightScale: source.heightScale ?? 1, heightOffset: source.heightOffset ?? 0, georef: await resolveGeoref(source.georef), tiled: true,
       spacingX: source.spacingX ?? 1, spacingY: source.spacingY ?? 1, spacingFromFile: source.spacingX != null,
       levels: levels.length, tileWidth: source.tileWidth, tileHeight: source.tileHeight, fileBytes: source.size,
     };
@@ -77,7 +77,10 @@ export async function openTiledTerrain(core, source, options = {}) {
     terrain.setScale(scale);
     terrain.prepare();
     if (options.guessSpacing && !field.spacingFromFile && !options.spacing) guessSpacing(terrain, field);
-    if (source.statistics) terrain.declareHeightRange(source.statistics.min, source.statistics.max);
+    if (source.statistics) { // raw values: in metres through the scale, which may be negative
+      const ends = [source.statistics.min, source.statistics.max].map((raw) => raw * field.heightScale + field.heightOffset);
+      terrain.declareHeightRange(Math.min(...ends), Math.max(...ends));
+    }
     const tiles = new TiledTerrain(terrain, source, { concurrency: options.concurrency });
     tiles.setCapBytes(capBytes);
     return { terrain, field, missing: 0, loadMs: performance.now() - start, tiles };

@@ -88,6 +88,9 @@ export class WorkerTileReader {
     /** @type {import('../geo/georef.js').Georef|null} */
     this.georef = info.georef;
     this.statistics = info.statistics ?? null;
+    /** metres = raw x heightScale + heightOffset */
+    this.heightScale = info.heightScale ?? 1;
+    this.heightOffset = info.heightOffset ?? 0;
     /** metres between columns and rows, or nulls */
     this.spacingX = info.spacingX;
     this.spacingY = info.spacingY;
