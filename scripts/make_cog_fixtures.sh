@@ -44,6 +44,26 @@ jacksboro_vrt "$here" > "$tmp/jacksboro.vrt"
 # samples only: the whole 2048 x 2048 field deflates to 6 MB, too much for the repository.
 gdal_translate -q -of COG -srcwin 512 512 1024 1024 -a_nodata -32768 -co BLOCKSIZE=256 -co COMPRESS=DEFLATE \
   -co PREDICTOR=YES -co OVERVIEWS=AUTO "$tmp/himalaya.vrt" "$out/himalaya_1024_i16.tif"
+# Heights stored scaled, as GDAL states them (metres = raw x 0.5 - 500): int16 half-metres offset
+# by 500 m (raw = 2h + 1000), with statistics of the raw values. The central 512 x 512 samples.
+gdal_translate -q -of COG -srcwin 768 768 512 512 -ot Int16 -scale 0 1000 1000 3000 -a_scale 0.5 -a_offset -500 -stats \
+  -co BLOCKSIZE=256 -co COMPRESS=DEFLATE -co PREDICTOR=YES -co OVERVIEWS=AUTO "$tmp/himalaya.vrt" "$out/himalaya_512_scaled_i16.tif"
+# Every codec and sample layout a published DEM comes in, on one 192 x 160 window (two tiles by
+# two, the right and bottom partial; one overview): the tests decode each to the same heights.
+mkdir -p "$out/codecs"
+codec() { # NAME TYPE CREATION-OPTIONS...
+  name=$1; type=$2; shift 2
+  gdal_translate -q -of COG -srcwin 1000 900 192 160 -ot "$type" -co BLOCKSIZE=128 -co OVERVIEWS=AUTO "$@" \
+    "$tmp/himalaya.vrt" "$out/codecs/$name.tif"
+}
+codec deflate_pred3_f32 Float32 -co COMPRESS=DEFLATE -co PREDICTOR=YES
+codec lzw_pred2_i16 Int16 -co COMPRESS=LZW -co PREDICTOR=YES
+codec zstd_i16 Int16 -co COMPRESS=ZSTD
+codec lerc_f32 Float32 -co COMPRESS=LERC -co MAX_Z_ERROR=0
+codec lerc_zstd_f32 Float32 -co COMPRESS=LERC_ZSTD -co MAX_Z_ERROR=0
+codec lerc_deflate_f32 Float32 -co COMPRESS=LERC_DEFLATE -co MAX_Z_ERROR=0
+codec packbits_u16 UInt16 -co COMPRESS=PACKBITS
+codec none_i32_bigtiff Int32 -co COMPRESS=NONE -co BIGTIFF=YES
 # A COG without overviews, float32, whose width and height are not whole tiles (edge tiles are partial).
 gdal_translate -q -of COG -co BLOCKSIZE=128 -co COMPRESS=DEFLATE -co OVERVIEWS=NONE \
   "$tmp/jacksboro.vrt" "$out/jacksboro_403x344_f32_no_overviews.tif"
