@@ -13,6 +13,7 @@ import { readImageFiles } from './image_files.js';
 import { RESTART_INDEX, STREAM_VERTEX_WORDS } from '../web/core/core.js';
 import { locateImageFile } from '../web/imagery/image_location.js';
 import { openCogInput, tilesForCommand, settleTiles } from './cog_input.js';
+import { toLonLat, sampleToCrs, eastUpSouthAt } from '../web/geo/index.js';
 
 export const MESH_USAGE = `usage: hexlod mesh <heightfield>... (--max-error M | --camera X,Y,Z --target X,Y,Z) [options]
   Several .hgt or GeoTIFF tiles of one grid make one mosaic. A Cloud-Optimized GeoTIFF (tiled,
@@ -42,12 +43,15 @@ export const MESH_USAGE = `usage: hexlod mesh <heightfield>... (--max-error M | 
                         its .prj or GDAL .aux.xml beside it (IMAGE.prj, IMAGE.jpg.aux.xml) give
                         its CRS when the image names none
   --world-file FILE     the image's world file (default: IMAGE.jgw, .jpgw, .wld ... beside it)
+  --earth E             the OBJ's frame: flat (default, as the page draws: x east from the first
+                        column, z south from the first row) or curved (a georeferenced field on
+                        the WGS 84 ellipsoid, in the east-up-south frame at the field's centre)
 ${FILE_USAGE}`;
 
 const OPTIONS = {
   'max-error': 'string', camera: 'string', target: 'string', fov: 'string', viewport: 'string', tau: 'string',
   'cell-size': 'string', 'budget-splits': 'string', embedding: 'string', obj: 'string', json: 'string',
-  image: 'string', 'world-file': 'string',
+  image: 'string', 'world-file': 'string', earth: 'string',
   ...FILE_OPTIONS,
 };
 const MAX_UPDATES = 10000;
@@ -81,7 +85,9 @@ export function meshSettings(args) {
     json: values.json ?? null,
     image: values.image ?? null,
     worldFile: values['world-file'] ?? null,
+    earth: values.earth ?? 'flat',
   };
+  if (!['flat', 'curved'].includes(settings.earth)) throw new UsageError(`--earth is flat or curved, not '${settings.earth}'`);
   if (hasError) {
     settings.maxError = parseNumber('max-error', values['max-error'], { min: 0, exclusiveMin: true });
   } else {
@@ -199,10 +205,13 @@ export async function mesh(args) {
   const repaired = resolveDegenerate(positions, STREAM_VERTEX_WORDS, triangles);
   const clipped = clipToRectangle(positions, STREAM_VERTEX_WORDS, repaired.triangles, xMax, zMax);
   const name = field.source; // the file's name, or the mosaic's ("a.hgt + 3 more (mosaic 2 × 2)")
+  // On the curved Earth the field is checked before anything is written.
+  const curved = settings.earth === 'curved' ? onTheEllipsoid(clipped.vertices, field.georef, terrain, spacingX, spacingY, name) : null;
   if (settings.obj) {
     const comments = [
       `hexlod mesh of ${name}: ${clipped.vertices.length / 3} vertices, ${clipped.faces.length / 3} triangles`,
-      'metres: x east from the first column, y up (height), z south from the first row',
+      curved ? `metres on the WGS 84 ellipsoid: x east, y up, z south of ${curved.centre} (heights as ellipsoidal)`
+        : 'metres: x east from the first column, y up (height), z south from the first row',
       `clipped to the data rectangle [0, ${xMax}] x [0, ${zMax}]; faces counter-clockwise seen from +y`,
     ];
     let texture = null;
@@ -212,7 +221,8 @@ export async function mesh(args) {
       texture = { uv: textureCoordinates(clipped.vertices, image.location.placement, spacingX, spacingY),
         mtllib: basename(image.mtl), material: MATERIAL_NAME };
     }
-    writeObj(settings.obj, clipped, comments, xMax, zMax, texture);
+    if (curved) writeObj(settings.obj, { vertices: curved.vertices, faces: clipped.faces }, comments, null, null, texture);
+    else writeObj(settings.obj, clipped, comments, xMax, zMax, texture);
   }
 
   const report = {
@@ -236,6 +246,7 @@ export async function mesh(args) {
         near: run.camera.near,
         far: run.camera.far,
       }),
+      earth: settings.earth,
       budgetSplits: settings.budgetSplits,
       maxUpdates: settings.budgetSplits !== null ? 1 : MAX_UPDATES,
       cellSize: settings.cellSize,
@@ -350,4 +361,30 @@ function imageLine({ file, worldFile, location }) {
     : `georeferenced${worldFile ? ` by ${worldFile}` : ''}, covers ${round(placement.coverage * 100, 1)} % of the field`;
   const ground = metresPerPixel === null ? '' : `, ${round(metresPerPixel, 1)} m a pixel`;
   return `${file}: ${width} x ${height} pixels, ${how}${ground}${placement.note && placement.how !== 'stretched' ? ` (${placement.note})` : ''}`;
+}
+
+/**
+ * The mesh's vertices (x east and z south of the first sample, y height, metres) on the WGS 84
+ * ellipsoid, in the east-up-south frame at the field's centre (web/geo/earth_frame.js).
+ * @returns {{ vertices: Float64Array, centre: string }}
+ * @throws {Error} for a field without a georeference, or whose CRS has no definition
+ */
+function onTheEllipsoid(vertices, georef, terrain, spacingX, spacingY, name) {
+  if (!georef) throw new Error(`${name}: --earth curved needs a georeferenced field (this one has no CRS or geotransform)`);
+  const lonLat = georef.crs.geographic ? (x, y) => [x, y] : toLonLat(georef.crs);
+  if (!lonLat) throw new Error(`${name}: --earth curved needs the definition of its CRS (${georef.crs.label}), which is unknown here`);
+  const placeOf = (x, z) => lonLat(...sampleToCrs(georef, x / spacingX, z / spacingY));
+  const [lon0, lat0] = placeOf(((terrain.width - 1) / 2) * spacingX, ((terrain.height - 1) / 2) * spacingY);
+  const frame = eastUpSouthAt(lon0, lat0);
+  const out = new Float64Array(vertices.length), p = [0, 0, 0];
+  for (let i = 0; i < vertices.length; i += 3) {
+    const [lon, lat] = placeOf(vertices[i], vertices[i + 2]);
+    if (!Number.isFinite(lon) || !Number.isFinite(lat)) throw new Error(`${name}: a vertex lies where its CRS has no longitude and latitude`);
+    frame(lon, lat, vertices[i + 1], p);
+    out[i] = p[0];
+    out[i + 1] = p[1];
+    out[i + 2] = p[2];
+  }
+  const centre = `${Math.abs(lat0).toFixed(5)}° ${lat0 < 0 ? 'S' : 'N'} ${Math.abs(lon0).toFixed(5)}° ${lon0 < 0 ? 'W' : 'E'}`;
+  return { vertices: out, centre };
 }

@@ -346,12 +346,12 @@ export function fanPolygon(points, emit) {
 /**
  * Writes vertices and faces as a Wavefront OBJ file, in chunks (meshes of millions of
  * triangles never become one string). Coordinates are rounded to 0.1 mm, never past the
- * rectangle [0, xMax] x [0, zMax].
+ * rectangle [0, xMax] x [0, zMax] (none for vertices in another frame: xMax and zMax null).
  * @param {string} path
  * @param {{vertices: Float64Array, faces: Uint32Array}} mesh zero-based faces
  * @param {string[]} comments header lines (without '#')
- * @param {number} xMax
- * @param {number} zMax
+ * @param {number|null} xMax
+ * @param {number|null} zMax
  * @param {{uv: Float64Array, mtllib: string, material: string}|null} [texture] a texture
  *   coordinate (u, v) per vertex, the material file's name beside the OBJ and the material's
  *   name: faces then name each vertex's texture coordinate too (`f v/vt ...`)
@@ -369,11 +369,13 @@ export function writeObj(path, { vertices, faces }, comments, xMax, zMax, textur
       }
     };
     const q = 1e4;
-    const xLimit = Math.floor(xMax * q) / q, zLimit = Math.floor(zMax * q) / q;
+    // The data rectangle bounds x and z, unless the vertices are in another frame (xMax null).
+    const xLimit = xMax === null ? Infinity : Math.floor(xMax * q) / q, zLimit = zMax === null ? Infinity : Math.floor(zMax * q) / q;
+    const xFloor = xMax === null ? -Infinity : 0, zFloor = zMax === null ? -Infinity : 0;
     const round = (v) => Math.round(v * q) / q;
     for (let i = 0; i < vertices.length; i += 3) {
-      const x = Math.max(0, Math.min(xLimit, round(vertices[i])));
-      const z = Math.max(0, Math.min(zLimit, round(vertices[i + 2])));
+      const x = Math.max(xFloor, Math.min(xLimit, round(vertices[i])));
+      const z = Math.max(zFloor, Math.min(zLimit, round(vertices[i + 2])));
       text += `v ${x} ${round(vertices[i + 1])} ${z}\n`;
       flush(false);
     }
