@@ -34,11 +34,19 @@ async function openView(extra = '', options = {}, size = SIZE) {
   return { page, problems };
 }
 
-/** Draws a few frames (blends end, settings apply) and returns the decoded screenshot. */
+/**
+ * Waits for a frame drawn after this call (settings apply) with the mesh still: converged and its
+ * geomorph blends ended, where the page stops drawing and every later frame is the same picture.
+ * Returns the decoded screenshot.
+ */
 async function shoot(page, name) {
-  await page.evaluate(() => { window.hexlod.until = window.hexlod.frames + 4; });
-  await page.waitForFunction(() => { window.hexlod.requestRender(); return window.hexlod.frames >= window.hexlod.until; }, null,
-    { timeout: 120000, polling: 50 });
+  await page.evaluate(() => { window.hexlod.until = window.hexlod.frames + 1; });
+  await page.waitForFunction(() => {
+    const h = window.hexlod, shown = h.layers.ground;
+    const still = h.frames >= h.until && h.converged && shown !== null && h.lod.frame >= shown.blendsEnd;
+    if (!still) h.requestRender(); // no frame asked beyond the one waited for: it would be drawn during the screenshot
+    return still;
+  }, null, { timeout: 120000, polling: 50 });
   const png = await page.screenshot({ path: `${outDir}/contours-${name}.png` });
   return decode(png);
 }
@@ -46,11 +54,17 @@ async function shoot(page, name) {
 /** The field's heights (metres, through the core), the camera, and the drawing size in device pixels. */
 const sceneOf = (page) => page.evaluate(() => {
   const h = window.hexlod, t = h.terrainObject(), camera = h.rig.active;
-  const heights = new Array(t.width * t.height);
+  const heights = new Float64Array(t.width * t.height);
   for (let r = 0; r < t.height; ++r) for (let c = 0; c < t.width; ++c) heights[r * t.width + c] = t.heightAt(c * t.spacingX, r * t.spacingY);
+  // The doubles' bytes as base64: a quarter-million numbers as one string, not one JSON value each.
+  const bytes = new Uint8Array(heights.buffer);
+  let binary = '';
+  for (let k = 0; k < bytes.length; k += 0x8000) binary += String.fromCharCode(...bytes.subarray(k, k + 0x8000));
   const canvas = document.getElementById('view');
-  return { width: t.width, height: t.height, sx: t.spacingX, sz: t.spacingY, heights, exag: h.settings.exaggeration,
+  return { width: t.width, height: t.height, sx: t.spacingX, sz: t.spacingY, heights: btoa(binary), exag: h.settings.exaggeration,
     viewProjection: [...camera.viewProjection], eye: [...camera.position], pixelsX: canvas.width, pixelsY: canvas.height };
+}).then((scene) => {
+  return { ...scene, heights: new Float64Array(Uint8Array.from(Buffer.from(scene.heights, 'base64')).buffer) };
 });
 
 const luminance = (d, k) => 0.2126 * d[k] + 0.7152 * d[k + 1] + 0.0722 * d[k + 2];
@@ -83,10 +97,19 @@ function crossings(scene, interval, split = 4) {
     if (!(w > 0)) return null;
     return [((m[0] * x + m[4] * y + m[8] * z + m[12]) / w + 1) * 0.5 * pixelsX, (1 - (m[1] * x + m[5] * y + m[9] * z + m[13]) / w) * 0.5 * pixelsY];
   };
+  // Above the highest sample (a hair higher than rounding could lift a height) nothing hides a
+  // point: the steps of a sight line up there are skipped, they could not find the ground.
+  let top = -Infinity;
+  for (let k = 0; k < heights.length; ++k) top = Math.max(top, heights[k]);
+  top = top * exag + 1e-9 * Math.abs(top * exag) + 1e-6;
   const inSight = (x, y, z) => {
     const dx = x - eye[0], dy = y - eye[1], dz = z - eye[2], d = Math.hypot(dx, dy, dz);
     const steps = Math.ceil(Math.hypot(dx, dz) / (0.5 * Math.min(sx, sz)));
-    for (let s = 1; s < steps - 2; ++s) {
+    const clear = top - eye[1] - 0.0005 * d; // the line is above `top` while dy * t > clear
+    let first = 1;
+    if (dy >= 0) { if (clear < 0) return true; } // rising from above the highest ground
+    else if (clear < 0) first = Math.max(1, Math.floor((clear / dy) * steps) - 1); // t < clear / dy: above it
+    for (let s = first; s < steps - 2; ++s) {
       const t = s / steps;
       if (bilinear(eye[0] + dx * t, eye[2] + dz * t) * exag > eye[1] + dy * t + 0.0005 * d) return false;
     }
