@@ -140,19 +140,19 @@ export function nextFrame(page) {
 }
 
 /**
- * What a person sees of the terrain: the share of the window where the terrain shows (pixels
- * that change when the terrain is not drawn, outside the page's boxes: HUD, panel, file bar,
- * status line), and the distinct colours and luminance spread of those pixels. Independent of
- * the sky's and the ground's colours.
+ * What a person sees of the terrain: the share of the window where the terrain shows (the
+ * terrain's pixels, drawn alone in one colour with view.terrainMask, outside the page's boxes:
+ * HUD, panel, file bar, status line), and the distinct colours and luminance spread of those
+ * pixels as drawn. Independent of the sky's and the plain ground's colours past the field.
  * @returns {Promise<{coverage: number, colours: number, luminanceStd: number, skyOnly: boolean}>}
  */
 export async function terrainCoverage(page) {
   await nextFrame(page);
   const shown = decode(await page.screenshot());
-  await page.evaluate(() => { window.hexlod.view.hideTerrain = true; });
+  await page.evaluate(() => { window.hexlod.view.terrainMask = true; });
   await nextFrame(page);
-  const background = decode(await page.screenshot());
-  await page.evaluate(() => { window.hexlod.view.hideTerrain = false; });
+  const mask = decode(await page.screenshot());
+  await page.evaluate(() => { window.hexlod.view.terrainMask = false; });
   await nextFrame(page);
   const { width, height, channels } = shown;
   // The boxes in CSS pixels, scaled to the screenshot's device pixels.
@@ -168,8 +168,10 @@ export async function terrainCoverage(page) {
     for (let x = 0; x < width; ++x) {
       if (boxes.some(([l, t, r, b]) => x >= l && x < r && y >= t && y < b)) continue;
       const k = (y * width + x) * channels;
-      const a = shown.data, bg = background.data;
-      if (Math.abs(a[k] - bg[k]) + Math.abs(a[k + 1] - bg[k + 1]) + Math.abs(a[k + 2] - bg[k + 2]) <= 6) continue;
+      const m = mask.data;
+      // Magenta, or magenta blended with the black around it: the terrain, its antialiased edges included.
+      if (!(m[k] > 16 && m[k + 2] > 16 && 4 * m[k + 1] < Math.min(m[k], m[k + 2]))) continue;
+      const a = shown.data;
       terrain += 1;
       colours.add(((a[k] >> 3) << 10) | ((a[k + 1] >> 3) << 5) | (a[k + 2] >> 3));
       const l = 0.2126 * a[k] + 0.7152 * a[k + 1] + 0.0722 * a[k + 2];

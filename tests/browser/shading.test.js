@@ -156,7 +156,7 @@ test('the Grand Canyon from the rim: banded rock on the walls, vegetation on the
   await page.close();
 });
 
-test('the Earth from high up: seas, land, snow of the ice caps, black space', async () => {
+test('the Earth from high up: seas, land, snow of the ice caps, and the plain ground (here the deep sea) going on past the map', async () => {
   const { page, problems, shot } = await openView(VIEWS.earth_from_high);
   const image = await shot('earth_from_high');
   matchReference('earth_from_high', image);

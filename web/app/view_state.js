@@ -5,7 +5,7 @@ import { MORPH_FRAMES } from './settings_table.js';
 
 /** The view object, made once; the renderer reads it every frame. */
 export function createView(settings) {
-  const view = { frame: 0, hideTerrain: false }; // the clock (frame_pipeline.js); tests hide the terrain
+  const view = { frame: 0, hideTerrain: false, terrainMask: false }; // the clock (frame_pipeline.js); tests hide the terrain or draw it alone
   return deriveView(settings, view);
 }
 

@@ -45,6 +45,10 @@ const SHADER_FILES = { 'scattering.glsl': scatteringGlsl, 'field_textures.glsl':
   'contours.glsl': contoursGlsl };
 const SKY_COLOR = [0.62, 0.74, 0.88]; // the clear colour of the plain mode (no sky pass)
 const OUTLINE_COLOR = new Float32Array([0.08, 0.09, 0.12, 0.55]);
+// view.terrainMask: the terrain's pixels in one colour on black, nothing else (tests find the
+// terrain's pixels by it: the plain ground past the field looks like the terrain's own lowlands).
+const MASK_COLOR = new Float32Array([1, 0, 1, 1]);
+const NO_LINE = new Float32Array([0, 0, 0, 0]);
 const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeightRange', 'uTint', 'uTintAmount',
   'uExtent', 'uLineColor', 'uFrame', 'uMorphFrames', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie', 'uScaleHeight',
   'uMieG', 'uSunIrradiance', 'uSunAirMass', 'uSkyLight', 'uExposure', 'uMode', 'uNormalSource', 'uShadows',
@@ -52,7 +56,10 @@ const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeigh
   'uGradientTile', 'uGradientTiles', 'uSunVisibility', 'uSunVisibilityMap', 'uOcclusion', 'uOcclusionMap',
   'uImageOpacity', 'uImageUnlit', ...DRAPE_UNIFORMS, ...CONTOUR_UNIFORMS];
 const SKY_UNIFORMS = ['uInverseViewProjection', 'uCameraPosition', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie',
-  'uScaleHeight', 'uMieG', 'uSunDirection', 'uSunIrradiance', 'uSunAirMass', 'uExposure'];
+  'uScaleHeight', 'uMieG', 'uSunDirection', 'uSunIrradiance', 'uSunAirMass', 'uExposure', 'uGroundLevel', 'uSkyLight',
+  'uHeightRange', 'uSnowLine', 'uTreeLine', 'uNoiseScale'];
+const NO_GROUND = -1e30; // uGroundLevel without a terrain: the sky alone
+const GROUND_LEVEL = 5, NO_GROUND_SLOT = 6; // in Renderer.groundValues
 
 // The terrain's and the sky's programs, their shared GLSL included.
 const link = (gl, vertex, fragment, what) =>
@@ -129,6 +136,9 @@ export class TerrainRenderer {
     this.forcedTiles = forcedTiles;
     this.createGlObjects();
     this.heightRange = [0, 1];
+    /** [true low, true high, snow line, tree line, noise scale, drawn ground level, NO_GROUND] (setGroundColourUniforms) */
+    this.groundValues = new Float32Array(7);
+    this.groundRange = null;
     this.extent = [0, 0];
     this.atmosphere = new Atmosphere();
     this.sunDirection = this.atmosphere.sunDirection;
@@ -315,8 +325,9 @@ export class TerrainRenderer {
    * of the layer list (app/layers.js) draped on it, the measured line, the layer list's
    * overlays, bottom first, then the sky.
    * @param {{colorByLevel?: boolean, outline?: boolean, frame?: number, morphFrames?: number,
-   *   verticalScale?: number, hideTerrain?: boolean}} view frame and morphFrames drive the geomorph
-   *   blend; hideTerrain draws the background alone (tests compare the two to find the terrain's pixels)
+   *   verticalScale?: number, hideTerrain?: boolean, terrainMask?: boolean}} view frame and
+   *   morphFrames drive the geomorph blend; hideTerrain draws the background alone; terrainMask
+   *   the terrain's pixels alone in magenta on black (tests find the terrain's pixels by it)
    * @param {{ drapes: import('./shading/drape_layers.js').Drape[], overlays: ArrayLike<{ draw: Function,
    *   createGlObjects: Function }> }} [shown] the layer list: its visible image layers (drapes),
    *   bottom first, and its overlays, each drawn with draw(gl, camera, width, height,
@@ -330,16 +341,23 @@ export class TerrainRenderer {
     const mode = SHADING_MODES[view.shading ?? 'natural'] ?? 0;
     const verticalScale = view.verticalScale ?? 1;
     gl.viewport(0, 0, width, height);
-    gl.clearColor(SKY_COLOR[0], SKY_COLOR[1], SKY_COLOR[2], 1);
+    if (view.terrainMask) gl.clearColor(0, 0, 0, 1);
+    else gl.clearColor(SKY_COLOR[0], SKY_COLOR[1], SKY_COLOR[2], 1);
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     gl.enable(gl.DEPTH_TEST);
     gl.depthFunc(gl.LEQUAL);
+    if (view.terrainMask) {
+      if (this.indexCount > 0) this.drawTerrain(camera, view, mode, verticalScale, shown.drapes);
+      gl.bindVertexArray(null);
+      return;
+    }
     if (this.indexCount > 0 && !view.hideTerrain) this.drawTerrain(camera, view, mode, verticalScale, shown.drapes);
     // The measured line: over the terrain, its hidden parts faint (the sky covers none of it).
     if (!view.hideTerrain) this.measureOverlay.draw(camera, width, height, verticalScale);
     for (let k = 0; k < overlays.length && !view.hideTerrain; k++) overlays[k].draw(gl, camera, width, height, verticalScale);
     // The sky where no terrain was drawn: after the terrain, so the depth test skips covered pixels.
-    if (mode !== SHADING_MODES.plain) this.drawSky(camera, verticalScale);
+    // Past the field's edges, plain ground at its lowest height goes on to the horizon.
+    if (mode !== SHADING_MODES.plain) this.drawSky(camera, verticalScale, this.indexCount > 0);
     // Tests judge the lines alone with view.contourLabels = false.
     if (view.contours && view.contourLabels !== false && this.indexCount > 0 && !view.hideTerrain) this.contours.drawLabels(camera, width, height, view, this.drawPixelScale);
     gl.bindVertexArray(null);
@@ -349,6 +367,31 @@ export class TerrainRenderer {
   pixelScale(height) {
     const css = this.gl.canvas.clientHeight;
     return css > 0 ? Math.max(1, height / css) : 1;
+  }
+
+  /**
+   * The procedural ground's uniforms (ground_color.glsl), which the terrain and the plain ground
+   * beyond it share. Their values are worked out again only when the height range, the
+   * exaggeration or the spacing changed, and passed from a typed array: the frame path makes no
+   * new numbers (frame_allocations test).
+   */
+  setGroundColourUniforms(u, verticalScale) {
+    const gl = this.gl, g = this.groundValues;
+    const spacing = this.fieldTextures.spacing ?? 1;
+    if (this.groundRange !== this.heightRange || this.groundScale !== verticalScale || this.groundSpacing !== spacing) {
+      const low = this.heightRange[0] / verticalScale, high = this.heightRange[1] / verticalScale;
+      // Snow on the upper part of real mountains only (never on a hill of a few hundred metres);
+      // trees give way to bare soil below it.
+      const snowLine = high > 3000 ? Math.max(3000, low + 0.65 * (high - low)) : 1e9;
+      g.set([low, high, snowLine, Math.min(3500, snowLine - 1000), spacing, this.heightRange[0], NO_GROUND]);
+      this.groundRange = this.heightRange;
+      this.groundScale = verticalScale;
+      this.groundSpacing = spacing;
+    }
+    gl.uniform2fv(u.uHeightRange, g, 0, 2);
+    gl.uniform1fv(u.uSnowLine, g, 2, 1);
+    gl.uniform1fv(u.uTreeLine, g, 3, 1);
+    gl.uniform1fv(u.uNoiseScale, g, 4, 1);
   }
 
   /** Uniforms the terrain and the sky share: the atmosphere and the tone curve. */
@@ -364,9 +407,12 @@ export class TerrainRenderer {
     gl.uniform1f(u.uExposure, EXPOSURE);
   }
 
-  drawSky(camera, verticalScale) {
+  drawSky(camera, verticalScale, ground) {
     const gl = this.gl, u = this.skyUniforms;
     gl.useProgram(this.skyProgram);
+    this.setGroundColourUniforms(u, verticalScale);
+    gl.uniform1fv(u.uGroundLevel, this.groundValues, ground ? GROUND_LEVEL : NO_GROUND_SLOT, 1);
+    gl.uniform3fv(u.uSkyLight, this.atmosphere.skyLight);
     mat4.invert(this.inverseViewProjection, camera.viewProjection); // no allocation
     gl.uniformMatrix4fv(u.uInverseViewProjection, false, this.inverseViewProjection);
     gl.uniform3fv(u.uCameraPosition, camera.position);
@@ -398,16 +444,10 @@ export class TerrainRenderer {
     const u = this.uniforms;
     gl.uniformMatrix4fv(u.uViewProjection, false, camera.viewProjection);
     gl.uniform3fv(u.uCameraPosition, camera.position);
+    this.setGroundColourUniforms(u, verticalScale);
     const low = this.heightRange[0] / verticalScale, high = this.heightRange[1] / verticalScale;
-    gl.uniform2f(u.uHeightRange, low, high);
-    // Snow on the upper part of real mountains only (never on a hill of a few hundred metres);
-    // trees give way to bare soil below it.
-    const snowLine = high > 3000 ? Math.max(3000, low + 0.65 * (high - low)) : 1e9;
-    gl.uniform1f(u.uSnowLine, snowLine);
-    gl.uniform1f(u.uTreeLine, Math.min(3500, snowLine - 1000));
-    gl.uniform1f(u.uNoiseScale, this.fieldTextures.spacing ?? 1);
     gl.uniform2f(u.uExtent, this.extent[0], this.extent[1]);
-    gl.uniform4f(u.uLineColor, 0, 0, 0, 0);
+    gl.uniform4fv(u.uLineColor, view.terrainMask ? MASK_COLOR : NO_LINE);
     gl.uniform1f(u.uFrame, view.frame ?? 0);
     gl.uniform1f(u.uMorphFrames, view.morphFrames ?? 0);
     gl.uniform1f(u.uVerticalScale, verticalScale);
@@ -446,7 +486,7 @@ export class TerrainRenderer {
       gl.drawElements(this.layout === 'fans' ? gl.TRIANGLE_FAN : gl.TRIANGLES, this.indexCount, gl.UNSIGNED_INT, 0);
     }
     gl.disable(gl.POLYGON_OFFSET_FILL);
-    if (view.outline && this.outlineCount > 0) {
+    if (view.outline && this.outlineCount > 0 && !view.terrainMask) {
       gl.enable(gl.BLEND);
       gl.blendFunc(gl.SRC_ALPHA, gl.ONE_MINUS_SRC_ALPHA);
       gl.uniform4fv(u.uLineColor, OUTLINE_COLOR);
