@@ -191,12 +191,16 @@ test('<hexlod-viewer>: attributes set its view and apply live; removing it dispo
     const element = document.getElementById('terrain');
     element.setAttribute('shading', 'hypsometric');
     element.setAttribute('tau', '4');
+    // The next frame drawn is drawn with the new shading.
+    window.shadedFrame = new Promise((resolve) => {
+      const stop = element.viewer.on('frame', () => { stop(); resolve(); });
+    });
   });
   assert.deepEqual(await page.evaluate(() => {
     const s = document.getElementById('terrain').viewer.settings;
     return [s.shading, s.tau];
   }), ['hypsometric', 4]);
-  await page.waitForTimeout(1500);
+  await page.evaluate(() => window.shadedFrame);
   const after = await greenShare(page, '#terrain #view');
   assert.ok(after > before + 0.2, `the hypsometric colours show: green share ${before} → ${after}`);
   const refused = await page.evaluate(() => new Promise((resolve) => {
