@@ -1,7 +1,8 @@
 // A Cloud-Optimized GeoTIFF opened to be read tile by tile: from a URL by HTTP Range requests, or from a
 // Blob or dropped File by slice, reading only the header and the image directories at open,
-// then one tile at a time, its entries of the tile tables read with it (tile_tables.js). The levels are the full-resolution image and its overviews (GDAL's
-// reduced-resolution images in the same file), each tiled alike.
+// then one tile at a time, its entries of the tile tables read with it (tile_tables.js). The
+// levels are the full-resolution image and its overviews (GDAL's reduced-resolution images in
+// the same file), each tiled alike.
 //
 // The geotiff library parses the directories (header_source.js feeds it); the tiles are read
 // byte-exact by offset and count and decoded by the same decoders and block checks as a whole
@@ -16,6 +17,7 @@ import { urlReader, blobReader } from './range_reader.js';
 import { headerSource } from './header_source.js';
 import { readTileTables } from './tile_tables.js';
 
+const TILE_OFFSETS = 324, TILE_BYTE_COUNTS = 325;
 const REDUCED_IMAGE = 1, MASK_IMAGE = 4; // NewSubfileType bits
 export const MAKE_COG = 'gdal_translate -of COG in.tif out.tif';
 
@@ -78,7 +80,7 @@ export async function openCog(input, options = {}) {
     // The block checks of a whole-file load read the tile tables whole; here only their lengths
     // are checked at open, and each entry when its tile is read.
     const table = tables[index];
-    const tags = { 324: table?.offsets, 325: table?.counts };
+    const tags = { [TILE_OFFSETS]: table?.offsets, [TILE_BYTE_COUNTS]: table?.counts };
     const layout = await guard('bad TIFF layout', () => blockLayout(image, { values: (tag) => tags[tag] }, { width, height }, fail));
     if (!full) {
       const [format, bits] = await guard('bad TIFF sample type', async () =>
@@ -100,7 +102,7 @@ export async function openCog(input, options = {}) {
   const order = levels.map((_, i) => i).sort((a, b) => levels[b].width - levels[a].width);
   const metadata = await guard('bad TIFF metadata tag (42112)', () => full.image.getGDALMetadata(0));
   full.scaling = heightScaling(metadata, fail);
-  full.statistics = await statisticsOf(full.image);
+  full.statistics = statisticsOf(metadata);
   return new CogSource(name, reader, full, order.map((i) => levels[i]), order.map((i) => layouts[i]));
 }
 
@@ -108,14 +110,9 @@ export async function openCog(input, options = {}) {
  * The lowest and highest sample of the whole file when GDAL wrote its statistics
  * (STATISTICS_MINIMUM and STATISTICS_MAXIMUM of band 1, e.g. `gdal_translate -stats`), else null:
  * what the tiles read so far cannot show.
+ * @param {Record<string, unknown>|null} items the band's GDAL metadata items, read once at open
  */
-async function statisticsOf(image) {
-  let items = null;
-  try {
-    items = await image.getGDALMetadata(0);
-  } catch {
-    return null;
-  }
+function statisticsOf(items) {
   const min = Number(items?.STATISTICS_MINIMUM), max = Number(items?.STATISTICS_MAXIMUM);
   return Number.isFinite(min) && Number.isFinite(max) && min <= max ? { min, max } : null;
 }
