@@ -297,6 +297,24 @@ int32_t hexlod_terrain_reset_mesh(hexlod_terrain* terrain, const hexlod_mesh_set
  * 0..1000, an unknown layout. The flags (auto_tau, no_*) take any int32, non-zero meaning set. */
 int32_t hexlod_terrain_set_settings(hexlod_terrain* terrain, const hexlod_settings* settings);
 
+/* The surface the terrain is drawn on (src/lod/earth_shape.h): the refinement's bound (§5)
+ * follows its curvature, so tau holds on the curved surface as drawn. The drawn frame is east,
+ * up and south metres of a tangent frame whose origin is the flat point (origin_x_m, 0,
+ * origin_z_m); the renderer draws vertices as shaders/earth.glsl does, with the same numbers.
+ *   HEXLOD_EARTH_FLAT: the plane (the default); the other numbers are ignored.
+ *   HEXLOD_EARTH_SPHERE: the plane wrapped onto a sphere of radius_m (1e3 to 1e9), keeping
+ *     distances and directions from the origin.
+ *   HEXLOD_EARTH_GEOGRAPHIC: flat x is longitude and z latitude (southwards) at fixed steps,
+ *     metres_per_radian_x and _z of them (each 1 to 1e12), the origin at latitude0_rad
+ *     (-pi/2 to pi/2); drawn on the WGS 84 ellipsoid.
+ * Kept across hexlod_terrain_set_settings. The origin's coordinates are within -1e12 to 1e12.
+ * A change makes every cell due for a new test. 0, or HEXLOD_ERROR (the previous shape stays). */
+#define HEXLOD_EARTH_FLAT 0
+#define HEXLOD_EARTH_SPHERE 1
+#define HEXLOD_EARTH_GEOGRAPHIC 2
+int32_t hexlod_terrain_set_earth(hexlod_terrain* terrain, int32_t kind, double origin_x_m, double origin_z_m, double radius_m,
+                                 double latitude0_rad, double metres_per_radian_x, double metres_per_radian_z);
+
 /* One frame, the steps chosen by `steps` (HEXLOD_FRAME_*): the camera (NULL keeps the last
  * one), one refinement step within the budget (§6: re-test the cells whose margin the camera
  * used up, refine the failing ones largest projected error first, coarsen in descending level

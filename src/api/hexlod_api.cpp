@@ -232,6 +232,20 @@ int32_t hexlod_terrain_set_settings(hexlod_terrain* terrain, const hexlod_settin
     s.morphFrames = in.morph_frames;
     s.layout = hexlod::IndexLayout(in.layout);
     s.normals = in.no_normals == 0;
+    s.lod.earth = terrain->core->settings().lod.earth; // set apart, by hexlod_terrain_set_earth
+    terrain->core->configure(s);
+    return 0;
+}
+
+int32_t hexlod_terrain_set_earth(hexlod_terrain* terrain, int32_t kind, double origin_x_m, double origin_z_m, double radius_m,
+                                 double latitude0_rad, double metres_per_radian_x, double metres_per_radian_z) {
+    if (!terrain) return fail(kNullHandle);
+    hexlod::EarthShape earth;
+    if (const char* error = hexlod::api::checkEarth(kind, origin_x_m, origin_z_m, radius_m, latitude0_rad, metres_per_radian_x,
+                                                    metres_per_radian_z, earth))
+        return fail(error);
+    hexlod::TerrainSettings s = terrain->core->settings();
+    s.lod.earth = earth;
     terrain->core->configure(s);
     return 0;
 }

@@ -100,4 +100,31 @@ const char* checkSettings(const hexlod_settings& s) {
     return nullptr;
 }
 
+const char* checkEarth(int32_t kind, double originX, double originZ, double radius, double latitude0, double perRadianX,
+                       double perRadianZ, EarthShape& earth) {
+    if (kind != HEXLOD_EARTH_FLAT && kind != HEXLOD_EARTH_SPHERE && kind != HEXLOD_EARTH_GEOGRAPHIC)
+        return refuse("earth: kind is %d; unknown shape (expected 0 = flat, 1 = sphere, 2 = geographic)", kind);
+    EarthShape e;
+    e.kind = EarthKind(kind);
+    if (kind == HEXLOD_EARTH_FLAT) {
+        earth = e;
+        return nullptr;
+    }
+    if (!within(originX, -1e12, 1e12) || !within(originZ, -1e12, 1e12))
+        return refuse("earth: the origin is (%g, %g); each coordinate must be a number of metres from -1e12 to 1e12", originX, originZ);
+    e.originX = originX, e.originZ = originZ;
+    if (kind == HEXLOD_EARTH_SPHERE) {
+        if (!within(radius, 1e3, 1e9)) return refuse("earth: radius_m is %g; a sphere's radius must be 1e3 to 1e9 metres", radius);
+        e.radius = radius;
+    } else {
+        if (!within(latitude0, -1.5707963267948966, 1.5707963267948966))
+            return refuse("earth: latitude0_rad is %g; the origin's latitude must be -pi/2 to pi/2 radians", latitude0);
+        if (!within(perRadianX, 1.0, 1e12) || !within(perRadianZ, 1.0, 1e12))
+            return refuse("earth: metres per radian are %g east and %g south; each must be 1 to 1e12", perRadianX, perRadianZ);
+        e.latitude0 = latitude0, e.metresPerRadianX = perRadianX, e.metresPerRadianZ = perRadianZ;
+    }
+    earth = e;
+    return nullptr;
+}
+
 } // namespace hexlod::api

@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include "api/hexlod.h"
+#include "lod/earth_shape.h"
 
 namespace hexlod::api {
 
@@ -32,5 +33,9 @@ const char* checkCamera(const hexlod_camera& camera, glm::dvec3* up);
 
 /// Null when the settings are acceptable, else the refusal, starting "settings: ".
 const char* checkSettings(const hexlod_settings& settings);
+
+/// hexlod_terrain_set_earth's numbers as an EarthShape, or why they are refused (earth untouched).
+const char* checkEarth(int32_t kind, double originX, double originZ, double radius, double latitude0, double perRadianX,
+                       double perRadianZ, EarthShape& earth);
 
 } // namespace hexlod::api

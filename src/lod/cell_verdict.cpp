@@ -69,6 +69,15 @@ CellVerdict judgeCell(const VerdictContext& context, const CellQuestion& cell, d
     glm::dvec3 center;
     double radius;
     boundingSphere(f, e, context.verticalScale, center, radius);
+    // On the curved Earth: the sphere of the cell's image, its up vector and how far it turns,
+    // and the sag of its straight triangles under the curved surface (earth_shape.h).
+    const bool flat = context.earth.flat();
+    CurvedCell curved;
+    if (!flat) {
+        curved = curvedCell(context.earth, center, radius, 0.5 * std::hypot(double(f.x1) - double(f.x0), double(f.z1) - double(f.z0)),
+                            double(e.low) * context.verticalScale, double(e.high) * context.verticalScale);
+        center = curved.center, radius = curved.radius;
+    }
     const glm::dvec3 d = center - view.eye;
     distOut = double(roundedUp(glm::length(d)));
     const double dist = distOut;
@@ -90,7 +99,8 @@ CellVerdict judgeCell(const VerdictContext& context, const CellQuestion& cell, d
         if ((!failMargin && z + radius < view.nearPlane) || z - radius > view.farPlane) return {true, 0.0, 0.0, moving};
     }
     double front = kForever; // how far the eye may move before a front-facing cell can turn its back
-    if (context.backfaceCulling && slopes && slopes->known()) {
+    // The slope box is flat; the curved surface turns its normals (no back-face test there).
+    if (context.backfaceCulling && flat && slopes && slopes->known()) {
         double back = kForever, frontFacing = -kForever;
         bool backFacing = true;
         for (double dx : {double(slopes->dxLow), double(slopes->dxHigh)})
@@ -115,14 +125,20 @@ CellVerdict judgeCell(const VerdictContext& context, const CellQuestion& cell, d
     // passing merge's margin holds for any near plane (upper() ignores it), and a failing one's
     // lower bound, taken at context.mergeNearest, holds for every nearer depth.
     const double nearest = failMargin ? std::min(context.mergeNearest, view.nearPlane) : view.nearPlane;
-    v.pixels = projectedErrorPixels(view, center, radius, error, nearest);
+    v.pixels = flat ? projectedErrorPixels(view, center, radius, error, nearest) : projectedErrorPixels(view, curved, error, nearest);
     const double t = context.tau;
     v.pass = !(v.pixels > t);
-    if (error <= 0.0) {
+    if (error <= 0.0 && curved.sag <= 0.0 && curved.drift <= 0.0) {
         v.margin = kForever;
         return v;
     }
-    const double ux = view.right.y, uy = view.up.y, uz = view.forward.y;
+    // The up vector the error stands along, in view coordinates: the world's, or the cell's.
+    const double ux = flat ? view.right.y : glm::dot(view.right, curved.up), uy = flat ? view.up.y : glm::dot(view.up, curved.up),
+                 uz = flat ? view.forward.y : glm::dot(view.forward, curved.up);
+    // On the curved Earth the cell's normals turn by up to curved.tilt besides the camera's
+    // tilt, the sag adds to the error along them, and the drift is a displacement in any
+    // direction: the turn and the drift times the largest projected length of a unit vector
+    // (anyDirectionGain). On the plane the arithmetic is the flat bound's, unchanged.
     if (v.pass) {
         // Upper bound of the projected error over every view within margin m (the sum of the
         // two squares is largest where each is: the corner maximum of projectedErrorPixels).
@@ -142,7 +158,10 @@ CellVerdict judgeCell(const VerdictContext& context, const CellQuestion& cell, d
             const double gy = std::max((uy - yLo * uz) * (uy - yLo * uz), (uy - yHi * uz) * (uy - yHi * uz));
             const double tMax2 = std::max(xLo * xLo, xHi * xHi) + std::max(yLo * yLo, yHi * yHi);
             const double tilt = dist > 0.0 ? CameraOdometers::tiltAllowed(m, dist, moving) : kForever;
-            return view.pixelsPerTangent * error * (std::sqrt(gx + gy) + tilt * std::sqrt(1.0 + tMax2)) * toLow;
+            if (flat) return view.pixelsPerTangent * error * (std::sqrt(gx + gy) + tilt * std::sqrt(1.0 + tMax2)) * toLow;
+            const double any = anyDirectionGain(tMax2);
+            return view.pixelsPerTangent *
+                   ((error + curved.sag) * (std::sqrt(gx + gy) + tilt * std::sqrt(1.0 + tMax2) + curved.tilt * any) + curved.drift * any) * toLow;
         };
         // At that cap the depth alone has used up the room the error had below tau, so the bound
         // there (its other terms only grow with m) is above tau: no need to try it.
@@ -164,8 +183,11 @@ CellVerdict judgeCell(const VerdictContext& context, const CellQuestion& cell, d
         const double dt = m * tangentSpeed / (z - m);
         const double tc = tangent + dt;
         const double tilt = dist > 0.0 ? CameraOdometers::tiltAllowed(m, dist, moving) : kForever;
-        const double g = pc - std::abs(uz) * dt - tilt * std::sqrt(1.0 + tc * tc);
-        return g > 0.0 ? view.pixelsPerTangent * error * g / std::max(z - radius + m, context.mergeNearest) : 0.0;
+        const double any = anyDirectionGain(tc * tc);
+        const double g = pc - std::abs(uz) * dt - tilt * std::sqrt(1.0 + tc * tc) - (flat ? 0.0 : curved.tilt * any);
+        const double shown = flat ? error * g : (error - curved.sag) * g - curved.drift * any;
+        if (!(g > 0.0 && shown > 0.0)) return 0.0;
+        return (flat ? view.pixelsPerTangent * error * g : view.pixelsPerTangent * shown) / std::max(z - radius + m, context.mergeNearest);
     };
     const double atCenter = view.pixelsPerTangent * error * pc / std::max(z - radius, context.mergeNearest);
     // Strictly inside the side planes and in front: a margin just below those slacks.

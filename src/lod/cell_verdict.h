@@ -43,6 +43,7 @@ struct VerdictContext {
     double mergeNearest = 1e-9;   // metres: the smallest depth a merge test's bound uses
     bool farCoversData = false;   // the far plane culled no cell with samples in any view since farRef
     double farRef = 0.0;          // metres: the far plane when every cell was last made due
+    EarthShape earth;             // the surface the cells are drawn on (earth_shape.h); flat: the plane
 };
 
 /// The cell a verdict is asked for: its footprint and cached bound (§5.1), its slopes (null or

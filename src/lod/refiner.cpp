@@ -42,10 +42,19 @@ void Refiner::attach(HexMesh& mesh, const Heightfield& field) {
 double Refiner::farthestData(const glm::dvec3& eye) const {
     const double x1 = double(field_->width() - 1) * field_->scale().spacingX, z1 = double(field_->height() - 1) * field_->scale().spacingY;
     const double scale = settings_.verticalScale;
+    const double low = double(field_->minHeight()) * scale, high = double(field_->maxHeight()) * scale;
     double farthest = 0.0;
-    for (double x : {0.0, x1})
-        for (double y : {double(field_->minHeight()) * scale, double(field_->maxHeight()) * scale})
-            for (double z : {0.0, z1}) farthest = std::max(farthest, glm::length(glm::dvec3(x, y, z) - eye));
+    if (!settings_.earth.flat()) {
+        // On the curved Earth: the far side of the sphere holding the field's drawn image.
+        const glm::dvec3 center(0.5 * x1, 0.5 * (low + high), 0.5 * z1);
+        const double radius = 0.5 * glm::length(glm::dvec3(x1, high - low, z1));
+        const CurvedCell field = curvedCell(settings_.earth, center, radius, 0.5 * std::hypot(x1, z1), low, high);
+        farthest = glm::length(field.center - eye) + field.radius;
+    } else {
+        for (double x : {0.0, x1})
+            for (double y : {low, high})
+                for (double z : {0.0, z1}) farthest = std::max(farthest, glm::length(glm::dvec3(x, y, z) - eye));
+    }
     return farthest * (1.0 + 1e-6) + 1e-3;
 }
 
@@ -94,7 +103,7 @@ void Refiner::checkSettings() {
     const RefinerSettings& s = settings_;
     const bool same = settingsChecked_ && s.viewIndependent == checked_.viewIndependent && tau() == checkedTau_ &&
                       s.maxError == checked_.maxError && s.verticalScale == checked_.verticalScale &&
-                      s.culling == checked_.culling && s.backfaceCulling == checked_.backfaceCulling;
+                      s.culling == checked_.culling && s.backfaceCulling == checked_.backfaceCulling && s.earth == checked_.earth;
     if (!same) invalidateAll();
     checked_ = s;
     checkedTau_ = tau();
@@ -276,6 +285,7 @@ void Refiner::refreshVerdictContext() {
     v.mergeNearest = mergeNearest_;
     v.farCoversData = farCoversData_;
     v.farRef = farRef_;
+    v.earth = settings_.earth;
 }
 
 // Whether a step could refine the cell: false at the finest level (the split cannot happen,

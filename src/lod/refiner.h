@@ -35,6 +35,7 @@
 #include "lod/float_rounding.h"
 #include "lod/cell_bounds.h"
 #include "lod/cell_verdict.h"
+#include "lod/earth_shape.h"
 #include "lod/frame_clock.h"
 #include "lod/pending_merges.h"
 #include "lod/refinement_cache.h"
@@ -55,7 +56,8 @@ struct RefinerSettings {
     int32_t maxTriangles = 0;     // <= 0: no cap (a cell failing under the cap waits, but a split that started finishes; the update still converges)
     bool autoTau = false;
     bool culling = true;          // frustum culling
-    bool backfaceCulling = true;  // cone-of-normals culling (exact embedding, cells of up to 4096 samples)
+    bool backfaceCulling = true;  // cone-of-normals culling (exact embedding, cells of up to 4096 samples; flat Earth only)
+    EarthShape earth;             // the surface drawn (earth_shape.h): the bound follows its curvature
 };
 
 struct UpdateStats {

@@ -6,6 +6,7 @@
 #include "lod/refiner.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace hexlod {
 
@@ -19,12 +20,25 @@ double Refiner::achievedErrorPixels() const {
         const CellError own = cache_.own(c);
         glm::dvec3 center;
         double radius;
-        boundingSphere(footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c)), own, settings_.verticalScale, center, radius);
+        const Footprint f = footprintOf(*field_, mesh_->embedding(), shapeOfCell(*mesh_, c));
+        boundingSphere(f, own, settings_.verticalScale, center, radius);
+        const double error = double(own.error) * settings_.verticalScale;
+        if (!settings_.earth.flat()) {
+            // On the curved Earth, as judgeCell (cell_verdict.cpp): the image's bound, no back faces.
+            CurvedCell curved = curvedCell(settings_.earth, center, radius, 0.5 * std::hypot(double(f.x1) - double(f.x0), double(f.z1) - double(f.z0)),
+                                                 double(own.low) * settings_.verticalScale, double(own.high) * settings_.verticalScale);
+            // A cell of one sample's step in the exact embedding has every sample under it as
+            // a vertex, drawn where it belongs: its chords pass over no sample.
+            if (mesh_->embedding() == Embedding::Exact && mesh_->cellStep(c) == 1) curved.sag = curved.drift = 0.0;
+            if (settings_.culling && outsideFrustum(view_, curved.center, curved.radius)) continue;
+            worst = std::max(worst, projectedErrorPixels(view_, curved, error, view_.nearPlane));
+            continue;
+        }
         // Cells that cannot be seen do not count: outside the (unwidened) frustum, or back-facing.
         if (settings_.culling && outsideFrustum(view_, center, radius)) continue;
         if (settings_.backfaceCulling && backFacing(view_, center, radius, cache_.ownSlopes(c), settings_.verticalScale))
             continue;
-        worst = std::max(worst, projectedErrorPixels(view_, center, radius, double(own.error) * settings_.verticalScale));
+        worst = std::max(worst, projectedErrorPixels(view_, center, radius, error));
     }
     return worst;
 }

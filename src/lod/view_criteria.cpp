@@ -66,27 +66,55 @@ double projectedErrorPixels(const View& view, const glm::dvec3& center, double r
     return projectedErrorPixels(view, center, radius, verticalError, view.nearPlane);
 }
 
+namespace {
+
+// The screen tangents X/Z and Y/Z over a sphere at view coordinates (x, y, z), with depths in
+// [zMin, zMax].
+struct TangentBox {
+    double xLo, xHi, yLo, yHi;
+    TangentBox(double x, double y, double radius, double zMin, double zMax) {
+        auto range = [&](double c, double& lo, double& hi) {
+            const double a = c - radius, b = c + radius;
+            lo = a < 0.0 ? a / zMin : a / zMax;
+            hi = b > 0.0 ? b / zMin : b / zMax;
+        };
+        range(x, xLo, xHi);
+        range(y, yLo, yHi);
+    }
+    // The largest length of the projected vector (ux, uy, uz) (view coordinates) over the box:
+    // (ux - tx uz, uy - ty uz) has a length convex in (tx, ty), largest at a corner, the one
+    // where each of its two squares is largest.
+    double gain(double ux, double uy, double uz) const {
+        const double gx = std::max((ux - xLo * uz) * (ux - xLo * uz), (ux - xHi * uz) * (ux - xHi * uz));
+        const double gy = std::max((uy - yLo * uz) * (uy - yLo * uz), (uy - yHi * uz) * (uy - yHi * uz));
+        return std::sqrt(gx + gy);
+    }
+    double tMax2() const { return std::max(xLo * xLo, xHi * xHi) + std::max(yLo * yLo, yHi * yHi); }
+};
+
+} // namespace
+
 double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError, double nearest) {
     if (verticalError <= 0.0) return 0.0;
     const glm::dvec3 d = center - view.eye;
     const double x = glm::dot(d, view.right), y = glm::dot(d, view.up), z = glm::dot(d, view.forward);
     const double zMin = std::max(z - radius, nearest), zMax = std::max(z + radius, zMin);
-    // Range of the screen tangents X/Z and Y/Z over the sphere (with depths in [zMin, zMax]).
-    auto tangentRange = [&](double c, double& lo, double& hi) {
-        const double a = c - radius, b = c + radius;
-        lo = a < 0.0 ? a / zMin : a / zMax;
-        hi = b > 0.0 ? b / zMin : b / zMax;
-    };
-    double xLo, xHi, yLo, yHi;
-    tangentRange(x, xLo, xHi);
-    tangentRange(y, yLo, yHi);
     // World up in view coordinates; the Jacobian of (X/Z, Y/Z) times it is
-    // (ux - tx * uz, uy - ty * uz) / Z, whose length is convex in (tx, ty): largest at a corner,
-    // the one where each of its two squares is largest.
-    const double ux = view.right.y, uy = view.up.y, uz = view.forward.y;
-    const double gx = std::max((ux - xLo * uz) * (ux - xLo * uz), (ux - xHi * uz) * (ux - xHi * uz));
-    const double gy = std::max((uy - yLo * uz) * (uy - yLo * uz), (uy - yHi * uz) * (uy - yHi * uz));
-    return view.pixelsPerTangent * verticalError * std::sqrt(gx + gy) / zMin;
+    // (ux - tx * uz, uy - ty * uz) / Z.
+    const TangentBox box(x, y, radius, zMin, zMax);
+    return view.pixelsPerTangent * verticalError * box.gain(view.right.y, view.up.y, view.forward.y) / zMin;
+}
+
+double projectedErrorPixels(const View& view, const CurvedCell& curved, double verticalError, double nearest) {
+    if (verticalError <= 0.0 && curved.sag <= 0.0 && curved.drift <= 0.0) return 0.0;
+    const glm::dvec3 d = curved.center - view.eye;
+    const double x = glm::dot(d, view.right), y = glm::dot(d, view.up), z = glm::dot(d, view.forward);
+    const double zMin = std::max(z - curved.radius, nearest), zMax = std::max(z + curved.radius, zMin);
+    const TangentBox box(x, y, curved.radius, zMin, zMax);
+    const double g = box.gain(glm::dot(view.right, curved.up), glm::dot(view.up, curved.up), glm::dot(view.forward, curved.up));
+    const double any = anyDirectionGain(box.tMax2());
+    // The error and the sag stand along normals within the tilt of up; the drift in any direction.
+    return view.pixelsPerTangent * ((std::max(0.0, verticalError) + curved.sag) * (g + curved.tilt * any) + curved.drift * any) / zMin;
 }
 
 } // namespace hexlod

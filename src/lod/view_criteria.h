@@ -2,9 +2,12 @@
 // estimate, on how far any sample under a cell can appear from the drawn surface on screen.
 #pragma once
 
+#include <cmath>
+
 #include <glm/vec3.hpp>
 
 #include "lod/cell_bounds.h"
+#include "lod/earth_shape.h"
 
 namespace hexlod {
 
@@ -47,5 +50,15 @@ bool backFacing(const View& view, const glm::dvec3& center, double radius, const
 /// `nearest`: the smallest depth Zmin may take (the view's near plane unless given).
 double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError);
 double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError, double nearest);
+
+/// The same bound on the curved Earth (earth_shape.h): `curved` gives the sphere, the cell's up
+/// vector in place of the world's, how far that turns over the cell (its share is the turn
+/// times the largest projected length of a unit vector), the sag added to the error, and the
+/// drift, a displacement in any direction.
+double projectedErrorPixels(const View& view, const CurvedCell& curved, double verticalError, double nearest);
+
+/// The largest length of the projection's Jacobian (times depth) applied to a unit vector, for
+/// screen tangents up to tMax2 = tx^2 + ty^2: |(vx - tx vz, vy - ty vz)| <= sqrt(2 (1 + tMax2)).
+inline double anyDirectionGain(double tMax2) { return std::sqrt(2.0 * (1.0 + tMax2)); }
 
 } // namespace hexlod

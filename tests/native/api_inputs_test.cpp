@@ -330,3 +330,38 @@ TEST(ApiInputs, NonFinitePositionsHaveNoHeightAndUnknownFrameStepsAreRefused) {
     EXPECT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_QUERY | HEXLOD_FRAME_HASH | HEXLOD_FRAME_CENSUS, &out), 0);
     hexlod_terrain_destroy(t);
 }
+
+TEST(ApiInputs, EarthShapesOutsideTheirRangesAreRefusedAndTheShapeStays) {
+    hexlod_terrain* t = volcano();
+    ASSERT_NE(t, nullptr);
+    const hexlod_camera good = goodCamera();
+    converge(t, &good);
+    const hexlod_frame before = query(t);
+    const struct {
+        const char* names;
+        int32_t kind;
+        double ox, oz, radius, lat0, kx, kz;
+    } cases[] = {
+        {"kind", 3, 0, 0, 6.4e6, 0, 1e6, 1e6},
+        {"origin", HEXLOD_EARTH_SPHERE, kNaN, 0, 6.4e6, 0, 1e6, 1e6},
+        {"radius_m", HEXLOD_EARTH_SPHERE, 0, 0, 10.0, 0, 1e6, 1e6},
+        {"radius_m", HEXLOD_EARTH_SPHERE, 0, 0, kInf, 0, 1e6, 1e6},
+        {"latitude0_rad", HEXLOD_EARTH_GEOGRAPHIC, 0, 0, 6.4e6, 2.0, 1e6, 1e6},
+        {"metres per radian", HEXLOD_EARTH_GEOGRAPHIC, 0, 0, 6.4e6, 0.5, 0.0, 1e6},
+        {"metres per radian", HEXLOD_EARTH_GEOGRAPHIC, 0, 0, 6.4e6, 0.5, 1e6, kNaN},
+    };
+    for (const auto& c : cases) {
+        EXPECT_EQ(hexlod_terrain_set_earth(t, c.kind, c.ox, c.oz, c.radius, c.lat0, c.kx, c.kz), HEXLOD_ERROR) << c.names;
+        EXPECT_NE(lastError().find(c.names), std::string::npos) << lastError();
+        expectUnchanged(t, before, c.names);
+    }
+    // A good shape is taken, survives new settings, and makes the mesh refine for the curvature.
+    ASSERT_EQ(hexlod_terrain_set_earth(t, HEXLOD_EARTH_SPHERE, 435.0, 300.0, 1e4, 0.0, 1.0, 1.0), 0) << lastError();
+    hexlod_settings settings{};
+    settings.tau_px = 1.0;
+    ASSERT_EQ(hexlod_terrain_set_settings(t, &settings), 0);
+    hexlod_frame out{};
+    ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL, &out), 0);
+    EXPECT_GT(out.operations, 0) << "a sphere of 10 km bends a field of 870 m: the mesh follows";
+    hexlod_terrain_destroy(t);
+}
