@@ -80,12 +80,14 @@ fi
 
 # The suite: skipped when the last successful build used the same sources and flags and no input
 # (sources, headers in src/ and tests/native/, this script, the GoogleTest objects) is newer.
-# The stamp is removed before building, so a failed build is never taken as up to date.
+# The stamp is removed before building, so a failed build is never taken as up to date. It holds
+# the content of the sources, not their times: a source saved while the build ran is newer than
+# nothing the build wrote, yet the build did not see it.
 build_stamp=$(printf '%s\n' "emscripten $emscripten_version" "${compile_flags[*]}" "${link_flags[*]}" \
-  "${core_sources[@]}" "${test_sources[@]}")
+  "${core_sources[@]}" "${test_sources[@]}"
+  find src tests/native scripts/build_wasm_tests.sh -type f -print0 | LC_ALL=C sort -z | xargs -0 sha256sum)
 if [ -f "$out_js" ] && [ -f "$out_wasm" ] && [ "$(cat "$out/build.stamp" 2>/dev/null)" = "$build_stamp" ] &&
-   [ -z "$(find src tests/native scripts/build_wasm_tests.sh "$out/gtest-all.o" "$out/gtest_main.o" \
-           -type f -newer "$out_js" -print | head -n 1)" ]; then
+   [ -z "$(find "$out/gtest-all.o" "$out/gtest_main.o" -type f -newer "$out_js" -print | head -n 1)" ]; then
   echo "$out_js is up to date"
   exit 0
 fi
