@@ -60,8 +60,19 @@ CellVerdict judgeCell(const VerdictContext& context, const CellQuestion& cell, d
     CellVerdict v;
     v.odometer = moving;
     if (context.viewIndependent) {
-        v.pass = !(e.error > context.maxError);
-        v.pixels = e.error;
+        double error = e.error;
+        if (!context.earth.flat()) {
+            // The drawn surface also leaves the curved one by the chords' sag and drift (in drawn
+            // metres: heights times the vertical scale; the error is in true metres).
+            glm::dvec3 center;
+            double radius;
+            boundingSphere(f, e, context.verticalScale, center, radius);
+            const CurvedCell curved = curvedCell(context.earth, center, radius, 0.5 * std::hypot(double(f.x1) - double(f.x0), double(f.z1) - double(f.z0)),
+                                                 double(e.low) * context.verticalScale, double(e.high) * context.verticalScale);
+            error += (curved.sag + curved.drift) / context.verticalScale;
+        }
+        v.pass = !(error > context.maxError);
+        v.pixels = error;
         v.margin = kForever;
         distOut = 0.0;
         return v;

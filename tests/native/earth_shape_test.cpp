@@ -276,3 +276,53 @@ TEST(EarthShape, OnTheCurvedEarthEverySampleInTheFrustumIsWithinTauOfTheDrawnSur
         }
     }
 }
+
+// View-independent refinement (a maximum error in metres, as `hexlod mesh --max-error` runs it)
+// on the curved Earth: every sample's image within that distance of the drawn triangle over it.
+TEST(EarthShape, AMaximumErrorHoldsOnTheCurvedEarthAsDrawn) {
+    auto field = continentalField();
+    ASSERT_NE(field, nullptr);
+    const double w = (field->width() - 1) * 2000.0, h = (field->height() - 1) * 2000.0;
+    EarthShape geo = geographic(48.0, 2000.0 / (0.02 * kDeg));
+    geo.originX = 0.5 * w, geo.originZ = 0.5 * h;
+    for (double maxError : {5.0, 50.0}) {
+        HexMesh mesh;
+        mesh.reset(*field, Embedding::Exact);
+        Refiner refiner;
+        refiner.attach(mesh, *field);
+        refiner.settings().viewIndependent = true;
+        refiner.settings().maxError = maxError;
+        refiner.settings().earth = geo;
+        for (int32_t n = 0; n < 200 && !refiner.update().converged; ++n) {
+        }
+        std::vector<uint32_t> tris;
+        mesh.appendTriangles(tris);
+        const double sx = field->scale().spacingX, sy = field->scale().spacingY;
+        double worst = 0.0;
+        for (size_t t = 0; t < tris.size(); t += 3) {
+            glm::dvec3 v[3], d[3];
+            for (int32_t k = 0; k < 3; ++k) {
+                const glm::vec3 p = mesh.vertexPosition(int32_t(tris[t + size_t(k)]));
+                v[k] = {std::clamp(double(p.x), 0.0, w), double(p.y), std::clamp(double(p.z), 0.0, h)};
+                d[k] = curvedPosition(geo, v[k].x, v[k].y, v[k].z);
+            }
+            const double area = (v[1].x - v[0].x) * (v[2].z - v[0].z) - (v[2].x - v[0].x) * (v[1].z - v[0].z);
+            if (std::abs(area) < 1e-9) continue;
+            const int32_t i0 = int32_t(std::floor(std::min({v[0].z, v[1].z, v[2].z}) / sy)), i1 = int32_t(std::ceil(std::max({v[0].z, v[1].z, v[2].z}) / sy));
+            const int32_t j0 = int32_t(std::floor(std::min({v[0].x, v[1].x, v[2].x}) / sx)), j1 = int32_t(std::ceil(std::max({v[0].x, v[1].x, v[2].x}) / sx));
+            for (int32_t i = std::max(0, i0); i <= std::min(field->height() - 1, i1); ++i)
+                for (int32_t j = std::max(0, j0); j <= std::min(field->width() - 1, j1); ++j) {
+                    const double x = j * sx, z = i * sy;
+                    const double w1 = ((x - v[0].x) * (v[2].z - v[0].z) - (v[2].x - v[0].x) * (z - v[0].z)) / area;
+                    const double w2 = ((v[1].x - v[0].x) * (z - v[0].z) - (x - v[0].x) * (v[1].z - v[0].z)) / area;
+                    const double w0 = 1.0 - w1 - w2;
+                    if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;
+                    const glm::dvec3 drawn = w0 * d[0] + w1 * d[1] + w2 * d[2];
+                    worst = std::max(worst, glm::length(drawn - curvedPosition(geo, x, field->heightAt(j, i), z)));
+                }
+        }
+        std::printf("max error %.0f m on the curved Earth: worst %.3f m, %lld triangles\n", maxError, worst, (long long)mesh.triangleCount());
+        EXPECT_LE(worst, maxError * (1.0 + 1e-6));
+        EXPECT_GT(worst, 0.2 * maxError) << "the bound is not loose by more than five times";
+    }
+}
