@@ -14,8 +14,11 @@ in float vHeight;
 in vec3 vExtinction;
 in vec3 vInscatter;
 in vec3 vSunlight;
+in vec3 vSunLocal;
+in vec3 vToEyeLocal;
 
 uniform vec3 uCameraPosition;
+uniform highp int uEarthKind; // earth.glsl: 0 the plane
 uniform float uVerticalScale;
 uniform vec3 uSkyLight;       // the sky's irradiance of level ground (web/render/shading/atmosphere.js)
 uniform vec3 uTint;           // colour-by-level view: the level's colour
@@ -51,7 +54,7 @@ vec3 plainShading(vec3 n) {
     color = mix(color, vec3(0.42, 0.40, 0.38), smoothstep(0.3, 0.65, slope));
     color = mix(color, vec3(0.93, 0.94, 0.97), smoothstep(0.64, 0.76, t) * (1.0 - smoothstep(0.55, 0.85, slope)));
     color = mix(color, uTint, uTintAmount);
-    float sun = max(dot(n, uSunDirection), 0.0);
+    float sun = max(dot(n, normalize(vSunLocal)), 0.0);
     vec3 lit = color * (vec3(1.0, 0.96, 0.88) * sun * 1.1 + vec3(0.62, 0.74, 0.88) * (0.5 + 0.5 * n.y) * 0.35);
     return pow(lit, vec3(1.0 / 2.2));
 }
@@ -75,7 +78,8 @@ vec4 groundShade() {
     float height = fromField ? field.z : vHeight;
     float sunLit = uShadows > 0.5 ? sunVisibility(xz) : 1.0;
     float ao = uOcclusionOn > 0.5 ? ambientOcclusion(xz) : 1.0;
-    float diffuse = max(dot(n, uSunDirection), 0.0) * sunLit;
+    vec3 sunDirection = normalize(vSunLocal); // the local frame's: on the plane, uSunDirection
+    float diffuse = max(dot(n, sunDirection), 0.0) * sunLit;
     float skyShare = ao * (0.5 + 0.5 * n.y);
 
     if (uMode == MODE_HILLSHADE) {
@@ -99,10 +103,10 @@ vec4 groundShade() {
     vec3 radiance;
     if (height < 0.0) {
         // Water: level, lit by the sky, with the sun's glint.
-        vec3 view = normalize(uCameraPosition - vWorld);
-        vec3 h = normalize(view + uSunDirection);
+        vec3 view = uEarthKind == 0 ? normalize(uCameraPosition - vWorld) : normalize(vToEyeLocal);
+        vec3 h = normalize(view + sunDirection);
         float glint = pow(max(h.y, 0.0), 400.0) * 6.0 * sunLit;
-        radiance = albedo * (vSunlight * max(uSunDirection.y, 0.0) * sunLit + uSkyLight) + vSunlight * glint;
+        radiance = albedo * (vSunlight * max(sunDirection.y, 0.0) * sunLit + uSkyLight) + vSunlight * glint;
     } else {
         radiance = albedo * (vSunlight * diffuse + uSkyLight * skyShare);
     }

@@ -9,16 +9,20 @@ layout(location = 2) in float aMorphFromHeight; // ATTRIB_MORPH_FROM: height of 
 layout(location = 3) in float aMorphKey; // ATTRIB_MORPH_KEY: 0 at rest, f+1 blending in, -(f+1) out, since frame f
 
 uniform mat4 uViewProjection;
-uniform vec3 uCameraPosition;  // drawn metres
+uniform vec3 uCameraPosition;  // drawn metres (on the curved Earth, in its frame: earth.glsl)
+uniform float uEyeHeight;      // the eye's height above the surface's zero, true metres
 uniform float uFrame;          // the core's blend clock (hexlod_lod_frame)
 uniform float uMorphFrames;    // frames a blend takes; 0: no geomorphing
 uniform float uVerticalScale;  // height exaggeration
 uniform vec2 uExtent;          // the field's rectangle, metres (x, z)
 
 #include "scattering.glsl"
+#include "earth.glsl"
 
-out vec3 vNormal;     // the mesh's normal (paper §7), drawn space
-out vec3 vWorld;      // drawn metres: x, exaggerated height, z
+out vec3 vNormal;     // the mesh's normal (paper §7), in the local frame (x east, y up, z south)
+out vec3 vWorld;      // flat metres: x, exaggerated height, z (where the field's textures are read)
+out vec3 vSunLocal;   // towards the sun in the local frame (the drawn frame's on the plane)
+out vec3 vToEyeLocal; // towards the eye in the local frame, unit
 out float vHeight;    // true height, metres, for the ground colour
 out vec3 vExtinction; // Fex from the vertex to the eye
 out vec3 vInscatter;  // Lin along that ray
@@ -42,15 +46,24 @@ void main() {
     vNormal = vec3(aNormal.x, aNormal.y / uVerticalScale, aNormal.z);
     vWorld = p;
 
-    vec3 ray = p - uCameraPosition;
+    // On the curved Earth the vertex is drawn on it (earth.glsl); the lighting works in the
+    // local frame, where "up" is the surface's.
+    vec3 drawn = earthPosition(p);
+    vec3 east, up, south;
+    earthFrame(p.xz, east, up, south);
+    vec3 ray = drawn - uCameraPosition;
+    vSunLocal = vec3(dot(uSunDirection, east), dot(uSunDirection, up), dot(uSunDirection, south));
+    vec3 toEye = normalize(-ray);
+    vToEyeLocal = vec3(dot(toEye, east), dot(toEye, up), dot(toEye, south));
     // The air is not exaggerated: optical depths follow the ray in true metres.
-    float s = length(vec3(ray.x, ray.y / uVerticalScale, ray.z));
-    float eye = uCameraPosition.y / uVerticalScale;
+    vec3 rayLocal = vec3(dot(ray, east), dot(ray, up), dot(ray, south));
+    float s = length(vec3(rayLocal.x, rayLocal.y / uVerticalScale, rayLocal.z));
+    float eye = uEyeHeight;
     float depthR = airPath(eye, vHeight, s, uScaleHeight.x);
     float depthM = airPath(eye, vHeight, s, uScaleHeight.y);
     vSunlight = sunlightAt(vHeight);
     // The air along the ray is lit by sunlight of its mean height.
     scatter(depthR, depthM, dot(normalize(ray), uSunDirection), sunlightAt(0.5 * (eye + vHeight)),
         vExtinction, vInscatter);
-    gl_Position = uViewProjection * vec4(p, 1.0);
+    gl_Position = uViewProjection * vec4(drawn, 1.0);
 }

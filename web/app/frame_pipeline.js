@@ -4,6 +4,8 @@
 // own (the figures the HUD and tests read are updated in place).
 import { MORPH_FRAMES } from './settings_table.js';
 import { FRAME } from '../core/core.js';
+import { FLAT_EARTH } from '../geo/index.js';
+import { lodCameraOnEarth, placeOnEarth } from '../cameras/on_the_earth.js';
 
 const FRAME_LOG = 4096; // frames kept in state.frameLog while recording
 const SETTLE_FRAMES = 3; // frames after tiles went in before a streamed view can be at rest
@@ -30,7 +32,8 @@ export class FramePipeline {
     this.lastFrameMs = 0; // CPU time of the previous frame, for the HUD
     this.timingPixel = new Uint8Array(4);
     // Made once, filled every frame.
-    this.lodCamera = { eye: null, target: null, fovY: 0, aspect: 1, viewportHeight: 1, near: 0, far: 0 };
+    this.flightLodCamera = { eye: [0, 0, 0], target: [0, 0, 0], up: [0, 1, 0] };
+    this.lodCamera = { eye: null, target: null, up: null, fovY: 0, aspect: 1, viewportHeight: 1, near: 0, far: 0 };
     this.timingFigures = { updateMs: 0, streamMs: 0, uploadMs: 0, drawMs: 0, frameMs: 0 };
     this.hudFrame = { terrain: null, stats: null, timing: this.timingFigures, settings, camera: null, tiles: null };
     // A tiled terrain's figures as tests read them (state.tiles), filled in place.
@@ -88,6 +91,7 @@ export class FramePipeline {
     }
     const camera = det ? det.camera : rig.active;
     camera.update(width / height);
+    placeOnEarth(camera, this.layers.ground?.earth ?? FLAT_EARTH);
     const timing = this.timingFigures;
     timing.updateMs = timing.streamMs = timing.uploadMs = 0;
     // Web map tile layers choose the tiles this view needs (cheap while it stays the same). A
@@ -134,13 +138,14 @@ export class FramePipeline {
     const frozen = settings.freeze;
     const lodStart = performance.now();
     const stats = frozen ? terrain.frame(null, FRAME.stream)
-      : terrain.frame(det ? det.lodCamera : this.lodCameraOf(camera, height), FRAME.all);
+      : terrain.frame(det ? this.drawnFlightCamera(det.lodCamera) : this.lodCameraOf(camera, height), FRAME.all);
     const coreMs = performance.now() - lodStart;
     if (det && !frozen) det.afterLod(terrain, stats.operations);
     current.world.version += 1; // the drawn surface may have moved: the walk floor is asked anew
     if (camera.mode === 'walk') {
       camera.settle(); // stand on the surface as it is drawn in this frame
       camera.update(width / height);
+      placeOnEarth(camera, current.earth ?? FLAT_EARTH);
     }
     const uploadStart = performance.now();
     if (stats.version !== current.streamVersion) current.blendsEnd = stats.frame + MORPH_FRAMES; // new blends run
@@ -230,11 +235,19 @@ export class FramePipeline {
     this.state.tiles = s;
   }
 
+  // A scripted flight's camera as the core takes it, placed on the Earth from the flight's own
+  // doubles, as `hexlod regress` places it in Node (flight.js replayFlight).
+  drawnFlightCamera(flight) {
+    return lodCameraOnEarth(flight, this.layers.ground?.earth ?? FLAT_EARTH, this.flightLodCamera);
+  }
+
   // The camera as the core takes it, in the object made once.
   lodCameraOf(camera, height) {
     const c = this.lodCamera;
-    c.eye = camera.position;
-    c.target = camera.target;
+    // Where the renderer draws from (on_the_earth.js: the drawn frame, the surface's up).
+    c.eye = camera.drawnPosition;
+    c.target = camera.drawnTarget;
+    c.up = camera.drawnUp;
     c.fovY = camera.fovY;
     c.aspect = camera.aspect;
     c.viewportHeight = height;

@@ -46,7 +46,11 @@ export function settingEffects(stage, { rescaleMeasure, showSpacing }) {
       stage.keepCamerasAboveGround();
       renderer.invalidate();
       layers.changed('terrain'); // the HUD describes the new spacing
+      stage.placeOnEarth(); // a geographic grid's metres per degree changed
       showSpacing(t);
+    },
+    earth() {
+      stage.placeOnEarth();
     },
     tiles(key, value) {
       stage.current?.tiles?.setCapBytes(value * 2 ** 20);

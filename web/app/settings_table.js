@@ -11,6 +11,7 @@
 //   mesh      the hexagon mesh is rebuilt (embedding)
 //   ground    the field's spacing: the scale, the mesh and the cameras' ground positions
 //   tiles     the tiled terrain's tile cache (its cap in bytes)
+//   earth     the surface the terrain is drawn on: the core, the renderer and the cameras
 //   none      read where it is used (the freeze switch, limits of the next URL load)
 // core: the setting's hexlod_settings field (Terrain.configure's camelCase name) and how the
 // value maps to it. parse: a typed value's reader (throws why it is refused). coreDiffers: why
@@ -27,6 +28,8 @@ export const NORMAL_SOURCES = ['field', 'mesh'];
  * primitive restart on the same mesh, and ANGLE on Direct3D 11 and Metal converts fans to lists;
  * see BENCHMARKS.md), or the paper's fans. */
 export const LAYOUTS = ['triangles', 'fans'];
+/** What a georeferenced terrain is drawn on, the first the default. */
+export const EARTH_SHAPES = ['curved', 'flat'];
 /** Frames a geomorph blend takes (paper §7) when geomorphing is on. */
 export const MORPH_FRAMES = 8;
 
@@ -55,6 +58,10 @@ export const SETTINGS = {
     core: ['verticalScale', (v) => v], coreDiffers: 'the core draws true heights; relief reads better at twice its height' },
   wireframe: { default: false, panel: [VIEW, 'wireframe: hexagons (O)'], effect: 'view' }, // the hexagon outlines
   colorByLevel: { default: false, panel: [VIEW, 'colour by level (L)'], effect: 'view' },
+  // A georeferenced terrain is drawn on the curved Earth (web/geo/earth_shape.js); flat for
+  // comparison. A terrain without a georeference is flat either way.
+  earth: { default: EARTH_SHAPES[0], choices: EARTH_SHAPES, url: 'earth', urlIfChanged: true, panel: [VIEW, 'Earth'],
+    effect: 'earth' },
   eyeHeight: { default: 2, min: 0.1, max: 2000, step: 0.1, panel: [VIEW, 'walk eye height (m)'], effect: 'camera' },
 
   shading: { default: SHADING_MODES[0], choices: SHADING_MODES, url: 'shading', urlIfChanged: true, panel: [SHADING, 'mode'],

@@ -4,6 +4,7 @@
 import { createWorld } from '../cameras/ground.js';
 import { frameTerrain } from '../cameras/framing.js';
 import { coreSettings } from './settings_table.js';
+import { FLAT_EARTH, earthShapeOf } from '../geo/index.js';
 
 export class TerrainStage {
   /**
@@ -28,6 +29,7 @@ export class TerrainStage {
     this.current?.tiles?.close(); // its requests stop before its terrain goes
     this.current?.terrain.destroy();
     this.layers.terrain = { loaded, source: from };
+    this.placeOnEarth();
     this.makeWorld();
     this.onShown(terrain);
     this.pipeline.forgetFigures(); // the last terrain's "converged" and triangles do not describe this one
@@ -57,6 +59,23 @@ export class TerrainStage {
     this.renderer.invalidate();
   }
 
+  /**
+   * The surface the terrain is drawn on (web/geo/earth_shape.js): the curved Earth under a
+   * georeferenced terrain unless the settings flatten it. The core refines for it, the renderer
+   * and the cameras draw on it (web/cameras/on_the_earth.js).
+   */
+  placeOnEarth() {
+    const loaded = this.current;
+    if (!loaded) return;
+    const { terrain, field } = loaded;
+    const earth = this.settings.earth === 'flat' ? FLAT_EARTH : earthShapeOf(field.georef ?? null, terrain);
+    terrain.setEarth(earth);
+    loaded.earth = earth;
+    if (loaded.world) loaded.world.earth = earth; // picking follows the drawn surface
+    this.renderer.setEarth(earth);
+    this.requestRender?.();
+  }
+
   /** Heights and extent of the world in drawn metres, for the cameras (ground.js) and the shading. */
   makeWorld() {
     const { settings, rig, renderer } = this, loaded = this.current, { terrain } = loaded;
@@ -64,6 +83,7 @@ export class TerrainStage {
     const extent = { extentX: (terrain.width - 1) * terrain.spacingX, extentZ: (terrain.height - 1) * terrain.spacingY,
       low: terrain.minHeight * s, high: terrain.maxHeight * s };
     loaded.world = createWorld(terrain, extent, () => settings.exaggeration, () => 0.5 * rig.cameras.walk.eyeHeight);
+    loaded.world.earth = loaded.earth ?? FLAT_EARTH;
     rig.setWorld(loaded.world);
     renderer.setShading(extent.low, extent.high, extent.extentX, extent.extentZ);
     if (renderer.fieldTextures.terrain !== terrain || renderer.fieldTextures.spacing !== terrain.spacingX) {

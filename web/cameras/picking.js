@@ -1,16 +1,21 @@
 // What lies under the pointer: the ray through a pixel meets the field's surface (bilinear,
-// heights times the exaggeration); the readout gives x, z, the height and the slope there.
+// heights times the exaggeration); the readout gives x, z, the height and the slope there. On
+// the curved Earth the ray runs in the drawn frame and each point of it is brought back to flat
+// metres (web/geo/earth_shape.js) to be compared with the ground under it.
 import { mat4, vec4 } from 'gl-matrix';
+import { FLAT_EARTH, flatPoint } from '../geo/index.js';
 
 const inverse = mat4.create();
 const near = vec4.create(), far = vec4.create();
+const drawn = [0, 0, 0], flat = [0, 0, 0];
 
 /**
  * The ground point under pixel (px, py) of a width x height viewport (CSS pixels from the top
  * left), or null when the ray misses the field.
  * @param {{viewProjection: mat4, position: Float32Array, far: number}} camera matrices up to date
  * @param {{heightAt(x: number, z: number): number}} terrain
- * @param {{extentX: number, extentZ: number, spacing: number, high: number}} world
+ * @param {{extentX: number, extentZ: number, spacing: number, high: number, earth?: object}} world (earth:
+ *   the surface drawn, web/geo/earth_shape.js; the plane without)
  * @param {number} verticalScale the exaggeration
  * @returns {{x: number, z: number, height: number, slopeDeg: number} | null} metres (height
  *   unscaled, as in the file), slope in degrees of the true surface
@@ -25,10 +30,16 @@ export function pickGround(camera, px, py, width, height, terrain, world, vertic
   const length = Math.hypot(e[0] - o[0], e[1] - o[1], e[2] - o[2]);
   const d = [(e[0] - o[0]) / length, (e[1] - o[1]) / length, (e[2] - o[2]) / length];
   const inside = (x, z) => x >= 0 && z >= 0 && x <= world.extentX && z <= world.extentZ;
+  const earth = world.earth ?? FLAT_EARTH;
+  // The flat point (x, drawn height, z) at t along the ray.
+  const at = (t) => {
+    drawn[0] = o[0] + d[0] * t, drawn[1] = o[1] + d[1] * t, drawn[2] = o[2] + d[2] * t;
+    return flatPoint(earth, drawn, flat);
+  };
   // Above the ground at t? Outside the field there is no ground.
   const above = (t) => {
-    const x = o[0] + d[0] * t, z = o[2] + d[2] * t;
-    return !inside(x, z) || o[1] + d[1] * t > terrain.heightAt(x, z) * verticalScale;
+    const [x, y, z] = at(t);
+    return !inside(x, z) || y > terrain.heightAt(x, z) * verticalScale;
   };
   // March in steps of half a sample near the eye, growing with distance (a sub-pixel step on
   // screen), then bisect the crossing.
@@ -37,7 +48,7 @@ export function pickGround(camera, px, py, width, height, terrain, world, vertic
     const step = Math.max(world.spacing * 0.5, t * 0.001);
     const t1 = t + step;
     if (!above(t1)) {
-      const x1 = o[0] + d[0] * t1, z1 = o[2] + d[2] * t1;
+      const [x1, , z1] = at(t1);
       if (inside(x1, z1)) {
         t0 = t;
         let lo = t0, hi = t1;
@@ -45,7 +56,7 @@ export function pickGround(camera, px, py, width, height, terrain, world, vertic
           const mid = 0.5 * (lo + hi);
           if (above(mid)) lo = mid; else hi = mid;
         }
-        const x = o[0] + d[0] * hi, z = o[2] + d[2] * hi;
+        const [x, , z] = at(hi);
         return { x, z, height: terrain.heightAt(x, z), slopeDeg: slopeAt(terrain, x, z, world) };
       }
     }

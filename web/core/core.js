@@ -596,6 +596,18 @@ export class Terrain {
     this.settings = next;
   }
 
+  /**
+   * The surface the terrain is drawn on (hexlod_terrain_set_earth; web/geo/earth_shape.js makes
+   * the shape): the refinement's bound follows its curvature. Kept across configure().
+   * @param {{kind: number, originX: number, originZ: number, radius: number, latitude0: number,
+   *   metresPerRadianX: number, metresPerRadianZ: number}} earth
+   */
+  setEarth(earth) {
+    const e = earth;
+    this.core.check(this.m._hexlod_terrain_set_earth(this.handle, e.kind, e.originX, e.originZ, e.radius, e.latitude0,
+      e.metresPerRadianX, e.metresPerRadianZ) < 0, 'invalid earth shape');
+  }
+
   // --- Diagnostics (src/api/hexlod_diagnostics.h: the diagnostics build only, e.g. in Node) -------
 
   /** The diagnostics function `name`, or a CoreError saying which build has it. */

@@ -26,3 +26,4 @@ export * from './tiff_jpeg_stream.js';
 export { inflate, isInflateError } from './inflate.js';
 export * from './warp_grid.js';
 export * from './earth_frame.js';
+export * from './earth_shape.js';

@@ -8,14 +8,18 @@
 // line goes, then a solid one with the depth test. The solid pass pulls every vertex a little
 // towards the eye (screen position unchanged), so a line at the full-resolution heights is not
 // lost under a mesh that lies up to its screen error above the true surface.
+// On the curved Earth the points are placed on it as the terrain's vertices are (earth.glsl).
 import { linkProgram, uniformLocations } from './gl_program.js';
+import { resolveIncludes } from './shading/includes.js';
+import { EARTH_UNIFORMS, EarthUniforms } from './shading/earth_uniforms.js';
 
 const VERTEX = `#version 300 es
+#include "earth.glsl"
 layout(location = 0) in vec2 aCorner;   // (along 0..1, side -1..1)
 layout(location = 1) in vec3 aFrom;     // segment start (or the disc's centre), metres, height unscaled
 layout(location = 2) in vec3 aTo;       // segment end (the centre again for a disc)
 uniform mat4 uViewProjection;
-uniform vec3 uCameraPosition;
+uniform vec3 uCameraPosition;           // drawn metres
 uniform vec2 uViewport;                 // pixels
 uniform float uVerticalScale;
 uniform float uHalfWidth;               // pixels
@@ -23,7 +27,7 @@ uniform float uTowardEye;               // share of the eye distance the vertex 
 uniform float uDisc;                    // 1: square discs around aFrom
 out vec2 vCorner;
 vec4 project(vec3 p) {
-  vec3 world = vec3(p.x, p.y * uVerticalScale, p.z);
+  vec3 world = earthPosition(vec3(p.x, p.y * uVerticalScale, p.z));
   world = mix(world, uCameraPosition, uTowardEye);
   return uViewProjection * vec4(world, 1.0);
 }
@@ -62,7 +66,10 @@ void main() {
 }`;
 
 const LOCATIONS = { corner: 0, from: 1, to: 2 };
-const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uViewport', 'uVerticalScale', 'uHalfWidth', 'uTowardEye', 'uDisc', 'uColor'];
+// earth.glsl's entry point for a page without the shaders (Node): points stay on the plane.
+const FLAT_EARTH_GLSL = 'vec3 earthPosition(vec3 p) { return p; }';
+const UNIFORMS = ['uViewProjection', ...EARTH_UNIFORMS, 'uViewport', 'uVerticalScale', 'uHalfWidth', 'uTowardEye', 'uDisc', 'uColor'];
+
 const TOWARD_EYE = 0.01;
 /** The two passes: what lies behind the relief (faint, thinner), then what is in view. */
 export const GROUND_PASSES = Object.freeze([
@@ -74,16 +81,28 @@ export const SEGMENT_BYTES = 24, DISC_BYTES = 12;
 
 export class GroundLines {
   /** @param {WebGL2RenderingContext} gl */
-  constructor(gl) {
+  /**
+   * @param {EarthUniforms} [earth] the renderer's: the surface the terrain is drawn on
+   * @param {{'earth.glsl': string}} [includes] the shaders/ files its programs include (the
+   *   renderer's; the default places points on the plane)
+   */
+  constructor(gl, earth = new EarthUniforms(), includes = { 'earth.glsl': FLAT_EARTH_GLSL }) {
     this.gl = gl;
+    this.earth = earth;
+    this.includes = includes;
     this.scale = 1;
     this.createGlObjects();
+  }
+
+  /** GLSL of a program that places points on the ground, the curved Earth's functions included. */
+  compose(source) {
+    return resolveIncludes(source, this.includes);
   }
 
   /** The program and the quad's corners; again after a lost context (users make their VAOs again). */
   createGlObjects() {
     const gl = this.gl;
-    this.program = linkProgram(gl, VERTEX, FRAGMENT, 'ground lines');
+    this.program = linkProgram(gl, this.compose(VERTEX), FRAGMENT, 'ground lines');
     this.uniforms = uniformLocations(gl, this.program, UNIFORMS);
     // A quad as two triangles: (along, side).
     this.cornerBuffer = gl.createBuffer();
@@ -120,7 +139,7 @@ export class GroundLines {
     this.scale = Math.max(1, height / Math.max(1, gl.canvas.clientHeight || height));
     gl.useProgram(this.program);
     gl.uniformMatrix4fv(u.uViewProjection, false, camera.viewProjection);
-    gl.uniform3fv(u.uCameraPosition, camera.position);
+    this.earth.apply(gl, u, camera, verticalScale);
     gl.uniform2f(u.uViewport, width, height);
     gl.uniform1f(u.uVerticalScale, verticalScale);
     gl.disable(gl.CULL_FACE);

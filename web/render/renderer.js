@@ -21,6 +21,7 @@ import groundColorGlsl from '../../shaders/ground_color.glsl?raw';
 import tonemapGlsl from '../../shaders/tonemap.glsl?raw';
 import imageDrapeGlsl from '../../shaders/image_drape.glsl?raw';
 import contoursGlsl from '../../shaders/contours.glsl?raw';
+import earthGlsl from '../../shaders/earth.glsl?raw';
 import { mat4 } from 'gl-matrix';
 import { STREAM_VERTEX_BYTES, STREAM_NORMAL_BYTES } from '../core/core.js';
 import { MeasureOverlay } from './measure_overlay.js';
@@ -31,6 +32,7 @@ import { FieldTextures, TEXTURE_UNIT_GRADIENTS, TEXTURE_UNIT_SUN, TEXTURE_UNIT_O
 import { ImageTextures } from './shading/image_textures.js';
 import { DrapeLayers, DRAPE_UNIFORMS } from './shading/drape_layers.js';
 import { ContourOverlay, CONTOUR_UNIFORMS } from './contours/contour_overlay.js';
+import { EarthUniforms, EARTH_UNIFORMS } from './shading/earth_uniforms.js';
 import { linkProgram, uniformLocations } from './gl_program.js';
 
 export const ATTRIB_POSITION = 0;
@@ -42,20 +44,20 @@ export const ATTRIB_SKY_CORNER = 0;
 export const SHADING_MODES = { natural: 0, hypsometric: 1, slope: 2, hillshade: 3, plain: 4 };
 const SHADER_FILES = { 'scattering.glsl': scatteringGlsl, 'field_textures.glsl': fieldTexturesGlsl,
   'ground_color.glsl': groundColorGlsl, 'tonemap.glsl': tonemapGlsl, 'image_drape.glsl': imageDrapeGlsl,
-  'contours.glsl': contoursGlsl };
+  'contours.glsl': contoursGlsl, 'earth.glsl': earthGlsl };
 const SKY_COLOR = [0.62, 0.74, 0.88]; // the clear colour of the plain mode (no sky pass)
 const OUTLINE_COLOR = new Float32Array([0.08, 0.09, 0.12, 0.55]);
 // view.terrainMask: the terrain's pixels in one colour on black, nothing else (tests find the
 // terrain's pixels by it: the plain ground past the field looks like the terrain's own lowlands).
 const MASK_COLOR = new Float32Array([1, 0, 1, 1]);
 const NO_LINE = new Float32Array([0, 0, 0, 0]);
-const UNIFORMS = ['uViewProjection', 'uCameraPosition', 'uSunDirection', 'uHeightRange', 'uTint', 'uTintAmount',
+const UNIFORMS = ['uViewProjection', ...EARTH_UNIFORMS, 'uSunDirection', 'uHeightRange', 'uTint', 'uTintAmount',
   'uExtent', 'uLineColor', 'uFrame', 'uMorphFrames', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie', 'uScaleHeight',
   'uMieG', 'uSunIrradiance', 'uSunAirMass', 'uSkyLight', 'uExposure', 'uMode', 'uNormalSource', 'uShadows',
   'uOcclusionOn', 'uSnowLine', 'uTreeLine', 'uNoiseScale', 'uGradients', 'uGradientTexel', 'uGradientStep',
   'uGradientTile', 'uGradientTiles', 'uSunVisibility', 'uSunVisibilityMap', 'uOcclusion', 'uOcclusionMap',
   'uImageOpacity', 'uImageUnlit', ...DRAPE_UNIFORMS, ...CONTOUR_UNIFORMS];
-const SKY_UNIFORMS = ['uInverseViewProjection', 'uCameraPosition', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie',
+const SKY_UNIFORMS = ['uInverseViewProjection', ...EARTH_UNIFORMS, 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie',
   'uScaleHeight', 'uMieG', 'uSunDirection', 'uSunIrradiance', 'uSunAirMass', 'uExposure', 'uGroundLevel', 'uSkyLight',
   'uHeightRange', 'uSnowLine', 'uTreeLine', 'uNoiseScale'];
 const NO_GROUND = -1e30; // uGroundLevel without a terrain: the sky alone
@@ -134,6 +136,7 @@ export class TerrainRenderer {
   constructor(gl, forcedTiles = {}) {
     this.gl = gl;
     this.forcedTiles = forcedTiles;
+    this.earth = new EarthUniforms(); // the plane until setEarth; the lines on the ground share it
     this.createGlObjects();
     this.heightRange = [0, 1];
     /** [true low, true high, snow line, tree line, noise scale, drawn ground level, NO_GROUND] (setGroundColourUniforms) */
@@ -144,6 +147,11 @@ export class TerrainRenderer {
     this.sunDirection = this.atmosphere.sunDirection;
     this.lastUploadBytes = 0;
     this.streamBytes = 0; // bytes of the whole stream (what a full upload would copy)
+  }
+
+  /** The surface the terrain is drawn on (web/geo/earth_shape.js), as the core refines for it. */
+  setEarth(earth) {
+    this.earth.set(earth);
   }
 
   /**
@@ -192,7 +200,7 @@ export class TerrainRenderer {
     // Lines on the ground (ground_lines.js), shared by the measured line and the overlays: one
     // object for the page's life, its GL objects made again after a lost context.
     if (this.groundLines) this.groundLines.createGlObjects();
-    else this.groundLines = new GroundLines(gl);
+    else this.groundLines = new GroundLines(gl, this.earth, SHADER_FILES);
     // The measured line on the ground (measure_overlay.js): its data outlives a lost context.
     if (this.measureOverlay) this.measureOverlay.createGlObjects();
     else this.measureOverlay = new MeasureOverlay(this.groundLines);
@@ -415,7 +423,7 @@ export class TerrainRenderer {
     gl.uniform3fv(u.uSkyLight, this.atmosphere.skyLight);
     mat4.invert(this.inverseViewProjection, camera.viewProjection); // no allocation
     gl.uniformMatrix4fv(u.uInverseViewProjection, false, this.inverseViewProjection);
-    gl.uniform3fv(u.uCameraPosition, camera.position);
+    this.earth.apply(gl, u, camera, verticalScale);
     gl.uniform1f(u.uVerticalScale, verticalScale);
     this.setAtmosphereUniforms(u);
     gl.depthMask(false);
@@ -443,7 +451,7 @@ export class TerrainRenderer {
     gl.useProgram(this.program);
     const u = this.uniforms;
     gl.uniformMatrix4fv(u.uViewProjection, false, camera.viewProjection);
-    gl.uniform3fv(u.uCameraPosition, camera.position);
+    this.earth.apply(gl, u, camera, verticalScale);
     this.setGroundColourUniforms(u, verticalScale);
     const low = this.heightRange[0] / verticalScale, high = this.heightRange[1] / verticalScale;
     gl.uniform2f(u.uExtent, this.extent[0], this.extent[1]);

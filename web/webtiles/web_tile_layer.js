@@ -119,7 +119,8 @@ export class WebTileLayer {
    * @returns {boolean} whether it chose tiles
    */
   update(camera, viewport) {
-    const m = camera.viewProjection, last = this.lastMatrix, key = this.lastKey;
+    // The flat camera's matrix (on_the_earth.js): the tiles are chosen over the flat field.
+    const m = camera.flatViewProjection ?? camera.viewProjection, last = this.lastMatrix, key = this.lastKey;
     let changed = this.dirty || key[0] !== viewport.height || key[1] !== this.terrain.low || key[2] !== this.terrain.high || key[3] !== camera.fovY;
     for (let i = 0; i < 16 && !changed; i++) changed = last[i] !== m[i];
     if (!changed) return false;
@@ -142,7 +143,7 @@ export class WebTileLayer {
 
   select(camera, viewport) {
     const v = this.view, table = this.textures.range;
-    v.position = camera.position; v.viewProjection = camera.viewProjection; v.fovY = camera.fovY;
+    v.position = camera.position; v.viewProjection = camera.flatViewProjection ?? camera.viewProjection; v.fovY = camera.fovY;
     v.viewportHeight = viewport.height; v.terrain = this.terrain; v.toMercator = this.toMercator; v.bounds = this.bounds;
     v.tileSize = this.textures.tileSize || DEFAULT_TILE_SIZE;
     v.minZoom = Math.min(this.spec.minZoom, table.zoom);

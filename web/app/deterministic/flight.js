@@ -15,7 +15,8 @@
 //     "settings": { "tau": 1, "exaggeration": 2, "operations": 1000, "geomorph": true,
 //                   "embedding": "exact", "culling": true, "backfaceCulling": true,
 //                   "imageOpacity": 1, "imageUnlit": false,         these two for an image
-//                   "contours": true, "contourInterval": 50 },      contour lines; the interval in metres or "auto"
+//                   "contours": true, "contourInterval": 50,        contour lines; the interval in metres or "auto"
+//                   "earth": "curved" },                            or "flat": the surface a georeferenced field is drawn on
 //     "captures": [0, 30, 59],                     frames to screenshot
 //     "keyframes": [ { "time": 0, "position": [x, y, z], "target": [x, y, z], "fov": 50 }, ... ],
 //     "track": "route.gpx",                         instead of "keyframes": fly along a track of a GPX, KML,
@@ -27,11 +28,14 @@
 //   }
 // Positions are metres of the height field: x east from the first column, z south from the first
 // row, y the height above the field's zero (not exaggerated: the exaggeration is applied here).
+// On the curved Earth they are placed on it as the page's cameras are (web/cameras/on_the_earth.js).
 // Between keyframes, position, target and fov follow a cubic Hermite spline with Catmull-Rom
 // tangents for uneven times (C1: no jumps in velocity). Only +, -, *, / and sqrt enter the path
 // (exact in IEEE arithmetic) and one Math.tan of the fov (fdlibm in V8 both in Chromium and
 // Node), so the page and Node compute bit-identical cameras.
-import { defaultSettings, coreSettings } from '../settings_table.js';
+import { defaultSettings, coreSettings, EARTH_SHAPES } from '../settings_table.js';
+import { FLAT_EARTH, earthShapeOf } from '../../geo/index.js';
+import { lodCameraOnEarth } from '../../cameras/on_the_earth.js';
 import { FRAME } from '../../core/core.js';
 import { parseTolerance } from './tolerance.js';
 import { parseContourInterval } from '../../measure/contour_levels.js';
@@ -62,6 +66,8 @@ const SETTING_KINDS = {
   // Contour lines (settings_table.js), likewise kept only when set: the interval in metres or 'auto'.
   contours: 'boolean',
   contourInterval: 'contourInterval',
+  // The surface (settings_table.js): curved (the default) or flat, kept only when set.
+  earth: EARTH_SHAPES,
 };
 
 /**
@@ -246,6 +252,7 @@ export function flightSettings(flight) {
     ...(s.imageUnlit !== undefined && { imageUnlit: s.imageUnlit }),
     ...(s.contours !== undefined && { contours: s.contours }),
     ...(s.contourInterval !== undefined && { contourInterval: s.contourInterval }),
+    ...(s.earth !== undefined && { earth: s.earth }),
   });
 }
 
@@ -401,21 +408,29 @@ export class FlightRecord {
  * one budgeted LOD update, the fan stream (and the renderer's acknowledgement of its upload).
  * Node replays call this; the page makes the same calls from its frame loop (web/app/main.js).
  */
-export function replayFrame(terrain, camera, record, frame) {
-  terrain.setLodCamera(camera.at(frame));
+export function replayFrame(terrain, camera, record, frame, earth = FLAT_EARTH, placed = newPlacedCamera()) {
+  terrain.setLodCamera(lodCameraOnEarth(camera.at(frame), earth, placed));
   const operations = terrain.updateLod();
   record.record(terrain, operations);
   terrain.updateStream();
   terrain.acknowledgeStream();
 }
 
-/** Replays a whole flight on a loaded terrain (Node). Returns the FlightRecord. */
-export function replayFlight(terrain, flight) {
+const newPlacedCamera = () => ({ eye: [0, 0, 0], target: [0, 0, 0], up: [0, 1, 0] });
+
+/**
+ * Replays a whole flight on a loaded terrain (Node), on the Earth as the page draws it (the
+ * flight's earth setting; curved needs the field's georeference). Returns the FlightRecord.
+ */
+export function replayFlight(terrain, flight, georef = null) {
   const settings = flightSettings(flight);
   prepareTerrain(terrain, settings);
+  const earth = settings.earth === 'flat' ? FLAT_EARTH : earthShapeOf(georef, terrain);
+  terrain.setEarth(earth);
   const [w, h] = flight.viewport;
   const camera = new FlightCamera(flight, terrain, Math.round(w * flight.dpr), Math.round(h * flight.dpr));
   const record = new FlightRecord(flight.frames);
-  for (let f = 0; f < flight.frames; f++) replayFrame(terrain, camera, record, f);
+  const placed = newPlacedCamera();
+  for (let f = 0; f < flight.frames; f++) replayFrame(terrain, camera, record, f, earth, placed);
   return record;
 }

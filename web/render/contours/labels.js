@@ -4,6 +4,7 @@
 // kept upright, dropped where they would overlap a label already placed or where the ground
 // between the eye and the point hides it (the core's bilinear heights along the sight line).
 // A frame allocates nothing: every per-frame array is made once (or when the viewport grows).
+import { FLAT_EARTH, drawnPoint } from '../../geo/index.js';
 import { inSight } from '../sight_line.js';
 import { labelGlyphs, CELL_W, CELL_H, ADVANCE } from './glyph_atlas.js';
 
@@ -14,6 +15,8 @@ const MAX_LABELS = 96, MAX_GLYPHS = 8;
 /** Label height in CSS pixels. */
 export const LABEL_PX = 13;
 const GRID = 8; // pixels per cell of the occupancy grid
+
+const drawn = [0, 0, 0]; // a label's drawn point, reused
 
 export class LabelPlacer {
   constructor() {
@@ -95,7 +98,7 @@ export class LabelPlacer {
    * @param {{heightAt(x: number, z: number): number}} terrain the core's bilinear heights, true metres
    */
   place(camera, width, height, pxScale, verticalScale, terrain) {
-    const m = camera.viewProjection, eye = camera.position;
+    const m = camera.viewProjection, eye = camera.position, earth = camera.earth ?? FLAT_EARTH;
     const gw = Math.ceil(width / GRID), gh = Math.ceil(height / GRID);
     if (this.occupied.length < gw * gh) this.occupied = new Uint8Array(gw * gh); // only when the viewport grows
     const occupied = this.occupied;
@@ -104,19 +107,21 @@ export class LabelPlacer {
     let labels = 0, glyphs = 0;
     for (let k = 0; k < this.count && labels < MAX_LABELS; ++k) {
       const x = this.x[k], y = this.h[k] * verticalScale, z = this.z[k];
-      const w = m[3] * x + m[7] * y + m[11] * z + m[15];
+      // Where it is drawn (on the curved Earth, web/geo/earth_shape.js).
+      const [px, py, pz] = drawnPoint(earth, x, y, z, drawn);
+      const w = m[3] * px + m[7] * py + m[11] * pz + m[15];
       if (!(w > 0)) continue;
-      const sx = ((m[0] * x + m[4] * y + m[8] * z + m[12]) / w + 1) * 0.5 * width;
-      const sy = ((m[1] * x + m[5] * y + m[9] * z + m[13]) / w + 1) * 0.5 * height;
+      const sx = ((m[0] * px + m[4] * py + m[8] * pz + m[12]) / w + 1) * 0.5 * width;
+      const sy = ((m[1] * px + m[5] * py + m[9] * pz + m[13]) / w + 1) * 0.5 * height;
       const n = this.glyphCount[k], halfW = 0.5 * n * advance + 2 * pxScale;
       if (sx < halfW || sy < glyphH || sx > width - halfW || sy > height - glyphH) continue;
       // The contour's direction on the screen: a point a little along it, projected.
       const d = 0.01 * Math.hypot(x - eye[0], y - eye[1], z - eye[2]);
-      const x2 = x + this.tx[k] * d, z2 = z + this.tz[k] * d;
-      const w2 = m[3] * x2 + m[7] * y + m[11] * z2 + m[15];
+      const [x2, y2, z2] = drawnPoint(earth, x + this.tx[k] * d, y, z + this.tz[k] * d, drawn);
+      const w2 = m[3] * x2 + m[7] * y2 + m[11] * z2 + m[15];
       if (!(w2 > 0)) continue;
-      let ax = ((m[0] * x2 + m[4] * y + m[8] * z2 + m[12]) / w2 + 1) * 0.5 * width - sx;
-      let ay = ((m[1] * x2 + m[5] * y + m[9] * z2 + m[13]) / w2 + 1) * 0.5 * height - sy;
+      let ax = ((m[0] * x2 + m[4] * y2 + m[8] * z2 + m[12]) / w2 + 1) * 0.5 * width - sx;
+      let ay = ((m[1] * x2 + m[5] * y2 + m[9] * z2 + m[13]) / w2 + 1) * 0.5 * height - sy;
       const len = Math.hypot(ax, ay);
       if (len < 0.002 * width) continue; // the contour runs towards the eye: a label would be a sliver
       ax /= len; ay /= len;

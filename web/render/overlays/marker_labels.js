@@ -3,6 +3,7 @@
 // in view are projected, and a name is drawn where it overlaps no name already placed and the
 // ground does not hide its marker (sight_line.js, as the contour labels). In GL, not the DOM,
 // so screenshots carry them. A frame allocates nothing.
+import { FLAT_EARTH, drawnPoint } from '../../geo/index.js';
 import { linkProgram, uniformLocations } from '../gl_program.js';
 import { inSight } from '../sight_line.js';
 import { TEXTURE_UNIT_GLYPHS } from '../contours/contour_overlay.js';
@@ -38,6 +39,8 @@ in vec2 vUv;
 uniform sampler2D uAtlas;
 out vec4 color;
 void main() { color = texture(uAtlas, vUv); }`;
+
+const drawn = [0, 0, 0]; // a marker's drawn point, reused
 
 export class MarkerLabels {
   /**
@@ -105,7 +108,7 @@ export class MarkerLabels {
   draw(camera, width, height, verticalScale, markers, terrain, pxScale) {
     this.shown = 0;
     if (!this.program || !terrain) return;
-    const m = camera.viewProjection, eye = camera.position;
+    const m = camera.viewProjection, eye = camera.position, earth = camera.earth ?? FLAT_EARTH;
     const gw = Math.ceil(width / GRID), gh = Math.ceil(height / GRID);
     if (this.occupied.length < gw * gh) this.occupied = new Uint8Array(gw * gh); // only when the viewport grows
     this.occupied.fill(0, 0, gw * gh);
@@ -115,10 +118,12 @@ export class MarkerLabels {
       const cell = this.cells[k];
       if (cell < 0) continue;
       const x = markers[3 * k], y = markers[3 * k + 1] * verticalScale, z = markers[3 * k + 2];
-      const w = m[3] * x + m[7] * y + m[11] * z + m[15];
+      // Where it is drawn (on the curved Earth, web/geo/earth_shape.js).
+      const [dx, dy, dz] = drawnPoint(earth, x, y, z, drawn);
+      const w = m[3] * dx + m[7] * dy + m[11] * dz + m[15];
       if (!(w > 0)) continue;
-      const sx = ((m[0] * x + m[4] * y + m[8] * z + m[12]) / w + 1) * 0.5 * width + gap;
-      const sy = ((m[1] * x + m[5] * y + m[9] * z + m[13]) / w + 1) * 0.5 * height;
+      const sx = ((m[0] * dx + m[4] * dy + m[8] * dz + m[12]) / w + 1) * 0.5 * width + gap;
+      const sy = ((m[1] * dx + m[5] * dy + m[9] * dz + m[13]) / w + 1) * 0.5 * height;
       const labelW = this.widths[cell] * cellW;
       if (sx < 0 || sy < cellH / 2 || sx + labelW > width || sy > height - cellH / 2) continue;
       const i0 = Math.floor(sx / GRID), i1 = Math.min(gw - 1, Math.floor((sx + labelW) / GRID));

@@ -4,13 +4,15 @@
 // changes; draw() allocates nothing.
 import { GROUND_PASSES } from '../ground_lines.js';
 import { linkProgram, uniformLocations } from '../gl_program.js';
+import { EARTH_UNIFORMS } from '../shading/earth_uniforms.js';
 import { MarkerLabels } from './marker_labels.js';
 
 const CURTAIN_VERTEX = `#version 300 es
+#include "earth.glsl"
 layout(location = 0) in vec3 aPosition;  // metres, height unscaled
 uniform mat4 uViewProjection;
 uniform float uVerticalScale;
-void main() { gl_Position = uViewProjection * vec4(aPosition.x, aPosition.y * uVerticalScale, aPosition.z, 1.0); }`;
+void main() { gl_Position = uViewProjection * vec4(earthPosition(vec3(aPosition.x, aPosition.y * uVerticalScale, aPosition.z)), 1.0); }`;
 const CURTAIN_FRAGMENT = `#version 300 es
 precision mediump float;
 uniform vec4 uColor;
@@ -37,8 +39,8 @@ export class OverlayDrawing {
     this.gl = gl;
     this.segmentVao = this.lines.makeVao((this.segmentBuffer = gl.createBuffer()), 'segment');
     this.markerVao = this.lines.makeVao((this.markerBuffer = gl.createBuffer()), 'disc');
-    this.curtainProgram = linkProgram(gl, CURTAIN_VERTEX, CURTAIN_FRAGMENT, 'overlay curtain');
-    this.curtainUniforms = uniformLocations(gl, this.curtainProgram, ['uViewProjection', 'uVerticalScale', 'uColor']);
+    this.curtainProgram = linkProgram(gl, this.lines.compose(CURTAIN_VERTEX), CURTAIN_FRAGMENT, 'overlay curtain');
+    this.curtainUniforms = uniformLocations(gl, this.curtainProgram, ['uViewProjection', 'uVerticalScale', 'uColor', ...EARTH_UNIFORMS]);
     this.curtainVao = gl.createVertexArray();
     gl.bindVertexArray(this.curtainVao);
     this.curtainBuffer = gl.createBuffer();
@@ -92,6 +94,7 @@ export class OverlayDrawing {
     const gl = this.gl, u = this.curtainUniforms, c = this.style.color;
     gl.useProgram(this.curtainProgram);
     gl.uniformMatrix4fv(u.uViewProjection, false, camera.viewProjection);
+    this.lines.earth.apply(gl, u, camera, verticalScale);
     gl.uniform1f(u.uVerticalScale, verticalScale);
     gl.uniform4f(u.uColor, c[0], c[1], c[2], CURTAIN_ALPHA);
     gl.bindVertexArray(this.curtainVao);

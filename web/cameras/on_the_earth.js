@@ -1,0 +1,63 @@
+// The cameras move in flat metres (x east, height above the surface's zero, z south); on the
+// curved Earth their eye and target are drawn where those flat points are (web/geo/earth_shape.js),
+// looking with the surface's up under the eye. So an orbit keeps its distance over the ground, a
+// walk stays on it, and a camera 10 km up sees the horizon dip as it does from 10 km.
+import { mat4 } from 'gl-matrix';
+import { EARTH_FLAT, drawnPoint, drawnUp } from '../geo/index.js';
+
+/**
+ * Sets camera.drawnPosition, drawnTarget, drawnUp, earth and flatViewProjection (made once per
+ * camera), and on the curved Earth its view and view-projection from the drawn eye, target and
+ * up. Call after camera.update().
+ * @param {{position: ArrayLike<number>, target: ArrayLike<number>, up: ArrayLike<number>,
+ *   view: mat4, projection: mat4, viewProjection: mat4}} camera
+ * @param {object} earth a shape of web/geo/earth_shape.js
+ */
+export function placeOnEarth(camera, earth) {
+  if (!camera.drawnPosition) {
+    camera.drawnPosition = new Float64Array(3);
+    camera.drawnTarget = new Float64Array(3);
+    camera.drawnUp = new Float64Array(3);
+    camera.flatViewProjection = mat4.create();
+  }
+  camera.earth = earth; // what draws on the terrain places its points with it (drawnPoint)
+  // The flat camera's matrix, for what chooses data by the flat view (web map tiles).
+  mat4.copy(camera.flatViewProjection, camera.viewProjection);
+  const p = camera.position, t = camera.target;
+  if (earth.kind === EARTH_FLAT) {
+    camera.drawnPosition.set(p);
+    camera.drawnTarget.set(t);
+    camera.drawnUp.set(camera.up);
+    return;
+  }
+  // The far plane reaches the farthest flat corner; rows drawn wider than flat reach further.
+  if (earth.stretch > 1) {
+    camera.far *= earth.stretch;
+    mat4.perspective(camera.projection, camera.fovY, camera.aspect, camera.near, camera.far);
+  }
+  drawnPoint(earth, p[0], p[1], p[2], camera.drawnPosition);
+  drawnPoint(earth, t[0], t[1], t[2], camera.drawnTarget);
+  drawnUp(earth, p[0], p[2], camera.drawnUp);
+  mat4.lookAt(camera.view, camera.drawnPosition, camera.drawnTarget, camera.drawnUp);
+  mat4.multiply(camera.viewProjection, camera.projection, camera.view);
+}
+
+/**
+ * A camera as the core takes it ({eye, target, up, far, ...}: flat metres) placed on the curved
+ * Earth, into `out` (its eye, target and up arrays made once by the caller; the other fields
+ * copied). From the same doubles, the page and `hexlod regress` in Node give the core the same
+ * camera.
+ */
+export function lodCameraOnEarth(lod, earth, out) {
+  Object.assign(out, lod, { eye: out.eye, target: out.target, up: out.up });
+  const e = lod.eye, t = lod.target;
+  if (earth.kind === EARTH_FLAT) {
+    for (let k = 0; k < 3; k++) out.eye[k] = e[k], out.target[k] = t[k], out.up[k] = lod.up ? lod.up[k] : k === 1 ? 1 : 0;
+    return out;
+  }
+  drawnPoint(earth, e[0], e[1], e[2], out.eye);
+  drawnPoint(earth, t[0], t[1], t[2], out.target);
+  drawnUp(earth, e[0], e[2], out.up);
+  out.far = lod.far * Math.max(1, earth.stretch);
+  return out;
+}
