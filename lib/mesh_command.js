@@ -13,7 +13,7 @@ import { readImageFiles } from './image_files.js';
 import { RESTART_INDEX, STREAM_VERTEX_WORDS } from '../web/core/core.js';
 import { locateImageFile } from '../web/imagery/image_location.js';
 import { openCogInput, tilesForCommand, settleTiles } from './cog_input.js';
-import { toLonLat, sampleToCrs, eastUpSouthAt } from '../web/geo/index.js';
+import { EARTH_FLAT, FLAT_EARTH, drawnPoint, drawnUp, earthShapeOf, geoCoordinates } from '../web/geo/index.js';
 
 export const MESH_USAGE = `usage: hexlod mesh <heightfield>... (--max-error M | --camera X,Y,Z --target X,Y,Z) [options]
   Several .hgt or GeoTIFF tiles of one grid make one mosaic. A Cloud-Optimized GeoTIFF (tiled,
@@ -43,9 +43,13 @@ export const MESH_USAGE = `usage: hexlod mesh <heightfield>... (--max-error M | 
                         its .prj or GDAL .aux.xml beside it (IMAGE.prj, IMAGE.jpg.aux.xml) give
                         its CRS when the image names none
   --world-file FILE     the image's world file (default: IMAGE.jgw, .jpgw, .wld ... beside it)
-  --earth E             the OBJ's frame: flat (default, as the page draws: x east from the first
-                        column, z south from the first row) or curved (a georeferenced field on
-                        the WGS 84 ellipsoid, in the east-up-south frame at the field's centre)
+  --earth E             the surface, as the page draws it: curved (the default for a
+                        georeferenced field: a geographic grid on the WGS 84 ellipsoid, a
+                        projected one wrapped on a sphere of the Earth's radius there; metres
+                        east, up and south of the field's centre) or flat (the default without a
+                        georeference: x east from the first column, z south from the first row).
+                        The refinement bounds its error on that surface; --camera and --target
+                        stay flat metres, placed on it as the page places its cameras
 ${FILE_USAGE}`;
 
 const OPTIONS = {
@@ -85,9 +89,12 @@ export function meshSettings(args) {
     json: values.json ?? null,
     image: values.image ?? null,
     worldFile: values['world-file'] ?? null,
-    earth: values.earth ?? 'flat',
+    earth: values.earth ?? null, // null: as the page draws the field (curved when it has a georeference)
+    earthShape: FLAT_EARTH,        // the surface itself (web/geo/earth_shape.js), once the field is read
   };
-  if (!['flat', 'curved'].includes(settings.earth)) throw new UsageError(`--earth is flat or curved, not '${settings.earth}'`);
+  if (settings.earth !== null && !['flat', 'curved'].includes(settings.earth)) {
+    throw new UsageError(`--earth is flat or curved, not '${settings.earth}'`);
+  }
   if (hasError) {
     settings.maxError = parseNumber('max-error', values['max-error'], { min: 0, exclusiveMin: true });
   } else {
@@ -113,9 +120,17 @@ export function meshSettings(args) {
  */
 export async function refine(terrain, settings, tiles = null) {
   terrain.resetMesh(settings.embedding);
+  const earth = settings.earthShape ?? FLAT_EARTH;
+  terrain.setEarth(earth);
   let camera = null;
   if (settings.mode === 'view') {
     camera = cameraFor(terrain, settings.eye, settings.target, settings.fov, settings.viewport);
+    if (earth.kind !== EARTH_FLAT) {
+      // Placed on the curved Earth as the page places its cameras (web/cameras/on_the_earth.js).
+      const [e, t] = [settings.eye, settings.target];
+      camera = { ...camera, eye: drawnPoint(earth, ...e), target: drawnPoint(earth, ...t), up: drawnUp(earth, e[0], e[2]),
+        far: camera.far * earth.stretch };
+    }
     terrain.setLodCamera(camera);
     terrain.configure({ tauPx: settings.tau, maxErrorM: 0 });
   } else {
@@ -182,6 +197,15 @@ export async function mesh(args) {
   const cog = settings.files.length === 1 ? await openCogInput(settings.files[0]) : null;
   const { terrain, field, spacingX, spacingY, tiles } = cog
     ? await tilesForCommand(cog, settings.cellSize) : await loadForCommand(settings.files, settings.cellSize);
+  // The surface, as the page draws this field; checked, as the image is, before refining.
+  settings.earth ??= field.georef ? 'curved' : 'flat';
+  if (settings.earth === 'curved') {
+    if (!field.georef) throw new Error(`${field.source}: --earth curved needs a georeferenced field (this one has no CRS or geotransform)`);
+    settings.earthShape = earthShapeOf(field.georef, terrain);
+    if (settings.earthShape.kind === EARTH_FLAT) {
+      throw new Error(`${field.source}: --earth curved needs the latitude of its centre, which its CRS (${field.georef.crs.label}) does not give here`);
+    }
+  }
   // The image is placed before refining, so a refused one costs no refinement.
   const image = settings.image !== null ? await placedImage(settings, terrain, field) : null;
   const run = await refine(terrain, settings, tiles);
@@ -205,8 +229,7 @@ export async function mesh(args) {
   const repaired = resolveDegenerate(positions, STREAM_VERTEX_WORDS, triangles);
   const clipped = clipToRectangle(positions, STREAM_VERTEX_WORDS, repaired.triangles, xMax, zMax);
   const name = field.source; // the file's name, or the mosaic's ("a.hgt + 3 more (mosaic 2 × 2)")
-  // On the curved Earth the field is checked before anything is written.
-  const curved = settings.earth === 'curved' ? onTheEllipsoid(clipped.vertices, field.georef, terrain, spacingX, spacingY, name) : null;
+  const curved = settings.earthShape.kind !== EARTH_FLAT ? onTheEarth(clipped.vertices, field.georef, terrain, settings.earthShape) : null;
   if (settings.obj) {
     const comments = [
       `hexlod mesh of ${name}: ${clipped.vertices.length / 3} vertices, ${clipped.faces.length / 3} triangles`,
@@ -364,27 +387,21 @@ function imageLine({ file, worldFile, location }) {
 }
 
 /**
- * The mesh's vertices (x east and z south of the first sample, y height, metres) on the WGS 84
- * ellipsoid, in the east-up-south frame at the field's centre (web/geo/earth_frame.js).
+ * The mesh's vertices (x east and z south of the first sample, y height, metres) as the page
+ * draws them on the curved Earth (web/geo/earth_shape.js): metres east, up and south of the
+ * field's centre.
  * @returns {{ vertices: Float64Array, centre: string }}
- * @throws {Error} for a field without a georeference, or whose CRS has no definition
  */
-function onTheEllipsoid(vertices, georef, terrain, spacingX, spacingY, name) {
-  if (!georef) throw new Error(`${name}: --earth curved needs a georeferenced field (this one has no CRS or geotransform)`);
-  const lonLat = georef.crs.geographic ? (x, y) => [x, y] : toLonLat(georef.crs);
-  if (!lonLat) throw new Error(`${name}: --earth curved needs the definition of its CRS (${georef.crs.label}), which is unknown here`);
-  const placeOf = (x, z) => lonLat(...sampleToCrs(georef, x / spacingX, z / spacingY));
-  const [lon0, lat0] = placeOf(((terrain.width - 1) / 2) * spacingX, ((terrain.height - 1) / 2) * spacingY);
-  const frame = eastUpSouthAt(lon0, lat0);
+function onTheEarth(vertices, georef, terrain, earth) {
   const out = new Float64Array(vertices.length), p = [0, 0, 0];
   for (let i = 0; i < vertices.length; i += 3) {
-    const [lon, lat] = placeOf(vertices[i], vertices[i + 2]);
-    if (!Number.isFinite(lon) || !Number.isFinite(lat)) throw new Error(`${name}: a vertex lies where its CRS has no longitude and latitude`);
-    frame(lon, lat, vertices[i + 1], p);
+    drawnPoint(earth, vertices[i], vertices[i + 1], vertices[i + 2], p);
     out[i] = p[0];
     out[i + 1] = p[1];
     out[i + 2] = p[2];
   }
+  const c = geoCoordinates(georef, earth.originX, earth.originZ, terrain.spacingX, terrain.spacingY);
+  const [lat0, lon0] = [c.lat, c.lon];
   const centre = `${Math.abs(lat0).toFixed(5)}° ${lat0 < 0 ? 'S' : 'N'} ${Math.abs(lon0).toFixed(5)}° ${lon0 < 0 ? 'W' : 'E'}`;
   return { vertices: out, centre };
 }

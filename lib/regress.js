@@ -155,7 +155,7 @@ async function replayInNode(job, dem, trackFile) {
       }
       job.flight = withKeyframes(job.flight, keyframes);
     }
-    return replayFlight(loaded.terrain, job.flight).toArray();
+    return replayFlight(loaded.terrain, job.flight, loaded.field.georef ?? null).toArray();
   } finally {
     loaded.terrain.destroy();
   }

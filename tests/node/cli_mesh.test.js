@@ -1,6 +1,7 @@
 // hexlod mesh, run as a user runs it: the OBJ it writes is checked as geometry (inside the data
 // rectangle, counter-clockwise from above, watertight, covering the rectangle exactly) and the
-// JSON's figures against the settings.
+// JSON's figures against the settings. Georeferenced fixtures are meshed with --earth flat here,
+// in the frame of their samples; the curved Earth's frame is cli_mesh_earth.test.js's.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
@@ -123,7 +124,7 @@ for (const [file, width, height, dx, dy] of FIXTURES) {
   test(`mesh --max-error 5 on ${file}: the OBJ is a watertight counter-clockwise terrain over the data rectangle, within 5 m`, () => {
     const dir = scratch();
     const obj = join(dir, 'mesh.obj'), json = join(dir, 'mesh.json');
-    const r = run('mesh', fixture(file), '--max-error', '5', '--obj', obj, '--json', json);
+    const r = run('mesh', fixture(file), '--max-error', '5', '--earth', 'flat', '--obj', obj, '--json', json);
     assert.equal(r.status, 0, r.stderr);
     assert.equal(r.stderr, '');
     assert.match(r.stdout, /converged after \d+ update/);
@@ -162,7 +163,7 @@ test('mesh with a camera converges, reports its triangles and writes a valid OBJ
   const dir = scratch();
   const obj = join(dir, 'view.obj'), json = join(dir, 'view.json');
   // Over the north-west corner of the Grand Canyon, 2.5 km up, looking south-east and down.
-  const r = run('mesh', fixture('grandcanyon_512.png'), '--camera', '-500,3000,-500', '--target', '15000,1000,15000',
+  const r = run('mesh', fixture('grandcanyon_512.png'), '--earth', 'flat', '--camera', '-500,3000,-500', '--target', '15000,1000,15000',
     '--fov', '50', '--viewport', '1280x720', '--tau', '2', '--obj', obj, '--json', json);
   assert.equal(r.status, 0, r.stderr);
   const report = JSON.parse(readFileSync(json, 'utf8'));
@@ -180,7 +181,7 @@ test('mesh with a camera converges, reports its triangles and writes a valid OBJ
 test('mesh --budget-splits N stops after one update of at most N operations and still writes a valid mesh', () => {
   const dir = scratch();
   const obj = join(dir, 'budget.obj'), json = join(dir, 'budget.json');
-  const r = run('mesh', fixture('jacksboro_fault.f32'), '--camera', '15000,2500,40000', '--target', '15000,500,15000',
+  const r = run('mesh', fixture('jacksboro_fault.f32'), '--earth', 'flat', '--camera', '15000,2500,40000', '--target', '15000,500,15000',
     '--budget-splits', '40', '--obj', obj, '--json', json);
   assert.equal(r.status, 0, r.stderr);
   const report = JSON.parse(readFileSync(json, 'utf8'));
@@ -291,7 +292,7 @@ const BLUE_MARBLE = fixture('imagery/bmng_himalaya_4arcmin.jpg');
 test('mesh --image: every vertex gets the texture coordinate of its ground point in the georeferenced image, and NAME.mtl names the image', () => {
   const dir = scratch();
   const obj = join(dir, 'draped.obj'), json = join(dir, 'draped.json');
-  const r = run('mesh', DEFAULT_TERRAIN, '--max-error', '1500', '--obj', obj, '--json', json, '--image', BLUE_MARBLE);
+  const r = run('mesh', DEFAULT_TERRAIN, '--max-error', '1500', '--earth', 'flat', '--obj', obj, '--json', json, '--image', BLUE_MARBLE);
   assert.equal(r.status, 0, r.stderr);
   assert.equal(r.stderr, '', 'a georeferenced image gives no warning');
   assert.match(r.stdout, /image +bmng_himalaya_4arcmin\.jpg: 256 x 257 pixels, georeferenced by bmng_himalaya_4arcmin\.jgw/);
@@ -352,7 +353,7 @@ test('mesh --image without a world file stretches the image over the field and s
   const dir = scratch();
   const image = join(dir, 'plain.jpg'), obj = join(dir, 'plain.obj');
   copyFileSync(BLUE_MARBLE, image);
-  const r = run('mesh', DEFAULT_TERRAIN, '--max-error', '3000', '--obj', obj, '--image', image);
+  const r = run('mesh', DEFAULT_TERRAIN, '--max-error', '3000', '--earth', 'flat', '--obj', obj, '--image', image);
   assert.equal(r.status, 0, r.stderr);
   assert.match(r.stderr, /^hexlod: warning: plain\.jpg: the image has no georeference: stretched over the whole field$/m);
   assert.match(r.stdout, /image +plain\.jpg: .*STRETCHED over the whole field/);

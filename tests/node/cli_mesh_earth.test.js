@@ -75,15 +75,23 @@ test('a zero-height field 60° x 40° exported on the curved Earth: every vertex
   assert.equal(JSON.parse(readFileSync(json, 'utf8')).settings.earth, 'curved');
 });
 
-test('the default is flat, as the page draws; a field without a georeference and a bad --earth are refused', () => {
+test('the default is as the page draws: curved with a georeference, flat without; --earth flat flattens it, a bad --earth is refused', () => {
+  const byDefault = join(dir, 'default.json');
+  const curved = run('mesh', join(dir, 'zero.asc'), '--max-error', '1', '--json', byDefault);
+  assert.equal(curved.status, 0, curved.stderr);
+  assert.equal(JSON.parse(readFileSync(byDefault, 'utf8')).settings.earth, 'curved');
   const obj = join(dir, 'flat.obj'), json = join(dir, 'flat.json');
-  const flat = run('mesh', join(dir, 'zero.asc'), '--max-error', '1', '--obj', obj, '--json', json);
+  const flat = run('mesh', join(dir, 'zero.asc'), '--max-error', '1', '--earth', 'flat', '--obj', obj, '--json', json);
   assert.equal(flat.status, 0, flat.stderr);
   assert.equal(JSON.parse(readFileSync(json, 'utf8')).settings.earth, 'flat');
   const ys = readFileSync(obj, 'utf8').split('\n').filter((l) => l.startsWith('v ')).map((l) => Number(l.split(' ')[2]));
   assert.ok(ys.every((y) => y === 0), 'flat: every height 0');
 
   const volcano = fileURLToPath(new URL('../fixtures/volcano_maungawhau.png', import.meta.url));
+  const volcanoJson = join(dir, 'volcano.json');
+  const plain = run('mesh', volcano, '--max-error', '1', '--json', volcanoJson);
+  assert.equal(plain.status, 0, plain.stderr);
+  assert.equal(JSON.parse(readFileSync(volcanoJson, 'utf8')).settings.earth, 'flat', 'no georeference: flat by default');
   const bare = run('mesh', volcano, '--max-error', '1', '--earth', 'curved', '--obj', join(dir, 'v.obj'));
   assert.equal(bare.status, 1);
   assert.match(bare.stderr, /^hexlod: volcano_maungawhau\.png: --earth curved needs a georeferenced field/);

@@ -18,7 +18,7 @@ const cogs = fileURLToPath(new URL('../fixtures/cog/', import.meta.url));
 const HIMALAYA = 'himalaya_1024_i16.tif';
 // Looking down on the south-west from high up: about a tenth of the field in view.
 const EYE = [165000, 99000, 758000], TARGET = [165000, 0, 741000];
-const VIEW = ['--camera', EYE.join(','), '--target', TARGET.join(','), '--viewport', '1280x720'];
+const VIEW = ['--earth', 'flat', '--camera', EYE.join(','), '--target', TARGET.join(','), '--viewport', '1280x720'];
 let server, dir;
 
 before(async () => {
