@@ -37,7 +37,9 @@ test('profile heights on a real DEM are its samples, bilinear between them, at t
   const raw = new Float32Array(readFileSync(fixture('jacksboro_fault.f32')).buffer.slice(0));
   const { width } = terrain, sx = terrain.spacingX, sy = terrain.spacingY;
   assert.deepEqual([width, terrain.height, sx, sy], [403, 344, 74.4, 92.6]);
-  const sampler = fieldSampler(terrain, field.georef);
+  // Its local metres (its geographic grid is measured on the ellipsoid: measure_ellipsoid.test.js).
+  const sampler = fieldSampler(terrain, null);
+  assert.ok(field.georef?.crs.geographic, 'a geographic grid');
   const line = [[1000.3, 2000.7], [25000.1, 3000.2], [12000, 28000], [12000, 5000]];
   const profile = computeProfile(line, sampler);
   const { distance, x, z, height } = profile.samples;

@@ -1,5 +1,6 @@
 // Area and perimeter of a polygon drawn on the field, on the map and along the ground, and the
-// length of an open path both ways.
+// length of an open path both ways. On a geographic grid "the map" is the WGS 84 ellipsoid
+// (ground_metric.js).
 //
 // The ground is taken as the field's triangles: each sample cell split along its diagonal from
 // (column, row) to (column + 1, row + 1) into two planar triangles. A triangle's surface is its
@@ -17,6 +18,10 @@ import { clipHalfPlane, clipRectangle, signedArea } from './clip.js';
 import { checkPoints } from './points.js';
 import { computeProfile } from './profile.js';
 import { formatArea } from './units.js';
+import { ellipsoidArea, groundMetric } from './ground_metric.js';
+
+/** Pieces a path's segment is summed over on the ellipsoid (a metre in 10,000 km at 256). */
+const STRAIGHT_PIECES = 256;
 
 /** Most cells (of the polygon's bounding box) a surface area visits before it strides. */
 export const MAX_AREA_CELLS = 1_000_000;
@@ -40,13 +45,16 @@ export function measurePolygon(points, sampler) {
   const whole = Math.abs(signedArea(ring));
   if (!(whole > 0)) throw new Error('an area needs points that enclose some ground: these lie on one line');
   const onField = clipRectangle(ring, 0, 0, sampler.extentX, sampler.extentZ);
-  const planimetric = onField.length >= 3 ? Math.abs(signedArea(onField)) : 0;
+  // On a geographic grid, square metres of the WGS 84 ellipsoid (ground_metric.js).
+  const metric = groundMetric(sampler);
+  const mapArea = (polygon) => (metric ? ellipsoidArea(polygon, metric) : Math.abs(signedArea(polygon)));
+  const planimetric = onField.length >= 3 ? mapArea(onField) : 0;
   if (!(planimetric > 0)) {
     throw new Error(`the area lies entirely outside the field (x 0..${sampler.extentX.toFixed(1)} m, z 0..${sampler.extentZ.toFixed(1)} m)`);
   }
-  const { surface, stride } = surfaceArea(onField, sampler);
+  const { surface, stride } = surfaceArea(onField, sampler, metric);
   const around = computeProfile([...ring, ring[0]], sampler);
-  const cut = whole - planimetric;
+  const cut = (metric ? ellipsoidArea(ring, metric) : whole) - planimetric;
   const clipped = cut > 1e-6 * whole ? `${formatArea(cut)} of ${formatArea(whole)} lay outside the field and was left out` : null;
   const note = stride > 1 ? `surface from every ${ordinal(stride)} sample: the area spans more than ${MAX_AREA_CELLS} cells` : null;
   return { planimetric, surface, perimeter: around.summary.length, perimeter3d: around.summary.length3d, clipped, note };
@@ -63,8 +71,20 @@ export function measurePolygon(points, sampler) {
  */
 export function measurePath(points, sampler) {
   const profile = computeProfile(points, sampler);
+  const metric = groundMetric(sampler), stretch = [1, 1];
   let straight = 0;
-  for (let k = 1; k < points.length; k++) straight += Math.hypot(points[k][0] - points[k - 1][0], points[k][1] - points[k - 1][1]);
+  for (let k = 1; k < points.length; k++) {
+    const [ax, az] = points[k - 1], [bx, bz] = points[k];
+    if (!metric) {
+      straight += Math.hypot(bx - ax, bz - az);
+      continue;
+    }
+    // On the ellipsoid the stretch changes along a segment: summed over short pieces of it.
+    for (let i = 0; i < STRAIGHT_PIECES; i++) {
+      metric.stretch(az + (bz - az) * (i + 0.5) / STRAIGHT_PIECES, stretch);
+      straight += Math.hypot((bx - ax) * stretch[0], (bz - az) * stretch[1]) / STRAIGHT_PIECES;
+    }
+  }
   return { straight, ground: profile.summary.length3d, clipped: profile.clipped };
 }
 
@@ -121,7 +141,8 @@ const within = (a, b, c) => Math.min(a[0], b[0]) <= c[0] && c[0] <= Math.max(a[0
  * Surface area in square metres of a polygon on the field (all of it inside [0, extentX] x
  * [0, extentZ]), over the field's triangles, every `stride`-th sample.
  */
-function surfaceArea(polygon, sampler) {
+function surfaceArea(polygon, sampler, metric) {
+  const stretch = [1, 1]; // ground metres per local metre east and south in the row (ground_metric.js)
   const { spacingX, spacingY, extentX, extentZ } = sampler;
   let minX = Infinity, maxX = -Infinity, minZ = Infinity, maxZ = -Infinity;
   for (const [x, z] of polygon) minX = Math.min(minX, x), maxX = Math.max(maxX, x), minZ = Math.min(minZ, z), maxZ = Math.max(maxZ, z);
@@ -140,6 +161,8 @@ function surfaceArea(polygon, sampler) {
   for (let j = j0; j <= j1; j++) {
     below = nodeRow(sampler, j + 1, i0, columns, lineX, lineZ);
     const z0 = lineZ(j), z1 = lineZ(j + 1);
+    if (metric) metric.stretch(0.5 * (z0 + z1), stretch);
+    const [sx, sz] = stretch, groundShare = sx * sz; // one row spans a sample's latitude: one stretch
     const strip = clipHalfPlane(clipHalfPlane(polygon, 0, -1, -z0), 0, 1, z1);
     if (strip.length < 3) {
       above = below;
@@ -151,8 +174,8 @@ function surfaceArea(polygon, sampler) {
       const x0 = lineX(i), x1 = lineX(i + 1), c = i - i0;
       // Corners: a (x0, z0), b (x1, z0), c (x1, z1), d (x0, z1); triangles a-b-c and a-c-d.
       const ha = above[c], hb = above[c + 1], hc = below[c + 1], hd = below[c];
-      const lower = slopeFactor(x1 - x0, z1 - z0, hb - ha, hc - hb);
-      const upper = slopeFactor(x1 - x0, z1 - z0, hc - hd, hd - ha);
+      const lower = groundShare * slopeFactor((x1 - x0) * sx, (z1 - z0) * sz, hb - ha, hc - hb);
+      const upper = groundShare * slopeFactor((x1 - x0) * sx, (z1 - z0) * sz, hc - hd, hd - ha);
       if (boundary[c]) {
         const cell = clipHalfPlane(clipHalfPlane(strip, -1, 0, -x0), 1, 0, x1);
         if (cell.length < 3) continue;

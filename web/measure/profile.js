@@ -9,13 +9,15 @@
 import { clipSegment } from './clip.js';
 import { checkPoints } from './points.js';
 import { formatLength } from './units.js';
+import { groundMetric } from './ground_metric.js';
 
 /** Most samples one profile takes; a finer step is widened to this, and `note` says so. */
 export const MAX_PROFILE_SAMPLES = 1_000_000;
 
 /**
  * @typedef {object} ProfileSummary
- * @property {number} length metres on the map (2D) of the parts on the field
+ * @property {number} length metres on the map (2D) of the parts on the field (on a geographic
+ *   grid, on the WGS 84 ellipsoid: ground_metric.js)
  * @property {number} length3d metres along the ground (height changes included; a step to or
  *   from a no-data sample counts as flat)
  * @property {number} gain metres climbed: sum of the rises between consecutive samples (>= 0)
@@ -68,8 +70,11 @@ export function computeProfile(points, sampler, { step } = {}) {
     note = `sampled every ${formatLength(step)} instead of ${formatLength(wanted)}: at most ${MAX_PROFILE_SAMPLES} samples`;
   }
   const samples = sampleParts(pieces.parts, step, sampler);
-  // The 2D length from the segments themselves: a sum over thousands of samples drifts.
-  const summary = { ...summarize(samples), length: pieces.inside };
+  // On a geographic grid, lengths are the ellipsoid's (ground_metric.js), sample to sample.
+  const metric = groundMetric(sampler);
+  if (metric) measureOnTheGround(samples, metric);
+  // Else the 2D length from the segments themselves: a sum over thousands of samples drifts.
+  const summary = metric ? summarize(samples, metric) : { ...summarize(samples), length: pieces.inside };
   const cut = pieces.total - pieces.inside;
   // Below a millimetre is rounding at the field's edge, not a part left out.
   const clipped = cut > 1e-3 ? `${formatLength(cut)} of ${formatLength(pieces.total)} lay outside the field and was left out` : null;
@@ -139,15 +144,39 @@ function intervals(a, b, step) {
   return Math.max(1, Math.ceil(Math.hypot(b[0] - a[0], b[1] - a[1]) / step - 1e-9));
 }
 
+const stretch = [1, 1]; // ground metres per local metre east and south, reused
+
+/** Map metres between samples k - 1 and k: the ground metric's at their middle row, if any. */
+function runLength(x, z, k, metric) {
+  const dx = x[k] - x[k - 1], dz = z[k] - z[k - 1];
+  if (!metric) return Math.hypot(dx, dz);
+  metric.stretch(0.5 * (z[k] + z[k - 1]), stretch);
+  return Math.hypot(dx * stretch[0], dz * stretch[1]);
+}
+
+/**
+ * The samples' distances along the line as the ground metric measures them. Across a part off
+ * the field (a new run) the line's own map length there, scaled as the straight step is.
+ */
+function measureOnTheGround({ distance, x, z, runStart }, metric) {
+  let before = distance[0]; // the map distance of the sample before, as sampled
+  for (let k = 1; k < distance.length; k++) {
+    const mapStep = distance[k] - before, flat = Math.hypot(x[k] - x[k - 1], z[k] - z[k - 1]);
+    before = distance[k];
+    const ground = runLength(x, z, k, metric);
+    distance[k] = distance[k - 1] + (!runStart[k] ? ground : flat > 0 ? mapStep * (ground / flat) : mapStep);
+  }
+}
+
 /** Lengths, climb, heights and slopes over the samples, never across a gap between runs. */
-function summarize({ x, z, height, runStart }) {
+function summarize({ x, z, height, runStart }, metric = null) {
   let length = 0, length3d = 0, gain = 0, loss = 0, min = Infinity, max = -Infinity, steepest = 0;
   for (let k = 0; k < height.length; k++) {
     const h = height[k];
     if (h < min) min = h;
     if (h > max) max = h;
     if (runStart[k]) continue;
-    const run = Math.hypot(x[k] - x[k - 1], z[k] - z[k - 1]);
+    const run = runLength(x, z, k, metric);
     const rise = h - height[k - 1];
     length += run;
     if (!Number.isFinite(rise)) { // a no-data sample: no climb is known there, taken as flat
