@@ -29,9 +29,9 @@ double edgeFunction(const MeshPoint& u, const MeshPoint& v, double px, double pz
     return (v.x - u.x) * (pz - u.z) - (v.z - u.z) * (px - u.x);
 }
 
-// Samples are at float-rounded positions, within 2^-24 * 65536 < 0.004 spacings of their
-// exact ones; a candidate range widened by this much (in spacings) never misses one.
-constexpr double kRoundingSlack = 0.01;
+// Samples are at float-rounded positions, within 2^-24 * 2^21 = 0.125 spacings of their exact
+// ones (kMaxTiledFieldSide); a candidate range widened by this much (in spacings) never misses one.
+constexpr double kRoundingSlack = 0.25;
 
 // The evaluated samples along one axis whose positions may lie in [lo, hi] metres, given
 // `perMetre` = 1 / the metres between them and `count` of them: [first, last], empty when
