@@ -1,8 +1,9 @@
 // A tiled field of a world DEM's size (1,296,000 x 626,400 samples at 1″, 512² tiles, 13
-// levels: the layout of lib/world_cog_server.js): the core opens it in tens of MB, refines from
-// far above and close to the ground near its far corner, fed the tiles it asks for, and the
-// mesh keeps every invariant there (paper §4), stays watertight, and draws the samples near the
-// camera where they are. The heights are a formula, so no tile is stored.
+// levels: the layout of lib/world_cog_server.js), and one of the largest side the core takes:
+// the core opens each in tens of MB, refines from far above and close to the ground near its
+// far corner, fed the tiles it asks for, and the mesh keeps every invariant there (paper §4),
+// stays watertight, and draws the samples near the camera where they are. The heights are a
+// formula, so no tile is stored.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,7 +19,7 @@ using namespace hexlod;
 
 namespace {
 
-constexpr int32_t kWidth = 1296000, kHeight = 626400, kTile = 512;
+constexpr int32_t kTile = 512;
 constexpr double kSpacing = 30.87; // metres: 1″ at the equator
 
 // The heights: a sum of sines in metres, as separable terms so that a tile's samples cost a few
@@ -51,10 +52,10 @@ struct Level {
 };
 
 // GDAL's overviews: each level half the last, rounded up, down to one tile.
-std::vector<Level> worldLevels() {
+std::vector<Level> levelsOf(int32_t width, int32_t height) {
     std::vector<Level> levels;
-    for (int32_t w = kWidth, h = kHeight;; w = (w + 1) / 2, h = (h + 1) / 2) {
-        levels.push_back({w, h, double(kWidth) / w, double(kHeight) / h});
+    for (int32_t w = width, h = height;; w = (w + 1) / 2, h = (h + 1) / 2) {
+        levels.push_back({w, h, double(width) / w, double(height) / h});
         if (w <= kTile && h <= kTile) break;
     }
     return levels;
@@ -129,15 +130,15 @@ void expectFootprintsHoldTheirPoints(const hexlod_terrain* t) {
     EXPECT_GT(checked, 1000);
 }
 
-} // namespace
-
-TEST(WorldField, OpensInTensOfMegabytesRefinesFromFarAndNearAndDrawsTheSamplesWhereTheyAre) {
-    const std::vector<Level> levels = worldLevels();
-    ASSERT_EQ(levels.size(), 13u);
+// Opens a width x height field, checks its memory, then refines from 2,000 km above its middle
+// (fromHigh) and from 300 m above the ground at (j0, i0), checking the mesh and the vertices
+// near there.
+void openRefineAndCheck(int32_t width, int32_t height, int32_t j0, int32_t i0, bool fromHigh) {
+    const std::vector<Level> levels = levelsOf(width, height);
     std::vector<int32_t> dims;
     for (const Level& l : levels) dims.insert(dims.end(), {l.width, l.height, kTile, kTile});
     const double heapBefore = heapBytes();
-    hexlod_terrain* t = hexlod_terrain_create_tiled(kWidth, kHeight, HEXLOD_SAMPLE_I16, int32_t(levels.size()), dims.data());
+    hexlod_terrain* t = hexlod_terrain_create_tiled(width, height, HEXLOD_SAMPLE_I16, int32_t(levels.size()), dims.data());
     ASSERT_NE(t, nullptr) << hexlod_last_error();
     const int32_t coarsest = int32_t(levels.size()) - 1;
     feedTile(t, levels, coarsest, 0, 0);
@@ -152,19 +153,20 @@ TEST(WorldField, OpensInTensOfMegabytesRefinesFromFarAndNearAndDrawsTheSamplesWh
     // of MB (dense per-tile arrays made it 285 MB), the coarsest tile's 512 KB included.
     const double opened = heapBytes() - heapBefore;
     EXPECT_LT(opened, 40e6) << "bytes the core allocated to open the world field";
-    RecordProperty("opened_bytes", std::to_string(int64_t(opened)));
+    ::testing::Test::RecordProperty("opened_bytes", std::to_string(int64_t(opened)));
     ASSERT_EQ(hexlod_terrain_set_tile_cap(t, 96e6), 0);
 
     // From 2,000 km above the middle of the field, looking north at a slant.
-    const double midX = 0.5 * kWidth * kSpacing, midZ = 0.5 * kHeight * kSpacing;
+    const double midX = 0.5 * width * kSpacing, midZ = 0.5 * height * kSpacing;
     const hexlod_camera high{{midX, 2e6, midZ}, {midX, 0.0, midZ - 1.5e6}, {0, 0, 0}, 0.5, 1.6, 800.0, 1000.0, 1e8};
-    const int32_t fedHigh = flyUntilStill(t, levels, high, 300);
-    EXPECT_GT(fedHigh, 0) << "the view from far asks for overviews";
-    expectFootprintsHoldTheirPoints(t);
+    const int32_t fedHigh = fromHigh ? flyUntilStill(t, levels, high, 300) : 0;
+    if (fromHigh) {
+        EXPECT_GT(fedHigh, 0) << "the view from far asks for overviews";
+        expectFootprintsHoldTheirPoints(t);
+    }
 
-    // 300 m above the ground near the south-east corner (column 1,290,000, row 620,000, 4e7 m
-    // east), looking towards the corner: the near ground comes at full resolution.
-    const int32_t j0 = 1290000, i0 = 620000;
+    // 300 m above the ground near the south-east corner, looking towards it: the near ground
+    // comes at full resolution.
     const double ground = rawHeightAt(j0, i0);
     const double eyeX = j0 * kSpacing, eyeZ = i0 * kSpacing;
     const hexlod_camera low{{eyeX, ground + 300.0, eyeZ}, {eyeX + 2000.0, ground - 200.0, eyeZ + 1500.0}, {0, 0, 0}, 0.5, 1.6, 800.0, 1.0, 1e7};
@@ -183,7 +185,7 @@ TEST(WorldField, OpensInTensOfMegabytesRefinesFromFarAndNearAndDrawsTheSamplesWh
         if (std::hypot(p.x - eyeX, p.z - eyeZ) > 1000.0) continue;
         const LatticePoint lp = m.vertexLattice(v);
         const int32_t j = sampleColumn(lp), i = lp.r;
-        ASSERT_TRUE(j >= 0 && j < kWidth && i >= 0 && i < kHeight);
+        ASSERT_TRUE(j >= 0 && j < width && i >= 0 && i < height);
         ASSERT_EQ(p.x, float(j * kSpacing)) << "column " << j;
         ASSERT_EQ(p.z, float(i * kSpacing)) << "row " << i;
         ASSERT_EQ(p.y, float(rawHeightAt(j, i))) << "column " << j << ", row " << i;
@@ -199,7 +201,23 @@ TEST(WorldField, OpensInTensOfMegabytesRefinesFromFarAndNearAndDrawsTheSamplesWh
 
     hexlod_frame out{};
     ASSERT_EQ(hexlod_terrain_frame(t, nullptr, HEXLOD_FRAME_ALL, &out), 0);
-    RecordProperty("tiles_fed", std::to_string(fedHigh + fedLow));
-    RecordProperty("triangles", std::to_string(int64_t(out.triangles)));
+    ::testing::Test::RecordProperty("tiles_fed", std::to_string(fedHigh + fedLow));
+    ::testing::Test::RecordProperty("triangles", std::to_string(int64_t(out.triangles)));
     hexlod_terrain_destroy(t);
+}
+
+} // namespace
+
+// The world at 1″: near column 1,290,000, row 620,000 (4e7 m east).
+TEST(WorldField, OpensInTensOfMegabytesRefinesFromFarAndNearAndDrawsTheSamplesWhereTheyAre) {
+    ASSERT_EQ(levelsOf(1296000, 626400).size(), 13u);
+    openRefineAndCheck(1296000, 626400, 1290000, 620000, true);
+}
+
+// The largest side (kMaxTiledFieldSide, 2^21): 16.8 million full-resolution tiles, grouped 2 x 2
+// a region (SampleTiles::kMaxRegions); the lattice reaches 2^21 + 2^19 columns, where latticeAt
+// still recovers every vertex. Straight to the ground (from 2,000 km the view of this field
+// wants 300 MB of tiles).
+TEST(WorldField, TheLargestSideGroupsItsTilesIntoRegionsAndDrawsItsSamplesToTheFarCorner) {
+    openRefineAndCheck(kMaxTiledFieldSide, kMaxTiledFieldSide, kMaxTiledFieldSide - 6000, kMaxTiledFieldSide - 5000, false);
 }
