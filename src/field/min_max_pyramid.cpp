@@ -83,9 +83,8 @@ void MinMaxPyramid::releaseChunk(size_t chunk) {
 void MinMaxPyramid::updateChunk(int32_t cc, int32_t cr, const SampleRect& rect) {
     Level& base = levels_[0];
     const size_t chunk = size_t(cr) * size_t(base.columns) + size_t(cc);
-    const int32_t j0 = cc * chunk_, i0 = cr * chunk_; // below 2^31: the field's side is
-    const SampleRect whole{j0, i0, int32_t(std::min<int64_t>(width_, int64_t(j0) + chunk_) - 1),
-                           int32_t(std::min<int64_t>(height_, int64_t(i0) + chunk_) - 1)};
+    const int32_t j0 = cc * chunk_, i0 = cr * chunk_;
+    const SampleRect whole{j0, i0, std::min(width_, j0 + chunk_) - 1, std::min(height_, i0 + chunk_) - 1};
     if (tiles_->finestLevelIn(whole) > keepLevel_) {
         releaseChunk(chunk);
         tiles_->range(whole, base.low[chunk], base.high[chunk]);
@@ -151,10 +150,7 @@ void MinMaxPyramid::fineBlock(int32_t level, int32_t c, int32_t r, float& low, f
     const int32_t perChunk = chunkSide_ >> level, side = kBlock << level;
     const int32_t slot = chunkSlot_[size_t(r / perChunk) * size_t(levels_[0].columns) + size_t(c / perChunk)];
     if (slot < 0) {
-        // The block's samples, clamped: the last block of a row may end past 2^31.
-        const int64_t j0 = int64_t(c) * side, i0 = int64_t(r) * side;
-        tiles_->range({int32_t(j0), int32_t(i0), int32_t(std::min<int64_t>(j0 + side - 1, width_ - 1)),
-                       int32_t(std::min<int64_t>(i0 + side - 1, height_ - 1))}, low, high);
+        tiles_->range({c * side, r * side, c * side + side - 1, r * side + side - 1}, low, high);
         return;
     }
     const size_t k = size_t(slot) * size_t(chunkBlocks_) + size_t(fineOffset_[level] + (r % perChunk) * perChunk + c % perChunk);

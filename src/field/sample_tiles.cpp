@@ -49,8 +49,8 @@ const char* SampleTiles::init(int32_t width, int32_t height, SampleType type, in
         if (k > 0 && (l.width > levels_.back().width || l.height > levels_.back().height ||
                       (l.width == levels_.back().width && l.height == levels_.back().height)))
             return "each level must be coarser than the one before";
-        l.tilesAcross = int32_t((int64_t(l.width) + l.tileWidth - 1) / l.tileWidth);
-        l.tilesDown = int32_t((int64_t(l.height) + l.tileHeight - 1) / l.tileHeight);
+        l.tilesAcross = (l.width + l.tileWidth - 1) / l.tileWidth;
+        l.tilesDown = (l.height + l.tileHeight - 1) / l.tileHeight;
         if (int64_t(l.tilesAcross) * l.tilesDown > kMaxTilesPerLevel) return "a level has more than 2^26 tiles: the file needs larger tiles";
         l.scaleX = double(width) / l.width, l.scaleY = double(height) / l.height;
         l.tiles.reset(l.tilesAcross, l.tilesDown, TileState{});
@@ -120,19 +120,17 @@ void SampleTiles::tilesCovering(int32_t level, const SampleRect& rect, int32_t& 
 }
 
 SampleRect SampleTiles::regionRect(int32_t rx, int32_t ry) const {
-    // In 64 bits: the last region may reach past 2^31 samples (a region of 2^k tiles of up to 4096).
-    const int64_t j0 = int64_t(rx) * regionWidth_, i0 = int64_t(ry) * regionHeight_;
-    return {int32_t(j0), int32_t(i0), int32_t(std::min<int64_t>(j0 + regionWidth_, width_) - 1),
-            int32_t(std::min<int64_t>(i0 + regionHeight_, height_) - 1)};
+    return {rx * regionWidth_, ry * regionHeight_, std::min((rx + 1) * regionWidth_, width_) - 1,
+            std::min((ry + 1) * regionHeight_, height_) - 1};
 }
 
 SampleRect SampleTiles::tileRect(int32_t level, int32_t tx, int32_t ty) const {
     const TileLevel& l = levels_[size_t(level)];
     // Its samples reach the full-resolution samples within one of its spacings of them.
-    const double x0 = (double(tx) * l.tileWidth - 1 + 0.5) * l.scaleX - 0.5, x1 = ((tx + 1.0) * l.tileWidth + 0.5) * l.scaleX - 0.5;
-    const double y0 = (double(ty) * l.tileHeight - 1 + 0.5) * l.scaleY - 0.5, y1 = ((ty + 1.0) * l.tileHeight + 0.5) * l.scaleY - 0.5;
-    return {std::max(0, int32_t(std::floor(x0))), std::max(0, int32_t(std::floor(y0))), int32_t(std::min(width_ - 1.0, std::ceil(x1))),
-            int32_t(std::min(height_ - 1.0, std::ceil(y1)))};
+    const double x0 = (tx * l.tileWidth - 1 + 0.5) * l.scaleX - 0.5, x1 = ((tx + 1) * l.tileWidth + 0.5) * l.scaleX - 0.5;
+    const double y0 = (ty * l.tileHeight - 1 + 0.5) * l.scaleY - 0.5, y1 = ((ty + 1) * l.tileHeight + 0.5) * l.scaleY - 0.5;
+    return {std::max(0, int32_t(std::floor(x0))), std::max(0, int32_t(std::floor(y0))), std::min(width_ - 1, int32_t(std::ceil(x1))),
+            std::min(height_ - 1, int32_t(std::ceil(y1)))};
 }
 
 bool SampleTiles::present(int32_t level, int32_t tx, int32_t ty) const {
@@ -335,10 +333,8 @@ void SampleTiles::levelRawRange(int32_t level, int32_t u0, int32_t v0, int32_t u
     const TileLevel& l = levels_[size_t(level)];
     for (int32_t ty = v0 / l.tileHeight; ty <= v1 / l.tileHeight; ++ty)
         for (int32_t tx = u0 / l.tileWidth; tx <= u1 / l.tileWidth; ++tx) {
-            // Tile origins in 64 bits: the last tile of a level may end past 2^31 samples.
-            const int64_t tj = int64_t(tx) * l.tileWidth, ti = int64_t(ty) * l.tileHeight;
-            const int32_t x0 = int32_t(std::max<int64_t>(u0, tj) - tj), x1 = int32_t(std::min<int64_t>(u1, tj + l.tileWidth - 1) - tj);
-            const int32_t y0 = int32_t(std::max<int64_t>(v0, ti) - ti), y1 = int32_t(std::min<int64_t>(v1, ti + l.tileHeight - 1) - ti);
+            const int32_t x0 = std::max(u0, tx * l.tileWidth) - tx * l.tileWidth, x1 = std::min(u1, (tx + 1) * l.tileWidth - 1) - tx * l.tileWidth;
+            const int32_t y0 = std::max(v0, ty * l.tileHeight) - ty * l.tileHeight, y1 = std::min(v1, (ty + 1) * l.tileHeight - 1) - ty * l.tileHeight;
             withSamples(type_, slots_[size_t(l.tiles.get(tx, ty).slot)].get(), [&](const auto* samples) {
                 auto lo = samples[size_t(y0) * size_t(l.tileWidth) + size_t(x0)], hi = lo;
                 for (int32_t y = y0; y <= y1; ++y) {

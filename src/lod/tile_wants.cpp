@@ -72,8 +72,8 @@ const std::vector<TileWant>& TileWants::collect(const HexMesh& mesh, const Heigh
         // the target level that those regions reach.
         const int32_t rw = tiles->regionWidth(), rh = tiles->regionHeight();
         rect.j0 = rect.j0 / rw * rw, rect.i0 = rect.i0 / rh * rh;
-        rect.j1 = int32_t(std::min<int64_t>(field.width() - 1, (int64_t(rect.j1) / rw + 1) * rw - 1));
-        rect.i1 = int32_t(std::min<int64_t>(field.height() - 1, (int64_t(rect.i1) / rh + 1) * rh - 1));
+        rect.j1 = std::min(field.width() - 1, (rect.j1 / rw + 1) * rw - 1);
+        rect.i1 = std::min(field.height() - 1, (rect.i1 / rh + 1) * rh - 1);
         int32_t tx0, ty0, tx1, ty1;
         tiles->tilesCovering(target, rect, tx0, ty0, tx1, ty1);
         for (int32_t ty = ty0; ty <= ty1; ++ty)
