@@ -4,9 +4,11 @@
 // memory (paper §5's refinement, §4.7's field) while only the tiles the view needs are held.
 //
 // Heights are read from the finest level present: per region (one full-resolution tile, or a
-// block of 2^k x 2^k of them when the field has more than kMaxRegions tiles), the finest level whose samples around the region are all present gives the heights there,
-// bilinear between that level's samples (its sample k sits at full-resolution position
-// (k + 0.5) * scale - 0.5). The coarsest level is always whole (the caller loads it first), so
+// block of 2^k x 2^k of them when the field has more than kMaxRegions tiles), the finest level
+// whose samples around the region are all present gives the heights there, bilinear between
+// that level's samples (its sample k sits at full-resolution position (k + 0.5) * scale - 0.5).
+// What is kept per tile is sparse (field/sparse_grid.h): it follows the tiles held, not the
+// field's size. The coarsest level is always whole (the caller loads it first), so
 // every height has an answer, and a region's answer changes only when a tile arrives or goes.
 //
 // The refiner (lod/refiner.h) does not split a cell finer than the level its heights come from
@@ -55,7 +57,7 @@ struct TileLevel {
 class SampleTiles {
 public:
     static constexpr int32_t kMaxLevels = 24;
-    /// Most tiles a level may have: the sparse per-tile state's page table stays under 256 KB.
+    /// Most tiles a level may have: the sparse per-tile state's page table stays about 256 KB.
     /// A 2^21-sample side (kMaxTiledFieldSide) needs tiles of 256 samples a side or more.
     static constexpr int64_t kMaxTilesPerLevel = int64_t(1) << 26;
     /// Most regions (what keeps the level heights come from, 5 bytes each, for the whole field):
