@@ -15,6 +15,9 @@ import { locateImageFile } from '../web/imagery/image_location.js';
 import { openCogInput, tilesForCommand, settleTiles } from './cog_input.js';
 import { EARTH_FLAT, FLAT_EARTH, drawnPoint, drawnUp, earthShapeOf, geoCoordinates } from '../web/geo/index.js';
 
+/** The most samples of a streamed field whose mesh error is measured (4 bytes each in the core). */
+const MAX_MEASURED_SAMPLES = 2 ** 28;
+
 export const MESH_USAGE = `usage: hexlod mesh <heightfield>... (--max-error M | --camera X,Y,Z --target X,Y,Z) [options]
   Several .hgt or GeoTIFF tiles of one grid make one mosaic. A Cloud-Optimized GeoTIFF (tiled,
   with overviews), by path or http(s) URL, is streamed: only the tiles the refinement needs
@@ -222,8 +225,11 @@ export async function mesh(args) {
   const levels = levelFigures(indices, levelOffsets);
   const bytes = terrain.query().memoryBytes; // now including the fan stream
   const hash = terrain.meshHash();
-  const errorStored = terrain.measureError(true);
-  const errorOriginal = terrain.measureError(false);
+  // The error is a pass over every sample: a streamed field can be far past that (a world DEM at
+  // 1″ has 8e11 samples), so one with more than MAX_MEASURED_SAMPLES is not measured (null).
+  const measured = !tiles || terrain.width * terrain.height <= MAX_MEASURED_SAMPLES;
+  const errorStored = measured ? terrain.measureError(true) : null;
+  const errorOriginal = measured ? terrain.measureError(false) : null;
 
   const { xMax, zMax } = extentOf(terrain);
   const repaired = resolveDegenerate(positions, STREAM_VERTEX_WORDS, triangles);
@@ -345,8 +351,10 @@ export async function mesh(args) {
       `${stats.cells} cells (${fans.full} hexagons, ${fans.boundarySemi} boundary and ${fans.interiorSemi} interior semi-hexagons)`,
     `          ${stats.vertices} vertices; levels up to ${report.maxLevel} of ${stats.maxLevel}`,
     `memory    ${(bytes / 1048576).toFixed(2)} MB in the core, ${report.bytesPerTriangle} B per triangle`,
-    `error     vs stored field: max ${m(errorStored.max)}, p99 ${m(errorStored.p99)}; ` +
-      `vs original samples: max ${m(errorOriginal.max)}, p99 ${m(errorOriginal.p99)}`,
+    measured
+      ? `error     vs stored field: max ${m(errorStored.max)}, p99 ${m(errorStored.p99)}; ` +
+        `vs original samples: max ${m(errorOriginal.max)}, p99 ${m(errorOriginal.p99)}`
+      : `error     not measured: a pass over ${terrain.width * terrain.height} samples (streamed fields up to ${MAX_MEASURED_SAMPLES})`,
     `hash      ${hash}`,
   ];
   if (tiles) {

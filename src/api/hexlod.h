@@ -229,9 +229,11 @@ void* hexlod_terrain_samples(hexlod_terrain* terrain);
 
 /* A terrain whose samples arrive by tiles, as a Cloud-Optimized GeoTIFF read by range requests
  * gives them: level_count levels (1 to 24), dims = level_count x (width, height, tile_width,
- * tile_height), the full resolution first (width x height samples), each next level coarser
- * (an overview; its sample k lies at full-resolution position (k + 0.5) * width / level_width
- * - 0.5), tiles of 1 to 4096 samples a side. It holds no sample yet: write and commit every tile
+ * tile_height), the full resolution first (width x height samples, each side 2..2097152: a world
+ * DEM at 1 arc-second is 1296000 x 626400; its memory follows the tiles held, not its size), each
+ * next level coarser (an overview; its sample k lies at full-resolution position
+ * (k + 0.5) * width / level_width - 0.5), tiles of 1 to 4096 samples a side and at most 2^26
+ * tiles a level. It holds no sample yet: write and commit every tile
  * of the coarsest level, then hexlod_terrain_set_scale, hexlod_terrain_prepare and
  * hexlod_terrain_reset_mesh as for any terrain. Heights come from the finest level present
  * (bilinear between its samples); the refinement splits no cell finer than that level and asks

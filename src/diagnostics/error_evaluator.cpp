@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <new>
 #include <vector>
@@ -29,9 +30,9 @@ double edgeFunction(const MeshPoint& u, const MeshPoint& v, double px, double pz
     return (v.x - u.x) * (pz - u.z) - (v.z - u.z) * (px - u.x);
 }
 
-// Samples are at float-rounded positions, within 2^-24 * 65536 < 0.004 spacings of their
-// exact ones; a candidate range widened by this much (in spacings) never misses one.
-constexpr double kRoundingSlack = 0.01;
+// Samples are at float-rounded positions, within 2^-24 * 2^21 = 0.125 spacings of their exact
+// ones (kMaxTiledFieldSide); a candidate range widened by this much (in spacings) never misses one.
+constexpr double kRoundingSlack = 0.25;
 
 // The evaluated samples along one axis whose positions may lie in [lo, hi] metres, given
 // `perMetre` = 1 / the metres between them and `count` of them: [first, last], empty when
@@ -100,8 +101,11 @@ ErrorStats evaluateMeshError(const Heightfield& field, const float* positions, s
 
     // Error per evaluated sample: it marks which samples are covered, keeps one value per
     // sample for the mean and the percentile, and is the buffer the percentile is taken in.
-    const size_t sampleCount = size_t(cols) * size_t(rows);
-    std::unique_ptr<float[]> errors(new (std::nothrow) float[sampleCount]);
+    // Counted in 64 bits: size_t is 32 bits under WebAssembly, and a world field has 8e11 samples.
+    const uint64_t evaluated = uint64_t(cols) * uint64_t(rows);
+    std::unique_ptr<float[]> errors;
+    if (evaluated <= uint64_t(SIZE_MAX / sizeof(float))) errors.reset(new (std::nothrow) float[size_t(evaluated)]);
+    const size_t sampleCount = size_t(evaluated);
     if (!errors) {
         stats.error = "out of memory for the per-sample errors: use a larger sampleStride";
         return stats;

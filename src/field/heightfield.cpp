@@ -18,10 +18,12 @@ size_t sampleBytes(SampleType type) {
 }
 
 // The checks every field's size and type pass; null or what is wrong.
-static const char* badSize(int32_t width, int32_t height, SampleType type) {
+static const char* badSize(int32_t width, int32_t height, SampleType type, bool tiled) {
     if (sampleBytes(type) == 0) return "unknown sample type (expected 1=u8, 2=u16, 3=i16, 4=f32)";
     if (width < 2 || height < 2) return "a height field needs at least 2x2 samples";
-    if (width > kMaxFieldSide || height > kMaxFieldSide) return "a height field side is limited to 65536 samples";
+    if (!tiled && (width > kMaxFieldSide || height > kMaxFieldSide))
+        return "a height field held whole is limited to 65536 samples a side (a tiled one, such as a Cloud-Optimized GeoTIFF, to 2097152)";
+    if (width > kMaxTiledFieldSide || height > kMaxTiledFieldSide) return "a tiled height field side is limited to 2097152 samples";
     return nullptr;
 }
 
@@ -29,7 +31,7 @@ std::unique_ptr<Heightfield> Heightfield::create(int32_t width, int32_t height, 
                                                  const char** error) {
     const char* ignored = nullptr;
     if (!error) error = &ignored;
-    if ((*error = badSize(width, height, type))) return nullptr;
+    if ((*error = badSize(width, height, type, false))) return nullptr;
     const uint64_t bytes = uint64_t(width) * uint64_t(height) * sampleBytes(type);
     if (bytes > uint64_t(SIZE_MAX)) {
         *error = "the height field does not fit this address space";
@@ -51,7 +53,7 @@ std::unique_ptr<Heightfield> Heightfield::createTiled(int32_t width, int32_t hei
                                                       const int32_t* dims, const char** error) {
     const char* ignored = nullptr;
     if (!error) error = &ignored;
-    if ((*error = badSize(width, height, type))) return nullptr;
+    if ((*error = badSize(width, height, type, true))) return nullptr;
     std::unique_ptr<Heightfield> field(new (std::nothrow) Heightfield());
     if (field) field->tiles_.reset(new (std::nothrow) SampleTiles());
     if (!field || !field->tiles_) {

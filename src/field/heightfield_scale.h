@@ -12,9 +12,16 @@ enum class SampleType : int32_t { U8 = 1, U16 = 2, I16 = 3, F32 = 4 };
 /// Bytes per sample of a type, 0 for an unknown type.
 size_t sampleBytes(SampleType type);
 
-/// Largest field the core accepts (samples per side). 65536 keeps every index math in 32 bits
-/// while allowing far more than a 4 GB WASM memory can hold.
+/// Largest field held whole (samples per side): 65536² samples are 8 GB at 16 bits, already
+/// twice what a 4 GB WASM memory can hold.
 constexpr int32_t kMaxFieldSide = 65536;
+/// Largest field that arrives by tiles (samples per side), whose memory follows the tiles held.
+/// The 32-bit lattice (mesh/lattice.h: q, r and the doubled x = 2q + r) would allow 2^29; what
+/// binds first is that a vertex's lattice point is recovered from its float position
+/// (HexMesh::latticeAt), exactly while columns and rows stay under 2^22, and the lattice reaches
+/// up to a quarter of the shorter side past the east edge (hex_mesh_domain.cpp). 2^21 keeps it
+/// in, and holds a world DEM at 1″ (1,296,000 x 626,400).
+constexpr int32_t kMaxTiledFieldSide = 1 << 21;
 /// Sample spacing, metres: a micrometre (surface metrology) to 100,000 km (a coarse whole planet).
 constexpr double kMinSpacing = 1e-6, kMaxSpacing = 1e8;
 /// Largest height magnitude, metres after the scale (offset included): a thousand times the

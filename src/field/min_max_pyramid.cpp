@@ -10,8 +10,17 @@ void MinMaxPyramid::build(const Heightfield& field) {
     height_ = field.height();
     levels_.clear();
     tiles_ = field.tiles();
-    fineLevels_ = tiles_ ? kFineLevels : 0;
     chunkSlot_.clear(), fineLow_.clear(), fineHigh_.clear(), freeSlots_.clear();
+    fineLevels_ = 0, chunk_ = kChunk, keepLevel_ = 0, chunkBlocks_ = 0;
+    if (tiles_) {
+        auto chunks = [&](int64_t side) { return ((width_ + side - 1) / side) * ((height_ + side - 1) / side); };
+        while (chunks(chunk_) > kMaxChunks) chunk_ *= 2, ++keepLevel_;
+        chunkSide_ = chunk_ / kBlock;
+        for (int32_t side = chunkSide_; side > 1; side /= 2) {
+            fineOffset_[fineLevels_++] = chunkBlocks_;
+            chunkBlocks_ += side * side;
+        }
+    }
     const int32_t baseBlock = kBlock << fineLevels_;
     Level base;
     base.columns = (width_ + baseBlock - 1) / baseBlock;
@@ -68,51 +77,57 @@ void MinMaxPyramid::releaseChunk(size_t chunk) {
     chunkSlot_[chunk] = -1;
 }
 
-// Chunk (cc, cr): its fine blocks kept when its heights are all at full resolution (the
-// tiles under it are held), dropped otherwise; its block of the base level measured.
-void MinMaxPyramid::updateChunk(int32_t cc, int32_t cr) {
+// Chunk (cc, cr): its fine blocks kept where its heights come from the keep level or finer
+// somewhere (the tiles under it are held), dropped otherwise; its block of the base level
+// measured. A chunk kept before has only its blocks in `rect` measured again.
+void MinMaxPyramid::updateChunk(int32_t cc, int32_t cr, const SampleRect& rect) {
     Level& base = levels_[0];
     const size_t chunk = size_t(cr) * size_t(base.columns) + size_t(cc);
-    const SampleRect rect{cc * kChunk, cr * kChunk, std::min(width_, (cc + 1) * kChunk) - 1, std::min(height_, (cr + 1) * kChunk) - 1};
-    float detail;
-    if (tiles_->levelIn(rect, detail) != 0) {
+    const int32_t j0 = cc * chunk_, i0 = cr * chunk_;
+    const SampleRect whole{j0, i0, std::min(width_, j0 + chunk_) - 1, std::min(height_, i0 + chunk_) - 1};
+    if (tiles_->finestLevelIn(whole) > keepLevel_) {
         releaseChunk(chunk);
-        tiles_->range(rect, base.low[chunk], base.high[chunk]);
+        tiles_->range(whole, base.low[chunk], base.high[chunk]);
         return;
     }
+    const SampleRect part{std::max(whole.j0, rect.j0), std::max(whole.i0, rect.i0), std::min(whole.j1, rect.j1), std::min(whole.i1, rect.i1)};
+    int32_t c0 = (part.j0 - j0) / kBlock, r0 = (part.i0 - i0) / kBlock;
+    int32_t c1 = (part.j1 - j0) / kBlock, r1 = (part.i1 - i0) / kBlock;
     if (chunkSlot_[chunk] < 0) {
         if (freeSlots_.empty()) {
-            freeSlots_.push_back(int32_t(fineLow_.size() / kChunkBlocks));
-            fineLow_.resize(fineLow_.size() + kChunkBlocks);
-            fineHigh_.resize(fineHigh_.size() + kChunkBlocks);
+            freeSlots_.push_back(int32_t(fineLow_.size() / size_t(chunkBlocks_)));
+            fineLow_.resize(fineLow_.size() + size_t(chunkBlocks_));
+            fineHigh_.resize(fineHigh_.size() + size_t(chunkBlocks_));
         }
         chunkSlot_[chunk] = freeSlots_.back();
         freeSlots_.pop_back();
+        c0 = r0 = 0, c1 = r1 = chunkSide_ - 1; // new: every block
     }
-    float* low = fineLow_.data() + size_t(chunkSlot_[chunk]) * kChunkBlocks;
-    float* high = fineHigh_.data() + size_t(chunkSlot_[chunk]) * kChunkBlocks;
-    // Blocks past the field's edge stay empty (no query reaches them).
-    for (int32_t r = 0; r < kChunkSide; ++r)
-        for (int32_t c = 0; c < kChunkSide; ++c) {
-            const int32_t j0 = rect.j0 + c * kBlock, i0 = rect.i0 + r * kBlock;
-            float& l = low[r * kChunkSide + c];
-            float& h = high[r * kChunkSide + c];
+    float* low = fineLow_.data() + size_t(chunkSlot_[chunk]) * size_t(chunkBlocks_);
+    float* high = fineHigh_.data() + size_t(chunkSlot_[chunk]) * size_t(chunkBlocks_);
+    // The finest blocks over the part; blocks past the field's edge stay empty (no query reaches them).
+    for (int32_t r = r0; r <= r1; ++r)
+        for (int32_t c = c0; c <= c1; ++c) {
+            const int32_t bj = j0 + c * kBlock, bi = i0 + r * kBlock;
+            float& l = low[r * chunkSide_ + c];
+            float& h = high[r * chunkSide_ + c];
             l = 1e30f, h = -1e30f;
-            if (j0 <= rect.j1 && i0 <= rect.i1) tiles_->range({j0, i0, j0 + kBlock - 1, i0 + kBlock - 1}, l, h);
+            if (bj <= whole.j1 && bi <= whole.i1) tiles_->range({bj, bi, bj + kBlock - 1, bi + kBlock - 1}, l, h);
         }
     // Each fine level from the one below, then the chunk's block of the base level.
-    for (int32_t k = 1; k <= kFineLevels; ++k) {
-        const int32_t fineSide = kChunkSide >> (k - 1), side = kChunkSide >> k;
-        for (int32_t r = 0; r < side; ++r)
-            for (int32_t c = 0; c < side; ++c) {
+    for (int32_t k = 1; k <= fineLevels_; ++k) {
+        const int32_t fineSide = chunkSide_ >> (k - 1), side = chunkSide_ >> k;
+        c0 /= 2, r0 /= 2, c1 /= 2, r1 /= 2;
+        for (int32_t r = r0; r <= r1; ++r)
+            for (int32_t c = c0; c <= c1; ++c) {
                 float l = 1e30f, h = -1e30f;
                 for (int32_t fr = 2 * r; fr <= 2 * r + 1; ++fr)
                     for (int32_t fc = 2 * c; fc <= 2 * c + 1; ++fc) {
-                        l = std::min(l, low[kFineOffset[k - 1] + fr * fineSide + fc]);
-                        h = std::max(h, high[kFineOffset[k - 1] + fr * fineSide + fc]);
+                        l = std::min(l, low[fineOffset_[k - 1] + fr * fineSide + fc]);
+                        h = std::max(h, high[fineOffset_[k - 1] + fr * fineSide + fc]);
                     }
-                float& outLow = k < kFineLevels ? low[kFineOffset[k] + r * side + c] : base.low[chunk];
-                float& outHigh = k < kFineLevels ? high[kFineOffset[k] + r * side + c] : base.high[chunk];
+                float& outLow = k < fineLevels_ ? low[fineOffset_[k] + r * side + c] : base.low[chunk];
+                float& outHigh = k < fineLevels_ ? high[fineOffset_[k] + r * side + c] : base.high[chunk];
                 outLow = l, outHigh = h;
             }
     }
@@ -120,10 +135,10 @@ void MinMaxPyramid::updateChunk(int32_t cc, int32_t cr) {
 
 void MinMaxPyramid::update(const Heightfield& field, const SampleRect& rect) {
     if (!field.tiles() || rect.empty() || levels_.empty()) return;
-    int32_t c0 = std::max(0, rect.j0 / kChunk), r0 = std::max(0, rect.i0 / kChunk);
-    int32_t c1 = std::min(levels_[0].columns - 1, rect.j1 / kChunk), r1 = std::min(levels_[0].rows - 1, rect.i1 / kChunk);
+    int32_t c0 = std::max(0, rect.j0 / chunk_), r0 = std::max(0, rect.i0 / chunk_);
+    int32_t c1 = std::min(levels_[0].columns - 1, rect.j1 / chunk_), r1 = std::min(levels_[0].rows - 1, rect.i1 / chunk_);
     for (int32_t r = r0; r <= r1; ++r)
-        for (int32_t c = c0; c <= c1; ++c) updateChunk(c, r);
+        for (int32_t c = c0; c <= c1; ++c) updateChunk(c, r, rect);
     for (size_t level = 1; level < levels_.size(); ++level) {
         c0 /= 2, r0 /= 2, c1 /= 2, r1 /= 2;
         mergeUp(level, c0, r0, c1, r1);
@@ -132,13 +147,13 @@ void MinMaxPyramid::update(const Heightfield& field, const SampleRect& rect) {
 
 // Block (c, r) of fine level `level` (kBlock << level samples a side) of a tiled field.
 void MinMaxPyramid::fineBlock(int32_t level, int32_t c, int32_t r, float& low, float& high) const {
-    const int32_t perChunk = kChunkSide >> level, side = kBlock << level;
+    const int32_t perChunk = chunkSide_ >> level, side = kBlock << level;
     const int32_t slot = chunkSlot_[size_t(r / perChunk) * size_t(levels_[0].columns) + size_t(c / perChunk)];
     if (slot < 0) {
         tiles_->range({c * side, r * side, c * side + side - 1, r * side + side - 1}, low, high);
         return;
     }
-    const size_t k = size_t(slot) * kChunkBlocks + size_t(kFineOffset[level] + (r % perChunk) * perChunk + c % perChunk);
+    const size_t k = size_t(slot) * size_t(chunkBlocks_) + size_t(fineOffset_[level] + (r % perChunk) * perChunk + c % perChunk);
     low = fineLow_[k], high = fineHigh_[k];
 }
 

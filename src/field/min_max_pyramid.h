@@ -5,10 +5,14 @@
 //
 // A field that arrives by tiles (field/sample_tiles.h) may be far larger than memory, and so
 // would be a pyramid over all of it (67 MB at 40000², 420 MB at 100000²). Its levels of blocks
-// under kChunk samples a side are kept only for the chunks (kChunk² samples) whose heights are
-// all at full resolution, so they grow with the tiles held, not with the field; elsewhere those
-// blocks are measured from the coarser samples when asked (few, since the heights there come
-// from an overview). The bounds are the same as a whole field's once the tiles are in.
+// under a chunk's side are kept only for the chunks whose heights come, somewhere, from the full
+// resolution or a level close to it (keepLevel), so they grow with the tiles held, not with the
+// field; elsewhere those blocks are measured from the coarser samples when asked (few, since the
+// heights there come from an overview). A chunk is kChunk samples a side, or larger for a field
+// with more than kMaxChunks of them (a world DEM at 1″: 2048, 194,000 chunks, 3 MB where 256
+// made 12 million, 180 MB); the keep level follows, so a block measured on demand still reads
+// no more than about 64² samples. The bounds are the same as a whole field's once the tiles
+// are in.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +25,8 @@ namespace hexlod {
 class MinMaxPyramid {
 public:
     static constexpr int32_t kBlock = 16;  // samples per block side at the finest level
-    static constexpr int32_t kChunk = 256; // a tiled field's blocks this size and up are kept for all of it
+    static constexpr int32_t kChunk = 256; // a tiled field's blocks this size and up are kept for all of it...
+    static constexpr int64_t kMaxChunks = int64_t(1) << 18; // ...unless there are more chunks than this
     /// The block side in use.
     int32_t block() const { return kBlock; }
 
@@ -44,26 +49,27 @@ private:
         int32_t columns = 0, rows = 0; // blocks
         std::vector<float> low, high;
     };
-    // A tiled field's levels under kChunk, per chunk: blocks of 16, 32, 64 and 128 samples.
-    static constexpr int32_t kFineLevels = 4;
-    static constexpr int32_t kChunkSide = kChunk / kBlock; // finest blocks across a chunk
-    static_assert(kChunkSide >> kFineLevels == 1, "the fine levels end one level under the chunk");
-    // Where each fine level starts among a chunk's blocks, and their count: 16², 8², 4², 2².
-    static constexpr int32_t kFineOffset[kFineLevels] = {0, 256, 320, 336};
-    static constexpr int32_t kChunkBlocks = 340;
+    // A tiled field's levels under its chunk, per chunk: blocks of 16, 32, ..., chunk / 2 samples.
+    static constexpr int32_t kMaxFineLevels = 24;
 
     void mergeUp(size_t level, int32_t c0, int32_t r0, int32_t c1, int32_t r1);
-    void updateChunk(int32_t cc, int32_t cr);
+    // Chunk (cc, cr) after the heights in `rect` changed.
+    void updateChunk(int32_t cc, int32_t cr, const SampleRect& rect);
     void fineBlock(int32_t level, int32_t c, int32_t r, float& low, float& high) const;
     void releaseChunk(size_t chunk);
 
     // levels_[k] has blocks of (kBlock << (fineLevels_ + k)) samples; each next: 2 x 2 blocks.
     std::vector<Level> levels_;
     int32_t width_ = 0, height_ = 0;
-    int32_t fineLevels_ = 0;             // 0 for a field held whole, kFineLevels for a tiled one
+    int32_t fineLevels_ = 0;             // 0 for a field held whole; a tiled one: log2(chunk_ / kBlock)
+    int32_t chunk_ = kChunk;             // samples a chunk side (a tiled field)
+    int32_t chunkSide_ = 0;              // finest blocks across a chunk
+    int32_t keepLevel_ = 0;              // a chunk's fine blocks are kept where heights come from this level or finer
+    int32_t fineOffset_[kMaxFineLevels] = {}; // where each fine level starts among a chunk's blocks
+    int32_t chunkBlocks_ = 0;            // fine blocks a chunk
     const SampleTiles* tiles_ = nullptr; // a tiled field's samples
     std::vector<int32_t> chunkSlot_;     // per chunk: its fine blocks in fineLow_/fineHigh_, or -1
-    std::vector<float> fineLow_, fineHigh_; // kChunkBlocks per slot
+    std::vector<float> fineLow_, fineHigh_; // chunkBlocks_ per slot
     std::vector<int32_t> freeSlots_;
 };
 

@@ -51,19 +51,19 @@ const char* SampleTiles::init(int32_t width, int32_t height, SampleType type, in
             return "each level must be coarser than the one before";
         l.tilesAcross = (l.width + l.tileWidth - 1) / l.tileWidth;
         l.tilesDown = (l.height + l.tileHeight - 1) / l.tileHeight;
+        if (int64_t(l.tilesAcross) * l.tilesDown > kMaxTilesPerLevel) return "a level has more than 2^26 tiles: the file needs larger tiles";
         l.scaleX = double(width) / l.width, l.scaleY = double(height) / l.height;
-        const size_t tiles = size_t(l.tilesAcross) * size_t(l.tilesDown);
-        l.slot.assign(tiles, -1);
-        l.present.assign(tiles, 0);
-        l.detail.assign(tiles, 0.0f);
+        l.tiles.reset(l.tilesAcross, l.tilesDown, TileState{});
         largestTile = std::max(largestTile, size_t(l.tileWidth) * size_t(l.tileHeight));
         levels_.push_back(std::move(l));
     }
     slotBytes_ = largestTile * bytesPerSample_;
-    slots_.clear(), freeSlots_.clear(), heldSlots_ = 0;
+    slots_.clear(), slotOwner_.clear(), freeSlots_.clear(), heldSlots_ = 0;
     const TileLevel& finest = levels_[0];
-    regionWidth_ = finest.tileWidth, regionHeight_ = finest.tileHeight;
-    regionsAcross_ = finest.tilesAcross, regionsDown_ = finest.tilesDown;
+    int32_t group = 1; // full-resolution tiles a region side
+    while (((int64_t(finest.tilesAcross) + group - 1) / group) * ((int64_t(finest.tilesDown) + group - 1) / group) > kMaxRegions) group *= 2;
+    regionWidth_ = finest.tileWidth * group, regionHeight_ = finest.tileHeight * group;
+    regionsAcross_ = (finest.tilesAcross + group - 1) / group, regionsDown_ = (finest.tilesDown + group - 1) / group;
     regionLevel_.assign(size_t(regionsAcross_) * size_t(regionsDown_), uint8_t(coarsest()));
     regionDetail_.assign(regionLevel_.size(), 0.0f);
     hasFill_ = false, fillRaw_ = 0.0, missing_ = 0;
@@ -84,7 +84,7 @@ double SampleTiles::rawIn(int32_t slot, size_t k) const {
 
 double SampleTiles::rawAtLevel(const TileLevel& l, int32_t u, int32_t v) const {
     const int32_t tx = u / l.tileWidth, ty = v / l.tileHeight;
-    const int32_t slot = l.slot[size_t(ty * l.tilesAcross + tx)];
+    const int32_t slot = l.tiles.get(tx, ty).slot;
     return rawIn(slot, size_t(v - ty * l.tileHeight) * size_t(l.tileWidth) + size_t(u - tx * l.tileWidth));
 }
 
@@ -119,8 +119,7 @@ void SampleTiles::tilesCovering(int32_t level, const SampleRect& rect, int32_t& 
     tx0 = u0 / l.tileWidth, ty0 = v0 / l.tileHeight, tx1 = u1 / l.tileWidth, ty1 = v1 / l.tileHeight;
 }
 
-SampleRect SampleTiles::regionRect(int32_t region) const {
-    const int32_t rx = region % regionsAcross_, ry = region / regionsAcross_;
+SampleRect SampleTiles::regionRect(int32_t rx, int32_t ry) const {
     return {rx * regionWidth_, ry * regionHeight_, std::min((rx + 1) * regionWidth_, width_) - 1,
             std::min((ry + 1) * regionHeight_, height_) - 1};
 }
@@ -138,19 +137,22 @@ bool SampleTiles::present(int32_t level, int32_t tx, int32_t ty) const {
     if (level < 0 || level >= levelCount()) return false;
     const TileLevel& l = levels_[size_t(level)];
     if (tx < 0 || ty < 0 || tx >= l.tilesAcross || ty >= l.tilesDown) return false;
-    return l.present[size_t(ty * l.tilesAcross + tx)] != 0;
+    return l.tiles.get(tx, ty).present != 0;
 }
 
 bool SampleTiles::coarsestComplete() const {
     const TileLevel& l = levels_.back();
-    return std::all_of(l.present.begin(), l.present.end(), [](uint8_t p) { return p != 0; });
+    for (int32_t ty = 0; ty < l.tilesDown; ++ty)
+        for (int32_t tx = 0; tx < l.tilesAcross; ++tx)
+            if (!l.tiles.get(tx, ty).present) return false;
+    return true;
 }
 
 void* SampleTiles::tileBuffer(int32_t level, int32_t tx, int32_t ty) {
     if (level < 0 || level >= levelCount()) return nullptr;
     TileLevel& l = levels_[size_t(level)];
     if (tx < 0 || ty < 0 || tx >= l.tilesAcross || ty >= l.tilesDown) return nullptr;
-    int32_t& slot = l.slot[size_t(ty * l.tilesAcross + tx)];
+    int32_t slot = l.tiles.get(tx, ty).slot;
     if (slot < 0) {
         if (!freeSlots_.empty()) {
             slot = freeSlots_.back();
@@ -159,8 +161,11 @@ void* SampleTiles::tileBuffer(int32_t level, int32_t tx, int32_t ty) {
             std::unique_ptr<uint8_t[]> bytes(new (std::nothrow) uint8_t[slotBytes_]);
             if (!bytes) return nullptr;
             slots_.push_back(std::move(bytes));
+            slotOwner_.emplace_back();
             slot = int32_t(slots_.size()) - 1;
         }
+        l.tiles.at(tx, ty).slot = slot;
+        slotOwner_[size_t(slot)] = {level, tx, ty};
         ++heldSlots_;
     }
     return slots_[size_t(slot)].get();
@@ -184,7 +189,7 @@ void SampleTiles::fillMissing(int32_t slot, size_t count) {
 float SampleTiles::measureDetail(int32_t level, int32_t tx, int32_t ty) const {
     if (level == 0) return 0.0f; // nothing finer to come
     const TileLevel& l = levels_[size_t(level)];
-    const int32_t slot = l.slot[size_t(ty * l.tilesAcross + tx)];
+    const int32_t slot = l.tiles.get(tx, ty).slot;
     const int32_t w = std::min(l.tileWidth, l.width - tx * l.tileWidth), h = std::min(l.tileHeight, l.height - ty * l.tileHeight);
     double detail = 0.0;
     withSamples(type_, slots_[size_t(slot)].get(), [&](auto* samples) {
@@ -200,41 +205,45 @@ float SampleTiles::measureDetail(int32_t level, int32_t tx, int32_t ty) const {
     return float(0.5 * detail * std::abs(scale_.heightScale));
 }
 
-int32_t SampleTiles::finestLevelFor(int32_t region, float& detail) const {
-    const SampleRect r = regionRect(region);
-    for (int32_t level = 0; level < levelCount(); ++level) {
-        int32_t tx0, ty0, tx1, ty1;
-        tilesCovering(level, r, tx0, ty0, tx1, ty1);
-        const TileLevel& l = levels_[size_t(level)];
-        bool all = true;
-        float most = 0.0f;
-        for (int32_t ty = ty0; ty <= ty1 && all; ++ty)
-            for (int32_t tx = tx0; tx <= tx1 && all; ++tx) {
-                const size_t t = size_t(ty * l.tilesAcross + tx);
-                all = l.present[t] != 0;
-                most = std::max(most, l.detail[t]);
-            }
-        if (all) {
-            detail = most;
-            return level;
-        }
-    }
+bool SampleTiles::completeAt(int32_t level, const SampleRect& r, float& detail) const {
+    int32_t tx0, ty0, tx1, ty1;
+    tilesCovering(level, r, tx0, ty0, tx1, ty1);
+    const TileLevel& l = levels_[size_t(level)];
     detail = 0.0f;
-    return coarsest(); // not complete yet: the caller loads the coarsest level before drawing
+    for (int32_t ty = ty0; ty <= ty1; ++ty)
+        for (int32_t tx = tx0; tx <= tx1; ++tx) {
+            const TileState& t = l.tiles.get(tx, ty);
+            if (!t.present) return false;
+            detail = std::max(detail, t.detail);
+        }
+    return true;
 }
 
-void SampleTiles::updateRegions(const SampleRect& around, SampleRect& changed) {
+void SampleTiles::updateRegions(const SampleRect& around, int32_t level, bool arrived, SampleRect& changed) {
     const int32_t rx0 = std::max(0, around.j0 / regionWidth_), rx1 = std::min(regionsAcross_ - 1, around.j1 / regionWidth_);
     const int32_t ry0 = std::max(0, around.i0 / regionHeight_), ry1 = std::min(regionsDown_ - 1, around.i1 / regionHeight_);
     for (int32_t ry = ry0; ry <= ry1; ++ry)
         for (int32_t rx = rx0; rx <= rx1; ++rx) {
-            const int32_t region = ry * regionsAcross_ + rx;
-            float detail;
-            const int32_t level = finestLevelFor(region, detail);
-            regionDetail_[size_t(region)] = detail;
-            if (level == regionLevel_[size_t(region)]) continue;
-            regionLevel_[size_t(region)] = uint8_t(level);
-            changed.add(regionRect(region));
+            // The finest complete level: the levels finer than `level` did not change, nor did
+            // those between it and the region's level.
+            const size_t region = regionOf(rx, ry);
+            const int32_t now = regionLevel_[region];
+            if (now < level || (!arrived && now > level)) continue;
+            const SampleRect r = regionRect(rx, ry);
+            float detail = 0.0f;
+            int32_t found = level;
+            if (arrived) {
+                if (!completeAt(level, r, detail)) continue;
+            } else {
+                found = coarsest();
+                for (int32_t l = level + 1; l < coarsest() && found == coarsest(); ++l)
+                    if (completeAt(l, r, detail)) found = l;
+                if (found == coarsest()) completeAt(found, r, detail);
+            }
+            regionDetail_[region] = found == 0 ? 0.0f : detail;
+            if (found == now) continue;
+            regionLevel_[region] = uint8_t(found);
+            changed.add(r);
         }
 }
 
@@ -242,13 +251,14 @@ bool SampleTiles::commit(int32_t level, int32_t tx, int32_t ty, SampleRect& chan
     if (level < 0 || level >= levelCount()) return false;
     TileLevel& l = levels_[size_t(level)];
     if (tx < 0 || ty < 0 || tx >= l.tilesAcross || ty >= l.tilesDown) return false;
-    const size_t t = size_t(ty * l.tilesAcross + tx);
-    if (l.slot[t] < 0) return false;
+    const int32_t slot = l.tiles.get(tx, ty).slot;
+    if (slot < 0) return false;
     widenRange(level, tx, ty);
-    if (hasFill_) fillMissing(l.slot[t], size_t(l.tileWidth) * size_t(l.tileHeight));
-    l.present[t] = 1;
-    l.detail[t] = measureDetail(level, tx, ty);
-    updateRegions(tileRect(level, tx, ty), changed);
+    if (hasFill_) fillMissing(slot, size_t(l.tileWidth) * size_t(l.tileHeight));
+    TileState& state = l.tiles.at(tx, ty);
+    state.present = 1;
+    state.detail = measureDetail(level, tx, ty);
+    updateRegions(tileRect(level, tx, ty), level, true, changed);
     return true;
 }
 
@@ -256,19 +266,19 @@ bool SampleTiles::evict(int32_t level, int32_t tx, int32_t ty, SampleRect& chang
     if (level < 0 || level >= coarsest()) return false; // the coarsest level stays
     TileLevel& l = levels_[size_t(level)];
     if (tx < 0 || ty < 0 || tx >= l.tilesAcross || ty >= l.tilesDown) return false;
-    const size_t t = size_t(ty * l.tilesAcross + tx);
-    if (l.slot[t] < 0) return false;
-    freeSlots_.push_back(l.slot[t]);
-    l.slot[t] = -1;
-    l.present[t] = 0;
+    TileState& state = l.tiles.at(tx, ty);
+    if (state.slot < 0) return false;
+    freeSlots_.push_back(state.slot);
+    slotOwner_[size_t(state.slot)] = {};
+    state = TileState{};
     --heldSlots_;
-    updateRegions(tileRect(level, tx, ty), changed);
+    updateRegions(tileRect(level, tx, ty), level, false, changed);
     return true;
 }
 
 void SampleTiles::widenRange(int32_t level, int32_t tx, int32_t ty) {
     const TileLevel& l = levels_[size_t(level)];
-    const int32_t slot = l.slot[size_t(ty * l.tilesAcross + tx)];
+    const int32_t slot = l.tiles.get(tx, ty).slot;
     const int32_t w = std::min(l.tileWidth, l.width - tx * l.tileWidth), h = std::min(l.tileHeight, l.height - ty * l.tileHeight);
     withSamples(type_, slots_[size_t(slot)].get(), [&](auto* samples) {
         for (int32_t v = 0; v < h; ++v) {
@@ -291,9 +301,12 @@ bool SampleTiles::rawRange(double& low, double& high) const {
 void SampleTiles::setFillRaw(double raw) {
     fillRaw_ = raw;
     hasFill_ = true;
-    for (const TileLevel& l : levels_)
-        for (size_t t = 0; t < l.present.size(); ++t)
-            if (l.present[t]) fillMissing(l.slot[t], size_t(l.tileWidth) * size_t(l.tileHeight));
+    for (int32_t s = 0; s < slotCount(); ++s) {
+        const TileId& t = slotOwner_[size_t(s)];
+        if (t.level < 0 || !present(t.level, t.tx, t.ty)) continue;
+        const TileLevel& l = levels_[size_t(t.level)];
+        fillMissing(s, size_t(l.tileWidth) * size_t(l.tileHeight));
+    }
 }
 
 void SampleTiles::range(const SampleRect& rect, float& low, float& high) const {
@@ -302,10 +315,9 @@ void SampleTiles::range(const SampleRect& rect, float& low, float& high) const {
     if (r.empty()) return;
     for (int32_t ry = r.i0 / regionHeight_; ry <= r.i1 / regionHeight_; ++ry)
         for (int32_t rx = r.j0 / regionWidth_; rx <= r.j1 / regionWidth_; ++rx) {
-            const int32_t region = ry * regionsAcross_ + rx;
-            const SampleRect whole = regionRect(region);
+            const SampleRect whole = regionRect(rx, ry);
             const SampleRect part{std::max(r.j0, whole.j0), std::max(r.i0, whole.i0), std::min(r.j1, whole.j1), std::min(r.i1, whole.i1)};
-            const int32_t level = regionLevel_[size_t(region)];
+            const int32_t level = regionLevel_[regionOf(rx, ry)];
             // A bilinear blend stays within its four samples: the samples it reaches bound it.
             int32_t u0, v0, u1, v1;
             samplesFor(level, part, u0, v0, u1, v1);
@@ -323,7 +335,7 @@ void SampleTiles::levelRawRange(int32_t level, int32_t u0, int32_t v0, int32_t u
         for (int32_t tx = u0 / l.tileWidth; tx <= u1 / l.tileWidth; ++tx) {
             const int32_t x0 = std::max(u0, tx * l.tileWidth) - tx * l.tileWidth, x1 = std::min(u1, (tx + 1) * l.tileWidth - 1) - tx * l.tileWidth;
             const int32_t y0 = std::max(v0, ty * l.tileHeight) - ty * l.tileHeight, y1 = std::min(v1, (ty + 1) * l.tileHeight - 1) - ty * l.tileHeight;
-            withSamples(type_, slots_[size_t(l.slot[size_t(ty * l.tilesAcross + tx)])].get(), [&](const auto* samples) {
+            withSamples(type_, slots_[size_t(l.tiles.get(tx, ty).slot)].get(), [&](const auto* samples) {
                 auto lo = samples[size_t(y0) * size_t(l.tileWidth) + size_t(x0)], hi = lo;
                 for (int32_t y = y0; y <= y1; ++y) {
                     const auto* row = samples + size_t(y) * size_t(l.tileWidth);
@@ -341,18 +353,28 @@ int32_t SampleTiles::levelIn(const SampleRect& rect, float& detail) const {
     int32_t level = 0;
     for (int32_t ry = r.i0 / regionHeight_; ry <= r.i1 / regionHeight_; ++ry)
         for (int32_t rx = r.j0 / regionWidth_; rx <= r.j1 / regionWidth_; ++rx) {
-            const size_t region = size_t(ry * regionsAcross_ + rx);
+            const size_t region = regionOf(rx, ry);
             level = std::max(level, int32_t(regionLevel_[region]));
             detail = std::max(detail, regionDetail_[region]);
         }
     return level;
 }
 
+int32_t SampleTiles::finestLevelIn(const SampleRect& rect) const {
+    const SampleRect r{std::max(rect.j0, 0), std::max(rect.i0, 0), std::min(rect.j1, width_ - 1), std::min(rect.i1, height_ - 1)};
+    int32_t level = coarsest();
+    if (r.empty()) return level;
+    for (int32_t ry = r.i0 / regionHeight_; ry <= r.i1 / regionHeight_; ++ry)
+        for (int32_t rx = r.j0 / regionWidth_; rx <= r.j1 / regionWidth_; ++rx) level = std::min(level, int32_t(regionLevel_[regionOf(rx, ry)]));
+    return level;
+}
+
 size_t SampleTiles::sampleBytes() const { return size_t(heldSlots_) * slotBytes_; }
 
 size_t SampleTiles::memoryBytes() const {
-    size_t bytes = slots_.size() * slotBytes_ + regionLevel_.size() * (1 + sizeof(float));
-    for (const TileLevel& l : levels_) bytes += l.slot.size() * (sizeof(int32_t) + 1 + sizeof(float));
+    size_t bytes = slots_.size() * slotBytes_ + regionLevel_.capacity() + regionDetail_.capacity() * sizeof(float) +
+                   slotOwner_.capacity() * sizeof(TileId) + freeSlots_.capacity() * sizeof(int32_t);
+    for (const TileLevel& l : levels_) bytes += l.tiles.memoryBytes();
     return bytes;
 }
 

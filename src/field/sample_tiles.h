@@ -3,10 +3,12 @@
 // each cut into tiles, any tile present or not. It lets the core refine a field far larger than
 // memory (paper §5's refinement, §4.7's field) while only the tiles the view needs are held.
 //
-// Heights are read from the finest level present: per region (one full-resolution tile), the
-// finest level whose samples around the region are all present gives the heights there,
-// bilinear between that level's samples (its sample k sits at full-resolution position
-// (k + 0.5) * scale - 0.5). The coarsest level is always whole (the caller loads it first), so
+// Heights are read from the finest level present: per region (one full-resolution tile, or a
+// block of 2^k x 2^k of them when the field has more than kMaxRegions tiles), the finest level
+// whose samples around the region are all present gives the heights there, bilinear between
+// that level's samples (its sample k sits at full-resolution position (k + 0.5) * scale - 0.5).
+// What is kept per tile is sparse (field/sparse_grid.h): it follows the tiles held, not the
+// field's size. The coarsest level is always whole (the caller loads it first), so
 // every height has an answer, and a region's answer changes only when a tile arrives or goes.
 //
 // The refiner (lod/refiner.h) does not split a cell finer than the level its heights come from
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include "field/heightfield_scale.h"
+#include "field/sparse_grid.h"
 
 namespace hexlod {
 
@@ -29,20 +32,38 @@ struct SampleRect {
     bool intersects(const SampleRect& r) const { return !empty() && !r.empty() && j0 <= r.j1 && r.j0 <= j1 && i0 <= r.i1 && r.i0 <= i1; }
 };
 
+/// What a level keeps per tile.
+struct TileState {
+    int32_t slot = -1;    // its buffer in the slot pool, or -1
+    uint8_t present = 0;  // committed
+    float detail = 0.0f;  // metres, see SampleTiles::commit
+};
+
+/// A tile of a level.
+struct TileId {
+    int32_t level = -1, tx = 0, ty = 0;
+};
+
 /// One level of the pyramid: level 0 is the full resolution.
 struct TileLevel {
     int32_t width = 0, height = 0;         // samples
     int32_t tileWidth = 0, tileHeight = 0; // samples
     int32_t tilesAcross = 0, tilesDown = 0;
     double scaleX = 1.0, scaleY = 1.0;     // full-resolution samples per sample of this level
-    std::vector<int32_t> slot;             // per tile: its buffer in the slot pool, or -1
-    std::vector<uint8_t> present;          // per tile: committed
-    std::vector<float> detail;             // per tile: metres, see SampleTiles::commit
+    SparseGrid<TileState> tiles;           // per tile, held only around the tiles that came
+    size_t tileCount() const { return size_t(tilesAcross) * size_t(tilesDown); }
 };
 
 class SampleTiles {
 public:
     static constexpr int32_t kMaxLevels = 24;
+    /// Most tiles a level may have: the sparse per-tile state's page table stays about 256 KB.
+    /// A 2^21-sample side (kMaxTiledFieldSide) needs tiles of 256 samples a side or more.
+    static constexpr int64_t kMaxTilesPerLevel = int64_t(1) << 26;
+    /// Most regions (what keeps the level heights come from, 5 bytes each, for the whole field):
+    /// a field with more full-resolution tiles groups them, 2 x 2, 4 x 4, ..., a region (20 MB
+    /// at most; a world DEM at 1″ in 512² tiles has 3.1 million, one a region).
+    static constexpr int64_t kMaxRegions = int64_t(1) << 22;
 
     /// levels x (width, height, tileWidth, tileHeight), finest first; each level coarser than
     /// the one before. Returns an error message or null.
@@ -67,6 +88,10 @@ public:
     /// level stay. False when the tile was not held.
     bool evict(int32_t level, int32_t tx, int32_t ty, SampleRect& changed);
     bool present(int32_t level, int32_t tx, int32_t ty) const;
+    /// The tiles held: slot s holds tile heldTile(s) (level -1 when the slot is free), s in
+    /// [0, slotCount()). Committed or not (present says).
+    int32_t slotCount() const { return int32_t(slotOwner_.size()); }
+    const TileId& heldTile(int32_t s) const { return slotOwner_[size_t(s)]; }
     /// Whether every tile of the coarsest level is present (the field can be drawn).
     bool coarsestComplete() const;
 
@@ -79,14 +104,14 @@ public:
 
     /// Height in metres at full-resolution sample (j, i), inside the field.
     float height(int32_t j, int32_t i) const {
-        const int32_t region = (i / regionHeight_) * regionsAcross_ + j / regionWidth_;
-        if (regionLevel_[size_t(region)] == 0) {
+        const size_t region = regionOf(j / regionWidth_, i / regionHeight_);
+        if (regionLevel_[region] == 0) {
             const TileLevel& l = levels_[0];
             const int32_t tx = j / l.tileWidth, ty = i / l.tileHeight;
-            const int32_t slot = l.slot[size_t(ty * l.tilesAcross + tx)];
+            const int32_t slot = l.tiles.get(tx, ty).slot;
             return toMetres(rawIn(slot, size_t(i - ty * l.tileHeight) * size_t(l.tileWidth) + size_t(j - tx * l.tileWidth)));
         }
-        return blended(regionLevel_[size_t(region)], j, i);
+        return blended(regionLevel_[region], j, i);
     }
     /// Lowest and highest height in metres over the samples of `rect` (clamped to the field):
     /// a bound of the heights height() gives there.
@@ -94,6 +119,11 @@ public:
     /// The coarsest level that heights come from in `rect`, and the largest detail (metres) of
     /// the tiles they come from (0 where that level is the full resolution).
     int32_t levelIn(const SampleRect& rect, float& detail) const;
+    /// The finest level that heights come from in `rect` (the coarsest for an empty one).
+    int32_t finestLevelIn(const SampleRect& rect) const;
+    /// The full-resolution samples a region side: heights come from one level over each region.
+    int32_t regionWidth() const { return regionWidth_; }
+    int32_t regionHeight() const { return regionHeight_; }
     /// The tiles of `level` whose samples cover `rect` (clamped to the level).
     void tilesCovering(int32_t level, const SampleRect& rect, int32_t& tx0, int32_t& ty0, int32_t& tx1, int32_t& ty1) const;
 
@@ -115,10 +145,14 @@ private:
     float measureDetail(int32_t level, int32_t tx, int32_t ty) const;
     // The level-l samples (inclusive) whose bilinear blend reaches full-resolution rect r.
     void samplesFor(int32_t level, const SampleRect& r, int32_t& u0, int32_t& v0, int32_t& u1, int32_t& v1) const;
-    SampleRect regionRect(int32_t region) const;
+    size_t regionOf(int32_t rx, int32_t ry) const { return size_t(ry) * size_t(regionsAcross_) + size_t(rx); }
+    SampleRect regionRect(int32_t rx, int32_t ry) const;
     SampleRect tileRect(int32_t level, int32_t tx, int32_t ty) const; // full-resolution samples it reaches
-    void updateRegions(const SampleRect& around, SampleRect& changed);
-    int32_t finestLevelFor(int32_t region, float& detail) const;
+    // The regions `around` after a tile of `level` came (arrived) or went: a region's level can
+    // only become that level, or, where it was that level, the next complete one coarser.
+    void updateRegions(const SampleRect& around, int32_t level, bool arrived, SampleRect& changed);
+    // Whether every tile of `level` whose samples reach `r` is present, and their largest detail.
+    bool completeAt(int32_t level, const SampleRect& r, float& detail) const;
 
     int32_t width_ = 0, height_ = 0;
     SampleType type_ = SampleType::I16;
@@ -127,9 +161,10 @@ private:
     std::vector<TileLevel> levels_;
     size_t slotBytes_ = 0;
     std::vector<std::unique_ptr<uint8_t[]>> slots_;
+    std::vector<TileId> slotOwner_; // per slot: the tile in it
     std::vector<int32_t> freeSlots_;
     int32_t heldSlots_ = 0;
-    // Regions: the full-resolution tiles.
+    // Regions: the full-resolution tiles (or blocks of them, kMaxRegions).
     int32_t regionWidth_ = 1, regionHeight_ = 1, regionsAcross_ = 0, regionsDown_ = 0;
     std::vector<uint8_t> regionLevel_;   // the level heights come from
     std::vector<float> regionDetail_;    // metres: the detail of the tiles they come from (0 at level 0)

@@ -218,6 +218,27 @@ void measureStepOneSemiCentre(const Heightfield& field, Embedding embedding, con
     }
 }
 
+// The columns (half ones on a shifted odd row) and rows a shape's own corners and centre span.
+struct LatticeExtent {
+    double column0 = 1e300, column1 = -1e300;
+    int32_t row0 = INT32_MAX, row1 = INT32_MIN;
+    double samples() const { return (column1 - column0 + 1.0) * (double(row1) - row0 + 1.0); }
+};
+
+LatticeExtent extentOf(Embedding embedding, const CellShape& shape) {
+    LatticeExtent e;
+    auto add = [&](LatticePoint p) {
+        const double column = embedding == Embedding::Exact ? double(sampleColumn(p)) : p.q + 0.5 * p.r;
+        e.column0 = std::min(e.column0, column), e.column1 = std::max(e.column1, column);
+        e.row0 = std::min(e.row0, p.r), e.row1 = std::max(e.row1, p.r);
+    };
+    const int32_t first = shape.kind == CellKind::Full ? 1 : shape.firstVisible;
+    const int32_t corners = shape.kind == CellKind::Full ? 6 : 4;
+    for (int32_t i = 0; i < corners; ++i) add(latticeAdd(shape.center, kDirections[wrapSlot(first + i) - 1], shape.step));
+    if (shape.kind != CellKind::Semi) add(shape.center);
+    return e;
+}
+
 } // namespace
 
 CellShape shapeOfCell(const HexMesh& mesh, int32_t cell) {
@@ -231,19 +252,19 @@ CellShape parentShapeOfCell(const HexMesh& mesh, int32_t cell) {
     return shape;
 }
 
-Footprint footprintOf(const Heightfield& field, Embedding embedding, const CellShape& shape) {
+namespace {
+
+// Rounded outwards, so that it holds both the exact positions of the samples (x = j * sx) and
+// the float ones of the vertices (the nearest float): a float's step is 4 m at 4e7 m.
+Footprint footprintOf(const Heightfield& field, const LatticeExtent& e) {
     const double sx = field.scale().spacingX, sy = field.scale().spacingY;
-    Footprint f{1e30f, -1e30f, 1e30f, -1e30f};
-    auto add = [&](LatticePoint p) {
-        const double column = embedding == Embedding::Exact ? double(sampleColumn(p)) : p.q + 0.5 * p.r;
-        f.x0 = std::min(f.x0, float(column * sx)), f.x1 = std::max(f.x1, float(column * sx));
-        f.z0 = std::min(f.z0, float(p.r * sy)), f.z1 = std::max(f.z1, float(p.r * sy));
-    };
-    const int32_t first = shape.kind == CellKind::Full ? 1 : shape.firstVisible;
-    const int32_t corners = shape.kind == CellKind::Full ? 6 : 4;
-    for (int32_t i = 0; i < corners; ++i) add(latticeAdd(shape.center, kDirections[wrapSlot(first + i) - 1], shape.step));
-    if (shape.kind != CellKind::Semi) add(shape.center);
-    return f;
+    return {roundedDown(e.column0 * sx), roundedUp(e.column1 * sx), roundedDown(e.row0 * sy), roundedUp(e.row1 * sy)};
+}
+
+} // namespace
+
+Footprint footprintOf(const Heightfield& field, Embedding embedding, const CellShape& shape) {
+    return footprintOf(field, extentOf(embedding, shape));
 }
 
 SampleRect samplesUnder(const Heightfield& field, const Footprint& f) {
@@ -293,11 +314,13 @@ CellError computeCellError(const Heightfield& field, Embedding embedding, const 
         e.error = nextUp(float(error));
         return e;
     }
-    const Footprint f = footprintOf(field, embedding, shape);
+    const LatticeExtent extent = extentOf(embedding, shape);
+    const Footprint f = footprintOf(field, extent);
     const double sx = field.scale().spacingX, sy = field.scale().spacingY;
-    const double samples = (double(f.x1 - f.x0) / sx + 1.0) * (double(f.z1 - f.z0) / sy + 1.0);
-    const bool outside = f.x1 < 0.0f || f.z1 < 0.0f || f.x0 > float((field.width() - 1) * sx) ||
-                         f.z0 > float((field.height() - 1) * sy);
+    // Counted on the lattice: exact, where the floats' extent grows with the coordinates.
+    const double samples = extent.samples();
+    const bool outside = f.x1 < 0.0f || f.z1 < 0.0f || f.x0 > roundedUp((field.width() - 1) * sx) ||
+                         f.z0 > roundedUp((field.height() - 1) * sy);
     if (outside) {
         // No sample lies under the cell: nothing to approximate.
     } else if (samples <= kExactScanSamples) {

@@ -8,34 +8,32 @@ namespace hexlod {
 void TileResidency::fitLevels(const SampleTiles& tiles) {
     if (lastUse_.size() == size_t(tiles.levelCount())) return;
     lastUse_.assign(size_t(tiles.levelCount()), {});
-    for (int32_t l = 0; l < tiles.levelCount(); ++l) lastUse_[size_t(l)].assign(tiles.level(l).slot.size(), 0u);
+    for (int32_t l = 0; l < tiles.levelCount(); ++l) lastUse_[size_t(l)].reset(tiles.level(l).tilesAcross, tiles.level(l).tilesDown, 0u);
 }
 
-uint32_t& TileResidency::lastUse(const SampleTiles& tiles, int32_t level, int32_t tx, int32_t ty) {
-    return lastUse_[size_t(level)][size_t(ty * tiles.level(level).tilesAcross + tx)];
+uint32_t& TileResidency::lastUse(int32_t level, int32_t tx, int32_t ty) {
+    return lastUse_[size_t(level)].at(tx, ty);
 }
 
 void TileResidency::arrived(const SampleTiles& tiles, int32_t level, int32_t tx, int32_t ty) {
     fitLevels(tiles);
-    lastUse(tiles, level, tx, ty) = now_;
+    lastUse(level, tx, ty) = now_;
 }
 
 double TileResidency::heldBytes(const SampleTiles& tiles) const {
     const TileLevel& top = tiles.level(tiles.coarsest());
-    return double(tiles.sampleBytes()) - double(top.slot.size()) * double(tiles.slotBytes());
+    return double(tiles.sampleBytes()) - double(top.tileCount()) * double(tiles.slotBytes());
 }
 
 int32_t TileResidency::keepWithinCap(SampleTiles& tiles, const std::vector<TileWant>& inUse, SampleRect& changed) {
     fitLevels(tiles);
-    for (const TileWant& t : inUse) lastUse(tiles, t.level, t.tx, t.ty) = now_;
+    for (const TileWant& t : inUse) lastUse(t.level, t.tx, t.ty) = now_;
     candidates_.clear();
-    for (int32_t l = 0; l < tiles.coarsest(); ++l) {
-        const TileLevel& level = tiles.level(l);
-        const std::vector<uint32_t>& uses = lastUse_[size_t(l)];
-        for (size_t t = 0; t < level.present.size(); ++t) {
-            if (!level.present[t] || uses[t] == now_) continue;
-            candidates_.push_back({uses[t], l, int32_t(t % size_t(level.tilesAcross)), int32_t(t / size_t(level.tilesAcross))});
-        }
+    for (int32_t s = 0; s < tiles.slotCount(); ++s) {
+        const TileId& t = tiles.heldTile(s);
+        if (t.level < 0 || t.level >= tiles.coarsest() || !tiles.present(t.level, t.tx, t.ty)) continue;
+        const uint32_t use = lastUse_[size_t(t.level)].get(t.tx, t.ty);
+        if (use != now_) candidates_.push_back({use, t.level, t.tx, t.ty});
     }
     // Oldest use first; among tiles last used together, the finer first (a coarser tile serves
     // more of the view), then in reading order so the choice never depends on anything else.
@@ -55,7 +53,7 @@ int32_t TileResidency::keepWithinCap(SampleTiles& tiles, const std::vector<TileW
 
 size_t TileResidency::memoryBytes() const {
     size_t bytes = candidates_.capacity() * sizeof(Candidate);
-    for (const auto& uses : lastUse_) bytes += uses.capacity() * sizeof(uint32_t);
+    for (const auto& uses : lastUse_) bytes += uses.memoryBytes();
     return bytes;
 }
 

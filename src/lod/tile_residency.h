@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "field/sample_tiles.h"
+#include "field/sparse_grid.h"
 #include "lod/tile_wants.h"
 
 namespace hexlod {
@@ -52,12 +53,12 @@ private:
         int32_t level, tx, ty;
     };
     void fitLevels(const SampleTiles& tiles);
-    uint32_t& lastUse(const SampleTiles& tiles, int32_t level, int32_t tx, int32_t ty);
+    uint32_t& lastUse(int32_t level, int32_t tx, int32_t ty);
 
     double capBytes_ = std::numeric_limits<double>::infinity();
     uint32_t now_ = 1;
     int64_t evictions_ = 0;
-    std::vector<std::vector<uint32_t>> lastUse_; // per level and tile: the frame of its last known use
+    std::vector<SparseGrid<uint32_t>> lastUse_; // per level and tile: the frame of its last known use
     std::vector<Candidate> candidates_;          // reused across passes
 };
 

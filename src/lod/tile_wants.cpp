@@ -20,15 +20,13 @@ SampleRect fieldSamplesUnder(const Heightfield& field, const Footprint& f) {
 
 void TileWants::want(const SampleTiles& tiles, int32_t level, int32_t tx, int32_t ty, float priority) {
     if (tiles.present(level, tx, ty)) return;
-    const TileLevel& l = tiles.level(level);
-    const size_t t = size_t(ty * l.tilesAcross + tx);
-    if (stamp_[size_t(level)][t] == now_) {
-        TileWant& w = wants_[size_t(slot_[size_t(level)][t])];
+    Listed& listed = listed_[size_t(level)].at(tx, ty);
+    if (listed.stamp == now_) {
+        TileWant& w = wants_[size_t(listed.index)];
         w.priority = std::max(w.priority, priority);
         return;
     }
-    stamp_[size_t(level)][t] = now_;
-    slot_[size_t(level)][t] = int32_t(wants_.size());
+    listed = {now_, int32_t(wants_.size())};
     wants_.push_back({level, tx, ty, priority});
 }
 
@@ -36,18 +34,13 @@ bool TileWants::begin(const Heightfield& field) {
     wants_.clear();
     const SampleTiles* tiles = field.tiles();
     if (!tiles) return false;
-    if (stamp_.size() != size_t(tiles->levelCount())) {
-        stamp_.assign(size_t(tiles->levelCount()), {});
-        slot_.assign(size_t(tiles->levelCount()), {});
-        for (int32_t k = 0; k < tiles->levelCount(); ++k) {
-            const size_t count = tiles->level(k).slot.size();
-            stamp_[size_t(k)].assign(count, 0u);
-            slot_[size_t(k)].assign(count, 0);
-        }
+    if (listed_.size() != size_t(tiles->levelCount())) {
+        listed_.assign(size_t(tiles->levelCount()), {});
+        for (int32_t k = 0; k < tiles->levelCount(); ++k) listed_[size_t(k)].reset(tiles->level(k).tilesAcross, tiles->level(k).tilesDown, Listed{});
         now_ = 0;
     }
     if (++now_ == 0) { // the stamps wrapped: start them again
-        for (auto& s : stamp_) std::fill(s.begin(), s.end(), 0u);
+        for (auto& grid : listed_) grid.fillWritten(Listed{});
         now_ = 1;
     }
     return true;
@@ -56,7 +49,6 @@ bool TileWants::begin(const Heightfield& field) {
 const std::vector<TileWant>& TileWants::collect(const HexMesh& mesh, const Heightfield& field, const std::vector<float>& starved) {
     if (!begin(field)) return wants_;
     const SampleTiles* tiles = field.tiles();
-    const TileLevel& finest = tiles->level(0);
     const int32_t cells = std::min(int32_t(starved.size()), mesh.cellCapacity());
     for (int32_t c = 0; c < cells; ++c) {
         const float priority = starved[size_t(c)];
@@ -78,9 +70,10 @@ const std::vector<TileWant>& TileWants::collect(const HexMesh& mesh, const Heigh
         }
         // Heights come from a level over whole regions (full-resolution tiles): every tile of
         // the target level that those regions reach.
-        rect.j0 = rect.j0 / finest.tileWidth * finest.tileWidth, rect.i0 = rect.i0 / finest.tileHeight * finest.tileHeight;
-        rect.j1 = std::min(field.width() - 1, (rect.j1 / finest.tileWidth + 1) * finest.tileWidth - 1);
-        rect.i1 = std::min(field.height() - 1, (rect.i1 / finest.tileHeight + 1) * finest.tileHeight - 1);
+        const int32_t rw = tiles->regionWidth(), rh = tiles->regionHeight();
+        rect.j0 = rect.j0 / rw * rw, rect.i0 = rect.i0 / rh * rh;
+        rect.j1 = std::min(field.width() - 1, (rect.j1 / rw + 1) * rw - 1);
+        rect.i1 = std::min(field.height() - 1, (rect.i1 / rh + 1) * rh - 1);
         int32_t tx0, ty0, tx1, ty1;
         tiles->tilesCovering(target, rect, tx0, ty0, tx1, ty1);
         for (int32_t ty = ty0; ty <= ty1; ++ty)
@@ -120,9 +113,9 @@ const std::vector<TileWant>& TileWants::collectInUse(const HexMesh& mesh, const 
             for (int32_t ty = ty0; ty <= ty1; ++ty)
                 for (int32_t tx = tx0; tx <= tx1; ++tx) {
                     if (!tiles->present(l, tx, ty)) continue;
-                    const size_t t = size_t(ty * level.tilesAcross + tx);
-                    if (stamp_[size_t(l)][t] == now_) continue;
-                    stamp_[size_t(l)][t] = now_;
+                    Listed& listed = listed_[size_t(l)].at(tx, ty);
+                    if (listed.stamp == now_) continue;
+                    listed = {now_, int32_t(wants_.size())};
                     wants_.push_back({l, tx, ty, 0.0f});
                 }
         }
@@ -132,7 +125,7 @@ const std::vector<TileWant>& TileWants::collectInUse(const HexMesh& mesh, const 
 
 size_t TileWants::memoryBytes() const {
     size_t bytes = wants_.capacity() * sizeof(TileWant);
-    for (size_t k = 0; k < stamp_.size(); ++k) bytes += stamp_[k].capacity() * sizeof(uint32_t) + slot_[k].capacity() * sizeof(int32_t);
+    for (const auto& grid : listed_) bytes += grid.memoryBytes();
     return bytes;
 }
 

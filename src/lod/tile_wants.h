@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "field/heightfield.h"
+#include "field/sparse_grid.h"
 #include "mesh/embedding.h"
 #include "mesh/hex_mesh.h"
 
@@ -44,8 +45,13 @@ private:
     void want(const SampleTiles& tiles, int32_t level, int32_t tx, int32_t ty, float priority);
 
     std::vector<TileWant> wants_;
-    std::vector<std::vector<int32_t>> slot_; // per level and tile: its index in wants_ + 1 at this stamp, else 0
-    std::vector<std::vector<uint32_t>> stamp_;
+    // Per level and tile: the stamp of the collection that listed it, and where. Sparse: a world
+    // field has millions of tiles, a view lists a few thousand.
+    struct Listed {
+        uint32_t stamp = 0;
+        int32_t index = 0; // in wants_
+    };
+    std::vector<SparseGrid<Listed>> listed_;
     uint32_t now_ = 0;
 };
 

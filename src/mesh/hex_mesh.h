@@ -44,6 +44,9 @@
 namespace hexlod {
 
 constexpr int32_t kNone = -1;
+/// Columns and rows of lattice points stay under this: HexMesh::latticeAt recovers a point from
+/// its float position exactly only there (a field's side is limited accordingly, kMaxTiledFieldSide).
+constexpr int64_t kMaxLatticeReach = int64_t(1) << 22;
 
 /// §4.3: the cell of a directed edge, and the next and previous edge around that cell (the
 /// slot arithmetic wraps 6 to 1).

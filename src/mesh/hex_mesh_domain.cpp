@@ -39,6 +39,10 @@ const char* HexMesh::reset(const Heightfield& field, Embedding embedding, int32_
     if (baseStep == 0) baseStep = chooseBaseStep(field.width(), field.height());
     if (baseStep < 1 || (baseStep & (baseStep - 1)) != 0 || baseStep > (1 << 20))
         return "the base step must be a power of two";
+    // The lattice reaches two base steps past the east edge and one past the south edge; latticeAt
+    // recovers points from float positions exactly only under 2^22 columns and rows.
+    if (int64_t(field.width()) + 2 * int64_t(baseStep) + 1 >= kMaxLatticeReach || int64_t(field.height()) + baseStep >= kMaxLatticeReach)
+        return "the base step is too large for this field: the lattice would reach past 2^22 samples";
     field_ = &field;
     embedding_ = embedding;
     baseStep_ = baseStep;

@@ -73,14 +73,15 @@ TEST(Embedding, CoarseVerticesSitOnRealSamplesInBothEmbeddings) {
 }
 
 // The mesh stores no lattice points: it recovers them from the float positions the
-// embedding made of them, which must be exact for every point a mesh can have (fields up to
-// kMaxFieldSide a side, plus the lattice's overhang), at any accepted spacing.
+// embedding made of them, which must be exact for every point a mesh can have (tiled fields up
+// to kMaxTiledFieldSide a side, plus the lattice's overhang of up to a quarter side and a few
+// samples), at any accepted spacing.
 TEST(Embedding, EveryLatticePointComesBackFromItsPosition) {
     auto field = Heightfield::create(9, 9, SampleType::F32, nullptr);
     ASSERT_TRUE(field);
     field->prepare();
     const double spacings[] = {kMinSpacing, 1e-3, 0.5, 1.0, 30.87, 92.66, 1234.5678, 1e6, kMaxSpacing};
-    const int32_t reach = 2 * kMaxFieldSide + 5;
+    const int32_t reach = kMaxTiledFieldSide + kMaxTiledFieldSide / 4 + 5; // columns and rows
     for (Embedding embedding : {Embedding::Shifted, Embedding::Exact}) {
         for (double sx : spacings) {
             for (double sy : {spacings[0], spacings[3], spacings[5], spacings[8]}) {
@@ -90,9 +91,11 @@ TEST(Embedding, EveryLatticePointComesBackFromItsPosition) {
                 HexMesh mesh;
                 ASSERT_EQ(mesh.reset(*field, embedding), nullptr);
                 int32_t checked = 0;
-                for (int32_t r = -reach; r <= reach; r += 997) {
-                    for (int32_t q = -reach; q <= reach; q += 1009) {
-                        for (LatticePoint p : {LatticePoint{q, r}, LatticePoint{q + 1, r + 1}, LatticePoint{-q, reach}, LatticePoint{reach, -r}}) {
+                // A point of sample column j and row r.
+                auto at = [](int32_t j, int32_t r) { return LatticePoint{j - floorDiv2(r), r}; };
+                for (int32_t r = -reach; r <= reach; r += 997 * 16) {
+                    for (int32_t j = -reach; j <= reach; j += 1009 * 16) {
+                        for (LatticePoint p : {at(j, r), at(j + 1, r + 1), at(-j, reach), at(reach, -r), at(-reach, r), at(j, -reach)}) {
                             const LatticePoint back = mesh.latticeAt(embedLatticePoint(*field, embedding, p));
                             ASSERT_EQ(back, p) << "spacing " << sx << " x " << sy << " at (" << p.q << ", " << p.r << ")";
                             ++checked;

@@ -14,6 +14,19 @@ TEST(Heightfield, RejectsSizesTypesAndScalesItCannotHold) {
     EXPECT_EQ(Heightfield::create(1, 100, SampleType::U16, &error), nullptr);
     EXPECT_STREQ(error, "a height field needs at least 2x2 samples");
     EXPECT_EQ(Heightfield::create(70000, 2, SampleType::U16, &error), nullptr);
+    EXPECT_NE(std::string(error).find("held whole is limited to 65536"), std::string::npos) << error;
+    // A tiled field holds only its tiles: its limit is the lattice's (kMaxTiledFieldSide).
+    auto tiledOf = [&](int32_t width, int32_t height) {
+        const int32_t dims[8] = {width, height, 512, 512, (width + 4095) / 4096, (height + 4095) / 4096, 512, 512};
+        return Heightfield::createTiled(width, height, SampleType::I16, 2, dims, &error);
+    };
+    EXPECT_NE(tiledOf(1296000, 626400), nullptr) << error;
+    EXPECT_NE(tiledOf(kMaxTiledFieldSide, kMaxTiledFieldSide), nullptr) << error;
+    EXPECT_EQ(tiledOf(kMaxTiledFieldSide + 1, 1000), nullptr);
+    EXPECT_STREQ(error, "a tiled height field side is limited to 2097152 samples");
+    const int32_t tinyTiles[8] = {100000, 100000, 8, 8, 100, 100, 8, 8};
+    EXPECT_EQ(Heightfield::createTiled(100000, 100000, SampleType::I16, 2, tinyTiles, &error), nullptr);
+    EXPECT_NE(std::string(error).find("larger tiles"), std::string::npos) << error;
     EXPECT_EQ(Heightfield::create(4, 4, SampleType(9), &error), nullptr);
     EXPECT_NE(std::string(error).find("unknown sample type"), std::string::npos);
 

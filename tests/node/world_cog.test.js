@@ -3,10 +3,14 @@
 // demand by lib/world_cog_server.js. Opening it and reading its coarsest level (what the first
 // frame draws) must fetch a few requests and well under 2 MB, whatever the tile count; a
 // full-resolution tile anywhere then costs its own bytes and one block of each table, and holds
-// the samples the file holds there (tile offsets past 2^32 included).
+// the samples the file holds there (tile offsets past 2^32 included). Through the page's stack
+// (web/tiles/tiled_terrain.js over the WASM core) the core takes it and draws a first mesh from
+// the coarsest level within the same budget, watertight, and asks for finer tiles from there.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { openCog } from '../../web/tiles/cog_source.js';
+import { openTiledTerrain } from '../../web/tiles/tiled_terrain.js';
+import { createNodeCore } from '../../lib/node_core.js';
 import { startWorldCogServer, worldHeight } from '../../lib/world_cog_server.js';
 
 const TABLE_BLOCK = 16384; // header_source.js HEADER_BLOCK_BYTES
@@ -64,4 +68,62 @@ test('a full-resolution tile anywhere: its samples, for one block of each table 
   server.reset();
   await cog.readTile(0, everest[0] + 1, everest[1]);
   assert.equal(server.stats().requests, 1, 'only the tile itself');
+});
+
+/** The core allocator's bytes in use (hexlod_diag_heap). */
+function heapInUse(core) {
+  const at = core.module._malloc(16);
+  try {
+    assert.equal(core.module._hexlod_diag_heap(at), 0, core.lastError());
+    return new Float64Array(core.buffer, at, 1)[0];
+  } finally {
+    core.module._free(at);
+  }
+}
+
+test('through the page stack the core takes the world COG and draws its first mesh from the coarsest level: under 2 MB and 10 requests, watertight', async () => {
+  const core = await createNodeCore();
+  const heapBefore = heapInUse(core);
+  server.reset();
+  const start = performance.now();
+  const source = await openCog(server.url);
+  const { terrain, tiles } = await openTiledTerrain(core, source);
+  try {
+    assert.equal(terrain.tiled, true);
+    assert.deepEqual([terrain.width, terrain.height], [1296000, 626400]);
+    terrain.resetMesh('exact');
+    terrain.configure({ tauPx: 1, morphFrames: 8 });
+    // From 2,000 km above the middle of the world, looking north at a slant.
+    const w = (terrain.width - 1) * terrain.spacingX, d = (terrain.height - 1) * terrain.spacingY;
+    const camera = { eye: [0.5 * w, 2e6, 0.5 * d], target: [0.5 * w, 0, 0.5 * d - 1.5e6], up: [0, 1, 0], fovY: Math.PI / 3,
+      aspect: 16 / 9, viewportHeight: 720, near: 1000, far: 1e8 };
+    const first = terrain.frame(camera);
+    const firstMeshMs = performance.now() - start;
+    const { requests, bytes } = server.stats();
+    const heap = heapInUse(core) - heapBefore;
+    const wasmBytes = core.buffer.byteLength;
+    const stream = terrain.checkStream(); // throws on a crack, a T-junction or a hole
+    terrain.checkMesh();
+    console.log(`world COG through the page stack: first mesh after ${requests} requests, ${bytes} bytes, ` +
+      `${firstMeshMs.toFixed(0)} ms (wall clock); ${first.triangles} triangles; the core allocated ` +
+      `${(heap / 2 ** 20).toFixed(1)} MiB (WASM memory ${(wasmBytes / 2 ** 20).toFixed(0)} MiB)`);
+    assert.ok(requests <= 10, `${requests} requests before the first mesh`);
+    assert.ok(bytes <= 2e6, `${bytes} bytes before the first mesh`);
+    assert.ok(first.triangles > 0 && stream.triangles === first.triangles, `a first mesh of ${first.triangles} triangles`);
+    assert.equal(stream.loops, 1, 'one outline');
+    assert.ok(heap < 64 * 2 ** 20, `the core holds ${heap} bytes for a field of 3.1 million tiles`);
+
+    // From there the view asks for finer tiles, which come in and keep the surface watertight.
+    for (let frame = 0; frame < 40; frame++) {
+      terrain.frame(null);
+      terrain.checkStream();
+      tiles.tick();
+      if (tiles.waiting > 0) await new Promise((resolve) => setTimeout(resolve, 5));
+    }
+    assert.ok(tiles.tilesIn > 0, 'finer tiles came');
+    terrain.checkMesh();
+  } finally {
+    tiles.close();
+    terrain.destroy();
+  }
 });
