@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "fixture.h"
+#include "samples_under_triangles.h"
 #include "lod/refiner.h"
 
 using namespace hexlod;
@@ -164,14 +165,25 @@ std::unique_ptr<Heightfield> continentalField() {
     return field;
 }
 
+// A mesh over the field, refined on `earth` (updates until converged, at most 200).
+struct Refinement {
+    HexMesh mesh;
+    Refiner refiner;
+    template <typename Configure>
+    Refinement(const Heightfield& field, const EarthShape& earth, Configure&& configure) {
+        mesh.reset(field, Embedding::Exact);
+        refiner.attach(mesh, field);
+        refiner.settings().earth = earth;
+        configure(refiner);
+        for (int32_t n = 0; n < 200 && !refiner.update().converged; ++n) {
+        }
+    }
+};
+
 // Every sample inside the frustum against the drawn surface, on screen: the samples and the
 // mesh's vertices drawn on the curved Earth, the triangles straight between the vertices.
 double worstPixelsOnTheCurvedEarth(const HexMesh& mesh, const Heightfield& field, const EarthShape& earth, const View& view,
                                    int64_t& samplesInView) {
-    std::vector<uint32_t> tris;
-    mesh.appendTriangles(tris);
-    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
-    const double xMax = (field.width() - 1) * sx, zMax = (field.height() - 1) * sy;
     auto project = [&](const glm::dvec3& p, double& px, double& py) {
         const glm::dvec3 d = p - view.eye;
         const double z = glm::dot(d, view.forward);
@@ -180,42 +192,18 @@ double worstPixelsOnTheCurvedEarth(const HexMesh& mesh, const Heightfield& field
         px = tx * view.pixelsPerTangent, py = ty * view.pixelsPerTangent;
         return std::abs(tx) <= view.tanHalfX && std::abs(ty) <= view.tanHalfY;
     };
-    auto drawnVertex = [&](uint32_t v) {
-        const glm::vec3 p = mesh.vertexPosition(int32_t(v)); // the shader folds the overhang onto the field's edge
-        return curvedPosition(earth, std::clamp(double(p.x), 0.0, xMax), double(p.y), std::clamp(double(p.z), 0.0, zMax));
-    };
     double worst = 0.0;
     samplesInView = 0;
-    for (size_t t = 0; t < tris.size(); t += 3) {
-        const glm::vec3 fa = mesh.vertexPosition(int32_t(tris[t])), fb = mesh.vertexPosition(int32_t(tris[t + 1])),
-                        fc = mesh.vertexPosition(int32_t(tris[t + 2]));
-        const glm::dvec3 a(std::clamp(double(fa.x), 0.0, xMax), fa.y, std::clamp(double(fa.z), 0.0, zMax));
-        const glm::dvec3 b(std::clamp(double(fb.x), 0.0, xMax), fb.y, std::clamp(double(fb.z), 0.0, zMax));
-        const glm::dvec3 c(std::clamp(double(fc.x), 0.0, xMax), fc.y, std::clamp(double(fc.z), 0.0, zMax));
-        const double area = (b.x - a.x) * (c.z - a.z) - (c.x - a.x) * (b.z - a.z);
-        if (std::abs(area) < 1e-9) continue;
-        const glm::dvec3 da = drawnVertex(tris[t]), db = drawnVertex(tris[t + 1]), dc = drawnVertex(tris[t + 2]);
-        const int32_t i0 = std::max(0, int32_t(std::floor(std::min({a.z, b.z, c.z}) / sy)));
-        const int32_t i1 = std::min(field.height() - 1, int32_t(std::ceil(std::max({a.z, b.z, c.z}) / sy)));
-        const int32_t j0 = std::max(0, int32_t(std::floor(std::min({a.x, b.x, c.x}) / sx)));
-        const int32_t j1 = std::min(field.width() - 1, int32_t(std::ceil(std::max({a.x, b.x, c.x}) / sx)));
-        for (int32_t i = i0; i <= i1; ++i)
-            for (int32_t j = j0; j <= j1; ++j) {
-                const double x = j * sx, z = i * sy;
-                const double w1 = ((x - a.x) * (c.z - a.z) - (c.x - a.x) * (z - a.z)) / area;
-                const double w2 = ((b.x - a.x) * (z - a.z) - (x - a.x) * (b.z - a.z)) / area;
-                const double w0 = 1.0 - w1 - w2;
-                if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;
-                double sxPx, syPx, mxPx, myPx;
-                if (!project(curvedPosition(earth, x, field.heightAt(j, i), z), sxPx, syPx)) continue;
-                ++samplesInView;
-                if (!project(w0 * da + w1 * db + w2 * dc, mxPx, myPx)) {
-                    const glm::dvec3 d = w0 * da + w1 * db + w2 * dc - view.eye;
-                    if (!(glm::dot(d, view.forward) > view.nearPlane)) continue;
-                }
-                worst = std::max(worst, std::hypot(mxPx - sxPx, myPx - syPx));
-            }
-    }
+    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
+    test::forEachSampleUnderTriangles(mesh, field, true, [&](const glm::dvec3 (&v)[3], int32_t j, int32_t i, const double (&w)[3]) {
+        double sxPx, syPx, mxPx = 0.0, myPx = 0.0;
+        if (!project(curvedPosition(earth, j * sx, field.heightAt(j, i), i * sy), sxPx, syPx)) return;
+        ++samplesInView;
+        glm::dvec3 drawn(0.0); // the straight triangle between the curved vertices
+        for (int32_t k = 0; k < 3; ++k) drawn += w[k] * curvedPosition(earth, v[k].x, v[k].y, v[k].z);
+        if (!project(drawn, mxPx, myPx) && !(glm::dot(drawn - view.eye, view.forward) > view.nearPlane)) return;
+        worst = std::max(worst, std::hypot(mxPx - sxPx, myPx - syPx));
+    });
     return worst;
 }
 
@@ -240,29 +228,17 @@ TEST(EarthShape, OnTheCurvedEarthEverySampleInTheFrustumIsWithinTauOfTheDrawnSur
             View view;
             ASSERT_TRUE(makeView(eye, target, curvedUp(earth, v.eye.x, v.eye.z), kTanHalf60, 16.0 / 9.0, 1080.0, 10.0, 1e8, view));
             for (double tau : {1.0, 4.0}) {
-                HexMesh mesh;
-                mesh.reset(*field, Embedding::Exact);
-                Refiner refiner;
-                refiner.attach(mesh, *field);
-                refiner.settings().tau = tau;
-                refiner.settings().earth = earth;
-                refiner.setView(view);
-                int32_t n = 0;
-                while (!refiner.update().converged && ++n < 200) {
-                }
-                ASSERT_LT(n, 200);
+                auto viewed = [&](Refiner& r) { r.settings().tau = tau, r.setView(view); };
+                Refinement curved(*field, earth, viewed);
+                const HexMesh& mesh = curved.mesh;
+                const Refiner& refiner = curved.refiner;
+                ASSERT_TRUE(refiner.lastUpdate().converged);
                 ASSERT_EQ(mesh.checkInvariants(), nullptr);
                 int64_t inView = 0;
                 const double worst = worstPixelsOnTheCurvedEarth(mesh, *field, earth, view, inView);
                 // The flat refinement of the same view, drawn curved: the curvature it ignores.
-                HexMesh flatMesh;
-                flatMesh.reset(*field, Embedding::Exact);
-                Refiner flat;
-                flat.attach(flatMesh, *field);
-                flat.settings().tau = tau;
-                flat.setView(view);
-                for (int32_t k = 0; k < 200 && !flat.update().converged; ++k) {
-                }
+                Refinement flat(*field, EarthShape{}, viewed);
+                const HexMesh& flatMesh = flat.mesh;
                 int64_t ignored = 0;
                 const double flatWorst = worstPixelsOnTheCurvedEarth(flatMesh, *field, earth, view, ignored);
                 std::printf("earth kind %d, eye %.0f m up, tau %.0f: %lld samples in view, worst %.3f px, %lld triangles "
@@ -286,41 +262,15 @@ TEST(EarthShape, AMaximumErrorHoldsOnTheCurvedEarthAsDrawn) {
     EarthShape geo = geographic(48.0, 2000.0 / (0.02 * kDeg));
     geo.originX = 0.5 * w, geo.originZ = 0.5 * h;
     for (double maxError : {5.0, 50.0}) {
-        HexMesh mesh;
-        mesh.reset(*field, Embedding::Exact);
-        Refiner refiner;
-        refiner.attach(mesh, *field);
-        refiner.settings().viewIndependent = true;
-        refiner.settings().maxError = maxError;
-        refiner.settings().earth = geo;
-        for (int32_t n = 0; n < 200 && !refiner.update().converged; ++n) {
-        }
-        std::vector<uint32_t> tris;
-        mesh.appendTriangles(tris);
+        Refinement refined(*field, geo, [&](Refiner& r) { r.settings().viewIndependent = true, r.settings().maxError = maxError; });
+        const HexMesh& mesh = refined.mesh;
         const double sx = field->scale().spacingX, sy = field->scale().spacingY;
         double worst = 0.0;
-        for (size_t t = 0; t < tris.size(); t += 3) {
-            glm::dvec3 v[3], d[3];
-            for (int32_t k = 0; k < 3; ++k) {
-                const glm::vec3 p = mesh.vertexPosition(int32_t(tris[t + size_t(k)]));
-                v[k] = {std::clamp(double(p.x), 0.0, w), double(p.y), std::clamp(double(p.z), 0.0, h)};
-                d[k] = curvedPosition(geo, v[k].x, v[k].y, v[k].z);
-            }
-            const double area = (v[1].x - v[0].x) * (v[2].z - v[0].z) - (v[2].x - v[0].x) * (v[1].z - v[0].z);
-            if (std::abs(area) < 1e-9) continue;
-            const int32_t i0 = int32_t(std::floor(std::min({v[0].z, v[1].z, v[2].z}) / sy)), i1 = int32_t(std::ceil(std::max({v[0].z, v[1].z, v[2].z}) / sy));
-            const int32_t j0 = int32_t(std::floor(std::min({v[0].x, v[1].x, v[2].x}) / sx)), j1 = int32_t(std::ceil(std::max({v[0].x, v[1].x, v[2].x}) / sx));
-            for (int32_t i = std::max(0, i0); i <= std::min(field->height() - 1, i1); ++i)
-                for (int32_t j = std::max(0, j0); j <= std::min(field->width() - 1, j1); ++j) {
-                    const double x = j * sx, z = i * sy;
-                    const double w1 = ((x - v[0].x) * (v[2].z - v[0].z) - (v[2].x - v[0].x) * (z - v[0].z)) / area;
-                    const double w2 = ((v[1].x - v[0].x) * (z - v[0].z) - (x - v[0].x) * (v[1].z - v[0].z)) / area;
-                    const double w0 = 1.0 - w1 - w2;
-                    if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;
-                    const glm::dvec3 drawn = w0 * d[0] + w1 * d[1] + w2 * d[2];
-                    worst = std::max(worst, glm::length(drawn - curvedPosition(geo, x, field->heightAt(j, i), z)));
-                }
-        }
+        test::forEachSampleUnderTriangles(mesh, *field, true, [&](const glm::dvec3 (&v)[3], int32_t j, int32_t i, const double (&w)[3]) {
+            glm::dvec3 drawn(0.0);
+            for (int32_t k = 0; k < 3; ++k) drawn += w[k] * curvedPosition(geo, v[k].x, v[k].y, v[k].z);
+            worst = std::max(worst, glm::length(drawn - curvedPosition(geo, j * sx, field->heightAt(j, i), i * sy)));
+        });
         std::printf("max error %.0f m on the curved Earth: worst %.3f m, %lld triangles\n", maxError, worst, (long long)mesh.triangleCount());
         EXPECT_LE(worst, maxError * (1.0 + 1e-6));
         EXPECT_GT(worst, 0.2 * maxError) << "the bound is not loose by more than five times";

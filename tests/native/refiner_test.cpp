@@ -14,6 +14,7 @@
 
 #include "diagnostics/error_evaluator.h"
 #include "fixture.h"
+#include "samples_under_triangles.h"
 
 using namespace hexlod;
 
@@ -57,28 +58,9 @@ int32_t converge(Refiner& refiner) {
 // rasterisation of the mesh's triangles, independent of the refiner's bounds.
 std::vector<double> meshHeightsAtSamples(const HexMesh& mesh, const Heightfield& field) {
     std::vector<double> heights(field.sampleCount(), std::nan(""));
-    std::vector<uint32_t> tris;
-    mesh.appendTriangles(tris);
-    const double sx = field.scale().spacingX, sy = field.scale().spacingY;
-    for (size_t t = 0; t < tris.size(); t += 3) {
-        const glm::dvec3 a = mesh.vertexPosition(int32_t(tris[t])), b = mesh.vertexPosition(int32_t(tris[t + 1])),
-                         c = mesh.vertexPosition(int32_t(tris[t + 2]));
-        const double area = (b.x - a.x) * (c.z - a.z) - (c.x - a.x) * (b.z - a.z);
-        if (std::abs(area) < 1e-9) continue;
-        const int32_t i0 = std::max(0, int32_t(std::floor(std::min({a.z, b.z, c.z}) / sy)));
-        const int32_t i1 = std::min(field.height() - 1, int32_t(std::ceil(std::max({a.z, b.z, c.z}) / sy)));
-        const int32_t j0 = std::max(0, int32_t(std::floor(std::min({a.x, b.x, c.x}) / sx)));
-        const int32_t j1 = std::min(field.width() - 1, int32_t(std::ceil(std::max({a.x, b.x, c.x}) / sx)));
-        for (int32_t i = i0; i <= i1; ++i)
-            for (int32_t j = j0; j <= j1; ++j) {
-                const double x = j * sx, z = i * sy;
-                const double w1 = ((x - a.x) * (c.z - a.z) - (c.x - a.x) * (z - a.z)) / area;
-                const double w2 = ((b.x - a.x) * (z - a.z) - (x - a.x) * (b.z - a.z)) / area;
-                const double w0 = 1.0 - w1 - w2;
-                if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;
-                heights[size_t(i) * field.width() + j] = w0 * a.y + w1 * b.y + w2 * c.y;
-            }
-    }
+    test::forEachSampleUnderTriangles(mesh, field, false, [&](const glm::dvec3 (&v)[3], int32_t j, int32_t i, const double (&w)[3]) {
+        heights[size_t(i) * field.width() + j] = w[0] * v[0].y + w[1] * v[1].y + w[2] * v[2].y;
+    });
     return heights;
 }
 
