@@ -11,10 +11,19 @@ let viewer;
 before(async () => { viewer = await startViewer({ pixelRatio: 0.5 }); });
 after(async () => { await viewer?.close(); });
 
-/** Where the horizon (the level straight ahead of the eye, far away) lies on the screen: 0 at the top, 1 at the bottom. */
+/**
+ * Where the horizon straight ahead lies on the screen (0 at the top, 1 at the bottom): on the
+ * plane the level far away, on the curved Earth the sea-level sphere's, its dip below the level
+ * of the eye (in the drawn frame: web/cameras/on_the_earth.js).
+ */
 const horizonAt = (page) => page.evaluate(() => {
-  const m = window.hexlod.camera.viewProjection, p = window.hexlod.camera.position, yaw = window.hexlod.rig.cameras.orbit.yaw;
-  const q = [p[0] + Math.sin(yaw) * 1e9, p[1], p[2] - Math.cos(yaw) * 1e9, 1];
+  const c = window.hexlod.camera, m = c.viewProjection, p = c.drawnPosition, up = c.drawnUp;
+  const f = [0, 1, 2].map((k) => c.drawnTarget[k] - p[k]);
+  const along = f[0] * up[0] + f[1] * up[1] + f[2] * up[2];
+  const level = f.map((v, k) => v - along * up[k]), length = Math.hypot(...level);
+  const radius = c.earth.radius, dip = c.earth.kind === 0 ? 0 : Math.acos(radius / (radius + Math.max(c.position[1], 0)));
+  const d = level.map((v, k) => (v / length) * Math.cos(dip) - up[k] * Math.sin(dip));
+  const q = [0, 1, 2].map((k) => p[k] + d[k] * 1e7).concat(1);
   const [, y, , w] = [0, 1, 2, 3].map((r) => m[r] * q[0] + m[4 + r] * q[1] + m[8 + r] * q[2] + m[12 + r] * q[3]);
   return (1 - y / w) / 2;
 });
