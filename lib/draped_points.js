@@ -67,13 +67,12 @@ export function lookStraightDown(page, distance = 3.2e6) {
 
 /** Screen pixels of ground points { name: [lon, lat] } on the default terrain (sea level), in the page's current view. */
 export async function projectLonLat(page, points) {
-  const view = await page.evaluate(() => {
-    const h = window.hexlod, t = h.terrainObject();
-    return { m: Array.from(h.camera.viewProjection), spacingX: t.spacingX, spacingY: t.spacingY, width: innerWidth, height: innerHeight };
-  });
-  const out = {};
-  for (const [name, [lon, lat]] of Object.entries(points)) {
-    out[name] = screenPoint(view.m, groundPoint(lon, lat, view.spacingX, view.spacingY), view.width, view.height);
-  }
-  return out;
+  const spacing = await page.evaluate(() => { const t = window.hexlod.terrainObject(); return [t.spacingX, t.spacingY]; });
+  const ground = Object.values(points).map(([lon, lat]) => groundPoint(lon, lat, ...spacing));
+  // Where the page draws them (on the curved Earth too), and its camera's matrix.
+  const view = await page.evaluate((ground) => {
+    const h = window.hexlod;
+    return { m: Array.from(h.camera.viewProjection), drawn: ground.map((p) => h.drawnPoint(...p)), width: innerWidth, height: innerHeight };
+  }, ground);
+  return Object.fromEntries(Object.keys(points).map((name, k) => [name, screenPoint(view.m, view.drawn[k], view.width, view.height)]));
 }

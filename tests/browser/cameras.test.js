@@ -102,7 +102,7 @@ test('the fly camera moves with the keys, faster when higher, and the cursor rea
     const h = window.hexlod;
     const { x, z, height } = h.cursor;
     const cam = h.rig.active;
-    const m = cam.viewProjection, p = [x, height * h.settings.exaggeration, z, 1];
+    const m = cam.viewProjection, p = [...h.drawnPoint(x, height * h.settings.exaggeration, z), 1];
     const clip = [0, 1, 2, 3].map((r) => m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r] * p[3]);
     return { height, field: h.terrainObject().heightAt(x, z), px: (clip[0] / clip[3] + 1) * 240, py: (1 - clip[1] / clip[3]) * 150,
       text: document.getElementById('hud').textContent };

@@ -16,7 +16,8 @@ const SIZE = { width: 480, height: 300 };
 const INTERVAL = 50;
 const DEM = `/@fs${projectDir}tests/fixtures/grandcanyon_512.png`;
 const CAMERA = 'cam=orbit,15000,1500,17000,14000,2.6,0.5';
-const query = (extra = '') => `?src=${encodeURIComponent(DEM)}&tau=1&budget=40&exag=2&contours=1&cint=${INTERVAL}&${CAMERA}${extra}`;
+// On the flat Earth: the crossings are projected, and their sight lines marched, on the plane.
+const query = (extra = '') => `?src=${encodeURIComponent(DEM)}&tau=1&budget=40&exag=2&earth=flat&contours=1&cint=${INTERVAL}&${CAMERA}${extra}`;
 
 let viewer;
 // Pages at half a device pixel per CSS pixel unless a test names its own ratio.
@@ -262,7 +263,7 @@ test('every sample depth is read exactly: u8, u16, i16 and f32 fields, lines on 
     u16: 'volcano_maungawhau.png' };
   for (const [type, file] of Object.entries(formats)) {
     const src = `/@fs${projectDir}tests/fixtures/${file}`;
-    const { page, problems } = await openPage(viewer.browser, `${viewer.url}?src=${encodeURIComponent(src)}&tau=1&budget=40&contours=1&cint=auto`, SIZE, FULL_RESOLUTION);
+    const { page, problems } = await openPage(viewer.browser, `${viewer.url}?src=${encodeURIComponent(src)}&tau=1&budget=40&earth=flat&contours=1&cint=auto`, SIZE, FULL_RESOLUTION);
     await page.addStyleTag({ content: '#hud, #side, #drop-hint, #status, #intake, #panel { display: none !important; }' });
     await page.waitForFunction(() => window.hexlod && window.hexlod.status !== 'loading', null, { timeout: 120000 });
     // Closer than the opening view, which shows the whole field small: lines far enough apart to judge.

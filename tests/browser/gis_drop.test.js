@@ -68,7 +68,7 @@ async function view(page, label) {
     const ground = {};
     for (const [name, [x, y]] of Object.entries(points)) {
       const gx = ((x - g.x0) / g.dx) * t.spacingX, gz = ((y - g.y0) / g.dy) * t.spacingY;
-      ground[name] = [gx, h.rig.world.ground(gx, gz), gz];
+      ground[name] = h.drawnPoint(gx, h.rig.world.ground(gx, gz), gz);
     }
     return { m: Array.from(h.camera.viewProjection), ground, width: innerWidth, height: innerHeight };
   }, POINTS);

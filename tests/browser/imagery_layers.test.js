@@ -27,7 +27,7 @@ async function groundPixels(page) {
     const h = window.hexlod, t = h.terrainObject();
     const points = samples.map(([column, row]) => {
       const x = column * t.spacingX, z = row * t.spacingY;
-      return [x, t.heightAt(x, z) * h.settings.exaggeration, z];
+      return h.drawnPoint(x, t.heightAt(x, z) * h.settings.exaggeration, z);
     });
     return { m: Array.from(h.camera.viewProjection), width: innerWidth, height: innerHeight, points };
   }, samples);

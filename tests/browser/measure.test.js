@@ -45,8 +45,8 @@ function grid(width, y0, y1) {
 const project = (page, points) => page.evaluate((pts) => {
   const h = window.hexlod, c = h.rig.active, m = c.viewProjection, t = h.terrainObject(), s = h.settings.exaggeration;
   const canvas = document.getElementById('view');
-  return pts.map(([x, z]) => {
-    const y = t.heightAt(x, z) * s;
+  return pts.map(([gx, gz]) => {
+    const [x, y, z] = h.drawnPoint(gx, t.heightAt(gx, gz) * s, gz);
     const cx = m[0] * x + m[4] * y + m[8] * z + m[12], cy = m[1] * x + m[5] * y + m[9] * z + m[13];
     const w = m[3] * x + m[7] * y + m[11] * z + m[15];
     return [((cx / w + 1) / 2) * canvas.clientWidth, ((1 - cy / w) / 2) * canvas.clientHeight];

@@ -24,11 +24,10 @@ async function viewFromAbove(page, label) {
   await converged(page);
   const view = await page.evaluate(() => {
     const h = window.hexlod, t = h.terrainObject();
-    return { m: Array.from(h.camera.viewProjection), spacingX: t.spacingX, spacingY: t.spacingY, width: innerWidth, height: innerHeight };
+    // The joins of the 2 x 2 tiles: column 128 and row 96 of the field (ground metres from sample 0).
+    return { m: Array.from(h.camera.viewProjection), join: h.drawnPoint(128 * t.spacingX, 0, 96 * t.spacingY), width: innerWidth, height: innerHeight };
   });
-  // The joins of the 2 x 2 tiles: column 128 and row 96 of the field (ground metres from sample 0).
-  const [joinX] = screenPoint(view.m, [128 * view.spacingX, 0, 96 * view.spacingY], view.width, view.height);
-  const [, joinY] = screenPoint(view.m, [128 * view.spacingX, 0, 96 * view.spacingY], view.width, view.height);
+  const [joinX, joinY] = screenPoint(view.m, view.join, view.width, view.height);
   const png = decode(await page.screenshot({ path: `${outDir}/mosaic-${label}.png` }));
   return { png, joinX, joinY };
 }

@@ -52,7 +52,8 @@ function projected(page) {
   return page.evaluate(() => {
     const h = window.hexlod, vs = h.settings.exaggeration, m = Array.from(h.camera.viewProjection);
     const layer = h.layers.overlays[0], g = layer.geometry;
-    const lift = (a) => Array.from(a).map((v, k) => (k % 3 === 1 ? v * vs : v));
+    // Each point where it is drawn (on the curved Earth too), its height exaggerated.
+    const lift = (a) => Array.from({ length: a.length / 3 }, (_, k) => h.drawnPoint(a[3 * k], a[3 * k + 1] * vs, a[3 * k + 2])).flat();
     return { m, segments: lift(g.segments), markers: lift(g.markers), width: innerWidth, height: innerHeight };
   });
 }
@@ -175,7 +176,7 @@ test('the DEM first, then a KML and a GeoJSON: lines aloft with a curtain, polyg
   const without = decode(await page.screenshot());
   const screen = await page.evaluate((points) => {
     const h = window.hexlod, m = Array.from(h.camera.viewProjection), vs = h.settings.exaggeration;
-    return points.map(([x, z]) => [x, h.rig.world.ground(x, z), z, m, vs]);
+    return points.map(([x, z]) => [...h.drawnPoint(x, h.rig.world.ground(x, z), z), m, vs]);
   }, [at.inside, at.hole]);
   const [inside, hole] = screen.map(([x, y, z, m]) => screenPoint(m, [x, y, z], VIEW.width, VIEW.height));
   const rgb = (img, [x, y]) => { const i = (y * img.width + x) * img.channels; return [img.data[i], img.data[i + 1], img.data[i + 2]]; };
@@ -199,7 +200,7 @@ test('hover names a track, a click shows its profile with the recorded elevation
   // A point of the track half way along it, on the screen.
   const [x, y] = await page.evaluate(() => {
     const h = window.hexlod, g = h.layers.overlays[0].geometry, k = 6 * Math.floor(g.segments.length / 12), m = h.camera.viewProjection;
-    const p = [g.segments[k], g.segments[k + 1] * h.settings.exaggeration, g.segments[k + 2]];
+    const p = h.drawnPoint(g.segments[k], g.segments[k + 1] * h.settings.exaggeration, g.segments[k + 2]);
     const w = m[3] * p[0] + m[7] * p[1] + m[11] * p[2] + m[15];
     return [((m[0] * p[0] + m[4] * p[1] + m[8] * p[2] + m[12]) / w * 0.5 + 0.5) * innerWidth, (0.5 - (m[1] * p[0] + m[5] * p[1] + m[9] * p[2] + m[13]) / w * 0.5) * innerHeight];
   });

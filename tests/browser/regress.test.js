@@ -302,14 +302,15 @@ test('a flight that names an image, or its image layers (files or web map tiles)
   const dir = mkdtempSync(join(tmpdir(), 'hexlod-image-flight-'));
   try {
     // Straight down from 3200 km over the middle of the default terrain, north up, unlit so
-    // the pixels are the image's colours. Both files are named relative to the flight file.
+    // the pixels are the image's colours, on the flat Earth, where the test's own camera
+    // (below) projects the ground points. Both files are named relative to the flight file.
     const { width, height, cell_size_x_m: spacingX, cell_size_y_m: spacingY } = JSON.parse(readFileSync(join(root, 'public/terrain/globe_himalaya_2048.json'), 'utf8'));
     const centre = [((width - 1) * spacingX) / 2, ((height - 1) * spacingY) / 2];
     const flight = {
       dem: relative(dir, join(root, 'public/terrain/globe_himalaya_2048.png')),
       image: relative(dir, join(root, 'tests/fixtures/imagery/bmng_himalaya_4arcmin.jpg')),
       viewport: [400, 400],
-      settings: { exaggeration: 1, imageUnlit: true, imageOpacity: 1 },
+      settings: { exaggeration: 1, imageUnlit: true, imageOpacity: 1, earth: 'flat' },
       keyframes: [{ time: 0, position: [centre[0], 3.2e6, centre[1]], target: [centre[0], 0, centre[1]] }],
     };
     writeFileSync(join(dir, 'draped.flight.json'), JSON.stringify(flight));
