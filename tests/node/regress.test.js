@@ -155,7 +155,7 @@ test('a replay in Node gives the same mesh hashes every time, and the ones the p
       // A flight along a track: its keyframes from the track on the terrain, as hexlod regress makes them.
       const track = flight.track && { name: flight.track.file.split('/').pop(), bytes: new Uint8Array(readFileSync(join(flights, flight.track.file))) };
       const flown = track ? withKeyframes(flight, await flightTrackKeyframes(flight.track, track, terrain, field.georef)) : flight;
-      runs.push(replayFlight(terrain, flown).toArray());
+      runs.push(replayFlight(terrain, flown, field.georef ?? null).toArray()); // on the Earth as the page draws it
       terrain.destroy();
     }
     assert.deepEqual(runs[0], runs[1], name);
