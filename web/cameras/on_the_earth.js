@@ -49,7 +49,9 @@ export function placeOnEarth(camera, earth) {
  * camera.
  */
 export function lodCameraOnEarth(lod, earth, out) {
-  Object.assign(out, lod, { eye: out.eye, target: out.target, up: out.up });
+  const eye = out.eye, target = out.target, up = out.up; // made once; the frame path allocates nothing
+  Object.assign(out, lod);
+  out.eye = eye, out.target = target, out.up = up;
   const e = lod.eye, t = lod.target;
   if (earth.kind === EARTH_FLAT) {
     for (let k = 0; k < 3; k++) out.eye[k] = e[k], out.target[k] = t[k], out.up[k] = lod.up ? lod.up[k] : k === 1 ? 1 : 0;

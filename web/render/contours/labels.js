@@ -108,7 +108,8 @@ export class LabelPlacer {
     for (let k = 0; k < this.count && labels < MAX_LABELS; ++k) {
       const x = this.x[k], y = this.h[k] * verticalScale, z = this.z[k];
       // Where it is drawn (on the curved Earth, web/geo/earth_shape.js).
-      const [px, py, pz] = drawnPoint(earth, x, y, z, drawn);
+      drawnPoint(earth, x, y, z, drawn);
+      const px = drawn[0], py = drawn[1], pz = drawn[2]; // not destructured: an array iterator each time
       const w = m[3] * px + m[7] * py + m[11] * pz + m[15];
       if (!(w > 0)) continue;
       const sx = ((m[0] * px + m[4] * py + m[8] * pz + m[12]) / w + 1) * 0.5 * width;
@@ -117,7 +118,8 @@ export class LabelPlacer {
       if (sx < halfW || sy < glyphH || sx > width - halfW || sy > height - glyphH) continue;
       // The contour's direction on the screen: a point a little along it, projected.
       const d = 0.01 * Math.hypot(x - eye[0], y - eye[1], z - eye[2]);
-      const [x2, y2, z2] = drawnPoint(earth, x + this.tx[k] * d, y, z + this.tz[k] * d, drawn);
+      drawnPoint(earth, x + this.tx[k] * d, y, z + this.tz[k] * d, drawn);
+      const x2 = drawn[0], y2 = drawn[1], z2 = drawn[2];
       const w2 = m[3] * x2 + m[7] * y2 + m[11] * z2 + m[15];
       if (!(w2 > 0)) continue;
       let ax = ((m[0] * x2 + m[4] * y2 + m[8] * z2 + m[12]) / w2 + 1) * 0.5 * width - sx;

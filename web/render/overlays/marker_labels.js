@@ -119,7 +119,8 @@ export class MarkerLabels {
       if (cell < 0) continue;
       const x = markers[3 * k], y = markers[3 * k + 1] * verticalScale, z = markers[3 * k + 2];
       // Where it is drawn (on the curved Earth, web/geo/earth_shape.js).
-      const [dx, dy, dz] = drawnPoint(earth, x, y, z, drawn);
+      drawnPoint(earth, x, y, z, drawn);
+      const dx = drawn[0], dy = drawn[1], dz = drawn[2]; // not destructured: an array iterator each time
       const w = m[3] * dx + m[7] * dy + m[11] * dz + m[15];
       if (!(w > 0)) continue;
       const sx = ((m[0] * dx + m[4] * dy + m[8] * dz + m[12]) / w + 1) * 0.5 * width + gap;
