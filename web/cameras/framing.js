@@ -5,6 +5,8 @@
 // The region's surface, sampled on a grid (heights exaggerated), is fitted into the frustum by
 // distance, in closed form per point; the pitch then rises until the eye is clear of the ground
 // under it and nothing stands between the eye and the target.
+import { EARTH_FLAT, drawnPoint, drawnUp } from '../geo/index.js';
+
 const FOCUS_GRID = 96;        // coarse samples per side of the relief search
 const FOCUS_WINDOW = 4;       // half-width, in coarse samples, of the neighbourhood whose relief counts
 const LARGE_FIELD = 1500;     // samples on the longer side above which a region, not the whole field, opens
@@ -116,6 +118,46 @@ export function fitDistance(points, target, yaw, pitch, fovY, aspect, free = FUL
     distance = Math.max(distance, across / tanX - along, upward / tanY - along);
   }
   return distance;
+}
+
+/**
+ * The smallest orbit distance, at most `flatDistance`, from which the drawn (curved) points all
+ * lie within the view's free part, the orbit placed on the Earth as the page places it
+ * (on_the_earth.js): bisection over the distance, each step the points' angles from the drawn
+ * view direction against the half field of view.
+ */
+function fitOnTheEarth(earth, points, target, flatDistance, yaw, pitch, fovY, aspect, free) {
+  const drawn = points.map(([x, y, z]) => drawnPoint(earth, x, y, z));
+  const t = drawnPoint(earth, target[0], target[1], target[2]);
+  const tanY = Math.tan(0.5 * fovY) * FILL * free.halfHeight, tanX = Math.tan(0.5 * fovY) * FILL * aspect * free.halfWidth;
+  const fits = (d) => {
+    const cp = Math.cos(pitch);
+    const eye = drawnPoint(earth, target[0] + d * cp * Math.sin(yaw), target[1] + d * Math.sin(pitch), target[2] + d * cp * Math.cos(yaw));
+    const f = [t[0] - eye[0], t[1] - eye[1], t[2] - eye[2]], fl = Math.hypot(...f);
+    const forward = f.map((v) => v / fl);
+    const upHint = drawnUp(earth, target[0], target[2]);
+    let right = [forward[1] * upHint[2] - forward[2] * upHint[1], forward[2] * upHint[0] - forward[0] * upHint[2], forward[0] * upHint[1] - forward[1] * upHint[0]];
+    const rl = Math.hypot(...right);
+    if (!(rl > 1e-9)) return true;
+    right = right.map((v) => v / rl);
+    const up = [right[1] * forward[2] - right[2] * forward[1], right[2] * forward[0] - right[0] * forward[2], right[0] * forward[1] - right[1] * forward[0]];
+    return drawn.every((p) => {
+      const q = [p[0] - eye[0], p[1] - eye[1], p[2] - eye[2]];
+      const depth = q[0] * forward[0] + q[1] * forward[1] + q[2] * forward[2];
+      if (!(depth > 0)) return false;
+      const sx = (q[0] * right[0] + q[1] * right[1] + q[2] * right[2]) / depth;
+      const sy = (q[0] * up[0] + q[1] * up[1] + q[2] * up[2]) / depth;
+      return Math.abs(sx) <= tanX && Math.abs(sy - free.centreY * Math.tan(0.5 * fovY)) <= tanY;
+    });
+  };
+  if (!fits(flatDistance)) return flatDistance;
+  let lo = 0.01 * flatDistance, hi = flatDistance;
+  for (let k = 0; k < 30; ++k) {
+    const mid = 0.5 * (lo + hi);
+    if (fits(mid)) hi = mid;
+    else lo = mid;
+  }
+  return hi;
 }
 
 /**
@@ -239,7 +281,11 @@ export function frameTerrain(terrain, world, orbit, scale, aspect, covered = { t
     pitch = Math.min(MAX_PITCH, pitch + PITCH_STEP);
     view = fit(target, pitch);
   }
-  const distance = view.distance;
+  // On the curved Earth the region is drawn smaller than flat (a whole-world field is a globe):
+  // the nearest distance at which its drawn points fit the view instead, if nearer.
+  const earth = world.earth;
+  const distance = earth && earth.kind !== EARTH_FLAT
+    ? fitOnTheEarth(earth, heights.points, view.target, view.distance, yaw, pitch, orbit.fovY, aspect, free) : view.distance;
   target.splice(0, 3, ...view.target);
   orbit.target[0] = target[0];
   orbit.target[1] = target[1];
