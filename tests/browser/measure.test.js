@@ -102,7 +102,7 @@ test('a path: chart, figures, the line on the ground, hover, CSV and PNG, the ad
     const { computeProfile } = await import(profileUrl);
     const { fieldSampler } = await import(samplerUrl);
     const { formatLength } = await import(unitsUrl);
-    const p = computeProfile(points, fieldSampler(window.hexlod.terrainObject()));
+    const p = computeProfile(points, fieldSampler(window.hexlod.terrainObject(), window.hexlod.layers.ground.field.georef ?? null));
     return { summary: { ...p.summary }, length: formatLength(p.summary.length), length3d: formatLength(p.summary.length3d) };
   }, [lib('profile.js'), lib('field_sampler.js'), lib('units.js'), state.points]);
   for (const key of ['length', 'length3d', 'gain', 'loss', 'min', 'max', 'meanSlope', 'steepestSlope']) {
@@ -263,7 +263,7 @@ test('orbit, fly and walk: a click adds a point, a drag moves the camera; an are
   const independent = await page.evaluate(async ([areaUrl, samplerUrl, points]) => {
     const { measurePolygon } = await import(areaUrl);
     const { fieldSampler } = await import(samplerUrl);
-    return { ...measurePolygon(points, fieldSampler(window.hexlod.terrainObject())) };
+    return { ...measurePolygon(points, fieldSampler(window.hexlod.terrainObject(), window.hexlod.layers.ground.field.georef ?? null)) };
   }, [lib('polygon_area.js'), lib('field_sampler.js'), area.points]);
   for (const key of ['planimetric', 'surface', 'perimeter', 'perimeter3d']) {
     assert.ok(Math.abs(independent[key] - area.area[key]) <= 1e-9 * independent[key], key);
@@ -363,6 +363,14 @@ test('the cursor in real coordinates: a UTM GeoTIFF, the geographic default, a p
   const state = await toolState(clipped.page);
   assert.match(state.clipped, /outside the field/);
   assert.match(await clipped.page.textContent('#measure-note'), /^Clipped: 200(\.0)? km of 600(\.0)? km lay outside/);
-  assert.ok(Math.abs(state.summary.length - 400000) < 1);
+  // 400 km of the map at row z = 900 km, on the WGS 84 ellipsoid there (a geographic grid's
+  // metres are its centre row's): N(lat) cos(lat) per radian of longitude, by the test's formula.
+  const onEllipsoid = await clipped.page.evaluate(() => {
+    const h = window.hexlod, g = h.layers.ground.field.georef, t = h.terrainObject(), rad = Math.PI / 180;
+    const lat = (g.y0 + (900000 / t.spacingY) * g.dy) * rad, e2 = (1 / 298.257223563) * (2 - 1 / 298.257223563);
+    const n = 6378137 / Math.sqrt(1 - e2 * Math.sin(lat) ** 2);
+    return (400000 / t.spacingX) * Math.abs(g.dx) * rad * n * Math.cos(lat);
+  });
+  assert.ok(Math.abs(state.summary.length - onEllipsoid) < 1, `${state.summary.length} m, on the ellipsoid ${onEllipsoid} m`);
   await clipped.page.close();
 });
