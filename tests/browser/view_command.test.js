@@ -112,7 +112,8 @@ test('view in a tree without build/ builds only the page module, and its page dr
     const stats = pixelStats(await page.screenshot({ path: `${outDir}/view-command.png` }));
     assert.ok(stats.colours > 200, `only ${stats.colours} distinct colours: the terrain is not drawn`);
     assert.ok(stats.luminanceStd > 12, `luminance spread ${stats.luminanceStd.toFixed(1)}: a flat image`);
-    assert.ok(stats.groundFraction > 0.08, `${(100 * stats.groundFraction).toFixed(1)} % ground colours`);
+    // On the curved Earth the far ground lies lower, under more haze: 6 to 7 % of warm rock here.
+    assert.ok(stats.groundFraction > 0.05, `${(100 * stats.groundFraction).toFixed(1)} % ground colours`);
     assert.deepEqual(problems, []);
   } finally {
     await browser.close();

@@ -45,7 +45,8 @@ test('the default view refines a real terrain until converged, not one flat colo
   assert.ok(stats.luminanceStd > 12, `luminance spread ${stats.luminanceStd.toFixed(1)}: a flat image`);
   // The opening view shows the Himalaya: snow on the peaks, rock and ground, sky above them.
   assert.ok(stats.snowFraction > 0.003, `${(100 * stats.snowFraction).toFixed(2)} % snow: no high peaks in view`);
-  assert.ok(stats.groundFraction > 0.08, `${(100 * stats.groundFraction).toFixed(1)} % ground colours`);
+  // On the curved Earth the far ground lies lower, under more haze: 6 to 7 % of warm rock here.
+  assert.ok(stats.groundFraction > 0.05, `${(100 * stats.groundFraction).toFixed(1)} % ground colours`);
   const sky = skyFromTop(png); // the scattering model's sky, not a clear colour
   assert.ok(sky > 0.02 && sky < 0.5, `${(100 * sky).toFixed(1)} % sky`);
   assert.deepEqual(problems, []);
