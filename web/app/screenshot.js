@@ -1,5 +1,7 @@
 // Screenshots: the current view drawn again into an offscreen framebuffer at 1x or 2x the
 // canvas's size (the LOD stays the screen's), read back, and saved as a PNG through a link.
+import { FLAT_EARTH } from '../geo/index.js';
+import { placeOnEarth } from '../cameras/on_the_earth.js';
 
 /**
  * Renders with `drawAt(width, height)` into a framebuffer of scale x the canvas size and
@@ -72,6 +74,7 @@ export function screenshotTaker({ gl, rig, renderer, view, state, layers, attrib
     const camera = rig.active;
     const blob = await captureView(gl, scale, (width, height) => {
       camera.update(width / height);
+      placeOnEarth(camera, layers.ground?.earth ?? FLAT_EARTH); // as the frame pipeline places it
       renderer.draw(camera, width, height, view, layers);
     }, attribution.text);
     const name = `hexlod-${(state.terrain?.name ?? 'view').replace(/\.[^.]*$/, '')}-${scale}x.png`;

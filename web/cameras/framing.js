@@ -264,7 +264,11 @@ export function frameTerrain(terrain, world, orbit, scale, aspect, covered = { t
   if (Math.hypot(slope.east, slope.south) > LEANING) yaw = Math.atan2(-slope.east, -slope.south);
   // Steeper over flat ground, where a low view shows little; lower where relief stands up.
   const relief = (heights.high - heights.low) / Math.max(Math.hypot(sizeX, sizeZ), 1e-9);
-  const basePitch = relief > 0.05 ? 0.42 : 0.6;
+  // A region the curved Earth bends by more than a few degrees (over 1,600 km) is seen from
+  // high above: from the side its far part curves away out of sight.
+  const curved = world.earth && world.earth.kind !== EARTH_FLAT;
+  const wide = curved && Math.hypot(sizeX, sizeZ) > 0.25 * world.earth.radius;
+  const basePitch = wide ? 1.2 : relief > 0.05 ? 0.42 : 0.6;
   let pitch = basePitch;
   const fit = (at, pitchNow) => centredView(terrain, world, scale, heights.points, at, yaw, pitchNow, orbit.fovY, aspect, free);
   let view = fit(target, pitch);
