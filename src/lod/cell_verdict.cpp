@@ -64,11 +64,7 @@ CellVerdict judgeCell(const VerdictContext& context, const CellQuestion& cell, d
         if (!context.earth.flat()) {
             // The drawn surface also leaves the curved one by the chords' sag and drift (in drawn
             // metres: heights times the vertical scale; the error is in true metres).
-            glm::dvec3 center;
-            double radius;
-            boundingSphere(f, e, context.verticalScale, center, radius);
-            const CurvedCell curved = curvedCell(context.earth, center, radius, 0.5 * std::hypot(double(f.x1) - double(f.x0), double(f.z1) - double(f.z0)),
-                                                 double(e.low) * context.verticalScale, double(e.high) * context.verticalScale);
+            const CurvedCell curved = curvedCellOf(context.earth, f, e, context.verticalScale);
             error += (curved.sag + curved.drift) / context.verticalScale;
         }
         v.pass = !(error > context.maxError);
@@ -79,14 +75,14 @@ CellVerdict judgeCell(const VerdictContext& context, const CellQuestion& cell, d
     }
     glm::dvec3 center;
     double radius;
-    boundingSphere(f, e, context.verticalScale, center, radius);
     // On the curved Earth: the sphere of the cell's image, its up vector and how far it turns,
     // and the sag of its straight triangles under the curved surface (earth_shape.h).
     const bool flat = context.earth.flat();
     CurvedCell curved;
-    if (!flat) {
-        curved = curvedCell(context.earth, center, radius, 0.5 * std::hypot(double(f.x1) - double(f.x0), double(f.z1) - double(f.z0)),
-                            double(e.low) * context.verticalScale, double(e.high) * context.verticalScale);
+    if (flat) {
+        boundingSphere(f, e, context.verticalScale, center, radius);
+    } else {
+        curved = curvedCellOf(context.earth, f, e, context.verticalScale);
         center = curved.center, radius = curved.radius;
     }
     const glm::dvec3 d = center - view.eye;

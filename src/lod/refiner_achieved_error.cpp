@@ -25,8 +25,7 @@ double Refiner::achievedErrorPixels() const {
         const double error = double(own.error) * settings_.verticalScale;
         if (!settings_.earth.flat()) {
             // On the curved Earth, as judgeCell (cell_verdict.cpp): the image's bound, no back faces.
-            CurvedCell curved = curvedCell(settings_.earth, center, radius, 0.5 * std::hypot(double(f.x1) - double(f.x0), double(f.z1) - double(f.z0)),
-                                                 double(own.low) * settings_.verticalScale, double(own.high) * settings_.verticalScale);
+            CurvedCell curved = curvedCellOf(settings_.earth, f, own, settings_.verticalScale);
             // A cell of one sample's step in the exact embedding has every sample under it as
             // a vertex, drawn where it belongs: its chords pass over no sample.
             if (mesh_->embedding() == Embedding::Exact && mesh_->cellStep(c) == 1) curved.sag = curved.drift = 0.0;

@@ -38,6 +38,14 @@ void boundingSphere(const Footprint& f, const CellError& e, double verticalScale
     radius = 0.5 * glm::length(high - low);
 }
 
+CurvedCell curvedCellOf(const EarthShape& earth, const Footprint& f, const CellError& e, double verticalScale) {
+    glm::dvec3 center;
+    double radius;
+    boundingSphere(f, e, verticalScale, center, radius);
+    const double halfDiagonal = 0.5 * std::hypot(double(f.x1) - double(f.x0), double(f.z1) - double(f.z0));
+    return curvedCell(earth, center, radius, halfDiagonal, double(e.low) * verticalScale, double(e.high) * verticalScale);
+}
+
 bool outsideFrustum(const View& view, const glm::dvec3& center, double radius) {
     const glm::dvec3 d = center - view.eye;
     const double x = glm::dot(d, view.right), y = glm::dot(d, view.up), z = glm::dot(d, view.forward);

@@ -57,6 +57,10 @@ double projectedErrorPixels(const View& view, const glm::dvec3& center, double r
 /// drift, a displacement in any direction.
 double projectedErrorPixels(const View& view, const CurvedCell& curved, double verticalError, double nearest);
 
+/// A cell's bound on the curved Earth (earth_shape.h) from its footprint and cached bound:
+/// its flat bounding sphere (boundingSphere) drawn on `earth`.
+CurvedCell curvedCellOf(const EarthShape& earth, const Footprint& f, const CellError& e, double verticalScale);
+
 /// The largest length of the projection's Jacobian (times depth) applied to a unit vector, for
 /// screen tangents up to tMax2 = tx^2 + ty^2: |(vx - tx vz, vy - ty vz)| <= sqrt(2 (1 + tMax2)).
 inline double anyDirectionGain(double tMax2) { return std::sqrt(2.0 * (1.0 + tMax2)); }
