@@ -97,7 +97,7 @@ function headBytes(layout) {
 }
 
 /** One tile's samples as the file stores them (little-endian Int16, rows north to south). */
-export function worldTile(layout, levelIndex, tx, ty) {
+export function worldTile(layout, levelIndex, tx, ty, heights = worldHeight) {
   const level = layout.levels[levelIndex];
   const degrees = 360 / level.width; // square samples, as at full resolution (the last row may run short)
   const bytes = new Uint8Array(TILE_BYTES);
@@ -106,14 +106,14 @@ export function worldTile(layout, levelIndex, tx, ty) {
     const lat = 90 - (ty * TILE + row + 0.5) * degrees;
     for (let col = 0; col < TILE; col++) {
       const lon = -180 + (tx * TILE + col + 0.5) * degrees;
-      view.setInt16((row * TILE + col) * 2, worldHeight(lon, lat), true);
+      view.setInt16((row * TILE + col) * 2, heights(lon, lat), true);
     }
   }
   return bytes;
 }
 
 /** The file's bytes [start, end), computed. */
-function fileBytes(layout, head, start, end, tileCache) {
+function fileBytes(layout, head, start, end, tileCache, heights) {
   const out = new Uint8Array(end - start);
   for (let p = start; p < end;) {
     if (p < layout.tablesAt) {
@@ -138,7 +138,7 @@ function fileBytes(layout, head, start, end, tileCache) {
       const key = `${levelIndex}:${index}`;
       let tile = tileCache.get(key);
       if (!tile) {
-        tile = worldTile(layout, levelIndex, index % level.across, Math.floor(index / level.across));
+        tile = worldTile(layout, levelIndex, index % level.across, Math.floor(index / level.across), heights);
         tileCache.set(key, tile);
         if (tileCache.size > 64) tileCache.delete(tileCache.keys().next().value);
       }
@@ -152,12 +152,13 @@ function fileBytes(layout, head, start, end, tileCache) {
 
 /**
  * Serves the virtual world at /world.tif.
- * @param {{ width?: number, height?: number, latencyMs?: number }} [options]
+ * @param {{ width?: number, height?: number, latencyMs?: number, heights?: (lon: number, lat: number) => number }} [options]
+ *   heights: metres (rounded to Int16) at a sample's centre; worldHeight unless given
  * @returns {Promise<{ url: string, layout: ReturnType<typeof worldLayout>,
  *   stats: () => { requests: number, bytes: number }, reset: () => void, close: () => Promise<void> }>}
  *   url: the file's address
  */
-export async function startWorldCogServer({ width, height, latencyMs = 0 } = {}) {
+export async function startWorldCogServer({ width, height, latencyMs = 0, heights = worldHeight } = {}) {
   const layout = worldLayout(width, height);
   const head = headBytes(layout);
   const tileCache = new Map();
@@ -187,7 +188,7 @@ export async function startWorldCogServer({ width, height, latencyMs = 0 } = {})
       response.writeHead(416, { 'content-range': `bytes */${layout.size}` }).end();
       return;
     }
-    const body = fileBytes(layout, head, start, end, tileCache);
+    const body = fileBytes(layout, head, start, end, tileCache, heights);
     stats.bytes += body.length;
     response.writeHead(206, { 'content-range': `bytes ${start}-${end - 1}/${layout.size}`, 'content-length': body.length,
       'accept-ranges': 'bytes', 'content-type': 'image/tiff' });

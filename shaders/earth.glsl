@@ -33,22 +33,25 @@ vec3 fromMeridianFrame(vec3 v, float phi0) {
     return vec3(v.y, c0 * v.x + s0 * v.z, s0 * v.x - c0 * v.z);
 }
 
-/** The drawn position of flat p = (x, height, z), the height already times the exaggeration. */
-vec3 earthPosition(vec3 p) {
-    if (uEarthKind == 0) return p;
-    vec2 d = p.xz - uEarthOrigin;
+/**
+ * Where the flat offset d (metres east and south) from a ground point drawn at the frame's origin,
+ * at height h (times the exaggeration), is drawn: in the tangent frame at that point (east, up,
+ * south metres). phi0: the point's latitude (geographic). The sphere's wrap keeps the distances
+ * and directions from the field's centre, so its d is always from there.
+ */
+vec3 earthOffset(vec2 d, float h, float phi0) {
+    if (uEarthKind == 0) return vec3(d.x, h, d.y);
     if (uEarthKind == 1) {
         float a;
         vec2 u;
         sphereFrame(d, a, u);
         float R = uEarthRadius, s = sin(0.5 * a);
-        float along = (R + p.y) * sin(a);
-        return vec3(along * u.x, p.y - 2.0 * (R + p.y) * s * s, along * u.y);
+        float along = (R + h) * sin(a);
+        return vec3(along * u.x, h - 2.0 * (R + h) * s * s, along * u.y);
     }
-    float phi0, dPhi, dLambda;
-    geographicAngles(d, phi0, dPhi, dLambda);
-    float phi = phi0 + dPhi, h = p.y;
-    float sPhi = sin(phi), cPhi = cos(phi), s0 = sin(phi0), c0 = cos(phi0);
+    float dPhi = -d.y / uEarthGeographic.z, dLambda = d.x / uEarthGeographic.y;
+    float phi = phi0 + dPhi;
+    float sPhi = sin(phi), cPhi = cos(phi), s0 = sin(phi0);
     float w = sqrt(1.0 - WGS84_E2 * sPhi * sPhi), w0 = sqrt(1.0 - WGS84_E2 * s0 * s0);
     float n = WGS84_A / w, n0 = WGS84_A / w0;
     float halfDPhi = sin(0.5 * dPhi), halfDLambda = sin(0.5 * dLambda);
@@ -60,6 +63,12 @@ vec3 earthPosition(vec3 p) {
     float dy = (n + h) * cPhi * sin(dLambda);
     float dz = (1.0 - WGS84_E2) * (nDiff * sPhi + n0 * sinDiff) + h * sPhi;
     return fromMeridianFrame(vec3(dx, dy, dz), phi0);
+}
+
+/** The drawn position of flat p = (x, height, z), the height already times the exaggeration. */
+vec3 earthPosition(vec3 p) {
+    if (uEarthKind == 0) return p;
+    return earthOffset(p.xz - uEarthOrigin, p.y, uEarthGeographic.x);
 }
 
 /** The drawn frame's east, up and south at flat (x, z), each a unit vector. */

@@ -7,8 +7,20 @@ layout(location = 0) in vec3 aPosition;  // ATTRIB_POSITION in web/render/render
 layout(location = 1) in vec3 aNormal;    // ATTRIB_NORMAL: snorm16, averaged from the adjacent triangles
 layout(location = 2) in float aMorphFromHeight; // ATTRIB_MORPH_FROM: height of the coarser surface under the vertex, where the blend starts
 layout(location = 3) in float aMorphKey; // ATTRIB_MORPH_KEY: 0 at rest, f+1 blending in, -(f+1) out, since frame f
+layout(location = 4) in ivec2 aLattice;  // ATTRIB_LATTICE: the vertex's lattice point, exact (half columns east, rows south)
 
-uniform mat4 uViewProjection;
+// Drawn relative to the eye (web/render/shading/eye_anchor.js): a float holds a world field's
+// metres only to about 4 m, so the vertex's place is found from its exact lattice point as an
+// offset from an anchor near the eye, drawn in the anchor's tangent frame, then turned into the
+// drawn frame and taken from the eye in doubles by the page. Near the eye every number is small.
+uniform ivec2 uAnchorLattice;  // the anchor's lattice point (half columns, rows)
+uniform vec2 uAnchorRest;      // flat metres from that lattice point to the anchor
+uniform vec2 uLatticeMetres;   // flat metres of a half column and a row
+uniform ivec2 uLatticeLast;    // the field's last half column and row: the overhang is clamped there
+uniform float uAnchorLatitude; // the anchor's latitude (radians, geographic)
+uniform mat3 uAnchorAxes;      // the anchor's east, up and south in the drawn frame
+uniform vec3 uAnchorFromEye;   // drawn metres from the eye to the anchor's ground point
+uniform mat4 uViewProjectionFromEye; // the view-projection of an eye at the drawn frame's origin
 uniform vec3 uCameraPosition;  // drawn metres (on the curved Earth, in its frame: earth.glsl)
 uniform float uEyeHeight;      // the eye's height above the surface's zero, true metres
 uniform float uFrame;          // the core's blend clock (hexlod_lod_frame)
@@ -40,6 +52,7 @@ void main() {
     // their heights, folds the overhang onto the border: cells wholly outside become
     // zero-area and draw nothing, cells across the edge end at it. No fragment is discarded.
     p.xz = clamp(p.xz, vec2(0.0), uExtent);
+    ivec2 lattice = clamp(aLattice, ivec2(0), uLatticeLast);
     vHeight = p.y;
     p.y *= uVerticalScale;
     // Scaling heights by s scales normals by the inverse transpose: (nx, ny / s, nz).
@@ -48,10 +61,10 @@ void main() {
 
     // On the curved Earth the vertex is drawn on it (earth.glsl); the lighting works in the
     // local frame, where "up" is the surface's.
-    vec3 drawn = earthPosition(p);
+    vec2 fromAnchor = vec2(lattice - uAnchorLattice) * uLatticeMetres - uAnchorRest; // exact: small integers
+    vec3 ray = uAnchorAxes * earthOffset(fromAnchor, p.y, uAnchorLatitude) + uAnchorFromEye;
     vec3 east, up, south;
     earthFrame(p.xz, east, up, south);
-    vec3 ray = drawn - uCameraPosition;
     vSunLocal = vec3(dot(uSunDirection, east), dot(uSunDirection, up), dot(uSunDirection, south));
     vec3 toEye = normalize(-ray);
     vToEyeLocal = vec3(dot(toEye, east), dot(toEye, up), dot(toEye, south));
@@ -65,5 +78,5 @@ void main() {
     // The air along the ray is lit by sunlight of its mean height.
     scatter(depthR, depthM, dot(normalize(ray), uSunDirection), sunlightAt(0.5 * (eye + vHeight)),
         vExtinction, vInscatter);
-    gl_Position = uViewProjection * vec4(drawn, 1.0);
+    gl_Position = uViewProjectionFromEye * vec4(ray, 1.0);
 }

@@ -4,7 +4,7 @@
 // from its georeference.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { EARTH_FLAT, EARTH_GEOGRAPHIC, EARTH_SPHERE, drawnPoint, drawnUp, earthShapeOf, flatPoint, meanRadius }
+import { EARTH_FLAT, EARTH_GEOGRAPHIC, EARTH_SPHERE, drawnAxes, drawnPoint, drawnUp, earthShapeOf, flatPoint, meanRadius }
   from '../../web/geo/earth_shape.js';
 import { eastUpSouthAt } from '../../web/geo/earth_frame.js';
 import { crsOfEpsg } from '../../web/geo/georef.js';
@@ -65,4 +65,33 @@ test('without a georeference, or with a centre off the Earth, a terrain stays fl
   assert.equal(earthShapeOf(offEarth, geographicGrid).kind, EARTH_FLAT);
   const p = drawnPoint(earthShapeOf(null, geographicGrid), 1, 2, 3);
   assert.deepEqual([...p], [1, 2, 3]);
+});
+
+// The terrain's vertex shader draws each vertex from an anchor near the eye (shaders/terrain.vert,
+// web/render/shading/eye_anchor.js): in the anchor's own tangent frame, as a shape whose origin
+// is the anchor, then turned by the anchor's axes and moved to the anchor's place. That is the
+// same point as from the field's centre: the ellipsoid is the same whatever meridian is first.
+test('a geographic grid drawn from an anchor: its axes turn the anchor frame\'s points onto the centre frame\'s', () => {
+  const earth = earthShapeOf(geographicRef, geographicGrid);
+  const axes = new Float64Array(9), anchorPoint = [0, 0, 0];
+  for (const [ax, az] of [[0, 0], [1900 * geographicGrid.spacingX, 37 * geographicGrid.spacingY], [700 * geographicGrid.spacingX, 990 * geographicGrid.spacingY]]) {
+    const anchored = { ...earth, originX: ax, originZ: az, latitude0: earth.latitude0 - (az - earth.originZ) / earth.metresPerRadianZ };
+    drawnAxes(earth, ax, az, axes);
+    drawnPoint(earth, ax, 0, az, anchorPoint);
+    // Orthonormal, and up is the surface's up.
+    const column = (c) => [axes[3 * c], axes[3 * c + 1], axes[3 * c + 2]];
+    const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    for (let a = 0; a < 3; a++) for (let b = 0; b < 3; b++) assert.ok(Math.abs(dot(column(a), column(b)) - (a === b ? 1 : 0)) < 1e-12);
+    const up = drawnUp(earth, ax, az);
+    for (let k = 0; k < 3; k++) assert.ok(Math.abs(column(1)[k] - up[k]) < 1e-12, 'the anchor\'s up');
+    for (const [dx, dz, h] of [[0, 0, 100], [3000, -2000, 5000], [-25000, 40000, -300], [400 * geographicGrid.spacingX, 0, 0]]) {
+      const x = ax + dx, z = az + dz, local = drawnPoint(anchored, x, h, z), expected = drawnPoint(earth, x, h, z);
+      for (let k = 0; k < 3; k++) {
+        const got = anchorPoint[k] + axes[k] * local[0] + axes[3 + k] * local[1] + axes[6 + k] * local[2];
+        assert.ok(Math.abs(got - expected[k]) < 1e-6, `anchor (${ax}, ${az}), point (${x}, ${h}, ${z}): ${got} against ${expected[k]}`);
+      }
+    }
+  }
+  // The plane and the sphere: their own axes.
+  assert.deepEqual([...drawnAxes(earthShapeOf(null, geographicGrid), 5, 7, axes)], [1, 0, 0, 0, 1, 0, 0, 0, 1]);
 });

@@ -86,6 +86,7 @@ export class TerrainStage {
     loaded.world.earth = loaded.earth ?? FLAT_EARTH;
     rig.setWorld(loaded.world);
     renderer.setShading(extent.low, extent.high, extent.extentX, extent.extentZ);
+    renderer.setLattice(terrain.spacingX, terrain.spacingY, terrain.width, terrain.height);
     if (renderer.fieldTextures.terrain !== terrain || renderer.fieldTextures.spacing !== terrain.spacingX) {
       renderer.setField(terrain, loaded.field); // normals, shadows, occlusion from the field
     }

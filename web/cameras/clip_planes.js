@@ -4,7 +4,7 @@ import { mat4 } from 'gl-matrix';
 
 export const FOV_Y = (50 * Math.PI) / 180;
 // A 24-bit depth buffer keeps terrain apart up to about this far / near ratio.
-const MAX_DEPTH_RATIO = 1e6;
+export const MAX_DEPTH_RATIO = 1e6;
 
 /**
  * The world the cameras move in (drawn metres: heights times the exaggeration). `ground(x, z)`
@@ -35,7 +35,11 @@ export function finishMatrices(camera, aspect, world, lookDistance, clearance) {
     far = Math.max(far, Math.hypot(cx - x, cy - y, cz - z));
   }
   far = far * 1.05 + 1;
-  camera.near = Math.max(far / MAX_DEPTH_RATIO, Math.min(0.3 * Math.max(clearance, 0), 0.5 * lookDistance));
+  // What near would be with depth to spare: on the curved Earth the horizon may bring far in
+  // (web/cameras/on_the_earth.js), and near with it.
+  camera.nearWanted = Math.min(0.3 * Math.max(clearance, 0), 0.5 * lookDistance);
+  camera.dataTop = world.high;
+  camera.near = Math.max(far / MAX_DEPTH_RATIO, camera.nearWanted);
   camera.far = Math.max(far, camera.near * 10);
   camera.fogDistance = Math.max(8 * lookDistance, 0.25 * Math.hypot(world.extentX, world.extentZ));
   camera.aspect = aspect;

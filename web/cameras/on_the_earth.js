@@ -4,6 +4,7 @@
 // walk stays on it, and a camera 10 km up sees the horizon dip as it does from 10 km.
 import { mat4 } from 'gl-matrix';
 import { EARTH_FLAT, drawnPoint, drawnUp } from '../geo/index.js';
+import { MAX_DEPTH_RATIO } from './clip_planes.js';
 
 /**
  * Sets camera.drawnPosition, drawnTarget, drawnUp, earth and flatViewProjection (made once per
@@ -31,8 +32,14 @@ export function placeOnEarth(camera, earth) {
     return;
   }
   // The far plane reaches the farthest flat corner; rows drawn wider than flat reach further.
-  if (earth.stretch > 1) {
-    camera.far *= earth.stretch;
+  // But nothing lies beyond the horizon's reach: the eye's horizon distance plus that of the
+  // highest data. On a world field the flat corners are 40,000 km away, and a far plane there
+  // would hold near 40 m out, clipping the valley floor under an eye 2 m up.
+  const reach = HORIZON_MARGIN * (horizonDistance(earth.radius, p[1]) + horizonDistance(earth.radius, camera.dataTop ?? 0));
+  const far = Math.min(camera.far * Math.max(1, earth.stretch), reach);
+  if (far !== camera.far) {
+    camera.far = Math.max(far, 10 * (camera.nearWanted ?? camera.near));
+    camera.near = Math.max(camera.far / MAX_DEPTH_RATIO, Math.min(camera.nearWanted ?? camera.near, 0.1 * camera.far));
     mat4.perspective(camera.projection, camera.fovY, camera.aspect, camera.near, camera.far);
   }
   drawnPoint(earth, p[0], p[1], p[2], camera.drawnPosition);
@@ -40,6 +47,15 @@ export function placeOnEarth(camera, earth) {
   drawnUp(earth, p[0], p[2], camera.drawnUp);
   mat4.lookAt(camera.view, camera.drawnPosition, camera.drawnTarget, camera.drawnUp);
   mat4.multiply(camera.viewProjection, camera.projection, camera.view);
+}
+
+// The horizon's reach uses the mean radius; the ellipsoid's radii of curvature differ from it
+// by under 1 %, so 2 % spare covers them.
+const HORIZON_MARGIN = 1.02;
+
+/** How far the horizon lies from a point `height` metres above a sphere of `radius` (0 below it). */
+export function horizonDistance(radius, height) {
+  return Math.sqrt(Math.max(0, height * (2 * radius + height)));
 }
 
 /**

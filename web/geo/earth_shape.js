@@ -99,6 +99,29 @@ export function drawnUp(earth, x, z, out = [0, 0, 0]) {
 }
 
 /**
+ * The tangent frame under a geographic grid's flat (x, z): its east, up and south (unit vectors
+ * of the drawn frame), into `axes` (9 numbers, column by column as a GLSL mat3 takes them). On
+ * the plane and the sphere (whose wrap is about the origin only the origin's frame is used) the
+ * drawn frame's own axes.
+ */
+export function drawnAxes(earth, x, z, axes) {
+  axes.fill(0);
+  if (earth.kind !== EARTH_GEOGRAPHIC) {
+    axes[0] = axes[4] = axes[8] = 1;
+    return axes;
+  }
+  const phi = earth.latitude0 - (z - earth.originZ) / earth.metresPerRadianZ, dLambda = (x - earth.originX) / earth.metresPerRadianX;
+  const s = Math.sin(phi), c = Math.cos(phi), sL = Math.sin(dLambda), cL = Math.cos(dLambda);
+  const s0 = Math.sin(earth.latitude0), c0 = Math.cos(earth.latitude0);
+  // Earth-centred vectors (the origin's meridian as longitude 0) turned to the origin's east,
+  // up and south: (X, Y, Z) goes to (Y, c0 X + s0 Z, s0 X - c0 Z). South is minus north.
+  axes[0] = cL, axes[1] = -c0 * sL, axes[2] = -s0 * sL;
+  axes[3] = c * sL, axes[4] = c0 * c * cL + s0 * s, axes[5] = s0 * c * cL - c0 * s;
+  axes[6] = s * sL, axes[7] = c0 * s * cL - s0 * c, axes[8] = s0 * s * cL + c0 * c;
+  return axes;
+}
+
+/**
  * The flat point (x, height, z) drawn at p, into `out`: the inverse of drawnPoint (heights in the
  * same drawn units). On the ellipsoid by Bowring's method, to well under a millimetre.
  */

@@ -33,12 +33,15 @@ import { ImageTextures } from './shading/image_textures.js';
 import { DrapeLayers, DRAPE_UNIFORMS } from './shading/drape_layers.js';
 import { ContourOverlay, CONTOUR_UNIFORMS } from './contours/contour_overlay.js';
 import { EarthUniforms, EARTH_UNIFORMS } from './shading/earth_uniforms.js';
+import { EyeAnchor, ANCHOR_UNIFORMS } from './shading/eye_anchor.js';
+import { VertexLattice, LATTICE_BYTES } from './vertex_lattice.js';
 import { linkProgram, uniformLocations } from './gl_program.js';
 
 export const ATTRIB_POSITION = 0;
 export const ATTRIB_NORMAL = 1;
 export const ATTRIB_MORPH_FROM = 2;
 export const ATTRIB_MORPH_KEY = 3;
+export const ATTRIB_LATTICE = 4;
 export const ATTRIB_SKY_CORNER = 0;
 /** Shading modes (uMode in shaders/terrain.frag). */
 export const SHADING_MODES = { natural: 0, hypsometric: 1, slope: 2, hillshade: 3, plain: 4 };
@@ -51,7 +54,7 @@ const OUTLINE_COLOR = new Float32Array([0.08, 0.09, 0.12, 0.55]);
 // terrain's pixels by it: the plain ground past the field looks like the terrain's own lowlands).
 const MASK_COLOR = new Float32Array([1, 0, 1, 1]);
 const NO_LINE = new Float32Array([0, 0, 0, 0]);
-const UNIFORMS = ['uViewProjection', ...EARTH_UNIFORMS, 'uSunDirection', 'uHeightRange', 'uTint', 'uTintAmount',
+const UNIFORMS = [...ANCHOR_UNIFORMS, ...EARTH_UNIFORMS, 'uSunDirection', 'uHeightRange', 'uTint', 'uTintAmount',
   'uExtent', 'uLineColor', 'uFrame', 'uMorphFrames', 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie', 'uScaleHeight',
   'uMieG', 'uSunIrradiance', 'uSunAirMass', 'uSkyLight', 'uExposure', 'uMode', 'uNormalSource', 'uShadows',
   'uOcclusionOn', 'uSnowLine', 'uTreeLine', 'uNoiseScale', 'uGradients', 'uGradientTexel', 'uGradientStep',
@@ -147,6 +150,7 @@ export class TerrainRenderer {
     this.sunDirection = this.atmosphere.sunDirection;
     this.lastUploadBytes = 0;
     this.streamBytes = 0; // bytes of the whole stream (what a full upload would copy)
+    this.eyeAnchor = new EyeAnchor(); // the terrain drawn relative to the eye (shading/eye_anchor.js)
   }
 
   /** The surface the terrain is drawn on (web/geo/earth_shape.js), as the core refines for it. */
@@ -182,6 +186,8 @@ export class TerrainRenderer {
     this.contours?.forgetGl();
     this.contours = this.contours ?? new ContourOverlay(gl); // contour lines and labels (web/render/contours/)
     this.vertices = new MirroredBuffer(gl, gl.ARRAY_BUFFER);
+    if (this.lattice) this.lattice.createGlObjects();
+    else this.lattice = new VertexLattice(gl); // the vertices' exact lattice points (vertex_lattice.js)
     this.normals = new MirroredBuffer(gl, gl.ARRAY_BUFFER); // while the core keeps mesh normals
     this.hasNormals = false;
     gl.vertexAttrib3f(ATTRIB_NORMAL, 0, 1, 0); // what the shader reads while there are none
@@ -218,6 +224,9 @@ export class TerrainRenderer {
     gl.vertexAttribPointer(ATTRIB_MORPH_FROM, 1, gl.FLOAT, false, stride, 12);
     gl.enableVertexAttribArray(ATTRIB_MORPH_KEY);
     gl.vertexAttribPointer(ATTRIB_MORPH_KEY, 1, gl.FLOAT, false, stride, 16);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.lattice.buffer);
+    gl.enableVertexAttribArray(ATTRIB_LATTICE);
+    gl.vertexAttribIPointer(ATTRIB_LATTICE, 2, gl.INT, LATTICE_BYTES, 0);
     // The normals are a buffer of their own, read only while the core keeps them (setNormalsOn).
     gl.bindBuffer(gl.ARRAY_BUFFER, this.normals.buffer);
     gl.vertexAttribPointer(ATTRIB_NORMAL, 3, gl.SHORT, true, STREAM_NORMAL_BYTES, 0);
@@ -245,6 +254,8 @@ export class TerrainRenderer {
       const heap = terrain.core.module.HEAPU8, i32 = terrain.scratchI32();
       bytes += this.vertices.update(heap, stats.vertexPointer, stats.vertexCount * STREAM_VERTEX_BYTES, i32,
         stats.dirtyVerticesPointer / 4, stats.dirtyVertexPairs, STREAM_VERTEX_BYTES, all);
+      bytes += this.lattice.update(terrain.core.module.HEAPF32, stats.vertexPointer, stats.vertexCount, i32,
+        stats.dirtyVerticesPointer / 4, stats.dirtyVertexPairs, all);
       const normals = stats.normalsPointer !== 0;
       if (normals) {
         bytes += this.normals.update(heap, stats.normalsPointer, stats.vertexCount * STREAM_NORMAL_BYTES, i32,
@@ -297,6 +308,15 @@ export class TerrainRenderer {
    * @param {number} minHeight @param {number} maxHeight drawn height range, metres (exaggerated)
    * @param {number} extentX @param {number} extentZ the field's rectangle, metres
    */
+  /** The terrain's lattice (the vertices are placed from their lattice points): spacing, metres, and size, samples. */
+  setLattice(spacingX, spacingY, width, height) {
+    const a = this.eyeAnchor;
+    if (a.spacingX === spacingX && a.spacingY === spacingY && a.latticeLast[0] === 2 * (width - 1) && a.latticeLast[1] === height - 1) return;
+    this.lattice.setSpacing(spacingX, spacingY);
+    this.eyeAnchor.setLattice(spacingX, spacingY, width, height);
+    this.invalidate(); // every lattice point anew
+  }
+
   setShading(minHeight, maxHeight, extentX, extentZ) {
     this.heightRange = [minHeight, maxHeight];
     this.extent = [extentX, extentZ];
@@ -450,7 +470,7 @@ export class TerrainRenderer {
     gl.enable(gl.CULL_FACE);
     gl.useProgram(this.program);
     const u = this.uniforms;
-    gl.uniformMatrix4fv(u.uViewProjection, false, camera.viewProjection);
+    this.eyeAnchor.apply(gl, u, camera, this.earth.earth);
     this.earth.apply(gl, u, camera, verticalScale);
     this.setGroundColourUniforms(u, verticalScale);
     const low = this.heightRange[0] / verticalScale, high = this.heightRange[1] / verticalScale;
