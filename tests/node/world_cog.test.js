@@ -12,8 +12,12 @@ import { openCog } from '../../web/tiles/cog_source.js';
 import { openTiledTerrain } from '../../web/tiles/tiled_terrain.js';
 import { createNodeCore } from '../../lib/node_core.js';
 import { startWorldCogServer, worldHeight } from '../../lib/world_cog_server.js';
+import { FRAME } from '../../web/core/core.js';
+import { EARTH_GEOGRAPHIC, earthShapeOf } from '../../web/geo/index.js';
+import { horizonDistance, lodCameraOnEarth } from '../../web/cameras/on_the_earth.js';
 
 const TABLE_BLOCK = 16384; // header_source.js HEADER_BLOCK_BYTES
+const FLIGHT_CAP_BYTES = 96 * 2 ** 20; // the orbit-to-valley flight's fetches, all told
 let server;
 before(async () => { server = await startWorldCogServer({ latencyMs: 5 }); });
 after(() => server?.close());
@@ -122,6 +126,74 @@ test('through the page stack the core takes the world COG and draws its first me
     }
     assert.ok(tiles.tilesIn > 0, 'finer tiles came');
     terrain.checkMesh();
+  } finally {
+    tiles.close();
+    terrain.destroy();
+  }
+});
+
+// From orbit to a valley floor in one motion, through the page stack on the curved Earth (the
+// camera placed on it as the page places it, web/cameras/on_the_earth.js): 2,000 km above the
+// ground near 86.9° E, 27.9° N, down to 3 m, 120 frames of continuous descent whose stops hold
+// the camera until every tile in view is in. The mesh stays watertight in every frame while
+// tiles arrive; at each stop, converged, it keeps τ (measured by the core's error oracle); and
+// the whole flight fetches a bounded number of bytes: the tiles the views need, not the file.
+test('from 2,000 km to 3 m above a valley floor in one motion: watertight while tiles arrive, within τ at every stop, bytes bounded', async () => {
+  const core = await createNodeCore();
+  server.reset();
+  const source = await openCog(server.url);
+  const { terrain, tiles } = await openTiledTerrain(core, source);
+  try {
+    const tau = 1;
+    terrain.resetMesh('exact');
+    terrain.configure({ tauPx: tau, morphFrames: 0, maxOperations: 4000 });
+    const earth = earthShapeOf(source.georef, terrain);
+    assert.equal(earth.kind, EARTH_GEOGRAPHIC);
+    terrain.setEarth(earth);
+    const column = Math.round((86.9 + 180) * 3600), row = Math.round((90 - 27.9) * 3600);
+    const ground = worldHeight(-180 + (column + 0.5) / 3600, 90 - (row + 0.5) / 3600);
+    const x = column * terrain.spacingX, z = row * terrain.spacingY;
+    const FRAMES = 120, STOPS = [0, 40, 80, 100, 119], HIGH = 2e6, LOW = 3;
+    const lod = { eye: [0, 0, 0], target: [x, ground, z], up: [0, 1, 0], fovY: (50 * Math.PI) / 180, aspect: 16 / 9,
+      viewportHeight: 720, near: 1, far: 1 };
+    const placed = { eye: [0, 0, 0], target: [0, 0, 0], up: [0, 0, 0] };
+    const report = [];
+    let watertightFrames = 0, quiet = 0, waiting = 0; // quiet: frames since a tile went in
+    const step = async () => {
+      const stats = terrain.frame(lodCameraOnEarth(lod, earth, placed));
+      terrain.checkStream(); // throws on a crack, a T-junction or a hole
+      watertightFrames += 1;
+      quiet = tiles.tick() > 0 ? 0 : quiet + 1;
+      waiting = tiles.waiting; // as of the exchange: a tile that lands while we wait is handed in at the next
+      await new Promise((resolve) => setTimeout(resolve, waiting > 0 ? 2 : 0));
+      return stats;
+    };
+    for (let frame = 0; frame < FRAMES; frame++) {
+      // Altitude falls geometrically; the eye keeps south of the place, looking down at it at a slant.
+      const altitude = HIGH * (LOW / HIGH) ** (frame / (FRAMES - 1));
+      lod.eye[0] = x, lod.eye[1] = ground + altitude, lod.eye[2] = z + 0.8 * altitude;
+      lod.far = 1.02 * (horizonDistance(earth.radius, lod.eye[1]) + horizonDistance(earth.radius, 9000));
+      lod.near = Math.max(lod.far / 1e6, 0.3 * altitude);
+      let stats = await step();
+      if (!STOPS.includes(frame)) continue;
+      const stopStart = performance.now();
+      // A tile that went in takes its heights at the next frame's stream step, and the one after refines on them.
+      for (let held = 0; held < 3000 && !(stats.converged && waiting === 0 && quiet >= 4); held++) stats = await step();
+      const error = terrain.query(FRAME.census).achievedErrorPx;
+      const { requests, bytes } = server.stats();
+      report.push({ altitude, error, triangles: stats.triangles, requests, bytes, settleMs: performance.now() - stopStart });
+      assert.deepEqual(tiles.failures, [], 'no tile failed');
+      assert.ok(stats.converged && waiting === 0, `${altitude.toFixed(0)} m up: settled`);
+      assert.ok(error <= tau * 1.001, `${altitude.toFixed(0)} m up: ${error.toFixed(3)} px against τ ${tau}`);
+    }
+    for (const r of report) {
+      console.log(`world flight: ${(r.altitude / 1000).toFixed(3)} km up: error ${r.error.toFixed(2)} px, ${r.triangles} triangles; ` +
+        `so far ${r.requests} requests, ${(r.bytes / 2 ** 20).toFixed(1)} MiB; settled in ${r.settleMs.toFixed(0)} ms`);
+    }
+    const { requests, bytes } = server.stats();
+    console.log(`world flight: ${watertightFrames} watertight frames, ${requests} requests, ${(bytes / 2 ** 20).toFixed(1)} MiB in all, ` +
+      `${tiles.tilesEvicted} tiles evicted`);
+    assert.ok(bytes <= FLIGHT_CAP_BYTES, `the flight fetched ${bytes} bytes (cap ${FLIGHT_CAP_BYTES})`);
   } finally {
     tiles.close();
     terrain.destroy();
