@@ -60,6 +60,41 @@ test('a wall casts a shadow as long as its height over the tangent of the sun el
   }
 });
 
+// On the curved Earth the sun's elevation changes across a wide field: the sun 4° up from the
+// east at the centre of a 2,000 km sea-level plain has set 445 km west of it (4° of arc), and a
+// 2 km wall 200 km west of the centre, where the sun stands 2.2° up, casts a shadow as long as
+// the ray over the sphere says: until the ray's height above the curved surface,
+// s tan e + s² / 2R, reaches the wall's top. On the plane the whole plain is lit, the shadow
+// 28.6 km long.
+test('on the curved Earth the sun sets across a wide field, and a shadow ends where the ray over the sphere meets the ground', () => {
+  const width = 2001, height = 3, spacing = 1000, R = 6371000;
+  const heights = new Float32Array(width * height);
+  const peak = 800; // column of a 2 km wall, 200 km west of the centre
+  for (let i = 0; i < height; ++i) heights[i * width + peak] = 2000;
+  const e = (4 * Math.PI) / 180, sun = [Math.cos(e), Math.sin(e), 0];
+  const grid = downsampleField(fieldOf(heights, width, height, spacing, spacing), 4096);
+  const earth = { radius: R, originX: 1000 * spacing, originZ: spacing };
+  const curved = sunVisibility(grid, sun, 1, undefined, earth), flat = sunVisibility(grid, sun, 1);
+  const sunset = 1000 - Math.round((e * R) / spacing); // 445 km west of the centre
+  for (let j = 0; j < peak - 29; ++j) assert.equal(flat[width + j], 255, `flat: column ${j} lit`);
+  for (let j = 0; j < sunset - 1; ++j) assert.equal(curved[width + j], 0, `column ${j}: the sun has set`);
+  // West of the wall: in its shadow while the ray from the ground still passes under its top.
+  // The ray's height above the sphere s metres out: s tan(e(p)) + s² / 2R, e(p) the sun's
+  // elevation at the sample.
+  const rayAt = (j) => {
+    const s = (peak - j) * spacing, local = e + ((j - 1000) * spacing) / R;
+    return s * Math.tan(local) + (s * s) / (2 * R);
+  };
+  let shadowEnd = peak;
+  while (shadowEnd > sunset && rayAt(shadowEnd - 1) < 2000) shadowEnd--;
+  assert.ok(peak - shadowEnd > 29, `the curved shadow is longer than the flat one (${peak - shadowEnd} km)`);
+  for (let j = sunset + 2; j < peak; ++j) {
+    if (j < shadowEnd - 2) assert.equal(curved[width + j], 255, `column ${j}: lit, beyond the wall's shadow`);
+    if (j > shadowEnd + 2) assert.equal(curved[width + j], 0, `column ${j}: in the wall's shadow`);
+  }
+  for (let j = peak + 1; j < width; ++j) assert.equal(curved[width + j], 255, `column ${j}: lit, the sun higher there`);
+});
+
 test('ambient occlusion equals brute-force horizons in eight directions', () => {
   const width = 29, height = 19, sx = 25, sz = 35, scale = 2;
   const heights = randomField(width, height, 3, 300);

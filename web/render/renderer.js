@@ -466,7 +466,7 @@ export class TerrainRenderer {
     const gl = this.gl;
     const plain = mode === SHADING_MODES.plain;
     // Field textures follow the exaggeration and the sun (shadows); the plain mode needs none.
-    if (!plain) this.fieldTextures.prepare(verticalScale, this.atmosphere.sunDirection);
+    if (!plain) this.fieldTextures.prepare(verticalScale, this.atmosphere.sunDirection, this.earth.earth);
     gl.enable(gl.CULL_FACE);
     gl.useProgram(this.program);
     const u = this.uniforms;

@@ -116,15 +116,23 @@ export function halveImage(src, w, h, channels, out) {
  * where p + d is the neighbour one column (or row) towards the sun, interpolated between two
  * rows (or columns). Cost: a few operations per sample, whatever the sun's direction.
  * @param {{width: number, height: number, spacingX: number, spacingZ: number, heights: Float32Array}} grid
- * @param {number[]} sun unit vector towards the sun (x east, y up, z south)
+ *
+ * On the curved Earth (`earth`: its radius and the flat point under the sun's frame, the field's
+ * origin) the sun stands higher towards it and lower away from it: at a sample δ metres from the
+ * origin along the sun's compass direction its elevation is e0 + δ / R, and a sample where it is
+ * below the horizon is in the night. A ray leaving p at elevation e climbs step tan e plus the
+ * Earth's fall step² / 2R over one step: S(p) = max(h(p), S(p + d) - step tan e(p) - step² / 2R)
+ * (heights above the curved surface, small angles per step).
+ * @param {number[]} sun unit vector towards the sun (x east, y up, z south) in the frame at the origin
  * @param {number} verticalScale the drawn exaggeration of heights
  * @param {Uint8Array} [out]
+ * @param {{radius: number, originX: number, originZ: number}|null} [earth] the curved Earth, or the plane
  */
-export function sunVisibility(grid, sun, verticalScale, out = new Uint8Array(grid.width * grid.height)) {
+export function sunVisibility(grid, sun, verticalScale, out = new Uint8Array(grid.width * grid.height), earth = null) {
   const { width, height, spacingX, spacingZ, heights } = grid;
   const horizontal = Math.hypot(sun[0], sun[2]);
-  if (sun[1] <= 0) return out.fill(0);
-  if (horizontal < 1e-6) return out.fill(255);
+  if (!earth && sun[1] <= 0) return out.fill(0);
+  if (horizontal < 1e-6) return out.fill(sun[1] > 0 ? 255 : 0);
   const tanE = sun[1] / horizontal;
   const ux = sun[0] / horizontal, uz = sun[2] / horizontal;
   // March along columns when the sun's direction is mostly east-west (in samples), else rows.
@@ -139,24 +147,37 @@ export function sunVisibility(grid, sun, verticalScale, out = new Uint8Array(gri
   // Penumbra: the sun's disc is about half a degree wide; a shadow edge a step away blurs over
   // about a step's worth of drop. Depths below `soft` metres are partly lit.
   const soft = Math.max(drop * 0.5, 1e-3);
+  // The curved Earth: the sun's elevation at the origin, and its rise per metre towards the sun.
+  const e0 = Math.atan2(sun[1], horizontal), perMetre = earth ? 1 / earth.radius : 0;
+  const fall = earth ? (stepLength * stepLength) / (2 * earth.radius) : 0;
+  const spacingLine = alongX ? spacingX : spacingZ, spacingAcross = alongX ? spacingZ : spacingX;
+  const uLine = alongX ? ux : uz, uAcross = alongX ? uz : ux;
+  const originLine = earth ? (alongX ? earth.originX : earth.originZ) : 0, originAcross = earth ? (alongX ? earth.originZ : earth.originX) : 0;
   let previous = new Float64Array(across), current = new Float64Array(across);
   const index = alongX ? (line, k) => k * width + line : (line, k) => line * width + k;
   const start = sign > 0 ? lines - 1 : 0;
   for (let n = 0; n < lines; ++n) {
     const line = start - sign * n;
+    const lineAlong = (line * spacingLine - originLine) * uLine;
     for (let k = 0; k < across; ++k) {
       const idx = index(line, k);
       const h = heights[idx] * verticalScale;
+      let climb = drop, night = false;
+      if (earth) {
+        const e = e0 + (lineAlong + (k * spacingAcross - originAcross) * uAcross) * perMetre;
+        night = e <= 0;
+        climb = stepLength * Math.tan(e) + fall;
+      }
       let top = -Infinity;
       if (n > 0) {
         const at = k + shift;
         const k0 = Math.floor(at), f = at - k0;
         if (k0 >= 0 && k0 + 1 < across) top = previous[k0] * (1 - f) + previous[k0 + 1] * f;
         else if (k0 === across - 1 && f < 1e-9) top = previous[k0];
-        top -= drop;
+        top -= climb;
       }
       const depth = top - h;
-      out[idx] = depth <= 0 ? 255 : depth >= soft ? 0 : Math.round(255 * (1 - depth / soft));
+      out[idx] = night ? 0 : depth <= 0 ? 255 : depth >= soft ? 0 : Math.round(255 * (1 - depth / soft));
       current[k] = Math.max(h, top);
     }
     const swap = previous; previous = current; current = swap;

@@ -8,6 +8,7 @@
 // stop at 16384, one short of a 16385² field). The normalTile setting
 // (?normaltile=N) forces smaller tiles (tests).
 import { fieldOf, downsampleField, gradientTiles, halveImage, sunVisibility, ambientOcclusion } from './field_shading.js';
+import { EARTH_FLAT, FLAT_EARTH } from '../../geo/index.js';
 
 export const TEXTURE_UNIT_GRADIENTS = 0;
 export const TEXTURE_UNIT_SUN = 1;
@@ -60,7 +61,7 @@ export class FieldTextures {
   }
 
   /** Makes what is out of date (all three, so every sampler has a texture). Allocates only when something changed. */
-  prepare(verticalScale, sunDirection) {
+  prepare(verticalScale, sunDirection, earth = FLAT_EARTH) {
     // A tiled terrain (a tiled COG) has no whole field to make them from: never ready, so
     // the renderer shades with the mesh's normals.
     if (!this.terrain || this.terrain.handle === 0 || this.terrain.tiled) return;
@@ -68,8 +69,8 @@ export class FieldTextures {
     if (this.occlusionScale !== verticalScale) this.makeOcclusion(verticalScale);
     const key = this.sunKey;
     if ((key[0] !== sunDirection[0] || key[1] !== sunDirection[1] || key[2] !== sunDirection[2]
-      || key[3] !== verticalScale)) {
-      this.makeSun(verticalScale, sunDirection);
+      || key[3] !== verticalScale) || this.sunEarth !== earth) {
+      this.makeSun(verticalScale, sunDirection, earth);
     }
   }
 
@@ -137,11 +138,13 @@ export class FieldTextures {
     this.times.occlusionMs = performance.now() - start;
   }
 
-  makeSun(verticalScale, sunDirection) {
+  makeSun(verticalScale, sunDirection, earth) {
     const start = performance.now();
     const grid = this.sunGrid = this.sunGrid ?? downsampleField(this.view(), SUN_MAX_SIDE);
     if (this.sunData?.length !== grid.width * grid.height) this.sunData = new Uint8Array(grid.width * grid.height);
-    sunVisibility(grid, sunDirection, verticalScale, this.sunData);
+    // On the curved Earth the sun stands at another elevation over each part of the field.
+    sunVisibility(grid, sunDirection, verticalScale, this.sunData, earth.kind === EARTH_FLAT ? null : earth);
+    this.sunEarth = earth;
     this.sun = this.makeR8(TEXTURE_UNIT_SUN, this.sun, this.sunGrid, this.sunData);
     this.sunKey[0] = sunDirection[0]; this.sunKey[1] = sunDirection[1]; this.sunKey[2] = sunDirection[2];
     this.sunKey[3] = verticalScale;
