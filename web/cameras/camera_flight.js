@@ -15,14 +15,14 @@ export class CameraFlight {
   constructor(orbit, to, seconds) {
     orbit.update(orbit.aspect ?? 1);
     this.orbit = orbit;
-    this.fromEye = vec3.clone(orbit.position);
-    this.fromTarget = vec3.clone(orbit.target);
-    this.toEye = vec3.clone(to.position);
-    this.toTarget = vec3.clone(to.target);
+    this.fromEye = Float64Array.from(orbit.position);
+    this.fromTarget = Float64Array.from(orbit.target);
+    this.toEye = Float64Array.from(to.position);
+    this.toTarget = Float64Array.from(to.target);
     this.seconds = seconds;
     this.elapsed = 0;
-    this.eye = vec3.create();
-    this.target = vec3.create();
+    this.eye = new Float64Array(3); // doubles: a float is 4 m apart on a world field
+    this.target = new Float64Array(3);
     this.done = null; // resolves the flyTo() promise
     this.finished = new Promise((resolve) => { this.done = resolve; });
     this.playing = true;

@@ -10,12 +10,12 @@ const FAST = 6;              // shift multiplies the speed
 export class FlyCamera {
   constructor() {
     this.mode = 'fly';
-    this.position = vec3.create(); // metres (heights exaggerated)
+    this.position = new Float64Array(3); // metres (heights exaggerated); doubles: a float is 4 m apart on a world field
     this.yaw = 0;                  // radians, 0 looks north (towards -z), as the orbit camera
     this.pitch = -0.3;             // radians above the horizon (negative: looking down)
     this.fovY = FOV_Y;
-    this.target = vec3.create();   // a point straight ahead, for the LOD camera
-    this.direction = vec3.create();
+    this.target = new Float64Array(3);   // a point straight ahead, for the LOD camera
+    this.direction = new Float64Array(3);
     this.view = mat4.create();
     this.projection = mat4.create();
     this.viewProjection = mat4.create();

@@ -10,12 +10,12 @@ export const MAX_PITCH = 1.55;
 export class OrbitCamera {
   constructor() {
     this.mode = 'orbit';
-    this.target = vec3.create(); // metres
+    this.target = new Float64Array(3); // metres; doubles: a float is 4 m apart on a world field
     this.distance = 1000;        // metres from the target
     this.yaw = 0;                // radians, 0 looks north (towards -z)
     this.pitch = 0.5;            // radians above the horizon
     this.fovY = FOV_Y;
-    this.position = vec3.create();
+    this.position = new Float64Array(3);
     this.view = mat4.create();
     this.projection = mat4.create();
     this.viewProjection = mat4.create();

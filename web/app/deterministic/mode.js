@@ -26,8 +26,8 @@ import { fileNameOf, fetchFile } from '../fetched_file.js';
 export class ScriptedCamera {
   constructor() {
     this.mode = 'flight';
-    this.position = vec3.create();
-    this.target = vec3.create();
+    this.position = new Float64Array(3); // doubles: a float is 4 m apart on a world field
+    this.target = new Float64Array(3);
     this.up = vec3.fromValues(0, 1, 0);
     this.fovY = 1;
     this.near = 1;
