@@ -14,7 +14,7 @@ import { createNodeCore } from '../../lib/node_core.js';
 import { startWorldCogServer, worldHeight } from '../../lib/world_cog_server.js';
 import { FRAME } from '../../web/core/core.js';
 import { EARTH_GEOGRAPHIC, earthShapeOf } from '../../web/geo/index.js';
-import { horizonDistance, lodCameraOnEarth } from '../../web/cameras/on_the_earth.js';
+import { horizonReach, lodCameraOnEarth } from '../../web/cameras/on_the_earth.js';
 
 const TABLE_BLOCK = 16384; // header_source.js HEADER_BLOCK_BYTES
 const FLIGHT_CAP_BYTES = 96 * 2 ** 20; // the orbit-to-valley flight's fetches, all told
@@ -172,7 +172,7 @@ test('from 2,000 km to 3 m above a valley floor in one motion: watertight while 
       // Altitude falls geometrically; the eye keeps south of the place, looking down at it at a slant.
       const altitude = HIGH * (LOW / HIGH) ** (frame / (FRAMES - 1));
       lod.eye[0] = x, lod.eye[1] = ground + altitude, lod.eye[2] = z + 0.8 * altitude;
-      lod.far = 1.02 * (horizonDistance(earth.radius, lod.eye[1]) + horizonDistance(earth.radius, 9000));
+      lod.far = horizonReach(earth.radius, lod.eye[1], 9000); // as the page's far plane (on_the_earth.js)
       lod.near = Math.max(lod.far / 1e6, 0.3 * altitude);
       let stats = await step();
       if (!STOPS.includes(frame)) continue;

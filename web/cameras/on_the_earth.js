@@ -35,7 +35,7 @@ export function placeOnEarth(camera, earth) {
   // But nothing lies beyond the horizon's reach: the eye's horizon distance plus that of the
   // highest data. On a world field the flat corners are 40,000 km away, and a far plane there
   // would hold near 40 m out, clipping the valley floor under an eye 2 m up.
-  const reach = HORIZON_MARGIN * (horizonDistance(earth.radius, p[1]) + horizonDistance(earth.radius, camera.dataTop ?? 0));
+  const reach = horizonReach(earth.radius, p[1], camera.dataTop ?? 0);
   const far = Math.min(camera.far * Math.max(1, earth.stretch), reach);
   if (far !== camera.far) {
     camera.far = Math.max(far, 10 * (camera.nearWanted ?? camera.near));
@@ -54,8 +54,16 @@ export function placeOnEarth(camera, earth) {
 const HORIZON_MARGIN = 1.02;
 
 /** How far the horizon lies from a point `height` metres above a sphere of `radius` (0 below it). */
-export function horizonDistance(radius, height) {
+function horizonDistance(radius, height) {
   return Math.sqrt(Math.max(0, height * (2 * radius + height)));
+}
+
+/**
+ * How far anything of the data can be seen from an eye `eyeHeight` metres above a sphere of
+ * `radius`, the data reaching `dataTop`: the eye's horizon distance plus the highest data's.
+ */
+export function horizonReach(radius, eyeHeight, dataTop) {
+  return HORIZON_MARGIN * (horizonDistance(radius, eyeHeight) + horizonDistance(radius, dataTop));
 }
 
 /**
