@@ -53,6 +53,12 @@ bool Terrain::setTileCap(double bytes) {
     return true;
 }
 
+bool Terrain::setVoidsAsPits(bool pits) {
+    if (!field_->tiles()) return false;
+    field_->tiles()->setVoidsAsPits(pits, changedHeights_);
+    return true;
+}
+
 const char* Terrain::declareHeightRange(double low, double high) {
     if (!field_->tiles()) return "the terrain holds its samples whole: its height range is known";
     if (!field_->declareHeightRange(low, high)) return "the height range must be finite, low <= high, within 1e9 m";

@@ -56,6 +56,10 @@ public:
     /// next syncStream lets the least recently used ones go down to it. False for a terrain
     /// held whole or a cap that is not a number >= 0.
     bool setTileCap(double bytes);
+    /// A tiled terrain: its voids filled with the lowest height (pits, for drawing them as holes)
+    /// or from the surface around them (SampleTiles::setVoidsAsPits); the heights change at
+    /// the next syncStream. False for a terrain held whole.
+    bool setVoidsAsPits(bool pits);
     const TileResidency& residency() const { return residency_; }
     /// A tiled terrain: the height range of all its samples, as the file states it
     /// (Heightfield::declareHeightRange); with a mesh, every bound is packed anew. Returns null

@@ -30,7 +30,7 @@ extern "C" {
 #endif
 
 /* Bumped whenever a signature, a struct layout or a meaning below changes. */
-#define HEXLOD_ABI_VERSION 14
+#define HEXLOD_ABI_VERSION 15
 
 /* The status of every failure. */
 #define HEXLOD_ERROR (-1)
@@ -66,7 +66,7 @@ typedef struct hexlod_scale {
 /* What hexlod_terrain_prepare found. 32 bytes. */
 typedef struct hexlod_field_info {
     double min_height_m, max_height_m; /* the height range of the valid samples */
-    double missing;                    /* missing samples, filled with the lowest valid height */
+    double missing;                    /* missing samples, filled (the lowest valid height; a tiled field: hexlod_terrain_set_void_fill) */
     double sample_bytes;               /* the size of the sample array */
 } hexlod_field_info;
 
@@ -133,8 +133,9 @@ typedef struct hexlod_camera {
  *                 position is (x, mix(morph start height, y, w), z), t = clamp((F - f) / n, 0, 1),
  *                 w = t blending in, 1 - t blending out, 1 at rest or when n = 0.
  * Free slots hold stale data and are never indexed.
- * Normals (NULL with no_normals): one per vertex slot, 8 bytes, 4 snorm16 (x, y, z, 0), averaged
- * from the adjacent triangles (§7); they change with the same dirty vertex ranges.
+ * Normals (NULL with no_normals): one per vertex slot, 8 bytes, 4 snorm16 (x, y, z, m), averaged
+ * from the adjacent triangles (§7); m is 1 where the vertex's height fills a no-data sample of a
+ * tiled field (else 0). They change with the same dirty vertex ranges.
  * Indices: a fixed slot per cell record: HEXLOD_LAYOUT_FANS, 9 indices (a triangle fan then
  * 0xFFFFFFFF; full hexagon: centre, six corners, first corner; boundary semi-hexagon: centre,
  * four corners; interior semi-hexagon: four corners from the fixed-rule corner; the rest of the
@@ -245,8 +246,8 @@ hexlod_terrain* hexlod_terrain_create_tiled(int32_t width, int32_t height, int32
  * its sample type, row by row (what lies past the level's edge is ignored). The same buffer until
  * the tile is evicted. NULL outside the levels, for a terrain held whole, or out of memory. */
 void* hexlod_terrain_tile_buffer(hexlod_terrain* terrain, int32_t level, int32_t tx, int32_t ty);
-/* The tile's samples are written. Its missing samples (nodata, NaN) take the lowest height; the
- * heights there come from it at the end of the next frame's stream step, where the vertices blend
+/* The tile's samples are written. Its missing samples (nodata, NaN) are filled as
+ * hexlod_terrain_set_void_fill says; the heights there come from it at the end of the next frame's stream step, where the vertices blend
  * to them (§7) and the cells are tested again. 0, or HEXLOD_ERROR for a tile with no buffer. */
 int32_t hexlod_terrain_commit_tile(hexlod_terrain* terrain, int32_t level, int32_t tx, int32_t ty);
 /* The bytes of samples a tiled terrain may hold in tiles past its coarsest level (which is held
@@ -258,6 +259,17 @@ int32_t hexlod_terrain_commit_tile(hexlod_terrain* terrain, int32_t level, int32
  * tiles_evicted report it. 0, or HEXLOD_ERROR for a terrain held whole or a cap that is not a
  * number >= 0. */
 int32_t hexlod_terrain_set_tile_cap(hexlod_terrain* terrain, double cap_bytes);
+/* How a tiled terrain fills its missing samples (nodata, NaN), in the tiles present and those to come:
+ * HEXLOD_VOIDS_SURFACE (the default) from the surface around them, the coarsest level by linear
+ * interpolation across each gap along rows and columns (their mean; the lowest height where
+ * neither has data) and every finer tile from the coarser level under it; or
+ * HEXLOD_VOIDS_LOWEST with the lowest height, whose walls make the refinement follow a void's
+ * edge to the data's resolution (for drawing voids as holes: see the normals' m). The heights
+ * change at the next frame's stream step, blending as for a commit. 0, or HEXLOD_ERROR for a
+ * terrain held whole (its caller fills it) or another value. */
+#define HEXLOD_VOIDS_SURFACE 0
+#define HEXLOD_VOIDS_LOWEST 1
+int32_t hexlod_terrain_set_void_fill(hexlod_terrain* terrain, int32_t fill);
 /* The height range (metres) of all the samples of a tiled terrain, when the file states it
  * (GDAL's STATISTICS_MINIMUM and STATISTICS_MAXIMUM): the tiles present cannot show it. The
  * refinement's cached bounds are packed in steps of the height range, so with the whole range

@@ -144,6 +144,13 @@ int32_t hexlod_terrain_set_tile_cap(hexlod_terrain* terrain, double cap_bytes) {
     return 0;
 }
 
+int32_t hexlod_terrain_set_void_fill(hexlod_terrain* terrain, int32_t fill) {
+    if (!terrain) return fail(kNullHandle);
+    if (fill != HEXLOD_VOIDS_SURFACE && fill != HEXLOD_VOIDS_LOWEST) return fail("the void fill must be HEXLOD_VOIDS_SURFACE or HEXLOD_VOIDS_LOWEST");
+    if (!terrain->core->setVoidsAsPits(fill == HEXLOD_VOIDS_LOWEST)) return fail("the terrain holds its samples whole: its caller fills its voids");
+    return 0;
+}
+
 int32_t hexlod_terrain_declare_height_range(hexlod_terrain* terrain, double low_m, double high_m) {
     if (!terrain) return fail(kNullHandle);
     if (const char* error = terrain->core->declareHeightRange(low_m, high_m)) return fail(error);

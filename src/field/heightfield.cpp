@@ -135,6 +135,7 @@ const char* Heightfield::prepare() {
         // What is present now (the coarsest level at least) gives the range and the fill; each
         // tile that comes later is filled as it is committed.
         if (!tiles_->coarsestComplete()) return "the coarsest level's tiles must all be present before the field is prepared";
+        tiles_->rescan(); // committed before the scale said which value is no-data
         double lowRaw, highRaw, a, b;
         if (!tiles_->rawRange(lowRaw, highRaw)) return "every sample is nodata";
         if (const char* problem = heightsOf(scale_, lowRaw, highRaw, a, b)) return problem;
@@ -174,6 +175,8 @@ const char* Heightfield::prepare() {
 }
 
 float Heightfield::tiledHeightAt(int32_t j, int32_t i) const { return tiles_->height(j, i); }
+bool Heightfield::tiledMissing(int32_t j, int32_t i) const { return tiles_->missing(j, i); }
+bool Heightfield::anyMissing() const { return tiles_ ? tiles_->missingCount() > 0 : missingCount_ > 0; }
 
 float Heightfield::heightClamped(int32_t j, int32_t i) const {
     j = std::clamp(j, 0, width_ - 1);

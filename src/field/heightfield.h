@@ -71,6 +71,11 @@ public:
         const size_t k = size_t(i) * size_t(width_) + size_t(j);
         return float(rawAt(k) * scale_.heightScale + scale_.heightOffset);
     }
+    /// Whether sample (j, i), inside the field, was no-data (its height is a fill): known for a
+    /// tiled field (SampleTiles::missing); a field held whole is filled by the caller.
+    bool sampleMissing(int32_t j, int32_t i) const { return tiles_ && tiledMissing(j, i); }
+    /// Whether any sample was no-data so far.
+    bool anyMissing() const;
     /// Same, with the indices clamped to the field (lookups outside the rectangle).
     float heightClamped(int32_t j, int32_t i) const;
     /// Bilinear height in metres at a horizontal position in metres (x east, z south), clamped.
@@ -89,6 +94,7 @@ private:
     }
     bool isMissing(size_t k) const;
     float tiledHeightAt(int32_t j, int32_t i) const;
+    bool tiledMissing(int32_t j, int32_t i) const;
     void setRaw(size_t k, double raw);
 
     int32_t width_ = 0;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <type_traits>
 
@@ -58,7 +59,7 @@ const char* SampleTiles::init(int32_t width, int32_t height, SampleType type, in
         levels_.push_back(std::move(l));
     }
     slotBytes_ = largestTile * bytesPerSample_;
-    slots_.clear(), slotOwner_.clear(), freeSlots_.clear(), heldSlots_ = 0;
+    slots_.clear(), slotOwner_.clear(), slotMissing_.clear(), freeSlots_.clear(), heldSlots_ = 0;
     const TileLevel& finest = levels_[0];
     int32_t group = 1; // full-resolution tiles a region side
     while (((int64_t(finest.tilesAcross) + group - 1) / group) * ((int64_t(finest.tilesDown) + group - 1) / group) > kMaxRegions) group *= 2;
@@ -66,7 +67,7 @@ const char* SampleTiles::init(int32_t width, int32_t height, SampleType type, in
     regionsAcross_ = (finest.tilesAcross + group - 1) / group, regionsDown_ = (finest.tilesDown + group - 1) / group;
     regionLevel_.assign(size_t(regionsAcross_) * size_t(regionsDown_), uint8_t(coarsest()));
     regionDetail_.assign(regionLevel_.size(), 0.0f);
-    hasFill_ = false, fillRaw_ = 0.0, missing_ = 0;
+    hasFill_ = false, voidsAsPits_ = false, fillRaw_ = 0.0, missing_ = 0;
     hasRange_ = false, rangeLow_ = rangeHigh_ = 0.0;
     return nullptr;
 }
@@ -88,16 +89,41 @@ double SampleTiles::rawAtLevel(const TileLevel& l, int32_t u, int32_t v) const {
     return rawIn(slot, size_t(v - ty * l.tileHeight) * size_t(l.tileWidth) + size_t(u - tx * l.tileWidth));
 }
 
-float SampleTiles::blended(int32_t level, int32_t j, int32_t i) const {
-    const TileLevel& l = levels_[size_t(level)];
+SampleTiles::BlendCorners SampleTiles::blendCorners(const TileLevel& l, int32_t j, int32_t i) const {
     const double u = std::clamp((j + 0.5) / l.scaleX - 0.5, 0.0, double(l.width - 1));
     const double v = std::clamp((i + 0.5) / l.scaleY - 0.5, 0.0, double(l.height - 1));
     const int32_t u0 = int32_t(u), v0 = int32_t(v);
-    const int32_t u1 = std::min(u0 + 1, l.width - 1), v1 = std::min(v0 + 1, l.height - 1);
-    const double fu = u - u0, fv = v - v0;
-    const double top = double(toMetres(rawAtLevel(l, u0, v0))) * (1.0 - fu) + double(toMetres(rawAtLevel(l, u1, v0))) * fu;
-    const double bottom = double(toMetres(rawAtLevel(l, u0, v1))) * (1.0 - fu) + double(toMetres(rawAtLevel(l, u1, v1))) * fu;
-    return float(top * (1.0 - fv) + bottom * fv);
+    return {u0, v0, std::min(u0 + 1, l.width - 1), std::min(v0 + 1, l.height - 1), u - u0, v - v0};
+}
+
+float SampleTiles::blended(int32_t level, int32_t j, int32_t i) const {
+    const TileLevel& l = levels_[size_t(level)];
+    const BlendCorners b = blendCorners(l, j, i);
+    const double top = double(toMetres(rawAtLevel(l, b.u0, b.v0))) * (1.0 - b.fu) + double(toMetres(rawAtLevel(l, b.u1, b.v0))) * b.fu;
+    const double bottom = double(toMetres(rawAtLevel(l, b.u0, b.v1))) * (1.0 - b.fu) + double(toMetres(rawAtLevel(l, b.u1, b.v1))) * b.fu;
+    return float(top * (1.0 - b.fv) + bottom * b.fv);
+}
+
+bool SampleTiles::missingAtLevel(const TileLevel& l, int32_t u, int32_t v) const {
+    const int32_t tx = u / l.tileWidth, ty = v / l.tileHeight;
+    const std::vector<uint8_t>& bits = slotMissing_[size_t(l.tiles.get(tx, ty).slot)];
+    if (bits.empty()) return false;
+    const size_t k = size_t(v - ty * l.tileHeight) * size_t(l.tileWidth) + size_t(u - tx * l.tileWidth);
+    return (bits[k >> 3] >> (k & 7)) & 1;
+}
+
+bool SampleTiles::missing(int32_t j, int32_t i) const {
+    if (missing_ == 0) return false;
+    const int32_t level = regionLevel_[regionOf(j / regionWidth_, i / regionHeight_)];
+    const TileLevel& l = levels_[size_t(level)];
+    if (level == 0) return missingAtLevel(l, j, i);
+    const BlendCorners b = blendCorners(l, j, i);
+    double weight = 0.0; // of the missing corners
+    if (missingAtLevel(l, b.u0, b.v0)) weight += (1.0 - b.fu) * (1.0 - b.fv);
+    if (missingAtLevel(l, b.u1, b.v0)) weight += b.fu * (1.0 - b.fv);
+    if (missingAtLevel(l, b.u0, b.v1)) weight += (1.0 - b.fu) * b.fv;
+    if (missingAtLevel(l, b.u1, b.v1)) weight += b.fu * b.fv;
+    return weight >= 0.5;
 }
 
 void SampleTiles::samplesFor(int32_t level, const SampleRect& r, int32_t& u0, int32_t& v0, int32_t& u1, int32_t& v1) const {
@@ -162,10 +188,12 @@ void* SampleTiles::tileBuffer(int32_t level, int32_t tx, int32_t ty) {
             if (!bytes) return nullptr;
             slots_.push_back(std::move(bytes));
             slotOwner_.emplace_back();
+            slotMissing_.emplace_back();
             slot = int32_t(slots_.size()) - 1;
         }
         l.tiles.at(tx, ty).slot = slot;
         slotOwner_[size_t(slot)] = {level, tx, ty};
+        slotMissing_[size_t(slot)].clear(); // a reused slot's bits were another tile's
         ++heldSlots_;
     }
     return slots_[size_t(slot)].get();
@@ -175,15 +203,139 @@ bool SampleTiles::missingRaw(double raw) const {
     return !std::isfinite(raw) || (scale_.hasNodata && raw == scale_.nodataRaw);
 }
 
-void SampleTiles::fillMissing(int32_t slot, size_t count) {
+void SampleTiles::markMissing(int32_t level, int32_t tx, int32_t ty) {
+    const TileLevel& l = levels_[size_t(level)];
+    const int32_t slot = l.tiles.get(tx, ty).slot;
+    const size_t count = size_t(l.tileWidth) * size_t(l.tileHeight);
+    // The bits stay until the slot holds another tile: once filled, its samples look valid.
+    std::vector<uint8_t>& bits = slotMissing_[size_t(slot)];
+    withSamples(type_, slots_[size_t(slot)].get(), [&](auto* samples) {
+        for (size_t k = 0; k < count; ++k) {
+            if (!missingRaw(double(samples[k])) || (!bits.empty() && ((bits[k >> 3] >> (k & 7)) & 1))) continue;
+            ++missing_;
+            if (bits.empty()) bits.assign((count + 7) / 8, 0);
+            bits[k >> 3] |= uint8_t(1u << (k & 7));
+        }
+    });
+}
+
+template <typename ValueAt>
+bool SampleTiles::writeFill(int32_t level, int32_t tx, int32_t ty, ValueAt&& rawAt) {
+    const TileLevel& l = levels_[size_t(level)];
+    const int32_t slot = l.tiles.get(tx, ty).slot;
+    const std::vector<uint8_t>& bits = slotMissing_[size_t(slot)];
+    if (bits.empty()) return false;
+    const size_t count = size_t(l.tileWidth) * size_t(l.tileHeight);
     withSamples(type_, slots_[size_t(slot)].get(), [&](auto* samples) {
         using T = std::remove_pointer_t<decltype(samples)>;
         for (size_t k = 0; k < count; ++k) {
-            if (!missingRaw(double(samples[k]))) continue;
-            ++missing_;
-            samples[k] = T(fillRaw_);
+            if (!((bits[k >> 3] >> (k & 7)) & 1)) continue;
+            const int32_t u = tx * l.tileWidth + int32_t(k % size_t(l.tileWidth)), v = ty * l.tileHeight + int32_t(k / size_t(l.tileWidth));
+            double raw = u < l.width && v < l.height ? rawAt(u, v) : fillRaw_; // past the level's edge: never read
+            if constexpr (std::is_integral_v<T>) {
+                raw = std::clamp(std::round(raw), double(std::numeric_limits<T>::lowest()), double(std::numeric_limits<T>::max()));
+                if (missingRaw(raw)) raw += raw < double(std::numeric_limits<T>::max()) ? 1.0 : -1.0; // never the no-data value
+            }
+            samples[k] = T(raw);
         }
     });
+    return true;
+}
+
+void SampleTiles::fillTile(int32_t level, int32_t tx, int32_t ty, SampleRect& changed) {
+    if (level == coarsest()) {
+        fillCoarsest(changed); // interpolated across the level's gaps: the level is whole
+        return;
+    }
+    const TileLevel& l = levels_[size_t(level)];
+    const bool wrote = writeFill(level, tx, ty, [&](int32_t u, int32_t v) {
+        if (voidsAsPits_) return fillRaw_;
+        // The full-resolution sample at this one's centre, and the coarser surface there.
+        const int32_t j = std::clamp(int32_t(std::floor((u + 0.5) * l.scaleX)), 0, width_ - 1);
+        const int32_t i = std::clamp(int32_t(std::floor((v + 0.5) * l.scaleY)), 0, height_ - 1);
+        return (double(coarserSurface(level, j, i)) - scale_.heightOffset) / scale_.heightScale;
+    });
+    if (wrote) changed.add(tileRect(level, tx, ty));
+}
+
+float SampleTiles::coarserSurface(int32_t level, int32_t j, int32_t i) const {
+    for (int32_t c = level + 1; c < coarsest(); ++c) {
+        const TileLevel& l = levels_[size_t(c)];
+        const BlendCorners b = blendCorners(l, j, i);
+        const auto held = [&](int32_t u, int32_t v) { return l.tiles.get(u / l.tileWidth, v / l.tileHeight).present != 0; };
+        if (held(b.u0, b.v0) && held(b.u1, b.v0) && held(b.u0, b.v1) && held(b.u1, b.v1)) return blended(c, j, i);
+    }
+    return blended(coarsest(), j, i);
+}
+
+void SampleTiles::fillCoarsest(SampleRect& changed) {
+    const int32_t c = coarsest();
+    const TileLevel& l = levels_[size_t(c)];
+    const size_t w = size_t(l.width), h = size_t(l.height);
+    std::vector<float> alongRows, alongColumns;
+    if (!voidsAsPits_ && w * h <= kMaxInterpolatedSamples) {
+        // The level whole, NaN where a sample is missing; then each missing sample the mean of
+        // the linear interpolations across its gap along its row and its column (the nearest
+        // valid value where a gap reaches the edge), as the page's loader fills a field held
+        // whole (web/loaders/nodata.js); the lowest height where neither line has any.
+        std::vector<float> raw(w * h); // float keeps every int16 and float32 sample exactly
+        for (size_t v = 0; v < h; ++v)
+            for (size_t u = 0; u < w; ++u) raw[v * w + u] = missingAtLevel(l, int32_t(u), int32_t(v)) ? NAN : float(rawAtLevel(l, int32_t(u), int32_t(v)));
+        alongRows.assign(w * h, NAN), alongColumns.assign(w * h, NAN);
+        for (size_t v = 0; v < h; ++v) interpolateGaps(raw.data() + v * w, 1, w, alongRows.data() + v * w);
+        for (size_t u = 0; u < w; ++u) interpolateGaps(raw.data() + u, w, h, alongColumns.data() + u);
+    }
+    for (int32_t ty = 0; ty < l.tilesDown; ++ty)
+        for (int32_t tx = 0; tx < l.tilesAcross; ++tx) {
+            const bool wrote = writeFill(c, tx, ty, [&](int32_t u, int32_t v) {
+                if (alongRows.empty()) return fillRaw_; // as pits, or a level too large (a COG without overviews)
+                const size_t k = size_t(v) * w + size_t(u);
+                const double a = alongRows[k], b = alongColumns[k];
+                return std::isnan(a) ? (std::isnan(b) ? fillRaw_ : b) : std::isnan(b) ? a : 0.5 * (a + b);
+            });
+            if (wrote) changed.add(tileRect(c, tx, ty));
+        }
+}
+
+void SampleTiles::fillAll(SampleRect& changed) {
+    // Coarse to fine: each level is filled from the coarser surface, already filled.
+    fillCoarsest(changed);
+    for (int32_t level = coarsest() - 1; level >= 0; --level)
+        for (int32_t s = 0; s < slotCount(); ++s) {
+            const TileId& t = slotOwner_[size_t(s)];
+            if (t.level == level && present(t.level, t.tx, t.ty)) fillTile(t.level, t.tx, t.ty, changed);
+        }
+}
+
+void SampleTiles::setVoidsAsPits(bool pits, SampleRect& changed) {
+    if (pits == voidsAsPits_) return;
+    voidsAsPits_ = pits;
+    if (!hasFill_ || missing_ == 0) return;
+    fillAll(changed);
+    // A pit's walls are detail a smooth fill had not: measured again, so the refinement asks
+    // for the finer tiles that follow a void's edge (and lets them go when smooth again).
+    for (int32_t s = 0; s < slotCount(); ++s) {
+        const TileId t = slotOwner_[size_t(s)];
+        if (t.level < 0 || !present(t.level, t.tx, t.ty) || slotMissing_[size_t(s)].empty()) continue;
+        levels_[size_t(t.level)].tiles.at(t.tx, t.ty).detail = measureDetail(t.level, t.tx, t.ty);
+        updateRegions(tileRect(t.level, t.tx, t.ty), t.level, true, changed);
+    }
+}
+
+void SampleTiles::interpolateGaps(const float* line, size_t stride, size_t n, float* out) {
+    size_t k = 0;
+    while (k < n) {
+        if (!std::isnan(line[k * stride])) { ++k; continue; }
+        const size_t first = k; // a gap: [first, end)
+        while (k < n && std::isnan(line[k * stride])) ++k;
+        const bool left = first > 0, right = k < n;
+        if (!left && !right) return; // the whole line is missing
+        const double a = left ? line[(first - 1) * stride] : line[k * stride], b = right ? line[k * stride] : a;
+        for (size_t g = first; g < k; ++g) {
+            const double t = left && right ? double(g - first + 1) / double(k - first + 1) : 0.0;
+            out[g * stride] = float(a + (b - a) * t);
+        }
+    }
 }
 
 float SampleTiles::measureDetail(int32_t level, int32_t tx, int32_t ty) const {
@@ -254,7 +406,8 @@ bool SampleTiles::commit(int32_t level, int32_t tx, int32_t ty, SampleRect& chan
     const int32_t slot = l.tiles.get(tx, ty).slot;
     if (slot < 0) return false;
     widenRange(level, tx, ty);
-    if (hasFill_) fillMissing(slot, size_t(l.tileWidth) * size_t(l.tileHeight));
+    markMissing(level, tx, ty);
+    if (hasFill_) fillTile(level, tx, ty, changed);
     TileState& state = l.tiles.at(tx, ty);
     state.present = 1;
     state.detail = measureDetail(level, tx, ty);
@@ -298,15 +451,23 @@ bool SampleTiles::rawRange(double& low, double& high) const {
     return hasRange_;
 }
 
+void SampleTiles::rescan() {
+    if (hasFill_) return; // prepared before: every tile since came with the scale known
+    hasRange_ = false;
+    for (int32_t s = 0; s < slotCount(); ++s) {
+        const TileId t = slotOwner_[size_t(s)];
+        if (t.level < 0 || !present(t.level, t.tx, t.ty)) continue;
+        widenRange(t.level, t.tx, t.ty);
+        markMissing(t.level, t.tx, t.ty);
+    }
+}
+
 void SampleTiles::setFillRaw(double raw) {
     fillRaw_ = raw;
+    const bool first = !hasFill_;
     hasFill_ = true;
-    for (int32_t s = 0; s < slotCount(); ++s) {
-        const TileId& t = slotOwner_[size_t(s)];
-        if (t.level < 0 || !present(t.level, t.tx, t.ty)) continue;
-        const TileLevel& l = levels_[size_t(t.level)];
-        fillMissing(s, size_t(l.tileWidth) * size_t(l.tileHeight));
-    }
+    SampleRect changed; // the caller prepares the field before any mesh stands on it
+    if (first) fillAll(changed); // later tiles are filled as they come
 }
 
 void SampleTiles::range(const SampleRect& rect, float& low, float& high) const {
@@ -373,7 +534,9 @@ size_t SampleTiles::sampleBytes() const { return size_t(heldSlots_) * slotBytes_
 
 size_t SampleTiles::memoryBytes() const {
     size_t bytes = slots_.size() * slotBytes_ + regionLevel_.capacity() + regionDetail_.capacity() * sizeof(float) +
-                   slotOwner_.capacity() * sizeof(TileId) + freeSlots_.capacity() * sizeof(int32_t);
+                   slotOwner_.capacity() * sizeof(TileId) + freeSlots_.capacity() * sizeof(int32_t) +
+                   slotMissing_.capacity() * sizeof(std::vector<uint8_t>);
+    for (const std::vector<uint8_t>& bits : slotMissing_) bytes += bits.capacity();
     for (const TileLevel& l : levels_) bytes += l.tiles.memoryBytes();
     return bytes;
 }

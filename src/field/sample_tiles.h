@@ -95,11 +95,22 @@ public:
     /// Whether every tile of the coarsest level is present (the field can be drawn).
     bool coarsestComplete() const;
 
+    /// The tiles present read again with the scale now set (its no-data value): their range
+    /// and their missing samples. Tiles may come before the scale does; the field's first
+    /// prepare calls this (later ones find nothing to do).
+    void rescan();
     /// The lowest and highest raw sample of every tile committed so far (missing samples
     /// excluded; an eviction does not narrow it); false when no sample came yet.
     bool rawRange(double& low, double& high) const;
-    /// Missing samples are filled with this raw value from now on (and in the present tiles).
+    /// Fills the missing samples from now on (the present tiles first): the coarsest level's by
+    /// interpolation across each gap along rows and columns (`raw`, the lowest height, where
+    /// a row and a column hold none), every finer tile's from the coarser surface present under
+    /// it, so a void is filled alike at every level and across tiles. Their marks stay (missing).
     void setFillRaw(double raw);
+    /// Fills the voids with the lowest height instead (pits), or back from the surface around
+    /// them: a pit's walls make the refinement follow a void's edge to the data's resolution,
+    /// which a void drawn as a hole wants. `changed` grows by the samples whose heights changed.
+    void setVoidsAsPits(bool pits, SampleRect& changed);
     size_t missingCount() const { return missing_; }
 
     /// Height in metres at full-resolution sample (j, i), inside the field.
@@ -113,6 +124,10 @@ public:
         }
         return blended(regionLevel_[region], j, i);
     }
+    /// Whether full-resolution sample (j, i), inside the field, is no-data where its height comes
+    /// from: at a coarser level, whether missing samples weigh half or more in its bilinear blend.
+    /// The page draws such samples as holes when asked (terrain.frag).
+    bool missing(int32_t j, int32_t i) const;
     /// Lowest and highest height in metres over the samples of `rect` (clamped to the field):
     /// a bound of the heights height() gives there.
     void range(const SampleRect& rect, float& low, float& high) const;
@@ -136,11 +151,33 @@ private:
     double rawIn(int32_t slot, size_t k) const;
     float toMetres(double raw) const { return float(raw * scale_.heightScale + scale_.heightOffset); }
     float blended(int32_t level, int32_t j, int32_t i) const;
+    // Where full-resolution sample (j, i) falls among a coarser level's samples: the four
+    // around it and its fractions between them.
+    struct BlendCorners {
+        int32_t u0, v0, u1, v1;
+        double fu, fv;
+    };
+    BlendCorners blendCorners(const TileLevel& l, int32_t j, int32_t i) const;
+    bool missingAtLevel(const TileLevel& l, int32_t u, int32_t v) const;
     double rawAtLevel(const TileLevel& l, int32_t u, int32_t v) const;
     // The lowest and highest raw sample of `level` over [u0, u1] x [v0, v1], tile by tile (held).
     void levelRawRange(int32_t level, int32_t u0, int32_t v0, int32_t u1, int32_t v1, double& low, double& high) const;
     bool missingRaw(double raw) const;
-    void fillMissing(int32_t slot, size_t count);
+    // Sets the bits of the tile's missing samples (and counts them).
+    void markMissing(int32_t level, int32_t tx, int32_t ty);
+    // Writes rawAt(u, v) (the level's sample indices) into the tile's marked samples; false when it has none.
+    template <typename ValueAt>
+    bool writeFill(int32_t level, int32_t tx, int32_t ty, ValueAt&& rawAt);
+    void fillTile(int32_t level, int32_t tx, int32_t ty, SampleRect& changed);
+    void fillCoarsest(SampleRect& changed);
+    void fillAll(SampleRect& changed);
+    // The height (metres) under full-resolution sample (j, i) from the next coarser level held there.
+    float coarserSurface(int32_t level, int32_t j, int32_t i) const;
+    // Writes into out[] (same stride) the interpolation across each run of NaN in line[] of n values.
+    static void interpolateGaps(const float* line, size_t stride, size_t n, float* out);
+    // The coarsest level is interpolated whole up to this many samples (12 bytes each while it
+    // is: 48 MB); past it (a COG without overviews) each of its voids takes the lowest height.
+    static constexpr size_t kMaxInterpolatedSamples = size_t(1) << 22;
     void widenRange(int32_t level, int32_t tx, int32_t ty);
     float measureDetail(int32_t level, int32_t tx, int32_t ty) const;
     // The level-l samples (inclusive) whose bilinear blend reaches full-resolution rect r.
@@ -162,6 +199,7 @@ private:
     size_t slotBytes_ = 0;
     std::vector<std::unique_ptr<uint8_t[]>> slots_;
     std::vector<TileId> slotOwner_; // per slot: the tile in it
+    std::vector<std::vector<uint8_t>> slotMissing_; // per slot: a bit per missing sample; empty when none is
     std::vector<int32_t> freeSlots_;
     int32_t heldSlots_ = 0;
     // Regions: the full-resolution tiles (or blocks of them, kMaxRegions).
@@ -169,6 +207,7 @@ private:
     std::vector<uint8_t> regionLevel_;   // the level heights come from
     std::vector<float> regionDetail_;    // metres: the detail of the tiles they come from (0 at level 0)
     bool hasFill_ = false;
+    bool voidsAsPits_ = false;
     double fillRaw_ = 0.0;
     size_t missing_ = 0;
     bool hasRange_ = false;

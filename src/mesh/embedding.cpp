@@ -19,6 +19,13 @@ glm::vec3 embedLatticePoint(const Heightfield& field, Embedding embedding, Latti
     return {float((double(j) + 0.5) * scale.spacingX), h, z};
 }
 
+bool latticePointMissing(const Heightfield& field, Embedding embedding, LatticePoint p) {
+    const int32_t last = field.width() - 1;
+    const int32_t j = std::clamp(sampleColumn(p), 0, last), i = std::clamp(p.r, 0, field.height() - 1);
+    if (field.sampleMissing(j, i)) return true;
+    return embedding == Embedding::Shifted && (p.r & 1) != 0 && field.sampleMissing(std::min(j + 1, last), i);
+}
+
 namespace {
 
 // Twice the ground-plane area of a triangle in sample units (x doubled to stay integer).

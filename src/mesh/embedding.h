@@ -25,6 +25,10 @@ enum class Embedding : int32_t { Shifted = 0, Exact = 1 };
 /// Position in metres (x east, y up = height, z south) of a lattice point.
 glm::vec3 embedLatticePoint(const Heightfield& field, Embedding embedding, LatticePoint p);
 
+/// Whether a lattice point's height comes from a no-data sample (Heightfield::sampleMissing):
+/// its sample, or on a shifted odd row either of the two it sits between.
+bool latticePointMissing(const Heightfield& field, Embedding embedding, LatticePoint p);
+
 /// The fixed rule for an interior semi-hexagon's two-triangle fan (§7 says "an arbitrary
 /// corner", which changes the surface): corners a, b, c, d counter-clockwise, fanned from a
 /// unless fanning from b gives a larger smallest triangle in the embedding's ground plane.

@@ -259,6 +259,8 @@ public:
     }
     const OperationCounts& counts() const { return counts_; }
     Embedding embedding() const { return embedding_; }
+    /// Whether vertex v's height is a no-data fill (latticePointMissing).
+    bool vertexMissing(int32_t v) const { return field_->anyMissing() && latticePointMissing(*field_, embedding_, vertexLattice(v)); }
     /// Number of triangles drawn: 6 per full hexagon, 3 per boundary, 2 per interior semi.
     int64_t triangleCount() const { return triangles_; }
     /// Bytes held by the mesh structures (pools at capacity, lists, free lists), the vertex

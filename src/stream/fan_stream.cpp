@@ -249,7 +249,7 @@ void FanStream::finishNormals(HexMesh& mesh) {
         } else {
             out[0] = out[2] = 0, out[1] = 32767;
         }
-        out[3] = 0;
+        out[3] = mesh.vertexMissing(v) ? 32767 : 0; // the page's no-data holes (terrain.frag)
     }
 }
 

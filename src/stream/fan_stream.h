@@ -56,7 +56,7 @@ public:
     /// while it lights the terrain from the field's own normals.
     void setNormals(bool on);
     bool normals() const { return normals_; }
-    /// The vertex normals, one per vertex slot, 4 snorm16 (x, y, z, 0) each, averaged over the
+    /// The vertex normals, one per vertex slot, 4 snorm16 (x, y, z, missing) each, averaged over the
     /// adjacent triangles; the renderer uploads them beside the vertex pool, with the same
     /// dirty ranges. Null while normals are off.
     const int16_t* normalData() const { return normals_ && !vertexNormals_.empty() ? vertexNormals_[0].xyz : nullptr; }
@@ -148,7 +148,7 @@ private:
     std::vector<uint32_t> indices_; // see keepsSlots
     std::vector<glm::i64vec3> normalSum_; // per vertex, fixed point (see normalScale_)
     struct PackedNormal {
-        int16_t xyz[4] = {0, 32767, 0, 0}; // snorm16 x, y, z and 0; up until written
+        int16_t xyz[4] = {0, 32767, 0, 0}; // snorm16 x, y, z and 1 where no-data; up until written
     };
     std::vector<PackedNormal> vertexNormals_; // per vertex slot while normals are on
     double normalScale_ = 1.0;            // fixed-point units per square metre of face normal

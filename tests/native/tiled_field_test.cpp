@@ -515,3 +515,125 @@ TEST(TiledField, PastItsCapTheTerrainLetsTheLeastRecentlyUsedTilesGo) {
     EXPECT_NE(std::string(hexlod_last_error()).find("whole"), std::string::npos) << hexlod_last_error();
     hexlod_terrain_destroy(whole);
 }
+
+// No-data in a tiled field: the page draws it as holes when asked, from the fourth component of
+// the stream's vertex normals. A sample is missing where its own tile says so; over an overview,
+// where missing samples weigh half or more of the blend.
+TEST(TiledField, NoDataSamplesAreMarkedInTheStreamsNormalsWhereverTheirHeightsComeFrom) {
+    constexpr int32_t side = 256;
+    std::vector<float> full(size_t(side) * side);
+    for (int32_t i = 0; i < side; ++i)
+        for (int32_t j = 0; j < side; ++j) {
+            const bool hole = j >= 100 && j < 140 && i >= 90 && i < 150;
+            full[size_t(i) * side + j] = hole ? NAN : float(200.0 + 30.0 * std::sin(j * 0.05) * std::cos(i * 0.04));
+        }
+    const Pyramid p = makePyramid(full, side, side); // NaN spreads to every overview sample over it
+    ASSERT_EQ(p.levels.size(), 3u);
+    hexlod_terrain* t = tiledWithCoarsest(p);
+    const test::Fixture f{"synthetic", side, side, 10.0f, 10.0f, 170.0f, 230.0f};
+    setUp(t, f, 0);
+    const Heightfield& field = t->core->field();
+    ASSERT_TRUE(field.anyMissing());
+    // Only the coarsest level (4 x 4 samples to a full-resolution one): its samples 25..34 are NaN.
+    EXPECT_TRUE(field.sampleMissing(120, 120));
+    EXPECT_FALSE(field.sampleMissing(10, 10));
+    EXPECT_FALSE(field.sampleMissing(120, 200));
+    EXPECT_FALSE(field.sampleMissing(200, 120));
+
+    // Every tile of the full resolution in: the missing samples are the NaN ones, exactly.
+    for (int32_t ty = 0; ty < side / kTile; ++ty)
+        for (int32_t tx = 0; tx < side / kTile; ++tx) writeTile(t, p, 0, tx, ty);
+    for (int32_t i = 0; i < side; ++i)
+        for (int32_t j = 0; j < side; ++j) ASSERT_EQ(field.sampleMissing(j, i), std::isnan(full[size_t(i) * side + j])) << j << ", " << i;
+
+    // The stream: m = 1 in every vertex normal over a missing sample, and only there.
+    const hexlod_camera camera{{1280.0, 900.0, 2600.0}, {1280.0, 200.0, 1200.0}, {0, 0, 0}, 0.8, 1.6, 800.0, 1.0, 1e6};
+    hexlod_frame out{};
+    for (int32_t frame = 0; frame < 200 && !(out.converged && out.pending_merges == 0); ++frame)
+        ASSERT_EQ(hexlod_terrain_frame(t, frame == 0 ? &camera : nullptr, HEXLOD_FRAME_ALL, &out), 0);
+    ASSERT_NE(out.normals_ptr, nullptr);
+    const HexMesh& mesh = t->core->mesh();
+    int32_t marked = 0, clear = 0;
+    for (int32_t v = 0; v < mesh.vertexCapacity(); ++v) {
+        if (!mesh.isVertexLive(v)) continue;
+        const LatticePoint lp = mesh.vertexLattice(v);
+        const int32_t j = std::clamp(sampleColumn(lp), 0, side - 1), i = std::clamp(lp.r, 0, side - 1);
+        const bool hole = std::isnan(full[size_t(i) * side + j]);
+        ASSERT_EQ(out.normals_ptr[4 * v + 3], hole ? 32767 : 0) << "vertex at sample " << j << ", " << i;
+        ++(hole ? marked : clear);
+    }
+    EXPECT_GT(marked, 0);
+    EXPECT_GT(clear, marked);
+    hexlod_terrain_destroy(t);
+}
+
+// A void in a streamed field is filled as the page fills one held whole, not with the lowest
+// height (a pit with cliff walls): the coarsest level by interpolation across the gap, every
+// finer tile from the coarser surface under it. A plane's void is filled with the plane.
+TEST(TiledField, VoidsAreFilledFromTheSurfaceAroundThemAtEveryLevel) {
+    constexpr int32_t side = 256;
+    std::vector<float> full(size_t(side) * side);
+    const auto plane = [](int32_t j, int32_t i) { return 1000.0 + 0.5 * j - 0.25 * i; };
+    const auto hole = [](int32_t j, int32_t i) { return j >= 90 && j < 170 && i >= 60 && i < 140; };
+    for (int32_t i = 0; i < side; ++i)
+        for (int32_t j = 0; j < side; ++j) full[size_t(i) * side + j] = hole(j, i) ? NAN : float(plane(j, i));
+    const Pyramid p = makePyramid(full, side, side);
+    hexlod_terrain* t = tiledWithCoarsest(p);
+    setUp(t, {"synthetic", side, side, 10.0f, 10.0f, 900.0f, 1200.0f}, 0);
+    const Heightfield& field = t->core->field();
+    auto worst = [&] { // over the void (an overview's edge samples stand inside the field's edge: off the plane there)
+        double error = 0.0;
+        for (int32_t i = 0; i < side; ++i)
+            for (int32_t j = 0; j < side; ++j)
+                if (hole(j, i)) error = std::max(error, std::abs(field.heightAt(j, i) - plane(j, i)));
+        return error;
+    };
+    EXPECT_LT(worst(), 0.05) << "only the coarsest level: its void interpolated";
+    for (int32_t ty = 0; ty < side / kTile; ++ty)
+        for (int32_t tx = 0; tx < side / kTile; ++tx) writeTile(t, p, 0, tx, ty);
+    EXPECT_LT(worst(), 0.05) << "every full-resolution tile: their voids from the surface under them";
+    EXPECT_TRUE(field.sampleMissing(130, 100)) << "still marked (the page's holes)";
+    EXPECT_FALSE(field.sampleMissing(80, 100));
+
+    // As pits (for holes: their walls make the refinement follow the void's edge), and back.
+    float low = 0.0f, high = 0.0f;
+    t->core->field().tiles()->range({0, 0, side - 1, side - 1}, low, high);
+    ASSERT_EQ(hexlod_terrain_set_void_fill(t, HEXLOD_VOIDS_LOWEST), 0) << hexlod_last_error();
+    const float pit = field.heightAt(130, 100);
+    EXPECT_LT(pit, low + 2.0f) << "the lowest height (known when the field was prepared: its coarsest level's)";
+    for (int32_t i = 60; i < 140; i += 7)
+        for (int32_t j = 90; j < 170; j += 7) ASSERT_EQ(field.heightAt(j, i), pit) << j << ", " << i;
+    EXPECT_EQ(field.heightAt(80, 100), float(plane(80, 100))) << "valid samples keep their heights";
+    ASSERT_EQ(hexlod_terrain_set_void_fill(t, HEXLOD_VOIDS_SURFACE), 0) << hexlod_last_error();
+    EXPECT_LT(worst(), 0.05) << "from the surface again";
+    EXPECT_EQ(hexlod_terrain_set_void_fill(t, 2), HEXLOD_ERROR);
+    hexlod_terrain_destroy(t);
+
+    hexlod_terrain* whole = hexlod_terrain_create(side, side, HEXLOD_SAMPLE_F32);
+    EXPECT_EQ(hexlod_terrain_set_void_fill(whole, HEXLOD_VOIDS_LOWEST), HEXLOD_ERROR) << "a field held whole is filled by its caller";
+    hexlod_terrain_destroy(whole);
+}
+
+// The page commits the coarsest level before it sets the scale, which names the no-data value:
+// preparing the field reads those tiles again, so their voids neither widen the height range
+// (to -32768 m) nor stay unfilled.
+TEST(TiledField, TilesCommittedBeforeTheScaleNamesNoDataAreReadAgainWhenPrepared) {
+    constexpr int32_t side = 128;
+    std::vector<float> full(size_t(side) * side);
+    for (int32_t i = 0; i < side; ++i)
+        for (int32_t j = 0; j < side; ++j) full[size_t(i) * side + j] = j >= 40 && j < 80 && i >= 40 && i < 80 ? -32768.0f : float(500.0 + j);
+    const Pyramid p = makePyramid(full, side, side); // -32768 averages with valid heights at the void's rim
+    hexlod_terrain* t = tiledWithCoarsest(p);
+    hexlod_scale scale{};
+    scale.spacing_x_m = scale.spacing_y_m = 10.0;
+    scale.has_nodata = 1, scale.nodata_raw = -32768.0;
+    ASSERT_EQ(hexlod_terrain_set_scale(t, &scale), 0) << hexlod_last_error();
+    hexlod_field_info info{};
+    ASSERT_EQ(hexlod_terrain_prepare(t, &info), 0) << hexlod_last_error();
+    EXPECT_GT(info.missing, 0.0);
+    EXPECT_GT(info.min_height_m, -1000.0) << "no-data is not a height";
+    const Heightfield& field = t->core->field();
+    EXPECT_TRUE(field.sampleMissing(60, 60));
+    EXPECT_GT(field.heightAt(60, 60), 500.0f) << "the void filled from around it";
+    hexlod_terrain_destroy(t);
+}

@@ -42,7 +42,7 @@ export class CoreError extends Error {}
  * version (a stale build/, or a package whose .wasm and .js come from different builds) is
  * refused when it is instantiated, before any call whose arguments may have changed meaning.
  */
-export const ABI_VERSION = 14;
+export const ABI_VERSION = 15;
 
 /**
  * Instantiates the core.
@@ -322,6 +322,15 @@ export class Terrain {
    */
   setTileCap(bytes) {
     this.core.check(this.m._hexlod_terrain_set_tile_cap(this.handle, bytes) < 0, `cannot set the tile cap to ${bytes} bytes`);
+  }
+
+  /**
+   * How a tiled terrain fills its voids (hexlod_terrain_set_void_fill): with the lowest height
+   * (`pits`, for drawing them as holes: the refinement follows their edges) or from the
+   * surface around them.
+   */
+  setVoidsAsPits(pits) {
+    this.core.check(this.m._hexlod_terrain_set_void_fill(this.handle, pits ? 1 : 0) < 0, 'cannot set the void fill');
   }
 
   /** The height range of all the samples, metres, as the file states it (hexlod_terrain_declare_height_range). */
