@@ -70,3 +70,31 @@ gdal_translate -q -of COG -co BLOCKSIZE=128 -co COMPRESS=DEFLATE -co OVERVIEWS=N
 # A plain GeoTIFF in strips: not cloud-optimized (a view's rows span the whole width).
 gdal_translate -q -of GTiff -co TILED=NO -co COMPRESS=DEFLATE \
   "$tmp/jacksboro.vrt" "$out/jacksboro_403x344_f32_strips.tif"
+# No-data holes, as a lidar strip's edges or a DEM's voids leave them: 384 x 384 GLOBE samples
+# (columns and rows 832..1215) with a rectangle (columns 120..219, rows 150..229) and a disc
+# (centre column 290, row 90, radius 32) set to -32768, the no-data value; overviews averaged
+# over the valid samples only (GDAL's AVERAGE), so they hold no-data only where all is void.
+node --input-type=module -e "
+import { readFileSync, writeFileSync } from 'node:fs';
+const all = new Int16Array(readFileSync('$tmp/himalaya.i16').buffer.slice(0));
+const side = 384, out = new Int16Array(side * side);
+for (let r = 0; r < side; r++) for (let c = 0; c < side; c++) {
+  const hole = (c >= 120 && c < 220 && r >= 150 && r < 230) || (c - 290) ** 2 + (r - 90) ** 2 <= 32 * 32;
+  out[r * side + c] = hole ? -32768 : all[(832 + r) * 2048 + 832 + c];
+}
+writeFileSync('$tmp/voids.i16', out);
+"
+cat > "$tmp/voids.vrt" <<VRT
+<VRTDataset rasterXSize="384" rasterYSize="384">
+  <SRS>EPSG:4326</SRS>
+  <GeoTransform>79.86666666666667, 0.008333333333333333, 0, 30.983333333333334, 0, -0.008333333333333333</GeoTransform>
+  <VRTRasterBand dataType="Int16" band="1" subClass="VRTRawRasterBand">
+    <NoDataValue>-32768</NoDataValue>
+    <SourceFilename relativeToVRT="0">$tmp/voids.i16</SourceFilename>
+    <ImageOffset>0</ImageOffset><PixelOffset>2</PixelOffset><LineOffset>768</LineOffset>
+    <ByteOrder>LSB</ByteOrder>
+  </VRTRasterBand>
+</VRTDataset>
+VRT
+gdal_translate -q -of COG -co BLOCKSIZE=128 -co COMPRESS=DEFLATE -co PREDICTOR=YES -co OVERVIEWS=AUTO \
+  -co OVERVIEW_RESAMPLING=AVERAGE "$tmp/voids.vrt" "$out/himalaya_384_voids_i16.tif"

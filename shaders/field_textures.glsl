@@ -1,7 +1,7 @@
 // What the shading reads from the full-resolution field (web/render/shading/field_shading.js), by
 // ground position, whatever the mesh's level of detail:
-//   uGradients     dh/dx, dh/dz (true metres per metre) and the height (true metres) of every
-//                  sample, so normals and ground colours do not change with the mesh; a texture array whose
+//   uGradients     dh/dx, dh/dz (true metres per metre), the height (true metres) and the
+//                  presence (0 where the sample was no-data) of every sample, so normals and ground colours do not change with the mesh; a texture array whose
 //                  layers are tiles of at most MAX_TEXTURE_SIZE per side; neighbouring tiles
 //                  share their edge texels so bilinear filtering stays inside one tile.
 //   uSunVisibility the sun's shadow (1 lit, 0 in shadow), 8 bits, one sweep per sun direction.
@@ -17,17 +17,17 @@ uniform vec4 uSunVisibilityMap; // uv = xz * .xy + .zw
 uniform sampler2D uOcclusion;
 uniform vec4 uOcclusionMap;     // uv = xz * .xy + .zw
 
-// The height gradient (xy) and height (z) at ground position xz (metres). Mip levels are chosen
+// The height gradient (xy), height (z) and presence (w) at ground position xz (metres). Mip levels are chosen
 // from the continuous texel position, not the tile-local one, so tile seams do not jump to a
 // coarse mip.
-vec3 fieldSample(vec2 xz) {
+vec4 fieldSample(vec2 xz) {
     vec2 texel = xz / uGradientTexel;
     // One tile (any field up to MAX_TEXTURE_SIZE a side): no seams, implicit derivatives.
-    if (uGradientTiles.x * uGradientTiles.y == 1.0) return texture(uGradients, vec3((texel + 0.5) / uGradientTile, 0.0)).rgb;
+    if (uGradientTiles.x * uGradientTiles.y == 1.0) return texture(uGradients, vec3((texel + 0.5) / uGradientTile, 0.0));
     vec2 tile = clamp(floor(texel / uGradientStep), vec2(0.0), uGradientTiles - 1.0);
     vec2 uv = (texel - tile * uGradientStep + 0.5) / uGradientTile;
     vec2 dx = dFdx(texel) / uGradientTile, dy = dFdy(texel) / uGradientTile;
-    return textureGrad(uGradients, vec3(uv, tile.y * uGradientTiles.x + tile.x), dx, dy).rgb;
+    return textureGrad(uGradients, vec3(uv, tile.y * uGradientTiles.x + tile.x), dx, dy);
 }
 
 // The drawn (exaggerated) unit normal from the field's gradient.

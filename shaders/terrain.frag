@@ -16,6 +16,7 @@ in vec3 vInscatter;
 in vec3 vSunlight;
 in vec3 vSunLocal;
 in vec3 vToEyeLocal;
+in float vMissing;    // > 0 in a triangle with a no-data vertex (a tiled field's stream normals)
 
 uniform vec3 uCameraPosition;
 uniform highp int uEarthKind; // earth.glsl: 0 the plane
@@ -30,6 +31,7 @@ uniform float uShadows;       // 1: the sun casts shadows
 uniform float uOcclusionOn;   // 1: ambient occlusion modulates the sky light
 uniform float uImageOpacity;  // the draped image over the ground colour, 0..1
 uniform float uImageUnlit;    // 1: the image as it is (orthophotos carry their own shadows)
+uniform int uHoleSource;      // NODATA_HOLES: 0 the field's presence texels, 1 the vertices' flags
 
 #include "scattering.glsl"
 #include "field_textures.glsl"
@@ -72,7 +74,7 @@ vec4 groundShade() {
     vec4 image = drapedImage(xz);
     float imageShare = image.a * uImageOpacity;
     // The field's normal and height at this pixel; the mesh's (paper §7) when asked for.
-    vec3 field = fieldSample(xz);
+    vec3 field = fieldSample(xz).xyz;
     bool fromField = uNormalSource == 0;
     vec3 n = fromField ? fieldNormal(field, uVerticalScale) : normalize(vNormal);
     float height = fromField ? field.z : vHeight;
@@ -116,6 +118,13 @@ vec4 groundShade() {
 }
 
 void main() {
+#ifdef NODATA_HOLES
+    // No-data as holes (the program variant the nodata=holes setting picks, so that every other
+    // draw keeps early depth testing): where a field held whole has its presence, bilinear between
+    // samples, under a half (each sample's own cell), or, for a tiled field, in every triangle
+    // with a no-data corner (the fill there is the lowest height: no slope of it shows).
+    if (uHoleSource == 0 ? fieldSample(vWorld.xz).w < 0.5 : vMissing > 0.0) discard;
+#endif
     vec4 color = groundShade();
     // The hexagon outlines are lines of their own colour; everything else gets the contours.
     outColor = uLineColor.a > 0.0 ? color : vec4(withContours(color.rgb, vWorld.xz, vHeight), color.a);

@@ -4,7 +4,7 @@
 precision highp float;
 
 layout(location = 0) in vec3 aPosition;  // ATTRIB_POSITION in web/render/renderer.js: true position, unscaled height
-layout(location = 1) in vec3 aNormal;    // ATTRIB_NORMAL: snorm16, averaged from the adjacent triangles
+layout(location = 1) in vec4 aNormal;    // ATTRIB_NORMAL: snorm16, averaged from the adjacent triangles; w 1 at no-data
 layout(location = 2) in float aMorphFromHeight; // ATTRIB_MORPH_FROM: height of the coarser surface under the vertex, where the blend starts
 layout(location = 3) in float aMorphKey; // ATTRIB_MORPH_KEY: 0 at rest, f+1 blending in, -(f+1) out, since frame f
 layout(location = 4) in ivec2 aLattice;  // ATTRIB_LATTICE: the vertex's lattice point, exact (half columns east, rows south)
@@ -31,6 +31,7 @@ uniform vec2 uExtent;          // the field's rectangle, metres (x, z)
 #include "scattering.glsl"
 #include "earth.glsl"
 
+out float vMissing;  // 1 at a no-data vertex (terrain.frag's holes)
 out vec3 vNormal;     // the mesh's normal (paper §7), in the local frame (x east, y up, z south)
 out vec3 vWorld;      // flat metres: x, exaggerated height, z (where the field's textures are read)
 out vec3 vSunLocal;   // towards the sun in the local frame (the drawn frame's on the plane)
@@ -57,6 +58,7 @@ void main() {
     p.y *= uVerticalScale;
     // Scaling heights by s scales normals by the inverse transpose: (nx, ny / s, nz).
     vNormal = vec3(aNormal.x, aNormal.y / uVerticalScale, aNormal.z);
+    vMissing = aNormal.w;
     vWorld = p;
 
     // On the curved Earth the vertex is drawn on it (earth.glsl); the lighting works in the

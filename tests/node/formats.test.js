@@ -47,6 +47,9 @@ function checkHeights(h, ref, tol, voids = []) {
 /** Filled voids: no spike (inside the valid heights' range) and close to the truth on average. */
 function checkFill(h, ref, voids) {
   assert.equal(h.missing, voids.length, 'every void is counted as filled');
+  const marked = [];
+  for (let k = 0; k < h.width * h.height; k++) if ((h.missingMask[k >> 3] >> (k & 7)) & 1) marked.push(k);
+  assert.deepEqual(marked, [...voids].sort((a, b) => a - b), 'the mask marks the voids, and only them');
   let lo = Infinity, hi = -Infinity;
   for (const v of ref) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
   let sum = 0;

@@ -367,6 +367,8 @@ test('f32 NaN samples and the sidecar nodata are filled from their neighbours', 
   // (nearest, no right end), its column 6 (nearest, no lower end): the mean is 7.
   assert.deepEqual([...h.samples], [1, 2, 3, 4, 5, 6, 7, 8, 7]);
   assert.equal(h.missing, 2);
+  // Which samples were filled, a bit each (the page's no-data holes): samples 4 and 8.
+  assert.deepEqual([...h.missingMask], [0b00010000, 0b00000001]);
   assert.equal(h.nodata, -9999);
   assert.equal(h.spacingFromFile, false);
 });

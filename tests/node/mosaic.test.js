@@ -54,6 +54,9 @@ test('a missing corner tile is no-data, filled from around it; the rest is exact
   assert.deepEqual([field.width, field.height], [257, 193]);
   const gap = (k) => k % 257 > 128 && Math.floor(k / 257) > 96; // the south-east tile less its shared edges
   assert.equal(field.missing, 128 * 96);
+  for (let k = 0; k < field.samples.length; k++) {
+    assert.equal((field.missingMask[k >> 3] >> (k & 7)) & 1, gap(k) ? 1 : 0, `sample ${k} is marked as no-data where the tile is missing`);
+  }
   assert.deepEqual(differences(field.samples, source.samples, gap), []);
   let lo = Infinity, hi = -Infinity;
   for (let k = 0; k < field.samples.length; k++) {

@@ -10,7 +10,7 @@ import { STREAM_LAYOUTS } from '../../web/core/core.js';
 import { SETTINGS, defaultSettings, coreSettings, checkSetting, URL_KEYS } from '../../web/app/settings_table.js';
 
 const core = await createNodeCore();
-const EFFECTS = ['core', 'heights', 'camera', 'view', 'mesh', 'ground', 'tiles', 'earth', 'none'];
+const EFFECTS = ['core', 'heights', 'camera', 'view', 'mesh', 'ground', 'tiles', 'earth', 'nodata', 'none'];
 // Core fields the page decides outside the table: tau mode always, and the stream's normals
 // follow what the renderer draws (frame_pipeline.js).
 const OUTSIDE_TABLE = ['maxErrorM', 'noNormals'];

@@ -147,6 +147,26 @@ test('gradient tiles share their edges and agree with one big tile', () => {
   assert.equal(g[4 * (3 * width + 5) + 2], plane[3 * width + 5], 'the height of sample (3, 5)');
 });
 
+test('the gradient texels carry each sample\'s presence: 0 where the loader filled no-data', () => {
+  const width = 40, height = 30, stride = 2;
+  const missing = new Uint8Array(Math.ceil((width * height) / 8));
+  const isMissing = (i, j) => (i >= 10 && i < 16 && j >= 4 && j < 20) || (i === 0 && j === 0);
+  for (let i = 0; i < height; ++i) for (let j = 0; j < width; ++j) if (isMissing(i, j)) missing[(i * width + j) >> 3] |= 1 << ((i * width + j) & 7);
+  const raw = randomField(width, height);
+  for (const step of [1, stride]) {
+    const tiles = gradientTiles(fieldOf(raw, width, height, 20, 30, 1, 0, missing), 4096, step);
+    const texels = tiles.fill(0, 0);
+    for (let a = 0; a < tiles.tileZ; ++a) {
+      for (let b = 0; b < tiles.tileX; ++b) {
+        assert.equal(texels[4 * (a * tiles.tileX + b) + 3], isMissing(a * step, b * step) ? 0 : 1, `sample ${a * step}, ${b * step}, stride ${step}`);
+      }
+    }
+  }
+  // Without a mask every sample is present.
+  const plain = gradientTiles(fieldOf(raw, width, height, 20, 30), 4096).fill(0, 0);
+  for (let k = 3; k < plain.length; k += 4) assert.equal(plain[k], 1);
+});
+
 test('a mip level is the mean of the texels it covers', () => {
   const src = Float32Array.from({ length: 2 * 5 * 3 }, (_, k) => k);
   const half = halveImage(src, 5, 3, 2);

@@ -31,6 +31,9 @@ export function settingEffects(stage, { rescaleMeasure, showSpacing }) {
       if (key === 'eyeHeight') rig.cameras.walk.eyeHeight = value;
     },
     view() {}, // deriveView (view_state.js) picks it up after every change
+    nodata() { // and the view, as for every change
+      stage.fillVoids(terrain());
+    },
     mesh() {
       if (terrain()) stage.rebuildMesh(terrain());
     },

@@ -12,6 +12,7 @@
 //   ground    the field's spacing: the scale, the mesh and the cameras' ground positions
 //   tiles     the tiled terrain's tile cache (its cap in bytes)
 //   earth     the surface the terrain is drawn on: the core, the renderer and the cameras
+//   nodata    how no-data is drawn: the view, and how a tiled terrain fills its voids
 //   none      read where it is used (the freeze switch, limits of the next URL load)
 // core: the setting's hexlod_settings field (Terrain.configure's camelCase name) and how the
 // value maps to it. parse: a typed value's reader (throws why it is refused). coreDiffers: why
@@ -30,6 +31,9 @@ export const NORMAL_SOURCES = ['field', 'mesh'];
 export const LAYOUTS = ['triangles', 'fans'];
 /** What a georeferenced terrain is drawn on, the first the default. */
 export const EARTH_SHAPES = ['curved', 'flat'];
+/** What no-data samples become, the first the default: filled from the samples around them
+ * (web/loaders/nodata.js), or holes through which the plain ground beyond shows. */
+export const NODATA_MODES = ['filled', 'holes'];
 /** Frames a geomorph blend takes (paper §7) when geomorphing is on. */
 export const MORPH_FRAMES = 8;
 
@@ -62,6 +66,8 @@ export const SETTINGS = {
   // comparison. A terrain without a georeference is flat either way.
   earth: { default: EARTH_SHAPES[0], choices: EARTH_SHAPES, url: 'earth', urlIfChanged: true, panel: [VIEW, 'Earth'],
     effect: 'earth' },
+  nodata: { default: NODATA_MODES[0], choices: NODATA_MODES, url: 'nodata', urlIfChanged: true, panel: [VIEW, 'no-data'],
+    effect: 'nodata' },
   eyeHeight: { default: 2, min: 0.1, max: 2000, step: 0.1, panel: [VIEW, 'walk eye height (m)'], effect: 'camera' },
 
   shading: { default: SHADING_MODES[0], choices: SHADING_MODES, url: 'shading', urlIfChanged: true, panel: [SHADING, 'mode'],

@@ -25,6 +25,7 @@ export class TerrainStage {
   /** Shows a loaded terrain; `from`: the URL it came from, null for a file (no URL to share). */
   show(loaded, from) {
     const { terrain, field } = loaded;
+    this.fillVoids(terrain);
     this.rebuildMesh(terrain);
     this.current?.tiles?.close(); // its requests stop before its terrain goes
     this.current?.terrain.destroy();
@@ -50,6 +51,15 @@ export class TerrainStage {
     this.current?.tiles?.close();
     this.current?.terrain.destroy();
     this.layers.terrain = null;
+  }
+
+  /**
+   * A tiled terrain's voids as the no-data setting draws them: pits under holes (their walls make
+   * the refinement follow a void's edge), else filled from the surface around them. A terrain
+   * held whole was filled by its loader; its holes come from the loader's mask.
+   */
+  fillVoids(terrain) {
+    if (terrain?.tiled) terrain.setVoidsAsPits(this.settings.nodata === 'holes');
   }
 
   /** A new mesh of the settings' embedding, with every core setting in one call; all uploaded anew. */

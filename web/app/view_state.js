@@ -26,5 +26,6 @@ export function deriveView(settings, view) {
   view.sunElevation = settings.sunElevation;
   view.contours = settings.contours;
   view.contourInterval = settings.contourInterval;
+  view.nodata = settings.nodata;
   return view;
 }

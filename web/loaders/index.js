@@ -48,6 +48,7 @@ export const ACCEPT_EXTENSIONS = [...Object.keys(KIND_OF_EXTENSION).map((e) => `
  * @property {number|null} nodata raw value meaning "no data", or null. For f32, NaN samples
  *   are always no-data in addition. Missing samples are already filled (see `missing`).
  * @property {number} missing how many no-data samples were filled by interpolation
+ * @property {Uint8Array|null} missingMask which (a bit per sample, see nodata.js), or null
  * @property {string|null} encoding 'terrain-rgb' | 'terrarium' for encoded PNGs
  * @property {import('../geo/georef.js').Georef|null} georef where the samples lie on the Earth (the
  *   sidecar's crs and bounds, else the file's own), null when nothing says
@@ -134,11 +135,11 @@ export async function loadHeightfield(files, options = {}) {
   }
 
   const nodata = decoded.nodata ?? (sidecar?.nodata ?? null);
-  let missing = 0;
+  let missing = 0, missingMask = null;
   if (nodata !== null || decoded.sampleType === 'f32') {
     const sink = SampleSink.over(decoded.samples, { reacquire: options.reacquire,
       onProgress: progress && ((fraction) => progress(fraction, 'filling no-data')) });
-    missing = await fillNodata(sink, decoded.width, decoded.height, nodata, main.name);
+    ({ count: missing, mask: missingMask } = await fillNodata(sink, decoded.width, decoded.height, nodata, main.name));
     decoded.samples = sink.samples;
   }
 
@@ -174,6 +175,7 @@ export async function loadHeightfield(files, options = {}) {
     heightOffset: decoded.heightOffset ?? 0,
     nodata,
     missing,
+    missingMask,
     encoding: decoded.encoding ?? null,
     cropped: decoded.cropped ?? null,
     georef: georef ?? null,

@@ -123,10 +123,11 @@ export async function loadMosaic(tiles, io) {
   let covered = 0;
   for (let k = 0; k < valid.length; k++) covered += popcount(valid[k]);
   const missing = width * height - covered;
+  let missingMask = null;
   if (missing > 0) {
     const fill = SampleSink.over(sink.samples, { reacquire: io.reacquire,
       onProgress: progress && ((fraction) => progress(fraction, 'filling no-data')) });
-    await fillNodata(fill, width, height, null, label, (k) => !((valid[k >> 3] >> (k & 7)) & 1));
+    ({ mask: missingMask } = await fillNodata(fill, width, height, null, label, (k) => !((valid[k >> 3] >> (k & 7)) & 1)));
     sink.samples = fill.samples;
   }
 
@@ -140,7 +141,7 @@ export async function loadMosaic(tiles, io) {
     ...metres, spacingFromFile: true, geographic: g.crs.geographic,
     heightScale: scaling[0], heightOffset: scaling[1],
     nodata: probed.map((t) => t.nodata).find((v) => v != null) ?? null,
-    missing, encoding: null, cropped: null, georef,
+    missing, missingMask, encoding: null, cropped: null, georef,
     source: label,
     format: kinds.size === 1 ? probed[0].kind : 'mosaic',
   };

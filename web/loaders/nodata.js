@@ -17,7 +17,9 @@ import { HeightfieldError } from './common.js';
  * @param {string} name file name, for the all-nodata message
  * @param {(k: number) => boolean} [isMissingAt] which samples are missing, by index, instead of by
  *   value: a mosaic's gaps between tiles hold no value that could say so (mosaic.js)
- * @returns {Promise<number>} how many samples were missing (and are now filled)
+ * @returns {Promise<{count: number, mask: Uint8Array|null}>} how many samples were missing (and
+ *   are now filled), and which: bit k & 7 of byte k >> 3 set for sample k (null when none was);
+ *   the page can draw them as holes
  * @throws {HeightfieldError} when every sample is missing
  */
 export async function fillNodata(sink, width, height, nodata, name, isMissingAt = null) {
@@ -55,7 +57,7 @@ export async function fillNodata(sink, width, height, nodata, name, isMissingAt 
     await sink.pace((0.5 * y) / height);
     samples = sink.samples;
   }
-  if (missing === 0) return 0;
+  if (missing === 0) return { count: 0, mask: null };
   if (rowsWithData === 0) throw new HeightfieldError(name, `every sample is no-data (${describe(nodata)}): nothing to show`);
 
   // Pass 2: along columns, averaged with the row value (or alone where the row had no data).
@@ -97,7 +99,7 @@ export async function fillNodata(sink, width, height, nodata, name, isMissingAt 
   // row took 2.5 s for a 2 x 20000 field with one sample.
   const emptyColumns = [];
   for (let x = 0; x < width; x++) if (lastValidRow[x] < 0) emptyColumns.push(x);
-  if (emptyColumns.length === 0) return missing;
+  if (emptyColumns.length === 0) return { count: missing, mask };
   const nearest = new Int32Array(height).fill(-1); // the nearest row with data above, then either side
   for (let y = 0, above = -1; y < height; y++) nearest[y] = emptyRows[y] ? above : (above = y);
   for (let y = height - 1, below = -1; y >= 0; y--) {
@@ -105,7 +107,7 @@ export async function fillNodata(sink, width, height, nodata, name, isMissingAt 
     if (below >= 0 && (nearest[y] < 0 || below - y < y - nearest[y])) nearest[y] = below;
     for (const x of emptyColumns) samples[y * width + x] = samples[nearest[y] * width + x];
   }
-  return missing;
+  return { count: missing, mask };
 }
 
 /** Linear fill of samples[row+from+1 .. row+to-1] between valid ends; from = -1 (no left

@@ -59,7 +59,7 @@ const UNIFORMS = [...ANCHOR_UNIFORMS, ...EARTH_UNIFORMS, 'uSunDirection', 'uHeig
   'uMieG', 'uSunIrradiance', 'uSunAirMass', 'uSkyLight', 'uExposure', 'uMode', 'uNormalSource', 'uShadows',
   'uOcclusionOn', 'uSnowLine', 'uTreeLine', 'uNoiseScale', 'uGradients', 'uGradientTexel', 'uGradientStep',
   'uGradientTile', 'uGradientTiles', 'uSunVisibility', 'uSunVisibilityMap', 'uOcclusion', 'uOcclusionMap',
-  'uImageOpacity', 'uImageUnlit', ...DRAPE_UNIFORMS, ...CONTOUR_UNIFORMS];
+  'uImageOpacity', 'uImageUnlit', 'uHoleSource', ...DRAPE_UNIFORMS, ...CONTOUR_UNIFORMS];
 const SKY_UNIFORMS = ['uInverseViewProjection', ...EARTH_UNIFORMS, 'uVerticalScale', 'uBetaRayleigh', 'uBetaMie',
   'uScaleHeight', 'uMieG', 'uSunDirection', 'uSunIrradiance', 'uSunAirMass', 'uExposure', 'uGroundLevel', 'uSkyLight',
   'uHeightRange', 'uSnowLine', 'uTreeLine', 'uNoiseScale'];
@@ -69,6 +69,8 @@ const GROUND_LEVEL = 5, NO_GROUND_SLOT = 6; // in Renderer.groundValues
 // The terrain's and the sky's programs, their shared GLSL included.
 const link = (gl, vertex, fragment, what) =>
   linkProgram(gl, resolveIncludes(vertex, SHADER_FILES), resolveIncludes(fragment, SHADER_FILES), what);
+// A variant of a shader: `#define name` after its #version line.
+const withDefine = (source, name) => source.replace(/^(#version[^\n]*\n)/, `$1#define ${name}\n`);
 
 // The atmosphere's constants as the uniforms take them, converted once: a plain array passed to
 // uniform*fv is read element by element by the browser, which boxes every double each frame.
@@ -86,8 +88,9 @@ function levelColor(level) {
   };
   return [channel(0), channel(8), channel(4)];
 }
-// The colours of every level a mesh can have (65536-sample fields reach level 32), made once:
-// a frame with colour by level on computes none.
+// The colours of every level a mesh can have, made once (a frame with colour by level on
+// computes none): two levels per doubling of the side, so a 65,536-sample field reaches level
+// 32 and the largest tiled one (2^21 samples a side) 42.
 const LEVEL_COLORS = Array.from({ length: 64 }, (_, level) => new Float32Array(levelColor(level)));
 
 /** A GL buffer that follows an array in WASM memory: grown by doubling, filled by ranges. */
@@ -166,6 +169,9 @@ export class TerrainRenderer {
     const gl = this.gl;
     this.program = link(gl, terrainVertex, terrainFragment, 'terrain');
     this.uniforms = uniformLocations(gl, this.program, UNIFORMS);
+    // No-data as holes: a variant whose fragments may discard (shaders/terrain.frag).
+    this.holesProgram = link(gl, terrainVertex, withDefine(terrainFragment, 'NODATA_HOLES'), 'terrain with holes');
+    this.holesUniforms = uniformLocations(gl, this.holesProgram, UNIFORMS);
     this.skyProgram = link(gl, skyVertex, skyFragment, 'sky');
     this.skyUniforms = uniformLocations(gl, this.skyProgram, SKY_UNIFORMS);
     this.skyVao = gl.createVertexArray();
@@ -190,7 +196,7 @@ export class TerrainRenderer {
     else this.lattice = new VertexLattice(gl); // the vertices' exact lattice points (vertex_lattice.js)
     this.normals = new MirroredBuffer(gl, gl.ARRAY_BUFFER); // while the core keeps mesh normals
     this.hasNormals = false;
-    gl.vertexAttrib3f(ATTRIB_NORMAL, 0, 1, 0); // what the shader reads while there are none
+    gl.vertexAttrib4f(ATTRIB_NORMAL, 0, 1, 0, 0); // what the shader reads while there are none
     this.indices = new MirroredBuffer(gl, gl.ELEMENT_ARRAY_BUFFER);
     this.levelBuffer = gl.createBuffer();
     this.outlineBuffer = gl.createBuffer();
@@ -229,7 +235,7 @@ export class TerrainRenderer {
     gl.vertexAttribIPointer(ATTRIB_LATTICE, 2, gl.INT, LATTICE_BYTES, 0);
     // The normals are a buffer of their own, read only while the core keeps them (setNormalsOn).
     gl.bindBuffer(gl.ARRAY_BUFFER, this.normals.buffer);
-    gl.vertexAttribPointer(ATTRIB_NORMAL, 3, gl.SHORT, true, STREAM_NORMAL_BYTES, 0);
+    gl.vertexAttribPointer(ATTRIB_NORMAL, 4, gl.SHORT, true, STREAM_NORMAL_BYTES, 0); // w: no-data (hexlod.h)
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indexBuffer);
     gl.bindVertexArray(null);
     return vao;
@@ -462,14 +468,26 @@ export class TerrainRenderer {
     return plain || view.normals === 'mesh' || !this.fieldTextures.ready;
   }
 
+  /**
+   * Whether no-data is drawn as holes now: when asked, and the field has any (a field held whole
+   * says which samples; a tiled field's stream marks them as its tiles come).
+   */
+  drawsHoles(view) {
+    const textures = this.fieldTextures;
+    return view.nodata === 'holes' && (textures.terrain?.tiled === true || !!textures.field?.missingMask);
+  }
+
   drawTerrain(camera, view, mode, verticalScale, drapes) {
     const gl = this.gl;
     const plain = mode === SHADING_MODES.plain;
-    // Field textures follow the exaggeration and the sun (shadows); the plain mode needs none.
-    if (!plain) this.fieldTextures.prepare(verticalScale, this.atmosphere.sunDirection, this.earth.earth);
+    const holes = this.drawsHoles(view);
+    // Field textures follow the exaggeration and the sun (shadows); the plain mode needs none,
+    // unless it draws holes (the field's presence is in them).
+    if (!plain || holes) this.fieldTextures.prepare(verticalScale, this.atmosphere.sunDirection, this.earth.earth);
     gl.enable(gl.CULL_FACE);
-    gl.useProgram(this.program);
-    const u = this.uniforms;
+    gl.useProgram(holes ? this.holesProgram : this.program);
+    const u = holes ? this.holesUniforms : this.uniforms;
+    if (holes) gl.uniform1i(u.uHoleSource, this.fieldTextures.ready ? 0 : 1);
     this.eyeAnchor.apply(gl, u, camera, this.earth.earth);
     this.earth.apply(gl, u, camera, verticalScale);
     this.setGroundColourUniforms(u, verticalScale);

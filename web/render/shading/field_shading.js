@@ -13,9 +13,11 @@
 /**
  * A field view over raw samples at their native depth: metres = raw * scale + offset.
  * @param {ArrayLike<number>} raw samples, row-major
+ * @param {Uint8Array|null} [missing] the no-data samples the loader filled, a bit each
+ *   (web/loaders/nodata.js), or null
  */
-export function fieldOf(raw, width, height, spacingX, spacingZ, scale = 1, offset = 0) {
-  return { width, height, spacingX, spacingZ, raw, scale, offset };
+export function fieldOf(raw, width, height, spacingX, spacingZ, scale = 1, offset = 0, missing = null) {
+  return { width, height, spacingX, spacingZ, raw, scale, offset, missing };
 }
 
 /**
@@ -50,7 +52,8 @@ export function downsampleField(field, maxSide) {
 
 /**
  * Tiles of the field's height gradient (dh/dx, dh/dz, metres per metre, central differences
- * of the full-resolution samples) and height (metres), for a texture array (RGBA: gx, gz, h, 1) of at most maxTile texels a side:
+ * of the full-resolution samples), height (metres) and presence (0 where the sample was no-data,
+else 1: the page's holes), for a texture array (RGBA: gx, gz, h, presence) of at most maxTile texels a side:
  * tile (tx, tz) holds columns [tx*(tileX-1), tx*(tileX-1)+tileX-1] and likewise rows, so
  * neighbouring tiles share their
  * edge texels and bilinear filtering never needs the next tile. Samples past the field repeat
@@ -60,7 +63,7 @@ export function downsampleField(field, maxSide) {
  *   fill(tx: number, tz: number, out: Float32Array): Float32Array}} fill writes one tile, 4 floats a texel
  */
 export function gradientTiles(field, maxTile, stride = 1) {
-  const { width, height, raw, scale, offset, spacingX, spacingZ } = field;
+  const { width, height, raw, scale, offset, spacingX, spacingZ, missing } = field;
   const columns = Math.floor((width - 1) / stride) + 1, rows = Math.floor((height - 1) / stride) + 1;
   const tileX = Math.min(maxTile, columns), tileZ = Math.min(maxTile, rows);
   const tilesX = Math.max(1, Math.ceil((columns - 1) / (tileX - 1))), tilesZ = Math.max(1, Math.ceil((rows - 1) / (tileZ - 1)));
@@ -79,7 +82,7 @@ export function gradientTiles(field, maxTile, stride = 1) {
           out[o] = ((raw[row + east] - raw[row + west]) * scale) / ((east - west) * spacingX);
           out[o + 1] = ((raw[south + j] - raw[north + j]) * scale) / dz;
           out[o + 2] = raw[row + j] * scale + offset;
-          out[o + 3] = 1;
+          out[o + 3] = missing && (missing[(row + j) >> 3] >> ((row + j) & 7)) & 1 ? 0 : 1;
         }
       }
       return out;

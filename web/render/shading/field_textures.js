@@ -56,8 +56,10 @@ export class FieldTextures {
 
   /** The field as metres over its raw samples (a fresh view: WASM memory may have grown). */
   view() {
-    const t = this.terrain;
-    return fieldOf(t.samples(), t.width, t.height, t.spacingX, t.spacingY, this.field.heightScale ?? 1, this.field.heightOffset ?? 0);
+    const t = this.terrain, mask = this.field.missingMask;
+    // A one-row file is widened to two rows in the core: its mask no longer fits, and is left out.
+    const missing = mask && mask.length === Math.ceil((t.width * t.height) / 8) ? mask : null;
+    return fieldOf(t.samples(), t.width, t.height, t.spacingX, t.spacingY, this.field.heightScale ?? 1, this.field.heightOffset ?? 0, missing);
   }
 
   /** Makes what is out of date (all three, so every sampler has a texture). Allocates only when something changed. */
