@@ -23,18 +23,25 @@ const out = new Int16Array(png.width * png.height);
 for (let i = 0; i < out.length; i++) out[i] = Math.round(meta.min + (png.data[i] / 65535) * (meta.max - meta.min));
 writeFileSync('$tmp/himalaya.i16', out);
 "
-# Bounds of the .json are cell edges; 1/120 degree cells.
-cat > "$tmp/himalaya.vrt" <<VRT
-<VRTDataset rasterXSize="2048" rasterYSize="2048">
+# GDAL's view of a square raw int16 file of GLOBE cells (1/120 degree): NAME SIDE WEST NORTH
+# [NODATA] writes $tmp/NAME.vrt over $tmp/NAME.i16; WEST and NORTH are cell edges.
+raw_vrt() {
+  nodata=${5:+"    <NoDataValue>$5</NoDataValue>
+"}
+  cat > "$tmp/$1.vrt" <<VRT
+<VRTDataset rasterXSize="$2" rasterYSize="$2">
   <SRS>EPSG:4326</SRS>
-  <GeoTransform>72.93333333333334, 0.008333333333333333, 0, 37.916666666666664, 0, -0.008333333333333333</GeoTransform>
+  <GeoTransform>$3, 0.008333333333333333, 0, $4, 0, -0.008333333333333333</GeoTransform>
   <VRTRasterBand dataType="Int16" band="1" subClass="VRTRawRasterBand">
-    <SourceFilename relativeToVRT="0">$tmp/himalaya.i16</SourceFilename>
-    <ImageOffset>0</ImageOffset><PixelOffset>2</PixelOffset><LineOffset>4096</LineOffset>
+$nodata    <SourceFilename relativeToVRT="0">$tmp/$1.i16</SourceFilename>
+    <ImageOffset>0</ImageOffset><PixelOffset>2</PixelOffset><LineOffset>$(($2 * 2))</LineOffset>
     <ByteOrder>LSB</ByteOrder>
   </VRTRasterBand>
 </VRTDataset>
 VRT
+}
+# Bounds of the .json are cell edges.
+raw_vrt himalaya 2048 72.93333333333334 37.916666666666664
 # The Jacksboro DEM as GDAL sees it (scripts/jacksboro_vrt.sh).
 . "$here/scripts/jacksboro_vrt.sh"
 jacksboro_vrt "$here" > "$tmp/jacksboro.vrt"
@@ -84,17 +91,6 @@ for (let r = 0; r < side; r++) for (let c = 0; c < side; c++) {
 }
 writeFileSync('$tmp/voids.i16', out);
 "
-cat > "$tmp/voids.vrt" <<VRT
-<VRTDataset rasterXSize="384" rasterYSize="384">
-  <SRS>EPSG:4326</SRS>
-  <GeoTransform>79.86666666666667, 0.008333333333333333, 0, 30.983333333333334, 0, -0.008333333333333333</GeoTransform>
-  <VRTRasterBand dataType="Int16" band="1" subClass="VRTRawRasterBand">
-    <NoDataValue>-32768</NoDataValue>
-    <SourceFilename relativeToVRT="0">$tmp/voids.i16</SourceFilename>
-    <ImageOffset>0</ImageOffset><PixelOffset>2</PixelOffset><LineOffset>768</LineOffset>
-    <ByteOrder>LSB</ByteOrder>
-  </VRTRasterBand>
-</VRTDataset>
-VRT
+raw_vrt voids 384 79.86666666666667 30.983333333333334 -32768
 gdal_translate -q -of COG -co BLOCKSIZE=128 -co COMPRESS=DEFLATE -co PREDICTOR=YES -co OVERVIEWS=AUTO \
   -co OVERVIEW_RESAMPLING=AVERAGE "$tmp/voids.vrt" "$out/himalaya_384_voids_i16.tif"
