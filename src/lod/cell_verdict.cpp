@@ -106,7 +106,12 @@ CellVerdict judgeCell(const VerdictContext& context, const CellQuestion& cell, d
         if ((!failMargin && z + radius < view.nearPlane) || z - radius > view.farPlane) return {true, 0.0, 0.0, moving};
     }
     double front = kForever; // how far the eye may move before a front-facing cell can turn its back
-    // The slope box is flat; the curved surface turns its normals (no back-face test there).
+    if (context.backfaceCulling && !flat && slopes && slopes->known()) {
+        // On the curved Earth: the slopes' normals as drawn, allowed the surface's turn.
+        const BackFaces faces = curvedBackFaces(view, context.earth, curved, *slopes, context.verticalScale);
+        if (faces.backFacing) return {true, 0.0, faces.back, moving};
+        front = std::min(kForever, faces.front);
+    }
     if (context.backfaceCulling && flat && slopes && slopes->known()) {
         double back = kForever, frontFacing = -kForever;
         bool backFacing = true;

@@ -112,10 +112,36 @@ CurvedCell curvedCell(const EarthShape& e, const glm::dvec3& c, double r, double
         cell.radius = r;
         return cell;
     }
+    cell.flatCenter = c, cell.flatRadius = r, cell.heightSpan = std::max(0.0, high - low);
     cell.radius = stretch * r;
     cell.sag = 0.5 * normalXX * halfDiagonal * halfDiagonal;
     cell.drift = 0.5 * (tangentXX * halfDiagonal * halfDiagonal + tangentXH * halfDiagonal * std::max(0.0, high - low));
     return cell;
+}
+
+CurvedJacobian curvedJacobian(const EarthShape& e, const CurvedCell& cell) {
+    CurvedJacobian j;
+    if (e.kind == EarthKind::Flat) return j;
+    const glm::dvec3& c = cell.flatCenter;
+    const double r = cell.flatRadius;
+    // The horizontal columns by central differences a metre apart (the map's second derivative
+    // is under 1 / R: the error is some 1e-14).
+    j.east = 0.5 * (curvedPosition(e, c.x + 1.0, c.y, c.z) - curvedPosition(e, c.x - 1.0, c.y, c.z));
+    j.south = 0.5 * (curvedPosition(e, c.x, c.y, c.z + 1.0) - curvedPosition(e, c.x, c.y, c.z - 1.0));
+    // Their lengths change with the height ((R + h) / R), on the sphere with the distance from
+    // the origin (sin(d / R) / (d / R) across the radius), and on the ellipsoid with the latitude
+    // (cos(latitude) east, the meridian's radius M south: |dM / M dphi| < 0.011 / 0.99).
+    const double heights = cell.heightSpan + 2.0 * r;
+    if (e.kind == EarthKind::Sphere) {
+        const double farthest = std::hypot(c.x - e.originX, c.z - e.originZ) + r;
+        j.stretchChange = heights / e.radius + 2.0 * r * farthest / (e.radius * e.radius);
+        return j;
+    }
+    const double latitudes = 2.0 * r / e.metresPerRadianZ; // the flat sphere's span of latitude, radians
+    const double edge = std::abs(e.latitude0 - (c.z - e.originZ) / e.metresPerRadianZ) + 0.5 * latitudes;
+    // Within 4° of a pole the east column's length changes too fast to say anything.
+    j.stretchChange = edge >= 1.5 ? 1e9 : heights / (0.99 * kWgs84A) + latitudes * (std::tan(edge) + 0.012);
+    return j;
 }
 
 } // namespace hexlod

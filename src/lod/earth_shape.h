@@ -65,7 +65,20 @@ struct CurvedCell {
     double tilt = 0.0;  // radians
     double sag = 0.0;   // metres, along the normal (a chord under its arc)
     double drift = 0.0; // metres, in any direction (the map's bending within the surface)
+    // The flat sphere and height span it was made from (for curvedJacobian, which only the
+    // back-face test needs).
+    glm::dvec3 flatCenter{0.0};
+    double flatRadius = 0.0, heightSpan = 0.0;
 };
+
+/// The map's Jacobian at a cell's flat centre: drawn metres per flat metre east and south (the
+/// third column is the cell's `up`), and how much their lengths change over the cell's flat
+/// sphere, relative (a slope's drawn normal turns by up to that times the slope).
+struct CurvedJacobian {
+    glm::dvec3 east{1.0, 0.0, 0.0}, south{0.0, 0.0, 1.0};
+    double stretchChange = 0.0;
+};
+CurvedJacobian curvedJacobian(const EarthShape& earth, const CurvedCell& cell);
 
 CurvedCell curvedCell(const EarthShape& earth, const glm::dvec3& flatCenter, double flatRadius, double halfDiagonal,
                       double low, double high);

@@ -56,7 +56,7 @@ struct RefinerSettings {
     int32_t maxTriangles = 0;     // <= 0: no cap (a cell failing under the cap waits, but a split that started finishes; the update still converges)
     bool autoTau = false;
     bool culling = true;          // frustum culling
-    bool backfaceCulling = true;  // cone-of-normals culling (exact embedding, cells of up to 4096 samples; flat Earth only)
+    bool backfaceCulling = true;  // cone-of-normals culling (exact embedding, cells of up to 4096 samples)
     EarthShape earth;             // the surface drawn (earth_shape.h): the bound follows its curvature
 };
 

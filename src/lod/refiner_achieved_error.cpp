@@ -24,12 +24,13 @@ double Refiner::achievedErrorPixels() const {
         boundingSphere(f, own, settings_.verticalScale, center, radius);
         const double error = double(own.error) * settings_.verticalScale;
         if (!settings_.earth.flat()) {
-            // On the curved Earth, as judgeCell (cell_verdict.cpp): the image's bound, no back faces.
+            // On the curved Earth, as judgeCell (cell_verdict.cpp): the image's bound.
             CurvedCell curved = curvedCellOf(settings_.earth, f, own, settings_.verticalScale);
             // A cell of one sample's step in the exact embedding has every sample under it as
             // a vertex, drawn where it belongs: its chords pass over no sample.
             if (mesh_->embedding() == Embedding::Exact && mesh_->cellStep(c) == 1) curved.sag = curved.drift = 0.0;
             if (settings_.culling && outsideFrustum(view_, curved.center, curved.radius)) continue;
+            if (settings_.backfaceCulling && curvedBackFaces(view_, settings_.earth, curved, cache_.ownSlopes(c), settings_.verticalScale).backFacing) continue;
             worst = std::max(worst, projectedErrorPixels(view_, curved, error, view_.nearPlane));
             continue;
         }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -68,6 +69,38 @@ bool backFacing(const View& view, const glm::dvec3& center, double radius, const
             if (glm::dot(v, n) - radius * glm::length(n) <= 0.0) return false;
         }
     return true;
+}
+
+BackFaces curvedBackFaces(const View& view, const EarthShape& earth, const CurvedCell& curved, const SlopeBox& slopes, double verticalScale) {
+    BackFaces faces;
+    faces.front = std::numeric_limits<double>::infinity(); // without a test, never back-facing
+    if (!slopes.known()) return faces;
+    const double s = verticalScale;
+    const double steepest = s * (std::max(std::abs(double(slopes.dxLow)), std::abs(double(slopes.dxHigh))) +
+                                 std::max(std::abs(double(slopes.dzLow)), std::abs(double(slopes.dzHigh))));
+    const CurvedJacobian jacobian = curvedJacobian(earth, curved);
+    const double turn = curved.tilt + jacobian.stretchChange * steepest;
+    if (!(turn < 1.5)) return faces; // nothing can be said: not back-facing, and no margin
+    const double cosTurn = std::cos(turn), sinTurn = std::sin(turn);
+    const glm::dvec3 d = curved.center - view.eye;
+    const double distance = glm::length(d);
+    // Moving the eye by m moves (p - eye) . n / |n| and |p - eye| by at most m each.
+    const double rate = cosTurn + sinTurn;
+    double back = std::numeric_limits<double>::infinity(), frontFacing = -std::numeric_limits<double>::infinity();
+    bool backFacing = true;
+    for (double dx : {double(slopes.dxLow), double(slopes.dxHigh)})
+        for (double dz : {double(slopes.dzLow), double(slopes.dzHigh)}) {
+            const glm::dvec3 n = glm::cross(jacobian.south + s * dz * curved.up, jacobian.east + s * dx * curved.up);
+            const double length = glm::length(n);
+            const double slack = (cosTurn * glm::dot(d, n) / length - sinTurn * distance - curved.radius) / rate;
+            if (slack <= 0.0) backFacing = false;
+            back = std::min(back, slack);
+            frontFacing = std::max(frontFacing, -slack);
+        }
+    faces.backFacing = backFacing;
+    faces.back = back;
+    faces.front = frontFacing;
+    return faces;
 }
 
 double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError) {
