@@ -106,7 +106,7 @@ double drawnMeshErrorPx(const hexlod::HexMesh& mesh, const hexlod::Heightfield& 
         if (s.culling && hexlod::outsideFrustum(view, center, radius)) continue;
         const double px = hexlod::projectedErrorPixels(view, center, radius, double(e.error) * s.verticalScale);
         if (px <= worst) continue;
-        if (s.backfaceCulling && hexlod::backFacing(view, center, radius, hexlod::slopesUnder(field, mesh.embedding(), f), s.verticalScale))
+        if (s.backfaceCulling && hexlod::backFaces(view, center, radius, hexlod::slopesUnder(field, mesh.embedding(), f), s.verticalScale).backFacing)
             continue;
         worst = px;
     }

@@ -106,26 +106,12 @@ CellVerdict judgeCell(const VerdictContext& context, const CellQuestion& cell, d
         if ((!failMargin && z + radius < view.nearPlane) || z - radius > view.farPlane) return {true, 0.0, 0.0, moving};
     }
     double front = kForever; // how far the eye may move before a front-facing cell can turn its back
-    if (context.backfaceCulling && !flat && slopes && slopes->known()) {
-        // On the curved Earth: the slopes' normals as drawn, allowed the surface's turn.
-        const BackFaces faces = curvedBackFaces(view, context.earth, curved, *slopes, context.verticalScale);
+    if (context.backfaceCulling && slopes && slopes->known()) {
+        // On the curved Earth the slopes' normals as drawn, allowed the surface's turn.
+        const BackFaces faces = flat ? backFaces(view, center, radius, *slopes, context.verticalScale)
+                                     : curvedBackFaces(view, context.earth, curved, *slopes, context.verticalScale);
         if (faces.backFacing) return {true, 0.0, faces.back, moving};
         front = std::min(kForever, faces.front);
-    }
-    if (context.backfaceCulling && flat && slopes && slopes->known()) {
-        double back = kForever, frontFacing = -kForever;
-        bool backFacing = true;
-        for (double dx : {double(slopes->dxLow), double(slopes->dxHigh)})
-            for (double dz : {double(slopes->dzLow), double(slopes->dzHigh)}) {
-                const glm::dvec3 n(-context.verticalScale * dx, 1.0, -context.verticalScale * dz);
-                const double length = glm::length(n);
-                const double s = (glm::dot(d, n) - radius * length) / length;
-                if (s <= 0.0) backFacing = false;
-                back = std::min(back, s);
-                frontFacing = std::max(frontFacing, -s);
-            }
-        if (backFacing) return {true, 0.0, back, moving};
-        front = frontFacing;
     }
     const double error = double(e.error) * context.verticalScale;
     // A merge test bounds the error at the sphere's nearest depth however close to the eye, not

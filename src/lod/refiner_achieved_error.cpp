@@ -36,7 +36,7 @@ double Refiner::achievedErrorPixels() const {
         }
         // Cells that cannot be seen do not count: outside the (unwidened) frustum, or back-facing.
         if (settings_.culling && outsideFrustum(view_, center, radius)) continue;
-        if (settings_.backfaceCulling && backFacing(view_, center, radius, cache_.ownSlopes(c), settings_.verticalScale))
+        if (settings_.backfaceCulling && backFaces(view_, center, radius, cache_.ownSlopes(c), settings_.verticalScale).backFacing)
             continue;
         worst = std::max(worst, projectedErrorPixels(view_, center, radius, error));
     }

@@ -58,41 +58,30 @@ bool outsideFrustum(const View& view, const glm::dvec3& center, double radius) {
     return false;
 }
 
-bool backFacing(const View& view, const glm::dvec3& center, double radius, const SlopeBox& slopes, double verticalScale) {
-    if (!slopes.known()) return false;
-    const glm::dvec3 v = center - view.eye;
-    // v . n - radius * |n| is concave in the slope, so its smallest value over the box is at
-    // one of the four corners.
-    for (double dx : {double(slopes.dxLow), double(slopes.dxHigh)})
-        for (double dz : {double(slopes.dzLow), double(slopes.dzHigh)}) {
-            const glm::dvec3 n(-verticalScale * dx, 1.0, -verticalScale * dz);
-            if (glm::dot(v, n) - radius * glm::length(n) <= 0.0) return false;
-        }
-    return true;
-}
+namespace {
 
-BackFaces curvedBackFaces(const View& view, const EarthShape& earth, const CurvedCell& curved, const SlopeBox& slopes, double verticalScale) {
+// The back-face test in a frame whose east, up and south (drawn metres per flat metre) are
+// given, each slope's normal allowed to turn by `turn` radians. On the plane (the identity
+// frame, no turn) the arithmetic is exactly (v . n - radius |n|) / |n|.
+BackFaces facesAway(const View& view, const glm::dvec3& center, double radius, const glm::dvec3& east, const glm::dvec3& up,
+                    const glm::dvec3& south, double turn, const SlopeBox& slopes, double s) {
     BackFaces faces;
     faces.front = std::numeric_limits<double>::infinity(); // without a test, never back-facing
-    if (!slopes.known()) return faces;
-    const double s = verticalScale;
-    const double steepest = s * (std::max(std::abs(double(slopes.dxLow)), std::abs(double(slopes.dxHigh))) +
-                                 std::max(std::abs(double(slopes.dzLow)), std::abs(double(slopes.dzHigh))));
-    const CurvedJacobian jacobian = curvedJacobian(earth, curved);
-    const double turn = curved.tilt + jacobian.stretchChange * steepest;
-    if (!(turn < 1.5)) return faces; // nothing can be said: not back-facing, and no margin
+    if (!slopes.known() || !(turn < 1.5)) return faces;    // nothing can be said: no margin either
     const double cosTurn = std::cos(turn), sinTurn = std::sin(turn);
-    const glm::dvec3 d = curved.center - view.eye;
-    const double distance = glm::length(d);
-    // Moving the eye by m moves (p - eye) . n / |n| and |p - eye| by at most m each.
+    const glm::dvec3 v = center - view.eye;
+    const double distance = turn > 0.0 ? glm::length(v) : 0.0;
+    // Moving the eye by m moves v . n / |n| and |v| by at most m each.
     const double rate = cosTurn + sinTurn;
     double back = std::numeric_limits<double>::infinity(), frontFacing = -std::numeric_limits<double>::infinity();
     bool backFacing = true;
+    // v . n - radius * |n| is concave in the slope (n is linear in it), so its smallest value
+    // over the box is at one of the four corners.
     for (double dx : {double(slopes.dxLow), double(slopes.dxHigh)})
         for (double dz : {double(slopes.dzLow), double(slopes.dzHigh)}) {
-            const glm::dvec3 n = glm::cross(jacobian.south + s * dz * curved.up, jacobian.east + s * dx * curved.up);
+            const glm::dvec3 n = glm::cross(south + s * dz * up, east + s * dx * up);
             const double length = glm::length(n);
-            const double slack = (cosTurn * glm::dot(d, n) / length - sinTurn * distance - curved.radius) / rate;
+            const double slack = (cosTurn * glm::dot(v, n) - (sinTurn * distance + radius) * length) / length / rate;
             if (slack <= 0.0) backFacing = false;
             back = std::min(back, slack);
             frontFacing = std::max(frontFacing, -slack);
@@ -101,6 +90,21 @@ BackFaces curvedBackFaces(const View& view, const EarthShape& earth, const Curve
     faces.back = back;
     faces.front = frontFacing;
     return faces;
+}
+
+} // namespace
+
+BackFaces backFaces(const View& view, const glm::dvec3& center, double radius, const SlopeBox& slopes, double verticalScale) {
+    return facesAway(view, center, radius, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, 0.0, slopes, verticalScale);
+}
+
+BackFaces curvedBackFaces(const View& view, const EarthShape& earth, const CurvedCell& curved, const SlopeBox& slopes, double verticalScale) {
+    if (!slopes.known()) return facesAway(view, curved.center, curved.radius, {}, {}, {}, 0.0, slopes, verticalScale);
+    const double steepest = verticalScale * (std::max(std::abs(double(slopes.dxLow)), std::abs(double(slopes.dxHigh))) +
+                                             std::max(std::abs(double(slopes.dzLow)), std::abs(double(slopes.dzHigh))));
+    const CurvedJacobian jacobian = curvedJacobian(earth, curved);
+    return facesAway(view, curved.center, curved.radius, jacobian.east, curved.up, jacobian.south,
+                     curved.tilt + jacobian.stretchChange * steepest, slopes, verticalScale);
 }
 
 double projectedErrorPixels(const View& view, const glm::dvec3& center, double radius, double verticalError) {

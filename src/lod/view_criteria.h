@@ -37,20 +37,19 @@ bool outsideFrustum(const View& view, const glm::dvec3& center, double radius);
 /// (§5, second test, made a bound): the normals (-s*dx, 1, -s*dz) for the vertical scale s
 /// all satisfy (p - eye) . n > 0 for every point p of the sphere. Such a cell's samples
 /// cannot be seen: where a ray from an eye above a height field first meets it, the surface
-/// faces the eye.
-bool backFacing(const View& view, const glm::dvec3& center, double radius, const SlopeBox& slopes, double verticalScale);
+/// faces the eye. back: how far the eye may move while the cell stays back-facing; front (when
+/// it is not): how far before it may turn its back (infinite where nothing can be told).
+struct BackFaces {
+    bool backFacing = false;
+    double back = 0.0, front = 0.0; // metres
+};
+BackFaces backFaces(const View& view, const glm::dvec3& center, double radius, const SlopeBox& slopes, double verticalScale);
 
 /// The same test on the curved Earth (earth_shape.h): each slope's normal drawn through the
 /// map's Jacobian at the cell's centre (curvedJacobian's east and south, and curved.up; the
 /// normal is linear in the slope, so the corners of the box still bound it), then allowed to
 /// turn by the frame's turn over the cell (curved.tilt) and the stretch's change times the steepest slope:
 /// a unit normal m within angle a of n gives (p - eye) . m >= cos(a) (p - eye) . n - sin(a) |p - eye|.
-/// back: how far the eye may move while the cell stays back-facing; front (when it is not):
-/// how far before it may turn its back (infinite where the turn allowed is too large to tell).
-struct BackFaces {
-    bool backFacing = false;
-    double back = 0.0, front = 0.0; // metres
-};
 BackFaces curvedBackFaces(const View& view, const EarthShape& earth, const CurvedCell& curved, const SlopeBox& slopes, double verticalScale);
 
 /// Upper bound, in pixels, of the screen distance between any sample under the cell and the

@@ -233,7 +233,7 @@ TEST(CellVerdict, ACellWhoseBoundExceedsTauIsNeverJudgedFine) {
         double radius;
         boundingSphere(cell.footprint, cell.bound, context.verticalScale, center, radius);
         const bool hidden = context.culling && (outsideFrustum(view, center, radius) ||
-                                                backFacing(view, center, radius, cell.slopes, context.verticalScale));
+                                                backFaces(view, center, radius, cell.slopes, context.verticalScale).backFacing);
         const double bound = projectedErrorPixels(view, center, radius, double(cell.bound.error) * context.verticalScale);
         double dist;
         const CellVerdict verdict = judgeCell(context, {cell.footprint, cell.bound, &cell.slopes, false}, dist);
