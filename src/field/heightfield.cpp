@@ -176,7 +176,6 @@ const char* Heightfield::prepare() {
 
 float Heightfield::tiledHeightAt(int32_t j, int32_t i) const { return tiles_->height(j, i); }
 bool Heightfield::tiledMissing(int32_t j, int32_t i) const { return tiles_->missing(j, i); }
-bool Heightfield::anyMissing() const { return tiles_ ? tiles_->missingCount() > 0 : missingCount_ > 0; }
 
 float Heightfield::heightClamped(int32_t j, int32_t i) const {
     j = std::clamp(j, 0, width_ - 1);

@@ -74,8 +74,8 @@ public:
     /// Whether sample (j, i), inside the field, was no-data (its height is a fill): known for a
     /// tiled field (SampleTiles::missing); a field held whole is filled by the caller.
     bool sampleMissing(int32_t j, int32_t i) const { return tiles_ && tiledMissing(j, i); }
-    /// Whether any sample was no-data so far.
-    bool anyMissing() const;
+    /// Whether any sample was no-data so far (asked for every vertex the stream writes: inline).
+    bool anyMissing() const { return tiles_ ? tiles_->missingCount() > 0 : missingCount_ > 0; }
     /// Same, with the indices clamped to the field (lookups outside the rectangle).
     float heightClamped(int32_t j, int32_t i) const;
     /// Bilinear height in metres at a horizontal position in metres (x east, z south), clamped.

@@ -24,6 +24,9 @@ void withSamples(SampleType type, uint8_t* bytes, F&& f) {
     }
 }
 
+// Bit k of a tile's no-data marks (slotMissing_).
+bool marked(const std::vector<uint8_t>& bits, size_t k) { return (bits[k >> 3] >> (k & 7)) & 1; }
+
 } // namespace
 
 void SampleRect::add(const SampleRect& r) {
@@ -109,7 +112,7 @@ bool SampleTiles::missingAtLevel(const TileLevel& l, int32_t u, int32_t v) const
     const std::vector<uint8_t>& bits = slotMissing_[size_t(l.tiles.get(tx, ty).slot)];
     if (bits.empty()) return false;
     const size_t k = size_t(v - ty * l.tileHeight) * size_t(l.tileWidth) + size_t(u - tx * l.tileWidth);
-    return (bits[k >> 3] >> (k & 7)) & 1;
+    return marked(bits, k);
 }
 
 bool SampleTiles::missing(int32_t j, int32_t i) const {
@@ -211,7 +214,7 @@ void SampleTiles::markMissing(int32_t level, int32_t tx, int32_t ty) {
     std::vector<uint8_t>& bits = slotMissing_[size_t(slot)];
     withSamples(type_, slots_[size_t(slot)].get(), [&](auto* samples) {
         for (size_t k = 0; k < count; ++k) {
-            if (!missingRaw(double(samples[k])) || (!bits.empty() && ((bits[k >> 3] >> (k & 7)) & 1))) continue;
+            if (!missingRaw(double(samples[k])) || (!bits.empty() && marked(bits, k))) continue;
             ++missing_;
             if (bits.empty()) bits.assign((count + 7) / 8, 0);
             bits[k >> 3] |= uint8_t(1u << (k & 7));
@@ -229,7 +232,7 @@ bool SampleTiles::writeFill(int32_t level, int32_t tx, int32_t ty, ValueAt&& raw
     withSamples(type_, slots_[size_t(slot)].get(), [&](auto* samples) {
         using T = std::remove_pointer_t<decltype(samples)>;
         for (size_t k = 0; k < count; ++k) {
-            if (!((bits[k >> 3] >> (k & 7)) & 1)) continue;
+            if (!marked(bits, k)) continue;
             const int32_t u = tx * l.tileWidth + int32_t(k % size_t(l.tileWidth)), v = ty * l.tileHeight + int32_t(k / size_t(l.tileWidth));
             double raw = u < l.width && v < l.height ? rawAt(u, v) : fillRaw_; // past the level's edge: never read
             if constexpr (std::is_integral_v<T>) {
