@@ -169,9 +169,7 @@ export class TerrainRenderer {
     const gl = this.gl;
     this.program = link(gl, terrainVertex, terrainFragment, 'terrain');
     this.uniforms = uniformLocations(gl, this.program, UNIFORMS);
-    // No-data as holes: a variant whose fragments may discard (shaders/terrain.frag).
-    this.holesProgram = link(gl, terrainVertex, withDefine(terrainFragment, 'NODATA_HOLES'), 'terrain with holes');
-    this.holesUniforms = uniformLocations(gl, this.holesProgram, UNIFORMS);
+    this.holesProgram = null; // linked when first drawn (holesVariant): most terrains never need it
     this.skyProgram = link(gl, skyVertex, skyFragment, 'sky');
     this.skyUniforms = uniformLocations(gl, this.skyProgram, SKY_UNIFORMS);
     this.skyVao = gl.createVertexArray();
@@ -477,6 +475,13 @@ export class TerrainRenderer {
     return view.nodata === 'holes' && (textures.terrain?.tiled === true || !!textures.field?.missingMask);
   }
 
+  /** No-data as holes: a variant of the terrain program whose fragments may discard (shaders/terrain.frag). */
+  holesVariant() {
+    if (this.holesProgram) return;
+    this.holesProgram = link(this.gl, terrainVertex, withDefine(terrainFragment, 'NODATA_HOLES'), 'terrain with holes');
+    this.holesUniforms = uniformLocations(this.gl, this.holesProgram, UNIFORMS);
+  }
+
   drawTerrain(camera, view, mode, verticalScale, drapes) {
     const gl = this.gl;
     const plain = mode === SHADING_MODES.plain;
@@ -485,6 +490,7 @@ export class TerrainRenderer {
     // unless it draws holes (the field's presence is in them).
     if (!plain || holes) this.fieldTextures.prepare(verticalScale, this.atmosphere.sunDirection, this.earth.earth);
     gl.enable(gl.CULL_FACE);
+    if (holes) this.holesVariant();
     gl.useProgram(holes ? this.holesProgram : this.program);
     const u = holes ? this.holesUniforms : this.uniforms;
     if (holes) gl.uniform1i(u.uHoleSource, this.fieldTextures.ready ? 0 : 1);
